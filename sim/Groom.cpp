@@ -1,0 +1,512 @@
+#include "sim/Groom.h"
+
+#include "sim/MeshBvh.h"
+#include "sim/Random.h"
+#include "sim/SignedDistanceField.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+namespace wisp {
+namespace {
+
+// Keys of the independent random streams, so that e.g. lengths never correlate with positions.
+enum Stream : std::uint64_t { CandidateCount = 1, CandidatePoint, Priority, Keep, LengthJitter, CurlPhase };
+
+// A hashed 3D grid for blue-noise thinning and nearest-site queries.
+class PointGrid {
+public:
+    explicit PointGrid(float cellSize) : m_inverseCell(1.0f / cellSize) {}
+
+    void insert(const glm::vec3& p, std::uint32_t id) { m_cells[keyOf(cellOf(p))].push_back(id); }
+
+    template <typename Visit>
+    void forNeighbours(const glm::vec3& p, Visit&& visit) const
+    {
+        const glm::ivec3 c = cellOf(p);
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const auto it = m_cells.find(keyOf(c + glm::ivec3(dx, dy, dz)));
+                    if (it == m_cells.end())
+                        continue;
+                    for (std::uint32_t id : it->second)
+                        visit(id);
+                }
+    }
+
+private:
+    glm::ivec3 cellOf(const glm::vec3& p) const { return glm::ivec3(glm::floor(p * m_inverseCell)); }
+    static std::uint64_t keyOf(const glm::ivec3& c)
+    {
+        return (static_cast<std::uint64_t>(c.x + (1 << 20)) << 42) | (static_cast<std::uint64_t>(c.y + (1 << 20)) << 21) |
+               static_cast<std::uint64_t>(c.z + (1 << 20));
+    }
+    float m_inverseCell;
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> m_cells;
+};
+
+struct Pore {
+    SurfacePoint surface;
+    glm::vec3 position;
+    float priority;
+};
+
+// Greedy Poisson-disk thinning in priority order: a point survives when no surviving point lies
+// within `radius`. The result is a maximal blue-noise subset; deterministic because the order is.
+std::vector<std::uint32_t> thinToBlueNoise(const std::vector<Pore>& pores, std::span<const std::uint32_t> order,
+                                           float radius)
+{
+    PointGrid grid(radius);
+    std::vector<std::uint32_t> kept;
+    const float radius2 = radius * radius;
+    for (std::uint32_t id : order) {
+        bool blocked = false;
+        grid.forNeighbours(pores[id].position, [&](std::uint32_t other) {
+            const glm::vec3 d = pores[other].position - pores[id].position;
+            blocked = blocked || glm::dot(d, d) < radius2;
+        });
+        if (!blocked) {
+            grid.insert(pores[id].position, id);
+            kept.push_back(id);
+        }
+    }
+    return kept;
+}
+
+// Greedy thinning reaches about this many points per r² (measured on the default head; random
+// sequential adsorption saturates near 0.547 of the hexagonal packing 2/sqrt(3)/r²).
+constexpr float kThinnedPointsPerRadiusSquared = 0.68f;
+
+// The weight-independent pore set for a density: candidates per triangle from counter-based
+// randomness keyed by the triangle, thinned to blue noise. Changing the growth weights never
+// changes this set; the weights only decide which pores grow a strand.
+std::vector<Pore> poreSet(const TriangleMesh& head, float densityPerM2, std::uint32_t seed, float* radiusOut)
+{
+    constexpr float kOversample = 4.0f;
+    std::vector<Pore> candidates;
+    for (std::uint32_t t = 0; t < head.triangles.size(); ++t) {
+        const float expected = triangleArea(head, t) * densityPerM2 * kOversample;
+        const auto count = static_cast<std::uint32_t>(expected + randomUnit(seed, CandidateCount, t));
+        for (std::uint32_t i = 0; i < count; ++i) {
+            float b1 = randomUnit(seed, CandidatePoint, t, 2 * i);
+            float b2 = randomUnit(seed, CandidatePoint, t, 2 * i + 1);
+            if (b1 + b2 > 1.0f) {  // fold the square onto the triangle: uniform by area
+                b1 = 1.0f - b1;
+                b2 = 1.0f - b2;
+            }
+            const SurfacePoint sp{t, {b1, b2}};
+            candidates.push_back({sp, pointOn(head, sp), randomUnit(seed, Priority, t, i)});
+        }
+    }
+    std::vector<std::uint32_t> order(candidates.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return candidates[a].priority < candidates[b].priority; });
+    const float radius = std::sqrt(kThinnedPointsPerRadiusSquared / densityPerM2);
+    std::vector<std::uint32_t> kept = thinToBlueNoise(candidates, order, radius);
+    std::sort(kept.begin(), kept.end());  // stable ids in triangle order
+    std::vector<Pore> pores;
+    pores.reserve(kept.size());
+    for (std::uint32_t id : kept)
+        pores.push_back(candidates[id]);
+    *radiusOut = radius;
+    return pores;
+}
+
+glm::vec3 anyPerpendicular(const glm::vec3& n)
+{
+    const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    return glm::normalize(glm::cross(n, helper));
+}
+
+// Rotation taking unit vector a onto unit vector b by the shortest arc, applied to v (Rodrigues:
+// R v = v c + k x v + k (k.v) / (1 + c), k = a x b, c = a.b).
+glm::vec3 rotateMinimal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& v)
+{
+    const glm::vec3 k = glm::cross(a, b);
+    const float c = glm::dot(a, b);
+    if (c < -0.9999f) {  // opposite: a half-turn about any axis perpendicular to a
+        const glm::vec3 axis = anyPerpendicular(a);
+        return 2.0f * glm::dot(v, axis) * axis - v;
+    }
+    return v * c + glm::cross(k, v) + k * (glm::dot(k, v) / (1.0f + c));
+}
+
+glm::mat3 minimalRotationMatrix(const glm::vec3& a, const glm::vec3& b)
+{
+    return glm::mat3(rotateMinimal(a, b, {1, 0, 0}), rotateMinimal(a, b, {0, 1, 0}), rotateMinimal(a, b, {0, 0, 1}));
+}
+
+// Pushes p out of the collider to `offset` above the skin (Lee et al. 3.4: nodes inside the head move out).
+glm::vec3 pushOut(const SignedDistanceField* collider, glm::vec3 p, float offset)
+{
+    if (!collider)
+        return p;
+    for (int i = 0; i < 3; ++i) {
+        const float d = collider->distance(p);
+        if (d >= offset)
+            break;
+        p += (offset - d) * collider->gradient(p);
+    }
+    return p;
+}
+
+// Rest shape of one key hair: it leaves the scalp along the normal, turns toward "down" along the
+// head as a combed strand does, drapes over the head (pushed out where it would go inside) and,
+// with curl, winds as a helix around that centreline. Segment lengths follow the strand's arc length.
+void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float length, int segments, float curlRadius,
+                  float curlTurnsPerMetre, float curlPhase, float offset, const SignedDistanceField* collider,
+                  std::span<glm::vec3> out)
+{
+    // A helix of radius r and pitch 1/T covers arc length sqrt(1 + (2 pi r T)^2) per unit of axis.
+    const float helix = glm::two_pi<float>() * curlRadius * curlTurnsPerMetre;
+    const float axisLength = length / std::sqrt(1.0f + helix * helix);
+    const float step = axisLength / static_cast<float>(segments);
+
+    // Centreline.
+    std::vector<glm::vec3> centre(out.size());
+    std::vector<glm::vec3> tangent(out.size());
+    centre[0] = root;
+    glm::vec3 down(0.0f, -1.0f, 0.0f);
+    glm::vec3 flow = down - normal * glm::dot(down, normal);
+    if (glm::length(flow) < 0.2f)  // crown: comb toward the back of the head
+        flow += glm::vec3(0.0f, 0.0f, -0.5f);
+    flow = glm::normalize(flow);
+    glm::vec3 direction = normal;
+    constexpr float kTurnDistance = 0.03f;  // metres over which the strand turns from the normal to the flow
+    for (std::size_t j = 1; j < out.size(); ++j) {
+        const float s = step * static_cast<float>(j);
+        const float blend = std::min(1.0f, s / kTurnDistance);
+        glm::vec3 want = glm::normalize(glm::mix(normal, flow, blend));
+        // Far from the head the strand hangs toward gravity.
+        want = glm::normalize(glm::mix(want, down, std::min(1.0f, s / (4.0f * kTurnDistance + axisLength)) * 0.6f));
+        direction = glm::normalize(glm::mix(direction, want, 0.7f));
+        glm::vec3 p = centre[j - 1] + step * direction;
+        if (j > 1) {
+            p = pushOut(collider, p, offset + curlRadius);
+            p = centre[j - 1] + step * glm::normalize(p - centre[j - 1]);
+        }
+        direction = glm::normalize(p - centre[j - 1]);
+        centre[j] = p;
+    }
+    for (std::size_t j = 0; j < out.size(); ++j) {
+        const std::size_t a = j == 0 ? 0 : j - 1;
+        const std::size_t b = std::min(j + 1, out.size() - 1);
+        tangent[j] = glm::normalize(centre[b] - centre[a]);
+    }
+    if (curlRadius <= 0.0f || curlTurnsPerMetre <= 0.0f) {
+        std::copy(centre.begin(), centre.end(), out.begin());
+        return;
+    }
+    // Helix around the centreline in a parallel-transported frame; the radius ramps up over the
+    // first 2 cm so the root stays on the scalp.
+    glm::vec3 u = anyPerpendicular(tangent[0]);
+    for (std::size_t j = 0; j < out.size(); ++j) {
+        if (j > 0)
+            u = glm::normalize(rotateMinimal(tangent[j - 1], tangent[j], u));
+        const glm::vec3 v = glm::cross(tangent[j], u);
+        const float s = step * static_cast<float>(j);
+        const float ramp = std::min(1.0f, s / 0.02f);
+        const float angle = glm::two_pi<float>() * curlTurnsPerMetre * s + curlPhase;
+        out[j] = centre[j] + curlRadius * ramp * (std::cos(angle) * u + std::sin(angle) * v);
+    }
+}
+
+// Lee et al.: members start to clump at clump-rate along the strand and reach clump-degree at the tip.
+float clumpAt(float u, float clumpDegree, float clumpRate)
+{
+    if (u <= clumpRate || clumpRate >= 1.0f)
+        return 0.0f;
+    const float x = (u - clumpRate) / (1.0f - clumpRate);
+    return clumpDegree * x * x * (3.0f - 2.0f * x);  // smoothstep: no kink where clumping starts
+}
+
+GroomResult finishGroom(Groom groom, const TriangleMesh& head, const SignedDistanceField* collider,
+                        std::span<const glm::vec3> rootPositions)
+{
+    const GroomSettings& s = groom.settings;
+    const std::vector<glm::vec3> normals = vertexNormals(head);
+    const auto points = static_cast<std::uint32_t>(s.segments + 1);
+    groom.rest.clear();
+    groom.rest.offsets.reserve(groom.roots.size() + 1);
+    groom.rest.positions.reserve(groom.roots.size() * points);
+    for (std::size_t i = 0; i < groom.roots.size(); ++i)
+        groom.rest.addStrand(points);
+
+    // Key rest shapes first, then members from them.
+    for (std::size_t w = 0; w < groom.keyStrand.size(); ++w) {
+        const std::uint32_t k = groom.keyStrand[w];
+        const SurfacePoint& sp = groom.roots[k];
+        const glm::uvec3 tri = head.triangles[sp.triangle];
+        const float b0 = 1.0f - sp.barycentric.x - sp.barycentric.y;
+        glm::vec3 n = b0 * normals[tri.x] + sp.barycentric.x * normals[tri.y] + sp.barycentric.y * normals[tri.z];
+        n = glm::length(n) > 1e-6f ? glm::normalize(n) : glm::vec3(0, 1, 0);
+        const float phase = glm::two_pi<float>() * randomUnit(s.seed, CurlPhase, groom.rootIds[k]);
+        buildKeyRest(rootPositions[k], n, groom.lengths[k], s.segments, s.curlRadiusMetres, s.curlTurnsPerMetre, phase,
+                     s.hairOffsetMetres, collider, groom.rest.strandForWrite(k));
+    }
+    const HairCurves keys = keyRestCurves(groom);
+    buildMembers(groom, keys.positions, glm::mat3(1.0f), groom.rest);
+    return {std::move(groom), {}};
+}
+
+}  // namespace
+
+GroomSettings groomSettingsFrom(const ParameterValues& v)
+{
+    GroomSettings s;
+    s.densityPerCm2 = v.getFloat(Param::Density);
+    s.wispSize = v.getInt(Param::WispSize);
+    s.clumpDegree = v.getFloat(Param::ClumpDegree);
+    s.clumpRate = v.getFloat(Param::ClumpRate);
+    s.lengthMetres = v.getFloat(Param::Length);
+    s.lengthVariation = v.getFloat(Param::LengthVariation);
+    s.segments = v.getInt(Param::Segments);
+    s.curlRadiusMetres = v.getFloat(Param::CurlRadius);
+    s.curlTurnsPerMetre = v.getFloat(Param::CurlTurns);
+    s.seed = static_cast<std::uint32_t>(v.get(Param::Seed));
+    s.hairOffsetMetres = v.getFloat(Param::HairOffset);
+    return s;
+}
+
+std::string validateGroomSettings(const GroomSettings& s)
+{
+    const std::pair<Param, double> checks[] = {
+        {Param::Density, s.densityPerCm2},       {Param::WispSize, s.wispSize},
+        {Param::ClumpDegree, s.clumpDegree},     {Param::ClumpRate, s.clumpRate},
+        {Param::Length, s.lengthMetres},         {Param::LengthVariation, s.lengthVariation},
+        {Param::Segments, s.segments},           {Param::CurlRadius, s.curlRadiusMetres},
+        {Param::CurlTurns, s.curlTurnsPerMetre}, {Param::HairOffset, s.hairOffsetMetres},
+    };
+    for (const auto& [id, value] : checks)
+        if (std::string error = checkParameterValue(id, value); !error.empty())
+            return error;
+    return {};
+}
+
+GroomResult buildGroom(const TriangleMesh& head, std::span<const float> growthWeights, const GroomSettings& settings,
+                       const SignedDistanceField* collider)
+{
+    GroomResult result;
+    if (std::string error = validateMesh(head); !error.empty())
+        return {{}, "head: " + error};
+    if (std::string error = validateGroomSettings(settings); !error.empty())
+        return {{}, error};
+    if (growthWeights.size() != head.positions.size())
+        return {{}, "growth map: " + std::to_string(growthWeights.size()) + " weights for " +
+                        std::to_string(head.positions.size()) + " vertices"};
+    bool anyGrowth = false;
+    for (std::size_t i = 0; i < growthWeights.size(); ++i) {
+        if (!std::isfinite(growthWeights[i]))
+            return {{}, "growth map: weight " + std::to_string(i) + " is not a finite number"};
+        anyGrowth = anyGrowth || growthWeights[i] > 0.0f;
+    }
+    if (!anyGrowth)
+        return {{}, "growth map: every weight is 0, so no hair grows; paint where hair should grow"};
+
+    // Bounded work: refuse densities that would place more than ~4 million strands.
+    double area = 0.0;
+    for (std::uint32_t t = 0; t < head.triangles.size(); ++t)
+        area += triangleArea(head, t);
+    const double densityPerM2 = static_cast<double>(settings.densityPerCm2) * 1e4;
+    if (area * densityPerM2 > 4.0e6)
+        return {{}, "density: " + std::to_string(settings.densityPerCm2) + " strands/cm² on " +
+                        std::to_string(area * 1e4) + " cm² would place more than 4 million strands"};
+
+    Groom& groom = result.groom;
+    groom.settings = settings;
+    float radius = 0.0f;
+    const std::vector<Pore> pores = poreSet(head, static_cast<float>(densityPerM2), settings.seed, &radius);
+
+    // Wisp sites: a coarser blue-noise subset of the pores, also weight-independent, so a wisp's
+    // neighbourhood does not shift when an artist paints elsewhere.
+    std::vector<std::uint32_t> order(pores.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return pores[a].priority < pores[b].priority; });
+    const float wispRadius = radius * std::sqrt(static_cast<float>(settings.wispSize));
+    const std::vector<std::uint32_t> sites = thinToBlueNoise(pores, order, wispRadius);
+    PointGrid siteGrid(wispRadius);
+    for (std::uint32_t i = 0; i < sites.size(); ++i)
+        siteGrid.insert(pores[sites[i]].position, i);
+
+    // Growth: a pore grows a strand when its painted weight beats its own random threshold, so the
+    // local density follows the weight and a weight-0 area has no strand at all.
+    std::vector<glm::vec3> rootPositions;
+    std::vector<std::uint32_t> siteOf;
+    for (std::uint32_t id = 0; id < pores.size(); ++id) {
+        const Pore& pore = pores[id];
+        const glm::uvec3 tri = head.triangles[pore.surface.triangle];
+        const float b0 = 1.0f - pore.surface.barycentric.x - pore.surface.barycentric.y;
+        const float weight = b0 * growthWeights[tri.x] + pore.surface.barycentric.x * growthWeights[tri.y] +
+                             pore.surface.barycentric.y * growthWeights[tri.z];
+        if (!(weight > randomUnit(settings.seed, Keep, id)))
+            continue;
+        std::uint32_t nearest = 0;
+        float best = INFINITY;
+        siteGrid.forNeighbours(pore.position, [&](std::uint32_t site) {
+            const glm::vec3 d = pores[sites[site]].position - pore.position;
+            const float d2 = glm::dot(d, d);
+            if (d2 < best || (d2 == best && site < nearest)) {
+                best = d2;
+                nearest = site;
+            }
+        });
+        groom.roots.push_back(pore.surface);
+        groom.rootIds.push_back(id);
+        rootPositions.push_back(pore.position);
+        siteOf.push_back(nearest);
+        const float jitter = 2.0f * randomUnit(settings.seed, LengthJitter, id) - 1.0f;
+        groom.lengths.push_back(settings.lengthMetres * (1.0f + settings.lengthVariation * jitter));
+    }
+    if (groom.roots.empty())
+        return {{}, "growth map: the painted area is too small or too faint for any strand at this density"};
+
+    // Wisps: the strands sharing a site; the key hair is the member nearest the site.
+    std::vector<std::int64_t> wispOfSite(sites.size(), -1);
+    std::vector<float> keyDistance;
+    groom.wispOf.resize(groom.roots.size());
+    for (std::uint32_t i = 0; i < groom.roots.size(); ++i) {
+        const std::uint32_t site = siteOf[i];
+        const float d = glm::distance(rootPositions[i], pores[sites[site]].position);
+        if (wispOfSite[site] < 0) {
+            wispOfSite[site] = static_cast<std::int64_t>(groom.keyStrand.size());
+            groom.keyStrand.push_back(i);
+            keyDistance.push_back(d);
+        }
+        const auto w = static_cast<std::uint32_t>(wispOfSite[site]);
+        groom.wispOf[i] = w;
+        if (d < keyDistance[w]) {
+            keyDistance[w] = d;
+            groom.keyStrand[w] = i;
+        }
+    }
+    return finishGroom(std::move(groom), head, collider, rootPositions);
+}
+
+GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int width, int height, int particlesPerStrand,
+                           float lengthMetres, const SignedDistanceField* collider)
+{
+    if (std::string error = validateMesh(head); !error.empty())
+        return {{}, "head: " + error};
+    if (width < 1 || height < 1 || width * static_cast<long long>(height) > 4'000'000)
+        return {{}, "grid: " + std::to_string(width) + " x " + std::to_string(height) + " strands is not 1 .. 4 million"};
+    if (std::string error = checkParameterValue(Param::Segments, particlesPerStrand - 1); !error.empty())
+        return {{}, "grid: particles per strand: " + std::to_string(particlesPerStrand) + " is outside 3..128"};
+    if (std::string error = checkParameterValue(Param::Length, lengthMetres); !error.empty())
+        return {{}, error};
+
+    GroomResult result;
+    Groom& groom = result.groom;
+    ParameterValues defaults;
+    groom.settings = groomSettingsFrom(defaults);
+    groom.settings.wispSize = 1;
+    groom.settings.lengthMetres = lengthMetres;
+    groom.settings.lengthVariation = 0.0f;
+    groom.settings.segments = particlesPerStrand - 1;
+    groom.settings.curlRadiusMetres = 0.0f;
+    groom.settings.curlTurnsPerMetre = 0.0f;
+
+    const Aabb box = boundsOf(head);
+    // The cranium's centre: the upper part of the box, where a ray outward always crosses the scalp.
+    const glm::vec3 centre(box.center().x, box.min.y + 0.6f * box.size().y, box.center().z);
+    std::vector<glm::vec3> rootPositions;
+    for (int j = 0; j < height; ++j) {
+        // Polar angle from +Y: the top cap down to about 70 degrees, as a scalp grid.
+        const float polar = glm::radians(8.0f + 62.0f * (static_cast<float>(j) + 0.5f) / static_cast<float>(height));
+        for (int i = 0; i < width; ++i) {
+            const float azimuth = glm::two_pi<float>() * (static_cast<float>(i) + 0.5f) / static_cast<float>(width);
+            const glm::vec3 dir(std::sin(polar) * std::cos(azimuth), std::cos(polar), std::sin(polar) * std::sin(azimuth));
+            const float far = 2.0f * glm::length(box.size());
+            // Cast inward from outside so the outermost surface (the scalp) is found even when the
+            // centre guess is not inside a closed mesh.
+            const auto hit = bvh.raycast(centre + far * dir, -dir, far);
+            const SurfacePoint sp = hit ? hit->surface : bvh.closestPoint(centre + 0.5f * box.size().y * dir).surface;
+            groom.roots.push_back(sp);
+            groom.rootIds.push_back(static_cast<std::uint32_t>(groom.roots.size() - 1));
+            rootPositions.push_back(pointOn(head, sp));
+            groom.lengths.push_back(lengthMetres);
+            groom.wispOf.push_back(static_cast<std::uint32_t>(groom.keyStrand.size()));
+            groom.keyStrand.push_back(static_cast<std::uint32_t>(groom.roots.size() - 1));
+        }
+    }
+    return finishGroom(std::move(groom), head, collider, rootPositions);
+}
+
+HairCurves keyRestCurves(const Groom& groom)
+{
+    HairCurves keys;
+    keys.offsets.reserve(groom.wispCount() + 1);
+    for (std::uint32_t k : groom.keyStrand) {
+        const std::span<const glm::vec3> src = groom.rest.strand(k);
+        const std::size_t index = keys.addStrand(static_cast<std::uint32_t>(src.size()));
+        std::copy(src.begin(), src.end(), keys.strandForWrite(index).begin());
+    }
+    return keys;
+}
+
+void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, const glm::mat3& headRotation,
+                  HairCurves& out)
+{
+    const GroomSettings& s = groom.settings;
+    const std::size_t points = static_cast<std::size_t>(s.segments) + 1;
+    // Offsets are measured between rest roots in head space.
+    std::vector<glm::mat3> transport(points);
+    std::vector<glm::vec3> tangent(points);
+    std::vector<std::vector<std::uint32_t>> members(groom.wispCount());
+    for (std::uint32_t i = 0; i < groom.strandCount(); ++i)
+        members[groom.wispOf[i]].push_back(i);
+
+    for (std::size_t w = 0; w < groom.wispCount(); ++w) {
+        const std::uint32_t k = groom.keyStrand[w];
+        const std::span<const glm::vec3> key = keyPositions.subspan(w * points, points);
+        std::copy(key.begin(), key.end(), out.strandForWrite(k).begin());
+        if (members[w].size() < 2)
+            continue;
+        // Parallel transport along the key: a member's root offset turns with the key's tangent,
+        // so members stay beside their key wherever the key bends.
+        for (std::size_t j = 0; j < points; ++j) {
+            const std::size_t a = j == 0 ? 0 : j - 1;
+            const std::size_t b = std::min(j + 1, points - 1);
+            const glm::vec3 d = key[b] - key[a];
+            const float len = glm::length(d);
+            tangent[j] = len > 1e-9f ? d / len : (j > 0 ? tangent[j - 1] : glm::vec3(0, 1, 0));
+            transport[j] = j == 0 ? headRotation : minimalRotationMatrix(tangent[j - 1], tangent[j]) * transport[j - 1];
+        }
+        const float keyLength = groom.lengths[k];
+        const glm::vec3 keyRoot = groom.rest.strand(k)[0];
+        for (std::uint32_t m : members[w]) {
+            if (m == k)
+                continue;
+            const glm::vec3 rootOffset = groom.rest.strand(m)[0] - keyRoot;
+            std::span<glm::vec3> dst = out.strandForWrite(m);
+            const float scale = groom.lengths[m] / keyLength;
+            for (std::size_t j = 0; j < points; ++j) {
+                const float u = static_cast<float>(j) / static_cast<float>(points - 1);
+                const float f = u * scale * static_cast<float>(points - 1);
+                glm::vec3 onKey;
+                glm::mat3 frame;
+                if (f >= static_cast<float>(points - 1)) {  // longer than its key: continue along the tip
+                    const float beyond = (f - static_cast<float>(points - 1)) * glm::distance(key[points - 1], key[points - 2]);
+                    onKey = key[points - 1] + beyond * tangent[points - 1];
+                    frame = transport[points - 1];
+                } else {
+                    const auto j0 = static_cast<std::size_t>(f);
+                    const float t = f - static_cast<float>(j0);
+                    onKey = glm::mix(key[j0], key[j0 + 1], t);
+                    frame = t < 0.5f ? transport[j0] : transport[j0 + 1];
+                }
+                dst[j] = onKey + (1.0f - clumpAt(u, s.clumpDegree, s.clumpRate)) * (frame * rootOffset);
+            }
+        }
+    }
+}
+
+}  // namespace wisp

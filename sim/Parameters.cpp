@@ -1,0 +1,123 @@
+#include "sim/Parameters.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace wisp {
+namespace {
+
+using enum Param;
+using G = ParamGroup;
+using K = ParamKind;
+
+// Ranges are what the solver and groom handle well, wide enough for stylised looks; the hostile
+// test (gravity 50 m/s², wind 50 m/s, dt 1/15 s) sits inside them on purpose.
+constexpr std::array<ParameterInfo, kParamCount> kParameters{{
+    {Density, "density", "Density", "strands/cm²", G::Groom, K::Real, 0.05, 200.0, 8.0,
+     "Drawn strands per square centimetre of scalp where the growth map is 1 (pore density, Lee et al.)"},
+    {WispSize, "wisp_size", "Wisp size", "strands", G::Groom, K::Integer, 1, 1024, 12,
+     "Strands per wisp; each wisp has one simulated key hair that its members follow"},
+    {ClumpDegree, "clump_degree", "Clump degree", "", G::Groom, K::Real, -1.0, 1.0, 0.5,
+     "How far members move toward the key hair: 1 onto it, 0 parallel, -1 spread to twice the wisp radius"},
+    {ClumpRate, "clump_rate", "Clump rate", "", G::Groom, K::Real, 0.0, 1.0, 0.3,
+     "Where along the strand clumping starts, as a fraction of its length (0 at the root)"},
+    {Length, "length", "Length", "m", G::Groom, K::Real, 0.005, 2.0, 0.28,
+     "Strand length along the hair (arc length), in metres"},
+    {LengthVariation, "length_variation", "Length variation", "", G::Groom, K::Real, 0.0, 0.9, 0.15,
+     "Random variation of each strand's length, as a fraction of Length"},
+    {Segments, "segments", "Segments", "per strand", G::Groom, K::Integer, 2, 127, 15,
+     "Segments per simulated strand (particles = segments + 1); curly hair needs more"},
+    {CurlRadius, "curl_radius", "Curl radius", "m", G::Groom, K::Real, 0.0, 0.05, 0.0,
+     "Radius of the helix the hair curls around; 0 for straight hair"},
+    {CurlTurns, "curl_turns", "Curl turns", "turns/m", G::Groom, K::Real, 0.0, 200.0, 0.0,
+     "Turns of the curl per metre of hair; waves are a few, tight curls 30 or more"},
+    {Seed, "seed", "Seed", "", G::Groom, K::Integer, 0, 2147483647, 1,
+     "Random seed for root placement and variation; the same seed gives the same groom"},
+
+    {Gravity, "gravity", "Gravity", "m/s²", G::Forces, K::Real, -100.0, 100.0, 9.81,
+     "Downward acceleration; negative makes hair float upward"},
+    {WindSpeed, "wind_speed", "Wind speed", "m/s", G::Forces, K::Real, 0.0, 100.0, 1.5,
+     "Speed of the wind the hair is dragged toward"},
+    {WindAzimuth, "wind_azimuth", "Wind azimuth", "°", G::Forces, K::Real, -360.0, 360.0, -90.0,
+     "Direction the wind blows toward, around +Y: 0 toward +X, 90 toward +Z (the face), -90 toward the back"},
+    {WindElevation, "wind_elevation", "Wind elevation", "°", G::Forces, K::Real, -90.0, 90.0, 0.0,
+     "Angle of the wind above the horizontal: 90 blows straight up"},
+    {Turbulence, "turbulence", "Turbulence", "", G::Forces, K::Real, 0.0, 2.0, 0.6,
+     "Gusts: noise in space and time added to the wind, as a fraction of its speed"},
+    {Drag, "drag", "Drag", "1/s", G::Forces, K::Real, 0.0, 50.0, 0.8,
+     "Air drag k of F = -k(v - wind) per unit mass; higher follows the wind more closely"},
+    {Damping, "damping", "Damping", "1/s", G::Forces, K::Real, 0.0, 50.0, 1.0,
+     "Velocity lost per second to internal friction, v *= exp(-damping dt)"},
+
+    {Stiffness, "stiffness", "Stiffness", "", G::Solver, K::Real, 0.0, 1.0, 0.25,
+     "How strongly each segment returns to its rest bend (keeps curls and styles); 0 is limp"},
+    {Friction, "friction", "Friction", "", G::Solver, K::Real, 0.0, 1.0, 0.3,
+     "Share of sliding speed lost when hair touches the head or a collider"},
+    {HairOffset, "hair_offset", "Hair offset", "m", G::Solver, K::Real, 0.0, 0.02, 0.002,
+     "Distance kept between the hair and the skin"},
+    {TimeStep, "time_step", "Time step", "s", G::Solver, K::Real, 1.0 / 1000.0, 1.0 / 10.0, 1.0 / 60.0,
+     "Simulated time per step"},
+    {Substeps, "substeps", "Substeps", "per step", G::Solver, K::Integer, 1, 32, 2,
+     "Solver iterations per step; more is stiffer and steadier, and slower"},
+    {SimulateAllStrands, "simulate_all_strands", "Simulate all strands", "", G::Solver, K::Toggle, 0, 1, 0,
+     "Simulate every strand instead of only the key hair of each wisp (slower, no clumping by wisp)"},
+}};
+
+constexpr bool tableIsInOrder()
+{
+    for (std::size_t i = 0; i < kParameters.size(); ++i)
+        if (static_cast<std::size_t>(kParameters[i].id) != i)
+            return false;
+    return true;
+}
+static_assert(tableIsInOrder(), "kParameters must list the parameters in the order of enum Param");
+
+std::string formatNumber(double v)
+{
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.6g", v);
+    return buffer;
+}
+
+}  // namespace
+
+std::span<const ParameterInfo> allParameters() { return kParameters; }
+
+const ParameterInfo& parameterInfo(Param id) { return kParameters[static_cast<std::size_t>(id)]; }
+
+const ParameterInfo* findParameter(std::string_view key)
+{
+    for (const ParameterInfo& p : kParameters)
+        if (p.key == key)
+            return &p;
+    return nullptr;
+}
+
+std::string checkParameterValue(Param id, double value)
+{
+    const ParameterInfo& p = parameterInfo(id);
+    if (!std::isfinite(value))
+        return std::string(p.key) + ": " + formatNumber(value) + " is not a finite number";
+    if (value < p.minimum || value > p.maximum)
+        return std::string(p.key) + ": " + formatNumber(value) + " is outside " + formatNumber(p.minimum) + ".." +
+               formatNumber(p.maximum);
+    return {};
+}
+
+ParameterValues::ParameterValues()
+{
+    for (const ParameterInfo& p : kParameters)
+        m_values[static_cast<std::size_t>(p.id)] = p.defaultValue;
+}
+
+std::string ParameterValues::set(Param id, double value)
+{
+    if (parameterInfo(id).kind != ParamKind::Real && std::isfinite(value))
+        value = std::round(value);
+    std::string error = checkParameterValue(id, value);
+    if (error.empty())
+        m_values[static_cast<std::size_t>(id)] = value;
+    return error;
+}
+
+}  // namespace wisp

@@ -1,0 +1,531 @@
+#include "sim/Solver.h"
+
+#include "sim/SignedDistanceField.h"
+#include "sim/ThreadPool.h"
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+namespace wisp {
+
+// ---------------------------------------------------------------------------------------------
+// Lanes: 8 floats handled by one instruction (GCC/Clang vector extension: AVX, or two SSE halves).
+constexpr int kLanes = 8;
+using Lane = float __attribute__((vector_size(kLanes * sizeof(float))));
+using Mask = int __attribute__((vector_size(kLanes * sizeof(int))));
+
+namespace {
+
+inline Lane splat(float v) { return Lane{} + v; }
+inline Lane select(Mask m, Lane a, Lane b) { return m ? a : b; }
+inline Lane lmin(Lane a, Lane b) { return a < b ? a : b; }
+inline Lane lmax(Lane a, Lane b) { return a > b ? a : b; }
+inline Lane lsqrt(Lane a)
+{
+    Lane r;
+    for (int i = 0; i < kLanes; ++i)
+        r[i] = __builtin_sqrtf(a[i]);
+    return r;
+}
+inline bool anyOf(Mask m)
+{
+    int any = 0;
+    for (int i = 0; i < kLanes; ++i)
+        any |= m[i];
+    return any != 0;
+}
+
+struct V3 {
+    Lane x, y, z;
+};
+inline V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator*(const V3& a, Lane s) { return {a.x * s, a.y * s, a.z * s}; }
+inline Lane dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 cross(const V3& a, const V3& b)
+{
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline V3 select(Mask m, const V3& a, const V3& b) { return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z}; }
+inline V3 splat(const glm::vec3& v) { return {splat(v.x), splat(v.y), splat(v.z)}; }
+inline V3 transform(const glm::mat3& m, const V3& v)  // m * v, glm is column-major
+{
+    return {v.x * m[0][0] + v.y * m[1][0] + v.z * m[2][0], v.x * m[0][1] + v.y * m[1][1] + v.z * m[2][1],
+            v.x * m[0][2] + v.y * m[1][2] + v.z * m[2][2]};
+}
+
+}  // namespace
+
+// Particle j of the block's 8 strands: position and previous position (Verlet keeps no velocity).
+struct ParticleRow {
+    Lane x, y, z;
+    Lane px, py, pz;
+};
+// Rest shape, head space. Row 0: the root position. Row j > 0: unit direction from particle j-1
+// to j and the segment's rest length (metres).
+struct RestRow {
+    Lane x, y, z;
+    Lane length;
+};
+
+struct Solver::Block {
+    std::uint32_t points = 0;
+    std::array<std::int64_t, kLanes> strand{};  // index into the caller's curves, -1 for padding
+    Lane strandLength{};                         // rest arc length per lane, metres
+    std::vector<ParticleRow> state;
+    std::vector<RestRow> rest;
+};
+
+struct StepConstants {
+    float dt = 0.0f;  // substep, seconds
+    float invDt = 0.0f;
+    float keep = 1.0f;     // exp(-damping dt): share of velocity kept
+    float bendAlpha = 0;   // share of the bend error removed per substep
+    float friction = 0;
+    float offset = 0;
+    float velocityCorrection = 0;
+    float drag = 0;
+    float turbulence = 0;
+    int substeps = 1;
+    double time = 0;
+    glm::vec3 gravity{0.0f};
+    glm::vec3 wind{0.0f};
+    glm::mat3 rotation{1.0f};  // head to world
+    glm::vec3 translation{0.0f};
+    glm::mat3 previousRotation{1.0f};
+    glm::vec3 previousTranslation{0.0f};
+    bool transformed = false;  // head is not at the identity: SDF lookups need head space
+    const SignedDistanceField* sdf = nullptr;
+    std::vector<Capsule> capsulesWorld;
+    std::uint64_t* resetCounter = nullptr;
+};
+
+namespace {
+
+// Gusts: a few travelling sine waves in space and time per axis, evaluated at the strand's root;
+// smooth, cheap, deterministic, and different across the head. Amplitude about 1.
+glm::vec3 gust(const glm::vec3& p, double time)
+{
+    const float t = static_cast<float>(std::fmod(time, 1000.0));
+    return {0.6f * std::sin(13.0f * p.x + 7.0f * p.z + 2.3f * t) + 0.4f * std::sin(-9.0f * p.y + 11.0f * p.z + 3.7f * t + 1.0f),
+            0.6f * std::sin(11.0f * p.y - 8.0f * p.x + 1.9f * t + 2.0f) + 0.4f * std::sin(14.0f * p.z + 5.3f * t + 4.0f),
+            0.6f * std::sin(12.0f * p.z + 6.0f * p.y + 2.9f * t + 3.0f) + 0.4f * std::sin(-10.0f * p.x + 4.1f * t + 5.0f)};
+}
+
+// Signed distance and outward normal from the baked field, trilinear with its analytic gradient.
+struct SdfSample {
+    Lane distance;
+    V3 normal;
+};
+SdfSample sampleSdf(const SignedDistanceField& sdf, const V3& p)
+{
+    const glm::vec3 origin = sdf.origin();
+    const glm::ivec3 dims = sdf.dims();
+    const float inv = 1.0f / sdf.cellSize();
+    const float* data = sdf.data();
+    Lane gx = (p.x - origin.x) * inv, gy = (p.y - origin.y) * inv, gz = (p.z - origin.z) * inv;
+    // Clamp into the grid; outside the box the field keeps the border's (positive) values.
+    gx = lmin(lmax(gx, splat(0.0f)), splat(static_cast<float>(dims.x - 1) - 1e-3f));
+    gy = lmin(lmax(gy, splat(0.0f)), splat(static_cast<float>(dims.y - 1) - 1e-3f));
+    gz = lmin(lmax(gz, splat(0.0f)), splat(static_cast<float>(dims.z - 1) - 1e-3f));
+    Lane c[8];
+    Lane fx, fy, fz;
+    const int sx = 1, sy = dims.x, sz = dims.x * dims.y;
+    for (int l = 0; l < kLanes; ++l) {
+        const int ix = static_cast<int>(gx[l]), iy = static_cast<int>(gy[l]), iz = static_cast<int>(gz[l]);
+        fx[l] = gx[l] - static_cast<float>(ix);
+        fy[l] = gy[l] - static_cast<float>(iy);
+        fz[l] = gz[l] - static_cast<float>(iz);
+        const float* base = data + ix + sy * iy + sz * iz;
+        c[0][l] = base[0];
+        c[1][l] = base[sx];
+        c[2][l] = base[sy];
+        c[3][l] = base[sx + sy];
+        c[4][l] = base[sz];
+        c[5][l] = base[sx + sz];
+        c[6][l] = base[sy + sz];
+        c[7][l] = base[sx + sy + sz];
+    }
+    auto lerp = [](Lane a, Lane b, Lane t) { return a + (b - a) * t; };
+    const Lane x00 = lerp(c[0], c[1], fx), x10 = lerp(c[2], c[3], fx);
+    const Lane x01 = lerp(c[4], c[5], fx), x11 = lerp(c[6], c[7], fx);
+    const Lane y0 = lerp(x00, x10, fy), y1 = lerp(x01, x11, fy);
+    SdfSample s;
+    s.distance = lerp(y0, y1, fz);
+    V3 g{lerp(lerp(c[1] - c[0], c[3] - c[2], fy), lerp(c[5] - c[4], c[7] - c[6], fy), fz),
+         lerp(x10 - x00, x11 - x01, fz), y1 - y0};
+    const Lane len2 = dot(g, g);
+    const Mask flat = len2 < splat(1e-20f);
+    const Lane invLen = splat(1.0f) / lsqrt(select(flat, splat(1.0f), len2));
+    s.normal = select(flat, V3{splat(0.0f), splat(1.0f), splat(0.0f)}, g * invLen);
+    return s;
+}
+
+// Contact response: move the penetrating lanes out along the normal, then set the previous
+// position so that the implied velocity has no inward part and loses `friction` of its sliding part.
+inline void resolveContact(Mask inside, Lane depth, const V3& normal, float friction, const V3& oldPosition, V3& position,
+                           V3& previous)
+{
+    const V3 pushed = position + normal * depth;
+    position = select(inside, pushed, position);
+    const V3 move = position - oldPosition;
+    const Lane normalPart = dot(move, normal);
+    const V3 sliding = move - normal * normalPart;
+    const V3 kept = sliding * splat(1.0f - friction) + normal * lmax(normalPart, splat(0.0f));
+    previous = select(inside, position - kept, previous);
+}
+
+template <bool Transformed>
+void advanceBlock(Solver::Block& block, const StepConstants& c)
+{
+    const std::uint32_t n = block.points;
+    ParticleRow* row = block.state.data();
+    const RestRow* rest = block.rest.data();
+
+    // Roots in world space at the start and the end of this step; substeps interpolate between them.
+    const V3 rootHead{rest[0].x, rest[0].y, rest[0].z};
+    const V3 rootEnd = Transformed ? transform(c.rotation, rootHead) + splat(c.translation) : rootHead;
+    const V3 rootStart =
+        Transformed ? transform(c.previousRotation, rootHead) + splat(c.previousTranslation) : rootHead;
+
+    // Wind per strand, with gusts (eq. 1 and 2 of the force-driven hair paper; turbulence is ours).
+    V3 wind = splat(c.wind);
+    const float windSpeed = glm::length(c.wind);
+    if (c.turbulence > 0.0f && windSpeed > 0.0f) {
+        for (int l = 0; l < kLanes; ++l) {
+            const glm::vec3 g = gust({rootEnd.x[l], rootEnd.y[l], rootEnd.z[l]}, c.time) * (c.turbulence * windSpeed);
+            wind.x[l] += g.x;
+            wind.y[l] += g.y;
+            wind.z[l] += g.z;
+        }
+    }
+    const Lane windSpeed2 = dot(wind, wind);
+    const Mask calm = windSpeed2 < splat(1e-12f);
+    const Lane invWindSpeed2 = splat(1.0f) / select(calm, splat(1.0f), windSpeed2);
+
+    const V3 gravityStep = splat(c.gravity * (c.dt * c.dt));
+    const Lane dt2 = splat(c.dt * c.dt), invDt = splat(c.invDt), keep = splat(c.keep), drag = splat(c.drag);
+    const Lane bend = splat(c.bendAlpha), velocityCorrection = splat(c.velocityCorrection);
+
+    for (int s = 0; s < c.substeps; ++s) {
+        const Lane t = splat(static_cast<float>(s + 1) / static_cast<float>(c.substeps));
+        const V3 root = rootStart + (rootEnd - rootStart) * t;
+        V3 oldParent{row[0].x, row[0].y, row[0].z};
+        row[0].px = row[0].x;
+        row[0].py = row[0].y;
+        row[0].pz = row[0].z;
+        row[0].x = root.x;
+        row[0].y = root.y;
+        row[0].z = root.z;
+        V3 parent = root;
+        // The root segment's reference direction is its own rest direction: follicles hold the
+        // angle at which hair leaves the scalp.
+        V3 parentRestDir{rest[1].x, rest[1].y, rest[1].z};
+        if (Transformed)
+            parentRestDir = transform(c.rotation, parentRestDir);
+        V3 parentDir = parentRestDir;
+        for (std::uint32_t j = 1; j < n; ++j) {
+            ParticleRow& p = row[j];
+            const V3 x{p.x, p.y, p.z};
+            V3 previous{p.px, p.py, p.pz};
+            V3 restDir{rest[j].x, rest[j].y, rest[j].z};
+            if (Transformed)
+                restDir = transform(c.rotation, restDir);
+            const Lane length = rest[j].length;
+
+            // Verlet (eq. 3): x' = x + keep (x - x_prev) + a dt², with a = g + k s (wind - v),
+            // s = |w x t| / (|w||t|) from eq. 1: wind across the strand pushes, along it does not.
+            const V3 move = x - previous;
+            const V3 tangent = x - oldParent;
+            const Lane wt = dot(wind, tangent);
+            const Lane tt = dot(tangent, tangent);
+            const Lane across2 = splat(1.0f) - (wt * wt) * invWindSpeed2 / lmax(tt, splat(1e-20f));
+            const Lane across = select(calm, splat(1.0f), lsqrt(lmax(across2, splat(0.0f))));
+            const Lane k = drag * across * dt2;
+            const V3 predicted = x + move * keep + gravityStep + (wind - move * invDt) * k;
+
+            // Bending: the rest direction of this segment, carried by the rotation that takes the
+            // parent segment from its rest direction to its current one (shortest arc, Rodrigues).
+            const V3 axis = cross(parentRestDir, parentDir);
+            const Lane cosine = dot(parentRestDir, parentDir);
+            const V3 turned = restDir * cosine + cross(axis, restDir) +
+                              axis * (dot(axis, restDir) / lmax(splat(1.0f) + cosine, splat(1e-2f)));
+            const V3 target = parent + turned * length;
+            const V3 bent = predicted + (target - predicted) * bend;
+
+            // Follow the leader (Müller et al. 2012): put the particle back at rest length from its parent.
+            V3 d = bent - parent;
+            V3 position = parent + d * (length / lsqrt(lmax(dot(d, d), splat(1e-24f))));
+            const V3 correction = position - bent;
+            previous = x;
+
+            // Collisions: head field, then capsules.
+            if (c.sdf) {
+                V3 local = position;
+                if (Transformed)
+                    local = transform(glm::transpose(c.rotation), position - splat(c.translation));
+                SdfSample sample = sampleSdf(*c.sdf, local);
+                if (Transformed)
+                    sample.normal = transform(c.rotation, sample.normal);
+                const Lane depth = splat(c.offset) - sample.distance;
+                const Mask inside = depth > splat(0.0f);
+                if (anyOf(inside))
+                    resolveContact(inside, depth, sample.normal, c.friction, x, position, previous);
+            }
+            for (const Capsule& capsule : c.capsulesWorld) {
+                const V3 a = splat(capsule.a);
+                const glm::vec3 abv = capsule.b - capsule.a;
+                const float ab2 = glm::dot(abv, abv);
+                const V3 ab = splat(abv);
+                const Lane u = ab2 > 0.0f ? lmin(lmax(dot(position - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f))
+                                          : splat(0.0f);
+                const V3 away = position - (a + ab * u);
+                const Lane dist = lsqrt(dot(away, away));
+                const Lane depth = splat(capsule.radiusMetres + c.offset) - dist;
+                const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
+                if (anyOf(inside)) {
+                    const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
+                    resolveContact(inside, depth, normal, c.friction, x, position, previous);
+                }
+            }
+            // Contact moved the particle off its rest length: project back (one more FTL step).
+            d = position - parent;
+            position = parent + d * (length / lsqrt(lmax(dot(d, d), splat(1e-24f))));
+
+            // DFTL velocity correction (Müller et al. eq. 9): v_{j-1} -= s d_j / dt, which in
+            // Verlet form moves the parent's previous position by s d_j. The root stays pinned.
+            if (j > 1) {
+                ParticleRow& q = row[j - 1];
+                q.px -= velocityCorrection * -correction.x;
+                q.py -= velocityCorrection * -correction.y;
+                q.pz -= velocityCorrection * -correction.z;
+            }
+            p.x = position.x;
+            p.y = position.y;
+            p.z = position.z;
+            p.px = previous.x;
+            p.py = previous.y;
+            p.pz = previous.z;
+
+            oldParent = x;
+            parentRestDir = restDir;
+            parentDir = (position - parent) * (splat(1.0f) / length);
+            parent = position;
+        }
+    }
+
+    // A strand that went non-finite or flew away is put back at rest; it never spreads, since
+    // strands do not interact.
+    Lane farthest = splat(0.0f);
+    Mask finite = Mask{} == 0;
+    for (std::uint32_t j = 0; j < n; ++j) {
+        const V3 x{row[j].x, row[j].y, row[j].z};
+        const V3 pv{row[j].px, row[j].py, row[j].pz};
+        const V3 d = x - rootEnd;
+        farthest = lmax(farthest, dot(d, d));
+        const V3 m = x - pv;
+        finite &= dot(m, m) < splat(1e12f);  // false for NaN
+    }
+    const Lane limit = block.strandLength * 1.5f + 0.05f;
+    const Mask bad = ~((farthest < limit * limit) & finite);
+    if (anyOf(bad)) {
+        for (int l = 0; l < kLanes; ++l) {
+            if (!bad[l])
+                continue;
+            glm::vec3 p(rootEnd.x[l], rootEnd.y[l], rootEnd.z[l]);
+            for (std::uint32_t j = 0; j < n; ++j) {
+                if (j > 0) {
+                    const glm::vec3 dir(rest[j].x[l], rest[j].y[l], rest[j].z[l]);
+                    p += c.rotation * dir * rest[j].length[l];
+                }
+                row[j].x[l] = row[j].px[l] = p.x;
+                row[j].y[l] = row[j].py[l] = p.y;
+                row[j].z[l] = row[j].pz[l] = p.z;
+            }
+            if (block.strand[l] >= 0)
+                __atomic_fetch_add(c.resetCounter, 1, __ATOMIC_RELAXED);
+        }
+    }
+}
+
+}  // namespace
+
+Solver::Solver(int threadCount) : m_pool(std::make_unique<ThreadPool>(threadCount)) {}
+Solver::~Solver() = default;
+
+int Solver::threadCount() const { return m_pool->threadCount(); }
+
+std::string Solver::setStrands(const HairCurves& rest)
+{
+    if (rest.offsets.empty() || rest.offsets.front() != 0 || rest.offsets.back() != rest.positions.size())
+        return "strands: the offsets do not match the points";
+    // Group strands by particle count: a block's 8 lanes must run the same loop.
+    std::map<std::uint32_t, std::vector<std::uint32_t>> byCount;
+    for (std::size_t i = 0; i < rest.strandCount(); ++i) {
+        const std::span<const glm::vec3> s = rest.strand(i);
+        if (s.size() < 2)
+            return "strand " + std::to_string(i) + ": has " + std::to_string(s.size()) + " points; at least 2 are needed";
+        for (std::size_t j = 0; j < s.size(); ++j) {
+            if (!std::isfinite(s[j].x) || !std::isfinite(s[j].y) || !std::isfinite(s[j].z))
+                return "strand " + std::to_string(i) + ": point " + std::to_string(j) + " is not finite";
+            if (j > 0 && !(glm::distance(s[j], s[j - 1]) > 1e-7f))
+                return "strand " + std::to_string(i) + ": points " + std::to_string(j - 1) + " and " + std::to_string(j) +
+                       " coincide (zero-length segment)";
+        }
+        byCount[static_cast<std::uint32_t>(s.size())].push_back(static_cast<std::uint32_t>(i));
+    }
+
+    std::vector<Block> blocks;
+    std::size_t particles = 0;
+    for (const auto& [count, strands] : byCount) {
+        for (std::size_t first = 0; first < strands.size(); first += kLanes) {
+            Block b;
+            b.points = count;
+            b.state.resize(count);
+            b.rest.resize(count);
+            for (int l = 0; l < kLanes; ++l) {
+                // Padding lanes repeat the block's first strand and are never copied out.
+                const bool real = first + static_cast<std::size_t>(l) < strands.size();
+                const std::uint32_t strand = strands[real ? first + static_cast<std::size_t>(l) : first];
+                b.strand[l] = real ? static_cast<std::int64_t>(strand) : -1;
+                const std::span<const glm::vec3> s = rest.strand(strand);
+                float total = 0.0f;
+                for (std::uint32_t j = 0; j < count; ++j) {
+                    RestRow& r = b.rest[j];
+                    if (j == 0) {
+                        r.x[l] = s[0].x;
+                        r.y[l] = s[0].y;
+                        r.z[l] = s[0].z;
+                        r.length[l] = 0.0f;
+                    } else {
+                        const glm::vec3 d = s[j] - s[j - 1];
+                        const float len = glm::length(d);
+                        r.x[l] = d.x / len;
+                        r.y[l] = d.y / len;
+                        r.z[l] = d.z / len;
+                        r.length[l] = len;
+                        total += len;
+                    }
+                }
+                b.strandLength[l] = total;
+            }
+            particles += count * std::min<std::size_t>(kLanes, strands.size() - first);
+            blocks.push_back(std::move(b));
+        }
+    }
+    m_blocks = std::move(blocks);
+    m_restOffsets = rest.offsets;
+    m_strandCount = rest.strandCount();
+    m_particleCount = particles;
+    resetToRest();
+    return {};
+}
+
+std::string Solver::setSettings(const SolverSettings& settings)
+{
+    std::string error = validateSolverSettings(settings);
+    if (error.empty())
+        m_settings = settings;
+    return error;
+}
+
+void Solver::setCollider(std::shared_ptr<const SignedDistanceField> headSdf)
+{
+    m_sdf = headSdf && !headSdf->empty() ? std::move(headSdf) : nullptr;
+}
+
+void Solver::setCapsules(std::vector<Capsule> capsules) { m_capsules = std::move(capsules); }
+
+void Solver::setHeadTransform(const glm::mat4& headToWorld) { m_headToWorld = headToWorld; }
+
+void Solver::resetToRest()
+{
+    m_previousHeadToWorld = m_headToWorld;
+    const glm::mat3 rotation(m_headToWorld);
+    const glm::vec3 translation(m_headToWorld[3]);
+    for (Block& b : m_blocks) {
+        for (int l = 0; l < kLanes; ++l) {
+            glm::vec3 p = rotation * glm::vec3(b.rest[0].x[l], b.rest[0].y[l], b.rest[0].z[l]) + translation;
+            for (std::uint32_t j = 0; j < b.points; ++j) {
+                if (j > 0)
+                    p += rotation * glm::vec3(b.rest[j].x[l], b.rest[j].y[l], b.rest[j].z[l]) * b.rest[j].length[l];
+                b.state[j].x[l] = b.state[j].px[l] = p.x;
+                b.state[j].y[l] = b.state[j].py[l] = p.y;
+                b.state[j].z[l] = b.state[j].pz[l] = p.z;
+            }
+        }
+    }
+}
+
+void Solver::step()
+{
+    StepConstants c;
+    const SolverSettings& s = m_settings;
+    c.substeps = s.substeps;
+    c.dt = s.timeStepSeconds / static_cast<float>(s.substeps);
+    c.invDt = 1.0f / c.dt;
+    c.keep = std::exp(-s.dampingPerSecond * c.dt);
+    // Stiffness is stated per 1/60 s so that changing substeps or the time step keeps the look.
+    c.bendAlpha = 1.0f - std::pow(1.0f - s.stiffness, c.dt * 60.0f);
+    c.friction = s.friction;
+    c.offset = s.hairOffsetMetres;
+    c.velocityCorrection = s.velocityCorrection;
+    c.drag = s.dragPerSecond;
+    c.turbulence = s.turbulence;
+    c.gravity = s.gravity;
+    c.wind = s.wind;
+    c.time = m_time;
+    c.rotation = glm::mat3(m_headToWorld);
+    c.translation = glm::vec3(m_headToWorld[3]);
+    c.previousRotation = glm::mat3(m_previousHeadToWorld);
+    c.previousTranslation = glm::vec3(m_previousHeadToWorld[3]);
+    c.transformed = m_headToWorld != glm::mat4(1.0f) || m_previousHeadToWorld != glm::mat4(1.0f);
+    c.sdf = m_sdf.get();
+    for (const Capsule& cap : m_capsules)
+        c.capsulesWorld.push_back({c.rotation * cap.a + c.translation, c.rotation * cap.b + c.translation, cap.radiusMetres});
+    c.resetCounter = &m_strandsReset;
+
+    // Blocks are independent, so any split over threads gives the same bits.
+    m_pool->parallelFor(m_blocks.size(), 4, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            if (c.transformed)
+                advanceBlock<true>(m_blocks[i], c);
+            else
+                advanceBlock<false>(m_blocks[i], c);
+        }
+    });
+    m_previousHeadToWorld = m_headToWorld;
+    m_time += s.timeStepSeconds;
+}
+
+void Solver::copyPositions(std::vector<glm::vec3>& out) const
+{
+    out.resize(m_restOffsets.empty() ? 0 : m_restOffsets.back());
+    m_pool->parallelFor(m_blocks.size(), 16, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const Block& b = m_blocks[i];
+            for (int l = 0; l < kLanes; ++l) {
+                if (b.strand[l] < 0)
+                    continue;
+                glm::vec3* dst = out.data() + m_restOffsets[static_cast<std::size_t>(b.strand[l])];
+                for (std::uint32_t j = 0; j < b.points; ++j)
+                    dst[j] = {b.state[j].x[l], b.state[j].y[l], b.state[j].z[l]};
+            }
+        }
+    });
+}
+
+std::size_t Solver::memoryBytes() const
+{
+    std::size_t bytes = m_restOffsets.capacity() * sizeof(std::uint32_t) + m_blocks.capacity() * sizeof(Block);
+    for (const Block& b : m_blocks)
+        bytes += b.state.capacity() * sizeof(ParticleRow) + b.rest.capacity() * sizeof(RestRow);
+    return bytes;
+}
+
+}  // namespace wisp

@@ -1,0 +1,92 @@
+#pragma once
+// The hair solver: strands are chains of particles pinned at the root, advanced with Verlet
+// integration under gravity, wind drag and turbulence, kept inextensible by follow-the-leader with
+// velocity correction, bent back toward their rest shape, and pushed out of the head.
+//
+// Papers: Verlet step and wind (eq. 1-3 of "Real Time Physical Force-Driven Hair Animation");
+// inextensibility by Dynamic Follow-The-Leader (Müller, Kim, Chentanez 2012, "Fast Simulation of
+// Inextensible Hair and Fur").
+//
+// Data-oriented: strands with the same particle count are packed 8 to a block, each block's
+// particles interleaved so that one instruction advances the same particle of 8 strands. A block is
+// the unit of parallel work, so results are bit-identical for any thread count.
+//
+// Thread: one owner thread calls everything (in the editor, the simulation thread).
+
+#include "sim/HairCurves.h"
+#include "sim/SolverSettings.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace wisp {
+
+class SignedDistanceField;
+class ThreadPool;
+
+// A collider for neck and shoulders, head space; a sphere when a == b.
+struct Capsule {
+    glm::vec3 a{0.0f};
+    glm::vec3 b{0.0f};
+    float radiusMetres = 0.0f;
+};
+
+class Solver {
+public:
+    // threadCount 0: one thread per core.
+    explicit Solver(int threadCount = 0);
+    ~Solver();
+    Solver(const Solver&) = delete;
+    Solver& operator=(const Solver&) = delete;
+
+    // Rest shapes in head space; the first point of each strand is its root, pinned to the head.
+    // Every strand needs at least 2 points and finite, non-coincident neighbours. Returns an error
+    // (and keeps the previous strands) otherwise. Particles start at rest.
+    std::string setStrands(const HairCurves& rest);
+    std::string setSettings(const SolverSettings& settings);
+    const SolverSettings& settings() const { return m_settings; }
+    void setCollider(std::shared_ptr<const SignedDistanceField> headSdf);  // null: no head collision
+    void setCapsules(std::vector<Capsule> capsules);
+    // Rigid transform (rotation + translation) from head space to world space; roots follow it.
+    void setHeadTransform(const glm::mat4& headToWorld);
+
+    // Advances one time step (settings().substeps substeps).
+    void step();
+    // Puts every particle back at its rest position, at rest.
+    void resetToRest();
+
+    // World-space positions in the layout of the rest curves given to setStrands.
+    void copyPositions(std::vector<glm::vec3>& out) const;
+
+    std::size_t strandCount() const { return m_strandCount; }
+    std::size_t particleCount() const { return m_particleCount; }
+    int threadCount() const;
+    double simulatedSeconds() const { return m_time; }
+    // Strands that went non-finite or stretched past any plausible length and were put back at rest.
+    std::uint64_t strandsReset() const { return m_strandsReset; }
+    // Bytes the solver holds for its particles (state, rest shape, lanes), for the memory budget.
+    std::size_t memoryBytes() const;
+
+    struct Block;  // 8 strands of equal particle count, interleaved (defined in Solver.cpp)
+
+private:
+
+    std::unique_ptr<ThreadPool> m_pool;
+    SolverSettings m_settings;
+    std::shared_ptr<const SignedDistanceField> m_sdf;
+    std::vector<Capsule> m_capsules;
+    glm::mat4 m_headToWorld{1.0f};
+    glm::mat4 m_previousHeadToWorld{1.0f};
+    std::vector<Block> m_blocks;
+    std::vector<std::uint32_t> m_restOffsets;  // layout of the caller's curves
+    std::size_t m_strandCount = 0;
+    std::size_t m_particleCount = 0;
+    double m_time = 0.0;
+    std::uint64_t m_strandsReset = 0;
+};
+
+}  // namespace wisp

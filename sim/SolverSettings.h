@@ -1,0 +1,34 @@
+#pragma once
+// What the solver needs from the forces and material parameters, in SI units and as vectors.
+
+#include "sim/Parameters.h"
+
+#include <glm/vec3.hpp>
+
+#include <string>
+
+namespace wisp {
+
+struct SolverSettings {
+    float timeStepSeconds = 1.0f / 60.0f;
+    int substeps = 1;
+    glm::vec3 gravity{0.0f, -9.81f, 0.0f};  // m/s², world space
+    glm::vec3 wind{0.0f};                    // m/s, world space
+    float turbulence = 0.0f;                 // gust amplitude as a fraction of the wind speed
+    float dragPerSecond = 0.0f;              // k of F = -k (v - wind), per unit mass
+    float dampingPerSecond = 0.0f;           // v *= exp(-damping dt)
+    float stiffness = 0.0f;                  // 0..1: share of the bend toward rest recovered per 1/60 s
+    float friction = 0.0f;                   // 0..1: share of sliding speed lost in contact
+    float hairOffsetMetres = 0.0f;           // kept between hair and skin
+    float velocityCorrection = 0.9f;         // s_damping of Müller et al. 2012, eq. 9
+};
+
+// Wind velocity from speed and angles (see the wind_azimuth and wind_elevation help texts).
+glm::vec3 windVelocity(float speed, float azimuthDegrees, float elevationDegrees);
+
+SolverSettings solverSettingsFrom(const ParameterValues& values);
+
+// Empty when usable; otherwise names the setting and what is wrong with it.
+std::string validateSolverSettings(const SolverSettings& settings);
+
+}  // namespace wisp

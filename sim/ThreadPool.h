@@ -1,0 +1,47 @@
+#pragma once
+// A small persistent pool for the solver's parallel loops. Work is split into index ranges; which
+// thread runs which range never changes a result, because every range writes only its own data.
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace wisp {
+
+class ThreadPool {
+public:
+    // threadCount 0 means one thread per hardware core. The calling thread takes part in the work,
+    // so a pool of N threads starts N - 1 workers.
+    explicit ThreadPool(int threadCount = 0);
+    ~ThreadPool();
+    ThreadPool(const ThreadPool&) = delete;
+    ThreadPool& operator=(const ThreadPool&) = delete;
+
+    int threadCount() const { return static_cast<int>(m_workers.size()) + 1; }
+
+    // Calls body(begin, end) over [0, count) in chunks of `grain`, on all threads; returns when done.
+    // Runs on the calling thread; not reentrant.
+    void parallelFor(std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body);
+
+private:
+    void workerLoop();
+    void runChunks();
+
+    std::vector<std::thread> m_workers;
+    std::mutex m_mutex;
+    std::condition_variable m_wake;
+    std::condition_variable m_done;
+    const std::function<void(std::size_t, std::size_t)>* m_body = nullptr;
+    std::size_t m_count = 0;
+    std::size_t m_grain = 1;
+    std::atomic<std::size_t> m_next{0};
+    std::size_t m_generation = 0;
+    int m_busyWorkers = 0;
+    bool m_stopping = false;
+};
+
+}  // namespace wisp

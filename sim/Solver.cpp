@@ -419,6 +419,11 @@ std::string Solver::setStrands(const HairCurves& rest)
         }
     }
     m_blocks = std::move(blocks);
+    m_slotOfStrand.assign(rest.strandCount(), {});
+    for (std::uint32_t i = 0; i < m_blocks.size(); ++i)
+        for (std::uint32_t l = 0; l < kLanes; ++l)
+            if (m_blocks[i].strand[l] >= 0)
+                m_slotOfStrand[static_cast<std::size_t>(m_blocks[i].strand[l])] = {i, l};
     m_restOffsets = rest.offsets;
     m_strandCount = rest.strandCount();
     m_particleCount = particles;
@@ -501,6 +506,20 @@ void Solver::step()
     });
     m_previousHeadToWorld = m_headToWorld;
     m_time += s.timeStepSeconds;
+}
+
+void Solver::moveParticle(std::size_t strand, std::size_t point, const glm::vec3& position)
+{
+    if (strand >= m_slotOfStrand.size())
+        return;
+    const Slot slot = m_slotOfStrand[strand];
+    Block& b = m_blocks[slot.block];
+    if (point == 0 || point >= b.points)
+        return;
+    ParticleRow& row = b.state[point];
+    row.x[slot.lane] = row.px[slot.lane] = position.x;
+    row.y[slot.lane] = row.py[slot.lane] = position.y;
+    row.z[slot.lane] = row.pz[slot.lane] = position.z;
 }
 
 void Solver::copyPositions(std::vector<glm::vec3>& out) const

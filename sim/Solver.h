@@ -59,6 +59,10 @@ public:
     // Puts every particle back at its rest position, at rest.
     void resetToRest();
 
+    // Puts one particle somewhere (world space), at rest there. Roots stay pinned. For direct
+    // manipulation, and for tests that need a broken strand.
+    void moveParticle(std::size_t strand, std::size_t point, const glm::vec3& position);
+
     // World-space positions in the layout of the rest curves given to setStrands.
     void copyPositions(std::vector<glm::vec3>& out) const;
 
@@ -83,6 +87,11 @@ private:
     glm::mat4 m_previousHeadToWorld{1.0f};
     std::vector<Block> m_blocks;
     std::vector<std::uint32_t> m_restOffsets;  // layout of the caller's curves
+    struct Slot {
+        std::uint32_t block;
+        std::uint32_t lane;
+    };
+    std::vector<Slot> m_slotOfStrand;
     std::size_t m_strandCount = 0;
     std::size_t m_particleCount = 0;
     double m_time = 0.0;

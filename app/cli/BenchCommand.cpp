@@ -1,0 +1,235 @@
+// wisp-cli bench: the solver on standard workloads, so Wisp can be compared with the first
+// paper's Table 1 and with other solvers doing the same work.
+
+#include "app/cli/CommandLine.h"
+#include "app/cli/Commands.h"
+#include "app/cli/StepTimer.h"
+
+#include "sim/DefaultHead.h"
+#include "sim/HairSimulation.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <sstream>
+
+namespace wisp::cli {
+
+namespace {
+
+struct BenchResult {
+    std::string name;
+    std::size_t particles = 0;
+    std::size_t strands = 0;
+    int threads = 0;
+    int substeps = 0;
+    int steps = 0;
+    double medianMs = 0;
+    double meanMs = 0;
+    double solverBytesPerParticle = 0;
+    double peakRssMb = 0;
+};
+
+// Peak resident memory of this process; reset between workloads so each reports its own.
+void resetPeakRss()
+{
+    std::ofstream("/proc/self/clear_refs") << "5";
+}
+double peakRssMb()
+{
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0)
+            return std::stod(line.substr(6)) / 1024.0;  // kB
+    return 0.0;
+}
+
+struct RunOptions {
+    int threads = 0;
+    int warmupSteps = 20;
+    int measuredSteps = 100;
+    std::size_t sphereStrands = 10'000;
+};
+
+template <typename StepFn>
+void timeSteps(const RunOptions& o, StepFn&& step, BenchResult& r)
+{
+    for (int i = 0; i < o.warmupSteps; ++i)
+        step();
+    StepTimer timer;
+    for (int i = 0; i < o.measuredSteps; ++i) {
+        timer.start();
+        step();
+        timer.stop();
+    }
+    r.steps = o.measuredSteps;
+    r.medianMs = timer.medianMs();
+    r.meanMs = timer.meanMs();
+}
+
+// The first paper's grid on the default head: head collision on, gravity 9.8 m/s², wind on.
+// One substep: the paper's step is one Verlet integration and one constraint relaxation.
+BenchResult gridWorkload(const std::string& name, int width, int height, int particles, const RunOptions& o)
+{
+    const DefaultHead head = makeDefaultHead();
+    ParameterValues v;
+    v.set(Param::Gravity, 9.8);
+    v.set(Param::WindSpeed, 5.0);
+    v.set(Param::Turbulence, 0.5);
+    v.set(Param::Substeps, 1);
+    HairSimulation sim(o.threads);
+    if (std::string error = sim.setupGrid(head.mesh, width, height, particles, 0.3f, v); !error.empty())
+        throw CliError{kBadInput, name + ": " + error};
+    BenchResult r{name};
+    r.particles = sim.solver().particleCount();
+    r.strands = sim.solver().strandCount();
+    r.threads = sim.solver().threadCount();
+    r.substeps = sim.solver().settings().substeps;
+    r.solverBytesPerParticle = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(r.particles);
+    timeSteps(o, [&] { sim.step(); }, r);
+    return r;
+}
+
+// N strands x 15 particles rooted all over a sphere of radius 0.1 m (a Fibonacci lattice),
+// 0.3 m long, gravity 9.81, drag 0.5 toward a wind of (2, 0, 0.5) m/s, dt 1/60 s, sphere collision.
+BenchResult sphereWorkload(const RunOptions& o)
+{
+    const std::size_t n = o.sphereStrands;
+    HairCurves rest;
+    rest.offsets.reserve(n + 1);
+    rest.positions.reserve(n * 15);
+    const float golden = glm::pi<float>() * (3.0f - std::sqrt(5.0f));
+    for (std::size_t i = 0; i < n; ++i) {
+        const float y = 1.0f - 2.0f * (static_cast<float>(i) + 0.5f) / static_cast<float>(n);
+        const float r = std::sqrt(1.0f - y * y);
+        const float a = golden * static_cast<float>(i);
+        const glm::vec3 dir(r * std::cos(a), y, r * std::sin(a));
+        auto points = rest.strandForWrite(rest.addStrand(15));
+        for (int j = 0; j < 15; ++j)
+            points[j] = dir * (0.1f + 0.3f * static_cast<float>(j) / 14.0f);
+    }
+    Solver solver(o.threads);
+    if (std::string error = solver.setStrands(rest); !error.empty())
+        throw CliError{kBadInput, "sphere: " + error};
+    SolverSettings s;
+    s.timeStepSeconds = 1.0f / 60.0f;
+    s.substeps = 1;
+    s.gravity = {0.0f, -9.81f, 0.0f};
+    s.dragPerSecond = 0.5f;
+    s.wind = {2.0f, 0.0f, 0.5f};
+    s.dampingPerSecond = 0.0f;
+    s.stiffness = 0.0f;
+    s.friction = 0.0f;
+    s.hairOffsetMetres = 0.0f;
+    solver.setSettings(s);
+    solver.setCapsules({Capsule{{0, 0, 0}, {0, 0, 0}, 0.1f}});
+    BenchResult r{"sphere"};
+    r.particles = solver.particleCount();
+    r.strands = solver.strandCount();
+    r.threads = solver.threadCount();
+    r.substeps = s.substeps;
+    r.solverBytesPerParticle = static_cast<double>(solver.memoryBytes()) / static_cast<double>(r.particles);
+    timeSteps(o, [&] { solver.step(); }, r);
+    return r;
+}
+
+struct Workload {
+    std::string name;
+    std::string description;
+    std::function<BenchResult(const RunOptions&)> run;
+};
+
+std::vector<Workload> workloads()
+{
+    auto grid = [](const std::string& name, int w, int h, int p) {
+        return Workload{name, std::to_string(w) + " x " + std::to_string(h) + " strands x " + std::to_string(p) +
+                                  " particles on the default head (Table 1 of the force-driven paper)",
+                        [=](const RunOptions& o) { return gridWorkload(name, w, h, p, o); }};
+    };
+    return {
+        grid("paper-15x15x10", 15, 15, 10),
+        grid("paper-20x20x15", 20, 20, 15),
+        grid("paper-25x25x20", 25, 25, 20),
+        grid("paper-35x35x30", 35, 35, 30),
+        grid("groom-1m", 250, 250, 16),
+        {"sphere", "N strands x 15 particles on a 0.1 m sphere, wind (2, 0, 0.5) m/s (set N with --strands)",
+         sphereWorkload},
+    };
+}
+
+std::string json(const BenchResult& r)
+{
+    char buffer[512];
+    std::snprintf(buffer, sizeof buffer,
+                  "{\"name\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, \"substeps\": %d, "
+                  "\"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
+                  "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %.1f}",
+                  r.name.c_str(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs, r.meanMs,
+                  r.solverBytesPerParticle, r.peakRssMb);
+    return buffer;
+}
+
+}  // namespace
+
+int runBench(int argc, char** argv)
+{
+    const std::vector<OptionSpec> options = {
+        {"help", "", "show this help"},
+        {"json", "", "print one JSON object a line per workload instead of a table"},
+        {"workload", "NAME", "run only this workload (see the list below)"},
+        {"threads", "N", "solver threads (default: one per core)"},
+        {"strands", "N", "strands of the sphere workload (default 10000)"},
+        {"steps", "N", "measured steps per workload after 20 warm-up steps (default 100, at least 50)"},
+    };
+    const CommandLine args(argc, argv, 2, options);
+    const std::vector<Workload> all = workloads();
+    if (args.has("help")) {
+        std::cout << "usage: wisp-cli bench [options]\n\n" << describeOptions(options) << "\nworkloads:\n";
+        for (const Workload& w : all)
+            std::cout << "  " << w.name << std::string(w.name.size() < 16 ? 16 - w.name.size() : 1, ' ') << w.description
+                      << "\n";
+        std::cout << "\nms_per_step is the median wall-clock time of one solver step; peak_rss_mb the process's\n"
+                     "peak resident memory during that workload.\n";
+        return kSuccess;
+    }
+    RunOptions o;
+    o.threads = static_cast<int>(args.integer("threads", 0, 0, 1024));
+    o.measuredSteps = static_cast<int>(args.integer("steps", 100, 50, 1'000'000));
+    o.sphereStrands = static_cast<std::size_t>(args.integer("strands", 10'000, 1, 4'000'000));
+    const auto only = args.text("workload");
+    if (only) {
+        bool known = false;
+        for (const Workload& w : all)
+            known = known || w.name == *only;
+        if (!known) {
+            std::string names;
+            for (const Workload& w : all)
+                names += " " + w.name;
+            throw CliError{kBadInput, "--workload: no workload '" + *only + "' (there are:" + names + ")"};
+        }
+    }
+    const bool asJson = args.has("json");
+    if (!asJson)
+        std::printf("%-16s %10s %8s %7s %8s %12s %12s %10s %10s\n", "workload", "particles", "strands", "threads",
+                    "substeps", "ms/step", "mean ms", "B/particle", "peak MB");
+    for (const Workload& w : all) {
+        if (only && w.name != *only)
+            continue;
+        resetPeakRss();
+        BenchResult r = w.run(o);
+        r.peakRssMb = peakRssMb();
+        if (asJson)
+            std::printf("%s\n", json(r).c_str());
+        else
+            std::printf("%-16s %10zu %8zu %7d %8d %12.4f %12.4f %10.1f %10.1f\n", r.name.c_str(), r.particles, r.strands,
+                        r.threads, r.substeps, r.medianMs, r.meanMs, r.solverBytesPerParticle, r.peakRssMb);
+        std::fflush(stdout);
+    }
+    return kSuccess;
+}
+
+}  // namespace wisp::cli

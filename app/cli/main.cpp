@@ -1,0 +1,48 @@
+// wisp-cli: Wisp's simulation without a window, for batch work, pipelines and benchmarks.
+
+#include "app/cli/CommandLine.h"
+#include "app/cli/Commands.h"
+
+#include <cstring>
+#include <iostream>
+
+namespace {
+
+const char* kUsage =
+    "usage: wisp-cli COMMAND [options]\n"
+    "\n"
+    "commands:\n"
+    "  simulate   groom a head, simulate N steps, write the strands, print timings\n"
+    "  bench      time the solver on standard workloads (table, or --json lines)\n"
+    "\n"
+    "'wisp-cli COMMAND --help' lists a command's options.\n"
+    "exit status: 0 success, 1 bad input (a file or a value), 2 wrong usage\n";
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    if (argc < 2) {
+        std::cerr << kUsage;
+        return wisp::cli::kUsage;
+    }
+    const char* command = argv[1];
+    if (!std::strcmp(command, "--help") || !std::strcmp(command, "-h") || !std::strcmp(command, "help")) {
+        std::cout << kUsage;
+        return wisp::cli::kSuccess;
+    }
+    try {
+        if (!std::strcmp(command, "simulate"))
+            return wisp::cli::runSimulate(argc, argv);
+        if (!std::strcmp(command, "bench"))
+            return wisp::cli::runBench(argc, argv);
+    } catch (const wisp::cli::CliError& e) {
+        std::cerr << "wisp-cli " << command << ": " << e.message << "\n";
+        return e.exitCode;
+    } catch (const std::exception& e) {  // out of memory and the like: say so rather than abort
+        std::cerr << "wisp-cli " << command << ": " << e.what() << "\n";
+        return wisp::cli::kBadInput;
+    }
+    std::cerr << "wisp-cli: unknown command '" << command << "'\n\n" << kUsage;
+    return wisp::cli::kUsage;
+}

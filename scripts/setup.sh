@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs what Wisp needs from Debian 12's packages (only what is missing) and builds it.
+# Safe to run again: installed packages are skipped and the build is incremental.
+#
+#   scripts/setup.sh              Release build in build/
+#   scripts/setup.sh --sanitize   Debug build with AddressSanitizer + UBSan in build-asan/
+set -euo pipefail
+
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  qt6-base-dev libqt6opengl6-dev libgl-dev libgl1-mesa-dri
+  libglm-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev
+  xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "== installing: ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+build_dir=build
+cmake_args=(-G Ninja -DCMAKE_BUILD_TYPE=Release)
+if [ "${1:-}" = "--sanitize" ]; then
+  build_dir=build-asan
+  cmake_args=(-G Ninja -DCMAKE_BUILD_TYPE=Debug -DWISP_SANITIZE=ON)
+fi
+
+cmake -S . -B "$build_dir" "${cmake_args[@]}" > /dev/null
+cmake --build "$build_dir" -j"$(nproc)"
+echo "== built in $build_dir/"

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, and runs the whole test suite (GUI tests under a virtual X
+# server: Qt 6.4's offscreen platform cannot create QOpenGLWidget's context).
+#
+#   scripts/test.sh              Release build
+#   scripts/test.sh --sanitize   Debug build with AddressSanitizer + UBSan
+set -euo pipefail
+
+cd "$(dirname "$0")/.."
+scripts/setup.sh "$@"
+
+build_dir=build
+[ "${1:-}" = "--sanitize" ] && build_dir=build-asan
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+cd "$build_dir"
+xvfb-run -a -s "-screen 0 1600x1000x24" ctest --output-on-failure -j2 --timeout 600

@@ -1,0 +1,65 @@
+#pragma once
+// Shared set-ups for the sim tests: the default head with its groom, and small measurements.
+
+#include "sim/DefaultHead.h"
+#include "sim/HairSimulation.h"
+
+#include <glm/geometric.hpp>
+
+#include <memory>
+
+namespace wisp::test {
+
+inline const DefaultHead& defaultHead()
+{
+    static const DefaultHead head = makeDefaultHead();
+    return head;
+}
+
+// A lighter groom than the editor's default so physics tests stay quick.
+inline ParameterValues testParameters()
+{
+    ParameterValues v;
+    v.set(Param::Density, 2.0);
+    v.set(Param::WispSize, 4);
+    v.set(Param::WindSpeed, 0.0);
+    v.set(Param::Turbulence, 0.0);
+    return v;
+}
+
+inline std::unique_ptr<HairSimulation> makeSimulation(const ParameterValues& v, int threads = 0)
+{
+    auto sim = std::make_unique<HairSimulation>(threads);
+    const std::string error = sim->setup(defaultHead().mesh, defaultHead().growthWeights, v);
+    if (!error.empty())
+        throw std::runtime_error(error);
+    return sim;
+}
+
+inline void run(HairSimulation& sim, int steps)
+{
+    for (int i = 0; i < steps; ++i)
+        sim.step();
+}
+
+struct TipStats {
+    glm::vec3 meanTip{0.0f};
+    glm::vec3 meanRoot{0.0f};
+};
+
+inline TipStats tipStats(const HairSimulation& sim)
+{
+    std::vector<glm::vec3> p;
+    sim.copySimulated(p);
+    const HairCurves& layout = sim.simulatesAllStrands() ? sim.groom().rest : keyRestCurves(sim.groom());
+    TipStats s;
+    for (std::size_t i = 0; i < layout.strandCount(); ++i) {
+        s.meanRoot += p[layout.offsets[i]];
+        s.meanTip += p[layout.offsets[i + 1] - 1];
+    }
+    s.meanRoot /= static_cast<float>(layout.strandCount());
+    s.meanTip /= static_cast<float>(layout.strandCount());
+    return s;
+}
+
+}  // namespace wisp::test

@@ -1,0 +1,166 @@
+// The solver on its own, without a head: curls, spheres and capsules, and input checks.
+#include "sim/Solver.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace wisp;
+
+namespace {
+
+// A helix hanging from the origin along -Y: radius r, `turns` per metre of axis, equal segments.
+HairCurves helix(float radius, float turnsPerMetre, float axialLength, int segments)
+{
+    HairCurves c;
+    const std::size_t s = c.addStrand(static_cast<std::uint32_t>(segments + 1));
+    auto p = c.strandForWrite(s);
+    for (int j = 0; j <= segments; ++j) {
+        const float z = axialLength * static_cast<float>(j) / static_cast<float>(segments);
+        const float theta = glm::two_pi<float>() * turnsPerMetre * z;
+        p[j] = {radius * std::cos(theta) - radius, -z, radius * std::sin(theta)};
+    }
+    return c;
+}
+
+// The curl's period in points: where the tangent's autocorrelation comes back to its first maximum.
+double curlPeriodInPoints(std::span<const glm::vec3> p)
+{
+    std::vector<glm::vec3> t;
+    for (std::size_t j = 1; j < p.size(); ++j)
+        t.push_back(glm::normalize(p[j] - p[j - 1]));
+    auto correlation = [&](std::size_t lag) {
+        double sum = 0;
+        for (std::size_t j = 0; j + lag < t.size(); ++j)
+            sum += glm::dot(t[j], t[j + lag]);
+        return sum / static_cast<double>(t.size() - lag);
+    };
+    std::size_t lag = 1;
+    while (lag + 1 < t.size() / 2 && correlation(lag + 1) < correlation(lag))
+        ++lag;  // down to the first minimum (half a turn)
+    while (lag + 1 < t.size() / 2 && correlation(lag + 1) > correlation(lag))
+        ++lag;  // up to the next maximum (a full turn)
+    // Refine between samples with a parabola through the peak.
+    const double a = correlation(lag - 1), b = correlation(lag), c = correlation(lag + 1);
+    const double denom = a - 2 * b + c;
+    return static_cast<double>(lag) + (std::abs(denom) > 1e-12 ? 0.5 * (a - c) / denom : 0.0);
+}
+
+SolverSettings calm()
+{
+    SolverSettings s;
+    s.timeStepSeconds = 1.0f / 60.0f;
+    s.substeps = 4;
+    s.gravity = {0.0f, -9.81f, 0.0f};
+    s.dampingPerSecond = 1.0f;
+    s.stiffness = 0.5f;
+    return s;
+}
+
+}  // namespace
+
+TEST(Solver, CurlsKeepTheirPeriodAfterSettling)
+{
+    const HairCurves rest = helix(0.01f, 20.0f, 0.3f, 160);
+    const double restPeriod = curlPeriodInPoints(rest.strand(0));
+    ASSERT_NEAR(restPeriod, 160.0 / 6.0, 1.0);  // 6 turns over 160 segments
+
+    Solver solver(1);
+    ASSERT_EQ(solver.setStrands(rest), "");
+    SolverSettings s = calm();
+    s.wind = {3.0f, 0.0f, 0.0f};
+    s.dragPerSecond = 1.0f;
+    ASSERT_EQ(solver.setSettings(s), "");
+    for (int i = 0; i < 600; ++i)
+        solver.step();
+    std::vector<glm::vec3> p;
+    solver.copyPositions(p);
+    EXPECT_NEAR(curlPeriodInPoints(p), restPeriod, 0.05 * restPeriod);
+    // And it is still a curl: the strand's extent is far shorter than its arc length.
+    EXPECT_LT(glm::distance(p.front(), p.back()), 0.5f * strandLength(p));
+}
+
+TEST(Solver, GravityPullsAStraightStrandDownToItsFullLength)
+{
+    HairCurves c;
+    auto p = c.strandForWrite(c.addStrand(11));
+    for (int j = 0; j <= 10; ++j)
+        p[j] = {0.02f * static_cast<float>(j), 0.0f, 0.0f};  // sticking out sideways, 0.2 m
+    Solver solver(1);
+    ASSERT_EQ(solver.setStrands(c), "");
+    SolverSettings s = calm();
+    s.stiffness = 0.0f;
+    s.dampingPerSecond = 3.0f;
+    ASSERT_EQ(solver.setSettings(s), "");
+    for (int i = 0; i < 600; ++i)
+        solver.step();
+    std::vector<glm::vec3> out;
+    solver.copyPositions(out);
+    EXPECT_NEAR(out.back().y, -0.2f, 0.004f);
+    EXPECT_NEAR(out.back().x, 0.0f, 0.01f);
+}
+
+TEST(Solver, StrandsDrapeOverASphereColliderWithoutEnteringIt)
+{
+    // Strands rooted around the top of a sphere (radius 0.1 m), hanging under gravity.
+    HairCurves c;
+    for (int i = 0; i < 24; ++i) {
+        const float az = glm::two_pi<float>() * static_cast<float>(i) / 24.0f;
+        const glm::vec3 n(0.5f * std::cos(az), 0.866f, 0.5f * std::sin(az));
+        auto p = c.strandForWrite(c.addStrand(15));
+        for (int j = 0; j < 15; ++j)
+            p[j] = n * (0.1f + 0.3f * static_cast<float>(j) / 14.0f);
+    }
+    Solver solver(2);
+    ASSERT_EQ(solver.setStrands(c), "");
+    solver.setCapsules({Capsule{{0, 0, 0}, {0, 0, 0}, 0.1f}});
+    SolverSettings s = calm();
+    s.stiffness = 0.0f;
+    s.friction = 0.3f;
+    s.hairOffsetMetres = 0.002f;
+    ASSERT_EQ(solver.setSettings(s), "");
+    for (int i = 0; i < 400; ++i)
+        solver.step();
+    std::vector<glm::vec3> out;
+    solver.copyPositions(out);
+    float lowest = 1.0f;
+    for (const glm::vec3& x : out) {
+        EXPECT_GT(glm::length(x), 0.1f - 1e-4f);
+        lowest = std::min(lowest, x.y);
+    }
+    EXPECT_LT(lowest, -0.05f);  // they fell around the sphere, not through it
+}
+
+TEST(Solver, RefusesBrokenStrandsAndSettings)
+{
+    Solver solver(1);
+    HairCurves one;
+    one.strandForWrite(one.addStrand(1))[0] = {0, 0, 0};
+    EXPECT_NE(solver.setStrands(one).find("at least 2"), std::string::npos);
+
+    HairCurves nan;
+    auto p = nan.strandForWrite(nan.addStrand(3));
+    p[0] = {0, 0, 0};
+    p[1] = {0, -0.1f, 0};
+    p[2] = {NAN, 0, 0};
+    EXPECT_NE(solver.setStrands(nan).find("not finite"), std::string::npos);
+
+    HairCurves zero;
+    auto q = zero.strandForWrite(zero.addStrand(3));
+    q[0] = q[1] = {0, 0, 0};
+    q[2] = {0, -0.1f, 0};
+    EXPECT_NE(solver.setStrands(zero).find("coincide"), std::string::npos);
+
+    SolverSettings s = calm();
+    s.gravity.y = NAN;
+    EXPECT_NE(solver.setSettings(s).find("gravity"), std::string::npos);
+    s = calm();
+    s.substeps = 0;
+    EXPECT_NE(solver.setSettings(s).find("substeps"), std::string::npos);
+    s = calm();
+    s.timeStepSeconds = -1.0f;
+    EXPECT_NE(solver.setSettings(s).find("time_step"), std::string::npos);
+}

@@ -82,7 +82,7 @@ std::vector<std::uint32_t> thinToBlueNoise(const std::vector<Pore>& pores, std::
 
 // Greedy thinning reaches about this many points per r² (measured on the default head; random
 // sequential adsorption saturates near 0.547 of the hexagonal packing 2/sqrt(3)/r²).
-constexpr float kThinnedPointsPerRadiusSquared = 0.68f;
+constexpr float kThinnedPointsPerRadiusSquared = 0.52f;
 
 // The weight-independent pore set for a density: candidates per triangle from counter-based
 // randomness keyed by the triangle, thinned to blue noise. Changing the growth weights never
@@ -228,9 +228,9 @@ float clumpAt(float u, float clumpDegree, float clumpRate)
     return clumpDegree * x * x * (3.0f - 2.0f * x);  // smoothstep: no kink where clumping starts
 }
 
-GroomResult finishGroom(Groom groom, const TriangleMesh& head, const SignedDistanceField* collider,
-                        std::span<const glm::vec3> rootPositions)
+GroomResult finishGroom(Groom groom, const TriangleMesh& head, const SignedDistanceField* collider)
 {
+    const std::vector<glm::vec3>& rootPositions = groom.rootPositions;
     const GroomSettings& s = groom.settings;
     const std::vector<glm::vec3> normals = vertexNormals(head);
     const auto points = static_cast<std::uint32_t>(s.segments + 1);
@@ -388,7 +388,8 @@ GroomResult buildGroom(const TriangleMesh& head, std::span<const float> growthWe
             groom.keyStrand[w] = i;
         }
     }
-    return finishGroom(std::move(groom), head, collider, rootPositions);
+    groom.rootPositions = std::move(rootPositions);
+    return finishGroom(std::move(groom), head, collider);
 }
 
 GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int width, int height, int particlesPerStrand,
@@ -437,7 +438,8 @@ GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int wid
             groom.keyStrand.push_back(static_cast<std::uint32_t>(groom.roots.size() - 1));
         }
     }
-    return finishGroom(std::move(groom), head, collider, rootPositions);
+    groom.rootPositions = std::move(rootPositions);
+    return finishGroom(std::move(groom), head, collider);
 }
 
 HairCurves keyRestCurves(const Groom& groom)
@@ -481,11 +483,11 @@ void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, c
             transport[j] = j == 0 ? headRotation : minimalRotationMatrix(tangent[j - 1], tangent[j]) * transport[j - 1];
         }
         const float keyLength = groom.lengths[k];
-        const glm::vec3 keyRoot = groom.rest.strand(k)[0];
+        const glm::vec3 keyRoot = groom.rootPositions[k];
         for (std::uint32_t m : members[w]) {
             if (m == k)
                 continue;
-            const glm::vec3 rootOffset = groom.rest.strand(m)[0] - keyRoot;
+            const glm::vec3 rootOffset = groom.rootPositions[m] - keyRoot;
             std::span<glm::vec3> dst = out.strandForWrite(m);
             const float scale = groom.lengths[m] / keyLength;
             for (std::size_t j = 0; j < points; ++j) {

@@ -43,6 +43,7 @@ struct Groom {
     GroomSettings settings;
     // Per strand (every drawn strand):
     std::vector<SurfacePoint> roots;
+    std::vector<glm::vec3> rootPositions;  // head space, metres (the surface points, evaluated)
     std::vector<std::uint32_t> rootIds;  // stable identity of the root in the weight-independent pore set
     std::vector<float> lengths;          // metres
     std::vector<std::uint32_t> wispOf;

@@ -67,10 +67,11 @@ struct ParticleRow {
     Lane px, py, pz;
 };
 // Rest shape, head space. Row 0: the root position. Row j > 0: unit direction from particle j-1
-// to j and the segment's rest length (metres).
+// to j, the segment's rest length (metres) and the share of its bend error removed per substep.
 struct RestRow {
     Lane x, y, z;
     Lane length;
+    Lane bendAlpha;
 };
 
 struct Solver::Block {
@@ -85,7 +86,6 @@ struct StepConstants {
     float dt = 0.0f;  // substep, seconds
     float invDt = 0.0f;
     float keep = 1.0f;     // exp(-damping dt): share of velocity kept
-    float bendAlpha = 0;   // share of the bend error removed per substep
     float friction = 0;
     float offset = 0;
     float velocityCorrection = 0;
@@ -210,7 +210,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
 
     const V3 gravityStep = splat(c.gravity * (c.dt * c.dt));
     const Lane dt2 = splat(c.dt * c.dt), invDt = splat(c.invDt), keep = splat(c.keep), drag = splat(c.drag);
-    const Lane bend = splat(c.bendAlpha), velocityCorrection = splat(c.velocityCorrection);
+    const Lane velocityCorrection = splat(c.velocityCorrection);
 
     for (int s = 0; s < c.substeps; ++s) {
         const Lane t = splat(static_cast<float>(s + 1) / static_cast<float>(c.substeps));
@@ -256,7 +256,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             const V3 turned = restDir * cosine + cross(axis, restDir) +
                               axis * (dot(axis, restDir) / lmax(splat(1.0f) + cosine, splat(1e-2f)));
             const V3 target = parent + turned * length;
-            const V3 bent = predicted + (target - predicted) * bend;
+            const V3 bent = predicted + (target - predicted) * rest[j].bendAlpha;
 
             // Follow the leader (Müller et al. 2012): put the particle back at rest length from its parent.
             V3 d = bent - parent;
@@ -425,6 +425,7 @@ std::string Solver::setStrands(const HairCurves& rest)
             if (m_blocks[i].strand[l] >= 0)
                 m_slotOfStrand[static_cast<std::size_t>(m_blocks[i].strand[l])] = {i, l};
     m_restOffsets = rest.offsets;
+    m_bendAlphaStale = true;
     m_strandCount = rest.strandCount();
     m_particleCount = particles;
     resetToRest();
@@ -467,6 +468,31 @@ void Solver::resetToRest()
     }
 }
 
+// Stiffness s is the share of a 2 cm segment's bend error removed per 1/60 s. A substep of dt
+// removes 1 - (1 - s)^(60 dt (2 cm / h)^2) on a segment of length h: shorter substeps and longer
+// segments get proportionally less, so the look does not change with the time step, the substeps
+// or how finely strands are divided (a segment's sag under its own weight scales with h^2).
+void Solver::updateBendAlpha(float substepSeconds)
+{
+    const float stiffness = m_settings.stiffness;
+    if (m_bendAlphaFor == glm::vec2(stiffness, substepSeconds) && !m_bendAlphaStale)
+        return;
+    m_bendAlphaFor = {stiffness, substepSeconds};
+    m_bendAlphaStale = false;
+    constexpr float kReferenceSegment = 0.02f;  // metres
+    const float logRemaining = stiffness >= 1.0f ? -INFINITY : std::log1p(-stiffness) * 60.0f * substepSeconds;
+    m_pool->parallelFor(m_blocks.size(), 16, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+            for (std::uint32_t j = 1; j < m_blocks[i].points; ++j) {
+                RestRow& r = m_blocks[i].rest[j];
+                for (int l = 0; l < kLanes; ++l) {
+                    const float ratio = kReferenceSegment / r.length[l];
+                    r.bendAlpha[l] = stiffness <= 0.0f ? 0.0f : 1.0f - std::exp(logRemaining * ratio * ratio);
+                }
+            }
+    });
+}
+
 void Solver::step()
 {
     StepConstants c;
@@ -475,8 +501,7 @@ void Solver::step()
     c.dt = s.timeStepSeconds / static_cast<float>(s.substeps);
     c.invDt = 1.0f / c.dt;
     c.keep = std::exp(-s.dampingPerSecond * c.dt);
-    // Stiffness is stated per 1/60 s so that changing substeps or the time step keeps the look.
-    c.bendAlpha = 1.0f - std::pow(1.0f - s.stiffness, c.dt * 60.0f);
+    updateBendAlpha(c.dt);
     c.friction = s.friction;
     c.offset = s.hairOffsetMetres;
     c.velocityCorrection = s.velocityCorrection;

@@ -17,6 +17,7 @@
 #include "sim/SolverSettings.h"
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -78,6 +79,7 @@ public:
     struct Block;  // 8 strands of equal particle count, interleaved (defined in Solver.cpp)
 
 private:
+    void updateBendAlpha(float substepSeconds);
 
     std::unique_ptr<ThreadPool> m_pool;
     SolverSettings m_settings;
@@ -96,6 +98,8 @@ private:
     std::size_t m_particleCount = 0;
     double m_time = 0.0;
     std::uint64_t m_strandsReset = 0;
+    glm::vec2 m_bendAlphaFor{-1.0f};  // (stiffness, substep) the rest rows' bend shares were computed for
+    bool m_bendAlphaStale = true;
 };
 
 }  // namespace wisp

@@ -15,15 +15,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
+struct CliRun {
     int status = -1;
     std::string output;  // stdout and stderr together
 };
 
-Run cli(const std::string& arguments)
+CliRun cli(const std::string& arguments)
 {
     const std::string command = std::string(WISP_CLI_PATH) + " " + arguments + " 2>&1";
-    Run r;
+    CliRun r;
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe)
         return r;
@@ -50,10 +50,10 @@ TEST(Cli, UsageAndHelp)
 {
     EXPECT_EQ(cli("").status, 2);
     EXPECT_EQ(cli("--help").status, 0);
-    const Run unknown = cli("frobnicate");
+    const CliRun unknown = cli("frobnicate");
     EXPECT_EQ(unknown.status, 2);
     EXPECT_NE(unknown.output.find("unknown command"), std::string::npos);
-    const Run help = cli("simulate --help");
+    const CliRun help = cli("simulate --help");
     EXPECT_EQ(help.status, 0);
     EXPECT_NE(help.output.find("--gravity"), std::string::npos);
     EXPECT_NE(help.output.find("m/s²"), std::string::npos);
@@ -71,16 +71,16 @@ TEST(Cli, WrongUsageIsExitTwo)
 
 TEST(Cli, BadValuesAreExitOneNamingTheOption)
 {
-    const Run nan = cli("simulate --steps 1 --gravity nan");
+    const CliRun nan = cli("simulate --steps 1 --gravity nan");
     EXPECT_EQ(nan.status, 1);
     EXPECT_NE(nan.output.find("gravity"), std::string::npos);
-    const Run segments = cli("simulate --steps 1 --segments 1");
+    const CliRun segments = cli("simulate --steps 1 --segments 1");
     EXPECT_EQ(segments.status, 1);
     EXPECT_NE(segments.output.find("segments: 1 is outside 2..127"), std::string::npos);
-    const Run length = cli("simulate --steps 1 --length 0");
+    const CliRun length = cli("simulate --steps 1 --length 0");
     EXPECT_EQ(length.status, 1);
     EXPECT_NE(length.output.find("length"), std::string::npos);
-    const Run steps = cli("simulate --steps many");
+    const CliRun steps = cli("simulate --steps many");
     EXPECT_EQ(steps.status, 1);
     EXPECT_NE(steps.output.find("--steps"), std::string::npos);
     EXPECT_EQ(cli("simulate --steps 1 --grid 10x10").status, 1);
@@ -90,26 +90,26 @@ TEST(Cli, BadValuesAreExitOneNamingTheOption)
 TEST(Cli, BadFilesAreExitOneNamingTheFile)
 {
     const fs::path dir = tempDir();
-    const Run missing = cli("simulate --head " + (dir / "missing.obj").string());
+    const CliRun missing = cli("simulate --head " + (dir / "missing.obj").string());
     EXPECT_EQ(missing.status, 1);
     EXPECT_NE(missing.output.find("missing.obj"), std::string::npos);
 
     writeText(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
-    const Run noTriangles = cli("simulate --head " + (dir / "points.obj").string());
+    const CliRun noTriangles = cli("simulate --head " + (dir / "points.obj").string());
     EXPECT_EQ(noTriangles.status, 1);
     EXPECT_NE(noTriangles.output.find("points.obj"), std::string::npos);
 
     writeText(dir / "bad.params", "gravity = 9.8\nclump_degree = 3\n");
-    const Run params = cli("simulate --steps 1 --params " + (dir / "bad.params").string());
+    const CliRun params = cli("simulate --steps 1 --params " + (dir / "bad.params").string());
     EXPECT_EQ(params.status, 1);
     EXPECT_NE(params.output.find("bad.params: line 2: clump_degree: 3 is outside -1..1"), std::string::npos);
 
     writeText(dir / "unknown.params", "gravity = 9.8\nwobble = 1\n");
-    const Run unknown = cli("simulate --steps 1 --params " + (dir / "unknown.params").string());
+    const CliRun unknown = cli("simulate --steps 1 --params " + (dir / "unknown.params").string());
     EXPECT_EQ(unknown.status, 1);
     EXPECT_NE(unknown.output.find("unknown parameter 'wobble'"), std::string::npos);
 
-    const Run unwritable = cli("simulate --steps 1 --out /proc/no/such/dir/out.txt");
+    const CliRun unwritable = cli("simulate --steps 1 --out /proc/no/such/dir/out.txt");
     EXPECT_EQ(unwritable.status, 1);
     EXPECT_NE(unwritable.output.find("out.txt"), std::string::npos);
     fs::remove_all(dir);
@@ -120,7 +120,7 @@ TEST(Cli, SimulateWritesEveryDrawnStrand)
     const fs::path dir = tempDir();
     const fs::path out = dir / "strands.txt";
     writeText(dir / "look.params", "# a test look\ndensity = 3\nwind_speed = 10\n");
-    const Run r = cli("simulate --steps 30 --threads 2 --params " + (dir / "look.params").string() + " --out " +
+    const CliRun r = cli("simulate --steps 30 --threads 2 --params " + (dir / "look.params").string() + " --out " +
                       out.string());
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("ms per step"), std::string::npos);
@@ -131,7 +131,7 @@ TEST(Cli, SimulateWritesEveryDrawnStrand)
     for (const glm::vec3& p : curves.value().positions)
         ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
 
-    const Run keys = cli("simulate --steps 2 --density 3 --keys-only --out " + out.string());
+    const CliRun keys = cli("simulate --steps 2 --density 3 --keys-only --out " + out.string());
     ASSERT_EQ(keys.status, 0) << keys.output;
     const auto keyCurves = wisp::io::readStrandText(out.string());
     ASSERT_TRUE(keyCurves.ok());
@@ -150,7 +150,7 @@ TEST(Cli, SimulateReadsAHeadFromAFile)
         for (const glm::uvec3& t : head.mesh.triangles)
             obj << "f " << t.x + 1 << " " << t.y + 1 << " " << t.z + 1 << "\n";
     }
-    const Run r = cli("simulate --steps 5 --head " + (dir / "head.obj").string() + " --scale 0.01 --density 2 --out " +
+    const CliRun r = cli("simulate --steps 5 --head " + (dir / "head.obj").string() + " --scale 0.01 --density 2 --out " +
                       (dir / "s.txt").string());
     ASSERT_EQ(r.status, 0) << r.output;
     const auto curves = wisp::io::readStrandText((dir / "s.txt").string());
@@ -161,14 +161,14 @@ TEST(Cli, SimulateReadsAHeadFromAFile)
 
 TEST(Cli, GridReproducesThePapersParticleCount)
 {
-    const Run r = cli("simulate --steps 3 --grid 15x15x10");
+    const CliRun r = cli("simulate --steps 3 --grid 15x15x10");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("particles 2250"), std::string::npos) << r.output;
 }
 
 TEST(Cli, BenchPrintsJsonLines)
 {
-    const Run r = cli("bench --workload sphere --strands 200 --steps 50 --threads 2 --json");
+    const CliRun r = cli("bench --workload sphere --strands 200 --steps 50 --threads 2 --json");
     ASSERT_EQ(r.status, 0) << r.output;
     for (const char* field : {"\"name\": \"sphere\"", "\"particles\": 3000", "\"threads\": 2", "\"ms_per_step\"",
                               "\"peak_rss_mb\""})

@@ -48,8 +48,8 @@ TEST(Groom, RootsAreBlueNoiseNotClustered)
 {
     const GroomResult r = groomDefaultHead(settingsWith({{Param::Density, 8.0}}));
     ASSERT_TRUE(r.ok()) << r.error;
-    // Poisson-disk spacing: no two roots closer than the thinning radius sqrt(0.68 / density).
-    const float radius = std::sqrt(0.68f / 8.0e4f);
+    // Poisson-disk spacing: no two roots closer than the thinning radius sqrt(0.52 / density).
+    const float radius = std::sqrt(0.52f / 8.0e4f);
     std::vector<glm::vec3> p;
     for (const SurfacePoint& sp : r.groom.roots)
         p.push_back(pointOn(defaultHead().mesh, sp));

@@ -1,0 +1,450 @@
+#include "sim/MeshBvh.h"
+#include "sim/SignedDistanceField.h"
+#include "sim/TriangleMesh.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+
+namespace wisp {
+namespace {
+
+constexpr float kSqrt3 = 1.7320508f;
+
+// Icosahedron split `subdivisions` times, corners on the sphere; counter-clockwise from outside.
+TriangleMesh makeIcosphere(float radius, int subdivisions)
+{
+    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+    TriangleMesh m;
+    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    m.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                   {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    for (int s = 0; s < subdivisions; ++s) {
+        std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;
+        auto midpoint = [&](unsigned a, unsigned b) {
+            const auto key = std::minmax(a, b);
+            if (auto it = midpoints.find(key); it != midpoints.end())
+                return it->second;
+            m.positions.push_back(0.5f * (m.positions[a] + m.positions[b]));
+            const auto index = static_cast<unsigned>(m.positions.size() - 1);
+            midpoints.emplace(key, index);
+            return index;
+        };
+        std::vector<glm::uvec3> next;
+        for (const glm::uvec3& tri : m.triangles) {
+            const unsigned ab = midpoint(tri.x, tri.y), bc = midpoint(tri.y, tri.z), ca = midpoint(tri.z, tri.x);
+            next.push_back({tri.x, ab, ca});
+            next.push_back({tri.y, bc, ab});
+            next.push_back({tri.z, ca, bc});
+            next.push_back({ab, bc, ca});
+        }
+        m.triangles = std::move(next);
+    }
+    for (glm::vec3& p : m.positions)
+        p = radius * glm::normalize(p);
+    return m;
+}
+
+// Enough OBJ for the test assets: "v x y z" and "f a b c ..." with 1-based indices.
+TriangleMesh readObj(const std::filesystem::path& path, float scale)
+{
+    TriangleMesh mesh;
+    std::ifstream in(path);
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream s(line);
+        std::string tag;
+        s >> tag;
+        if (tag == "v") {
+            glm::vec3 p;
+            s >> p.x >> p.y >> p.z;
+            mesh.positions.push_back(scale * p);
+        } else if (tag == "f") {
+            std::vector<unsigned> corners;
+            std::string word;
+            while (s >> word)
+                corners.push_back(static_cast<unsigned>(std::stoul(word)) - 1);
+            for (std::size_t i = 2; i < corners.size(); ++i)
+                mesh.triangles.push_back({corners[0], corners[i - 1], corners[i]});
+        }
+    }
+    return mesh;
+}
+
+std::filesystem::path planckPath()
+{
+    return std::filesystem::path(WISP_SHARED_ASSETS) / "heads" / "max_planck_decimated.obj";
+}
+
+// The exact generalized winding number: the sum of the triangles' signed solid angles over 4 pi
+// (Van Oosterom and Strackee's formula), in double precision. The reference for the SDF's sign.
+double windingNumber(const TriangleMesh& mesh, const glm::vec3& p)
+{
+    double sum = 0.0;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::dvec3 a = glm::dvec3(mesh.positions[t.x] - p), b = glm::dvec3(mesh.positions[t.y] - p),
+                         c = glm::dvec3(mesh.positions[t.z] - p);
+        const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+        const double num = glm::dot(a, glm::cross(b, c));
+        const double den = la * lb * lc + glm::dot(a, b) * lc + glm::dot(b, c) * la + glm::dot(c, a) * lb;
+        sum += 2.0 * std::atan2(num, den);
+    }
+    return sum / (4.0 * M_PI);
+}
+
+glm::vec3 samplePosition(const SignedDistanceField& f, int i, int j, int k)
+{
+    return f.origin() + glm::vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * f.cellSize();
+}
+
+// Checks every sample of the field against the BVH's exact distances: exact in the band, a lower
+// bound no more than sqrt(3) cells short outside it. Returns the number of band samples.
+int expectExactBandAndBoundedFarField(const TriangleMesh& mesh, const SignedDistanceField& field)
+{
+    const MeshBvh bvh(mesh);
+    const float h = field.cellSize();
+    const float band = SignedDistanceField::kBandCells * h;
+    const glm::ivec3 n = field.dims();
+    int bandSamples = 0, failures = 0;
+    for (int k = 0; k < n.z; ++k)
+        for (int j = 0; j < n.y; ++j)
+            for (int i = 0; i < n.x; ++i) {
+                const float exact = bvh.closestPoint(samplePosition(field, i, j, k)).distance;
+                const float value = std::abs(field.sample(i, j, k));
+                if (exact <= band * 0.999f) {
+                    ++bandSamples;
+                    if (std::abs(value - exact) > 1e-6f + 1e-5f * exact && ++failures < 10)
+                        ADD_FAILURE() << "band sample " << i << "," << j << "," << k << ": " << value << " vs " << exact;
+                } else if (exact > band * 1.001f) {
+                    if ((value > exact + 1e-6f || value < exact - kSqrt3 * h - 1e-6f || value < band * 0.999f) && ++failures < 10)
+                        ADD_FAILURE() << "far sample " << i << "," << j << "," << k << ": " << value << " vs " << exact;
+                }
+            }
+    EXPECT_EQ(failures, 0);
+    return bandSamples;
+}
+
+TEST(SignedDistanceField, SphereMatchesAnalyticDistance)
+{
+    const float radius = 0.1f, h = 0.005f;
+    const TriangleMesh sphere = makeIcosphere(radius, 4);  // facets sit < 0.1 mm inside the sphere
+    std::string error;
+    const SignedDistanceField field = SignedDistanceField::bake(sphere, h, 0.02f, &error);
+    ASSERT_FALSE(field.empty()) << error;
+    EXPECT_EQ(error, "");
+    EXPECT_FLOAT_EQ(field.cellSize(), h);
+    EXPECT_LE(field.origin().x, -radius - 0.02f + 1e-6f);
+    EXPECT_GE(field.origin().x + (field.dims().x - 1) * h, radius + 0.02f - 1e-6f);
+
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    auto randomDirection = [&] {
+        for (;;) {
+            const glm::vec3 d(unit(rng), unit(rng), unit(rng));
+            const float l = glm::length(d);
+            if (l > 0.1f && l <= 1.0f)
+                return d / l;
+        }
+    };
+    for (int s = 0; s < 2000; ++s) {
+        const glm::vec3 dir = randomDirection();
+        // Near the surface: within half a cell of the analytic value, gradient radial.
+        const float r = radius + 0.015f * unit(rng);
+        const glm::vec3 p = r * dir;
+        const float d = field.distance(p);
+        ASSERT_NEAR(d, r - radius, 0.5f * h) << "at radius " << r;
+        EXPECT_GT(glm::dot(field.gradient(p), dir), 0.95f) << "at radius " << r;
+        EXPECT_NEAR(glm::length(field.gradient(p)), 1.0f, 1e-5f);
+        // Signs away from the surface.
+        EXPECT_LT(field.distance((radius - 0.01f - 0.08f * std::abs(unit(rng))) * dir), 0.0f);
+        EXPECT_GT(field.distance((radius + 0.01f + 0.05f * std::abs(unit(rng))) * dir), 0.0f);
+    }
+    // Deep inside the far field is a lower bound on |d|: within sqrt(3) cells (+ trilinear error).
+    EXPECT_LE(field.distance(glm::vec3(0.0f)), -radius + kSqrt3 * h + 0.5f * h);
+    EXPECT_GE(field.distance(glm::vec3(0.0f)), -radius - 1e-4f);
+
+    const int band = expectExactBandAndBoundedFarField(sphere, field);
+    EXPECT_GT(band, 5000);
+}
+
+TEST(SignedDistanceField, FarFieldGrowsMonotonically)
+{
+    const SignedDistanceField field = SignedDistanceField::bake(makeIcosphere(0.1f, 3), 0.004f, 0.06f);
+    ASSERT_FALSE(field.empty());
+    for (const glm::vec3& dir : {glm::vec3(1, 0, 0), glm::normalize(glm::vec3(1, 1, 1)), glm::normalize(glm::vec3(-0.3f, 0.2f, -1))}) {
+        float previous = field.distance(glm::vec3(0.0f));
+        for (float r = 0.0f; r < 0.5f; r += 0.001f) {  // out past the grid (0.16 m) too
+            const float d = field.distance(r * dir);
+            EXPECT_GE(d, previous - 1e-6f) << "at radius " << r;
+            previous = d;
+        }
+        EXPECT_GT(previous, 0.3f);  // outside the grid the value keeps growing with the distance to the box
+        EXPECT_TRUE(std::isfinite(glm::length(field.gradient(0.5f * dir))));
+        EXPECT_GT(glm::dot(field.gradient(0.5f * dir), dir), 0.5f);
+    }
+}
+
+// A sphere with a cap of triangles cut away (an open neck, on a small scale): inside stays
+// inside, including right under the hole; outside stays outside, including above it.
+TEST(SignedDistanceField, OpenMeshKeepsItsInside)
+{
+    TriangleMesh open = makeIcosphere(0.1f, 3);
+    std::vector<glm::uvec3> kept;
+    for (const glm::uvec3& t : open.triangles) {
+        const float y = (open.positions[t.x].y + open.positions[t.y].y + open.positions[t.z].y) / 3.0f;
+        if (y < 0.07f)  // the hole is about 0.14 m across
+            kept.push_back(t);
+    }
+    ASSERT_LT(kept.size(), open.triangles.size());
+    open.triangles = kept;
+    std::string error;
+    const SignedDistanceField field = SignedDistanceField::bake(open, 0.005f, 0.03f, &error);
+    ASSERT_FALSE(field.empty()) << error;
+    for (const glm::vec3& p : {glm::vec3(0.0f), glm::vec3(0, -0.05f, 0), glm::vec3(0.05f, 0, 0), glm::vec3(0, 0, -0.06f),
+                              glm::vec3(0, 0.04f, 0), glm::vec3(0.03f, 0.05f, 0.0f), glm::vec3(0, -0.09f, 0)})
+        EXPECT_LT(field.distance(p), 0.0f) << p.x << "," << p.y << "," << p.z;
+    for (const glm::vec3& p : {glm::vec3(0, 0.12f, 0), glm::vec3(0.0f, 0.11f, 0.05f), glm::vec3(0.12f, 0, 0),
+                              glm::vec3(0, -0.12f, 0), glm::vec3(0.08f, 0.08f, 0.08f)})
+        EXPECT_GT(field.distance(p), 0.0f) << p.x << "," << p.y << "," << p.z;
+    // Distances stay exact near the remaining surface.
+    EXPECT_NEAR(field.distance(glm::vec3(0, -0.105f, 0)), 0.005f, 0.0015f);
+    EXPECT_NEAR(field.distance(glm::vec3(0.095f, 0, 0)), -0.005f, 0.0015f);
+}
+
+// Two overlapping shells (an eyeball sunk into a head): the overlap and both shells are inside.
+TEST(SignedDistanceField, OverlappingShellsAreInside)
+{
+    TriangleMesh mesh = makeIcosphere(0.1f, 3);
+    const TriangleMesh eye = makeIcosphere(0.03f, 2);
+    const auto base = static_cast<unsigned>(mesh.positions.size());
+    for (const glm::vec3& p : eye.positions)
+        mesh.positions.push_back(p + glm::vec3(0.09f, 0, 0));
+    for (const glm::uvec3& t : eye.triangles)
+        mesh.triangles.push_back(t + glm::uvec3(base));
+    const SignedDistanceField field = SignedDistanceField::bake(mesh, 0.004f, 0.02f);
+    ASSERT_FALSE(field.empty());
+    EXPECT_LT(field.distance(glm::vec3(0.075f, 0, 0)), 0.0f);  // in both
+    EXPECT_LT(field.distance(glm::vec3(0.05f, 0, 0)), 0.0f);   // in the head only
+    EXPECT_LT(field.distance(glm::vec3(0.11f, 0, 0)), 0.0f);   // in the eye only
+    EXPECT_GT(field.distance(glm::vec3(0.13f, 0, 0)), 0.0f);
+}
+
+// A mesh whose triangles all face inward still has its inside negative.
+TEST(SignedDistanceField, InwardFacingMeshStillHasItsInsideNegative)
+{
+    TriangleMesh mesh = makeIcosphere(0.1f, 3);
+    for (glm::uvec3& t : mesh.triangles)
+        std::swap(t.y, t.z);
+    const SignedDistanceField field = SignedDistanceField::bake(mesh, 0.005f, 0.02f);
+    ASSERT_FALSE(field.empty());
+    EXPECT_LT(field.distance(glm::vec3(0.0f)), -0.08f);
+    EXPECT_GT(field.distance(glm::vec3(0.115f, 0, 0)), 0.01f);
+}
+
+// An axis-aligned box whose faces, edges and corners lie exactly on grid lines: the crossing
+// count must count rays through shared edges and vertices once.
+TEST(SignedDistanceField, GridAlignedCubeHasExactSigns)
+{
+    TriangleMesh cube;
+    const float s = 0.05f;
+    cube.positions = {{-s, -s, -s}, {s, -s, -s}, {s, s, -s}, {-s, s, -s}, {-s, -s, s}, {s, -s, s}, {s, s, s}, {-s, s, s}};
+    cube.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                      {2, 3, 7}, {2, 7, 6}, {1, 2, 6}, {1, 6, 5}, {0, 4, 7}, {0, 7, 3}};
+    const float h = 0.01f;  // the faces sit on sample planes
+    const SignedDistanceField field = SignedDistanceField::bake(cube, h, 0.03f);
+    ASSERT_FALSE(field.empty());
+    const glm::ivec3 n = field.dims();
+    for (int k = 0; k < n.z; ++k)
+        for (int j = 0; j < n.y; ++j)
+            for (int i = 0; i < n.x; ++i) {
+                const glm::vec3 p = samplePosition(field, i, j, k);
+                const glm::vec3 q = glm::abs(p);
+                const float m = std::max(q.x, std::max(q.y, q.z));
+                if (std::abs(m - s) < 1e-4f)
+                    continue;  // on the surface: either sign is right
+                const bool inside = m < s;
+                ASSERT_EQ(field.sample(i, j, k) < 0.0f, inside) << p.x << "," << p.y << "," << p.z;
+            }
+    // Two cells from a face: in the band, exact. The centre is five cells in: far field, a lower bound.
+    EXPECT_NEAR(field.distance(glm::vec3(0.07f, 0.0f, 0.0f)), 0.02f, 1e-6f);
+    EXPECT_NEAR(field.distance(glm::vec3(0.0f, 0.0f, 0.03f)), -0.02f, 1e-6f);
+    EXPECT_LE(field.distance(glm::vec3(0.0f)), -s + kSqrt3 * h);
+    EXPECT_GE(field.distance(glm::vec3(0.0f)), -s);
+    expectExactBandAndBoundedFarField(cube, field);
+}
+
+TEST(SignedDistanceField, RealHeadSignsMatchExactWindingNumber)
+{
+    if (!std::filesystem::exists(planckPath()))
+        GTEST_SKIP() << "no test assets at " << planckPath();
+    const TriangleMesh head = readObj(planckPath(), 0.001f);
+    ASSERT_EQ(validateMesh(head), "");
+    std::string error;
+    const SignedDistanceField field = SignedDistanceField::bake(head, 0.004f, 0.02f, &error);
+    ASSERT_FALSE(field.empty()) << error;
+
+    std::mt19937 rng(11);
+    const glm::ivec3 n = field.dims();
+    std::uniform_int_distribution<int> ui(0, n.x - 1), uj(0, n.y - 1), uk(0, n.z - 1);
+    int inside = 0;
+    for (int s = 0; s < 400; ++s) {
+        const int i = ui(rng), j = uj(rng), k = uk(rng);
+        const float value = field.sample(i, j, k);
+        if (std::abs(value) < 1e-4f)
+            continue;
+        const double w = windingNumber(head, samplePosition(field, i, j, k));
+        EXPECT_EQ(value < 0.0f, w > 0.5) << "sample " << i << "," << j << "," << k << " value " << value << " winding " << w;
+        inside += value < 0.0f;
+    }
+    EXPECT_GT(inside, 10);
+    EXPECT_GT(expectExactBandAndBoundedFarField(head, field), 10000);
+}
+
+TEST(SignedDistanceField, SameResultWithAnyThreadCount)
+{
+    const TriangleMesh sphere = makeIcosphere(0.1f, 3);
+    const SignedDistanceField one = SignedDistanceField::bake(sphere, 0.004f, 0.02f, nullptr, 1);
+    const SignedDistanceField three = SignedDistanceField::bake(sphere, 0.004f, 0.02f, nullptr, 3);
+    const SignedDistanceField all = SignedDistanceField::bake(sphere, 0.004f, 0.02f);
+    ASSERT_FALSE(one.empty());
+    ASSERT_EQ(one.dims(), three.dims());
+    ASSERT_EQ(one.dims(), all.dims());
+    const std::size_t bytes = sizeof(float) * static_cast<std::size_t>(one.dims().x) * one.dims().y * one.dims().z;
+    EXPECT_EQ(std::memcmp(one.data(), three.data(), bytes), 0);
+    EXPECT_EQ(std::memcmp(one.data(), all.data(), bytes), 0);
+}
+
+TEST(SignedDistanceField, BadInputGivesAnEmptyFieldAndAMessage)
+{
+    const TriangleMesh sphere = makeIcosphere(0.1f, 1);
+    auto expectRejected = [](const TriangleMesh& mesh, float cell, float margin, const char* what) {
+        std::string error;
+        const SignedDistanceField f = SignedDistanceField::bake(mesh, cell, margin, &error);
+        EXPECT_TRUE(f.empty()) << what;
+        EXPECT_FALSE(error.empty()) << what;
+        EXPECT_EQ(f.data(), nullptr) << what;
+        EXPECT_EQ(f.dims(), glm::ivec3(0)) << what;
+        std::printf("[ message  ] %s: %s\n", what, error.c_str());
+    };
+    expectRejected(TriangleMesh{}, 0.01f, 0.01f, "no triangles");
+    TriangleMesh nan = sphere;
+    nan.positions[3].y = NAN;
+    expectRejected(nan, 0.01f, 0.01f, "NaN vertex");
+    TriangleMesh outOfRange = sphere;
+    outOfRange.triangles.push_back({0, 1, 1000});
+    expectRejected(outOfRange, 0.01f, 0.01f, "index out of range");
+    TriangleMesh flat;
+    flat.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+    flat.triangles = {{0, 1, 2}};
+    expectRejected(flat, 0.01f, 0.01f, "zero area");
+    expectRejected(sphere, 0.0f, 0.01f, "zero cell size");
+    expectRejected(sphere, -0.01f, 0.01f, "negative cell size");
+    expectRejected(sphere, NAN, 0.01f, "NaN cell size");
+    expectRejected(sphere, INFINITY, 0.01f, "infinite cell size");
+    expectRejected(sphere, 1e9f, 0.01f, "huge cell size");
+    expectRejected(sphere, 0.01f, -1.0f, "negative margin");
+    expectRejected(sphere, 0.01f, NAN, "NaN margin");
+    expectRejected(sphere, 0.01f, 1e9f, "huge margin");
+    TriangleMesh huge = sphere;
+    for (glm::vec3& p : huge.positions)
+        p *= 1e30f;
+    expectRejected(huge, 0.01f, 0.01f, "huge mesh");
+    // A mesh in millimetres read as metres (0.2 km across) still bakes: 10 km is the limit.
+    TriangleMesh millimetres = sphere;
+    for (glm::vec3& p : millimetres.positions)
+        p *= 1000.0f;
+    std::string error;
+    const SignedDistanceField coarse = SignedDistanceField::bake(millimetres, 2.5f, 20.0f, &error);
+    ASSERT_FALSE(coarse.empty()) << error;
+    EXPECT_LE(static_cast<std::size_t>(coarse.dims().x) * coarse.dims().y * coarse.dims().z, SignedDistanceField::kMaxSamples);
+    EXPECT_LT(coarse.distance(glm::vec3(0.0f)), -50.0f);
+
+    // The empty field answers without crashing: nothing to collide with.
+    const SignedDistanceField empty;
+    EXPECT_TRUE(std::isinf(empty.distance(glm::vec3(0.0f))));
+    EXPECT_EQ(empty.gradient(glm::vec3(0.0f)), glm::vec3(0, 1, 0));
+}
+
+// A tiny cell size asks for billions of samples: the grid is capped and the cell grows.
+TEST(SignedDistanceField, HugeGridIsCappedByGrowingTheCell)
+{
+    std::string error;
+    const SignedDistanceField field = SignedDistanceField::bake(makeIcosphere(0.1f, 2), 1e-6f, 0.02f, &error);
+    ASSERT_FALSE(field.empty()) << error;
+    const glm::ivec3 n = field.dims();
+    EXPECT_LE(static_cast<std::size_t>(n.x) * n.y * n.z, SignedDistanceField::kMaxSamples);
+    EXPECT_GT(static_cast<std::size_t>(n.x) * n.y * n.z, SignedDistanceField::kMaxSamples / 2);
+    EXPECT_GT(field.cellSize(), 1e-6f);
+    EXPECT_GE(field.origin().x + (n.x - 1) * field.cellSize(), 0.12f - 1e-6f);  // still covers the box
+    EXPECT_LT(field.distance(glm::vec3(0.0f)), -0.09f);
+    EXPECT_NEAR(field.distance(glm::vec3(0.105f, 0, 0)), 0.005f, 0.001f);
+}
+
+TEST(SignedDistanceField, GradientIsNeverNaN)
+{
+    const SignedDistanceField field = SignedDistanceField::bake(makeIcosphere(0.1f, 2), 0.01f, 0.02f);
+    ASSERT_FALSE(field.empty());
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int i = 0; i < 2000; ++i) {
+        const glm::vec3 p = (i % 2 ? 0.15f : 3.0f) * glm::vec3(u(rng), u(rng), u(rng));
+        const glm::vec3 g = field.gradient(p);
+        ASSERT_NEAR(glm::length(g), 1.0f, 1e-4f);
+    }
+    for (const glm::vec3& p : {glm::vec3(0.0f), glm::vec3(NAN), glm::vec3(INFINITY, 0, 0), glm::vec3(1e30f), field.origin()}) {
+        const glm::vec3 g = field.gradient(p);
+        EXPECT_TRUE(std::isfinite(g.x) && std::isfinite(g.y) && std::isfinite(g.z));
+        EXPECT_NEAR(glm::length(g), 1.0f, 1e-4f);
+    }
+}
+
+// Bake time for a head-sized collider (printed): the real head scaled to a 0.25 m box, and the
+// same head split to four times the triangles, at 2.5 mm cells with a 2 cm margin.
+TEST(SignedDistanceField, HeadBakeTime)
+{
+    if (!std::filesystem::exists(planckPath()))
+        GTEST_SKIP() << "no test assets at " << planckPath();
+    TriangleMesh head = readObj(planckPath(), 1.0f);
+    const Aabb box = boundsOf(head);
+    const float scale = 0.25f / std::max(box.size().x, std::max(box.size().y, box.size().z));
+    for (glm::vec3& p : head.positions)
+        p = (p - box.center()) * scale;
+    TriangleMesh fine = head;  // each triangle split in four at its edge midpoints
+    fine.triangles.clear();
+    std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;
+    auto midpoint = [&](unsigned a, unsigned b) {
+        const auto key = std::minmax(a, b);
+        if (auto it = midpoints.find(key); it != midpoints.end())
+            return it->second;
+        fine.positions.push_back(0.5f * (fine.positions[a] + fine.positions[b]));
+        return midpoints[key] = static_cast<unsigned>(fine.positions.size() - 1);
+    };
+    for (const glm::uvec3& t : head.triangles) {
+        const unsigned ab = midpoint(t.x, t.y), bc = midpoint(t.y, t.z), ca = midpoint(t.z, t.x);
+        fine.triangles.insert(fine.triangles.end(), {{t.x, ab, ca}, {t.y, bc, ab}, {t.z, ca, bc}, {ab, bc, ca}});
+    }
+    for (const TriangleMesh* mesh : {&head, &fine}) {
+        const auto t0 = std::chrono::steady_clock::now();
+        std::string error;
+        const SignedDistanceField field = SignedDistanceField::bake(*mesh, 0.0025f, 0.02f, &error);
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        ASSERT_FALSE(field.empty()) << error;
+        std::printf("[ timing   ] SDF bake, %zu triangles, %d x %d x %d samples at 2.5 mm: %.1f ms\n", mesh->triangleCount(),
+                    field.dims().x, field.dims().y, field.dims().z, ms);
+        EXPECT_LT(ms, 20000.0);  // loose: sanitizer and debug builds run this too
+    }
+}
+
+}  // namespace
+}  // namespace wisp

@@ -7,6 +7,10 @@
 #include <glm/mat3x3.hpp>
 
 #include <algorithm>
+#include <cstring>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 #include <array>
 #include <cmath>
 #include <map>
@@ -15,7 +19,7 @@ namespace wisp {
 
 // ---------------------------------------------------------------------------------------------
 // Lanes: 8 floats handled by one instruction (GCC/Clang vector extension: AVX, or two SSE halves).
-constexpr int kLanes = 8;
+constexpr int kLanes = 16;
 using Lane = float __attribute__((vector_size(kLanes * sizeof(float))));
 using Mask = int __attribute__((vector_size(kLanes * sizeof(int))));
 
@@ -32,6 +36,30 @@ inline Lane lsqrt(Lane a)
         r[i] = __builtin_sqrtf(a[i]);
     return r;
 }
+// 1/sqrt(a) for a > 0: the hardware estimate refined by one Newton step (about 23 correct bits),
+// far shorter latency than sqrt then divide on the strand's serial parent-to-child chain.
+inline Lane lrsqrt(Lane a)
+{
+#if defined(__AVX512F__)
+    static_assert(sizeof(Lane) == sizeof(__m512));
+    const Lane y = reinterpret_cast<Lane>(_mm512_rsqrt14_ps(reinterpret_cast<__m512>(a)));
+#elif defined(__AVX__)
+    Lane y;
+    for (int i = 0; i < kLanes; i += 8) {
+        __m256 half;
+        std::memcpy(&half, reinterpret_cast<const float*>(&a) + i, sizeof half);
+        half = _mm256_rsqrt_ps(half);
+        std::memcpy(reinterpret_cast<float*>(&y) + i, &half, sizeof half);
+    }
+#else
+    const Lane y = splat(1.0f) / lsqrt(a);
+    return y;
+#endif
+#if defined(__AVX__)
+    return y * (1.5f - 0.5f * a * y * y);
+#endif
+}
+
 inline bool anyOf(Mask m)
 {
     int any = 0;
@@ -47,6 +75,8 @@ inline V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.
 inline V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline V3 operator*(const V3& a, Lane s) { return {a.x * s, a.y * s, a.z * s}; }
 inline Lane dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Lane labs(Lane a) { return a < 0.0f ? -a : a; }
+inline Lane l1Length(const V3& a) { return labs(a.x) + labs(a.y) + labs(a.z); }
 inline V3 cross(const V3& a, const V3& b)
 {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
@@ -65,6 +95,9 @@ inline V3 transform(const glm::mat3& m, const V3& v)  // m * v, glm is column-ma
 struct ParticleRow {
     Lane x, y, z;
     Lane px, py, pz;
+    // A lower bound on (distance to the head - hair offset) at x: while it stays positive the head
+    // cannot be touched and its lookup is skipped. Negative means unknown.
+    Lane clearance;
 };
 // Rest shape, head space. Row 0: the root position. Row j > 0: unit direction from particle j-1
 // to j, the segment's rest length (metres) and the share of its bend error removed per substep.
@@ -100,7 +133,7 @@ struct StepConstants {
     glm::mat3 previousRotation{1.0f};
     glm::vec3 previousTranslation{0.0f};
     bool transformed = false;  // head is not at the identity: SDF lookups need head space
-    const SignedDistanceField* sdf = nullptr;
+    const Solver::CollisionField* field = nullptr;
     std::vector<Capsule> capsulesWorld;
     std::uint64_t* resetCounter = nullptr;
 };
@@ -117,52 +150,72 @@ glm::vec3 gust(const glm::vec3& p, double time)
             0.6f * std::sin(12.0f * p.z + 6.0f * p.y + 2.9f * t + 3.0f) + 0.4f * std::sin(-10.0f * p.x + 4.1f * t + 5.0f)};
 }
 
-// Signed distance and outward normal from the baked field, trilinear with its analytic gradient.
+}  // namespace
+
+// The head as the solver reads it: for every node of the baked signed-distance grid, the distance
+// and the unit outward normal there (central differences). A lookup takes the nearest node and
+// extends it to first order, d(p) = d_n + n . (p - x_n): one 16-byte load per particle instead of
+// the eight scattered loads of trilinear interpolation, which dominated the step. The error is
+// about h^2 / (2 R) for a surface of curvature radius R (0.03 mm for a 2.5 mm grid on a head).
+struct Solver::CollisionField {
+    std::vector<glm::vec4> nodes;  // (distance, normal) per node, metres
+    glm::ivec3 dims{0};
+    glm::vec3 origin{0.0f};
+    float cellSize = 0.0f;
+
+    explicit CollisionField(const SignedDistanceField& sdf)
+        : nodes(static_cast<std::size_t>(sdf.dims().x) * sdf.dims().y * sdf.dims().z), dims(sdf.dims()),
+          origin(sdf.origin()), cellSize(sdf.cellSize())
+    {
+        for (int k = 0; k < dims.z; ++k)
+            for (int j = 0; j < dims.y; ++j)
+                for (int i = 0; i < dims.x; ++i) {
+                    auto at = [&](int x, int y, int z) {
+                        return sdf.sample(std::clamp(x, 0, dims.x - 1), std::clamp(y, 0, dims.y - 1),
+                                          std::clamp(z, 0, dims.z - 1));
+                    };
+                    glm::vec3 g(at(i + 1, j, k) - at(i - 1, j, k), at(i, j + 1, k) - at(i, j - 1, k),
+                                at(i, j, k + 1) - at(i, j, k - 1));
+                    const float len = glm::length(g);
+                    g = len > 1e-12f ? g / len : glm::vec3(0.0f, 1.0f, 0.0f);
+                    nodes[static_cast<std::size_t>(i) + static_cast<std::size_t>(dims.x) * (j + static_cast<std::size_t>(dims.y) * k)] =
+                        glm::vec4(at(i, j, k), g);
+                }
+    }
+};
+
+namespace {
+
 struct SdfSample {
     Lane distance;
     V3 normal;
 };
-SdfSample sampleSdf(const SignedDistanceField& sdf, const V3& p)
+
+[[gnu::always_inline]] inline SdfSample sampleField(const Solver::CollisionField& field, const V3& p)
 {
-    const glm::vec3 origin = sdf.origin();
-    const glm::ivec3 dims = sdf.dims();
-    const float inv = 1.0f / sdf.cellSize();
-    const float* data = sdf.data();
-    Lane gx = (p.x - origin.x) * inv, gy = (p.y - origin.y) * inv, gz = (p.z - origin.z) * inv;
-    // Clamp into the grid; outside the box the field keeps the border's (positive) values.
-    gx = lmin(lmax(gx, splat(0.0f)), splat(static_cast<float>(dims.x - 1) - 1e-3f));
-    gy = lmin(lmax(gy, splat(0.0f)), splat(static_cast<float>(dims.y - 1) - 1e-3f));
-    gz = lmin(lmax(gz, splat(0.0f)), splat(static_cast<float>(dims.z - 1) - 1e-3f));
-    Lane c[8];
-    Lane fx, fy, fz;
-    const int sx = 1, sy = dims.x, sz = dims.x * dims.y;
-    for (int l = 0; l < kLanes; ++l) {
-        const int ix = static_cast<int>(gx[l]), iy = static_cast<int>(gy[l]), iz = static_cast<int>(gz[l]);
-        fx[l] = gx[l] - static_cast<float>(ix);
-        fy[l] = gy[l] - static_cast<float>(iy);
-        fz[l] = gz[l] - static_cast<float>(iz);
-        const float* base = data + ix + sy * iy + sz * iz;
-        c[0][l] = base[0];
-        c[1][l] = base[sx];
-        c[2][l] = base[sy];
-        c[3][l] = base[sx + sy];
-        c[4][l] = base[sz];
-        c[5][l] = base[sx + sz];
-        c[6][l] = base[sy + sz];
-        c[7][l] = base[sx + sy + sz];
-    }
-    auto lerp = [](Lane a, Lane b, Lane t) { return a + (b - a) * t; };
-    const Lane x00 = lerp(c[0], c[1], fx), x10 = lerp(c[2], c[3], fx);
-    const Lane x01 = lerp(c[4], c[5], fx), x11 = lerp(c[6], c[7], fx);
-    const Lane y0 = lerp(x00, x10, fy), y1 = lerp(x01, x11, fy);
+    const float inv = 1.0f / field.cellSize;
+    // Nearest node, clamped into the grid; outside it the first-order extension keeps growing.
+    auto nearest = [&](Lane v, float origin, int count) {
+        const Lane g = (v - origin) * inv + 0.5f;
+        return __builtin_convertvector(lmin(lmax(g, splat(0.0f)), splat(static_cast<float>(count) - 0.5f)), Mask);
+    };
+    const Mask ix = nearest(p.x, field.origin.x, field.dims.x);
+    const Mask iy = nearest(p.y, field.origin.y, field.dims.y);
+    const Mask iz = nearest(p.z, field.origin.z, field.dims.z);
+    const Mask index = ix + iy * field.dims.x + iz * (field.dims.x * field.dims.y);
     SdfSample s;
-    s.distance = lerp(y0, y1, fz);
-    V3 g{lerp(lerp(c[1] - c[0], c[3] - c[2], fy), lerp(c[5] - c[4], c[7] - c[6], fy), fz),
-         lerp(x10 - x00, x11 - x01, fz), y1 - y0};
-    const Lane len2 = dot(g, g);
-    const Mask flat = len2 < splat(1e-20f);
-    const Lane invLen = splat(1.0f) / lsqrt(select(flat, splat(1.0f), len2));
-    s.normal = select(flat, V3{splat(0.0f), splat(1.0f), splat(0.0f)}, g * invLen);
+    Lane d;
+    for (int l = 0; l < kLanes; ++l) {
+        const glm::vec4 node = field.nodes[static_cast<std::size_t>(index[l])];
+        d[l] = node.x;
+        s.normal.x[l] = node.y;
+        s.normal.y[l] = node.z;
+        s.normal.z[l] = node.w;
+    }
+    const V3 nodePosition{__builtin_convertvector(ix, Lane) * field.cellSize + field.origin.x,
+                          __builtin_convertvector(iy, Lane) * field.cellSize + field.origin.y,
+                          __builtin_convertvector(iz, Lane) * field.cellSize + field.origin.z};
+    s.distance = d + dot(s.normal, p - nodePosition);
     return s;
 }
 
@@ -245,7 +298,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             const Lane wt = dot(wind, tangent);
             const Lane tt = dot(tangent, tangent);
             const Lane across2 = splat(1.0f) - (wt * wt) * invWindSpeed2 / lmax(tt, splat(1e-20f));
-            const Lane across = select(calm, splat(1.0f), lsqrt(lmax(across2, splat(0.0f))));
+            const Lane across2Safe = lmax(across2, splat(1e-20f));
+            const Lane across = select(calm, splat(1.0f), across2Safe * lrsqrt(across2Safe));
             const Lane k = drag * across * dt2;
             const V3 predicted = x + move * keep + gravityStep + (wind - move * invDt) * k;
 
@@ -260,22 +314,28 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
 
             // Follow the leader (Müller et al. 2012): put the particle back at rest length from its parent.
             V3 d = bent - parent;
-            V3 position = parent + d * (length / lsqrt(lmax(dot(d, d), splat(1e-24f))));
+            V3 position = parent + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-24f))));
             const V3 correction = position - bent;
             previous = x;
 
-            // Collisions: head field, then capsules.
-            if (c.sdf) {
+            // Collisions: head field, then capsules. The field lookup is most of a step's cost
+            // (memory latency), so it is skipped while the clearance bound says no lane can touch:
+            // the bound shrinks by each move's L1 length, which is never less than its true length.
+            const V3 checked = position;
+            Lane clearance = p.clearance - l1Length(position - x);
+            if (c.field && (Transformed || anyOf(clearance < splat(0.0f)))) {
                 V3 local = position;
                 if (Transformed)
                     local = transform(glm::transpose(c.rotation), position - splat(c.translation));
-                SdfSample sample = sampleSdf(*c.sdf, local);
+                SdfSample sample = sampleField(*c.field, local);
                 if (Transformed)
                     sample.normal = transform(c.rotation, sample.normal);
                 const Lane depth = splat(c.offset) - sample.distance;
                 const Mask inside = depth > splat(0.0f);
                 if (anyOf(inside))
                     resolveContact(inside, depth, sample.normal, c.friction, x, position, previous);
+                // A moving head moves the field under the particles: no bound survives that.
+                clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));
             }
             for (const Capsule& capsule : c.capsulesWorld) {
                 const V3 a = splat(capsule.a);
@@ -295,7 +355,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             }
             // Contact moved the particle off its rest length: project back (one more FTL step).
             d = position - parent;
-            position = parent + d * (length / lsqrt(lmax(dot(d, d), splat(1e-24f))));
+            position = parent + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-24f))));
 
             // DFTL velocity correction (Müller et al. eq. 9): v_{j-1} -= s d_j / dt, which in
             // Verlet form moves the parent's previous position by s d_j. The root stays pinned.
@@ -305,6 +365,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 q.py -= velocityCorrection * -correction.y;
                 q.pz -= velocityCorrection * -correction.z;
             }
+            p.clearance = clearance - l1Length(position - checked);
             p.x = position.x;
             p.y = position.y;
             p.z = position.z;
@@ -346,6 +407,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 row[j].x[l] = row[j].px[l] = p.x;
                 row[j].y[l] = row[j].py[l] = p.y;
                 row[j].z[l] = row[j].pz[l] = p.z;
+                row[j].clearance[l] = -1.0f;
             }
             if (block.strand[l] >= 0)
                 __atomic_fetch_add(c.resetCounter, 1, __ATOMIC_RELAXED);
@@ -435,14 +497,23 @@ std::string Solver::setStrands(const HairCurves& rest)
 std::string Solver::setSettings(const SolverSettings& settings)
 {
     std::string error = validateSolverSettings(settings);
-    if (error.empty())
-        m_settings = settings;
-    return error;
+    if (!error.empty())
+        return error;
+    if (settings.hairOffsetMetres != m_settings.hairOffsetMetres)  // clearances are measured from the offset
+        for (Block& b : m_blocks)
+            for (ParticleRow& row : b.state)
+                row.clearance = splat(-1.0f);
+    m_settings = settings;
+    return {};
 }
 
 void Solver::setCollider(std::shared_ptr<const SignedDistanceField> headSdf)
 {
     m_sdf = headSdf && !headSdf->empty() ? std::move(headSdf) : nullptr;
+    m_field = m_sdf ? std::make_unique<CollisionField>(*m_sdf) : nullptr;
+    for (Block& b : m_blocks)
+        for (ParticleRow& row : b.state)
+            row.clearance = splat(-1.0f);
 }
 
 void Solver::setCapsules(std::vector<Capsule> capsules) { m_capsules = std::move(capsules); }
@@ -463,6 +534,7 @@ void Solver::resetToRest()
                 b.state[j].x[l] = b.state[j].px[l] = p.x;
                 b.state[j].y[l] = b.state[j].py[l] = p.y;
                 b.state[j].z[l] = b.state[j].pz[l] = p.z;
+                b.state[j].clearance[l] = -1.0f;
             }
         }
     }
@@ -515,7 +587,7 @@ void Solver::step()
     c.previousRotation = glm::mat3(m_previousHeadToWorld);
     c.previousTranslation = glm::vec3(m_previousHeadToWorld[3]);
     c.transformed = m_headToWorld != glm::mat4(1.0f) || m_previousHeadToWorld != glm::mat4(1.0f);
-    c.sdf = m_sdf.get();
+    c.field = m_field.get();
     for (const Capsule& cap : m_capsules)
         c.capsulesWorld.push_back({c.rotation * cap.a + c.translation, c.rotation * cap.b + c.translation, cap.radiusMetres});
     c.resetCounter = &m_strandsReset;
@@ -545,6 +617,7 @@ void Solver::moveParticle(std::size_t strand, std::size_t point, const glm::vec3
     row.x[slot.lane] = row.px[slot.lane] = position.x;
     row.y[slot.lane] = row.py[slot.lane] = position.y;
     row.z[slot.lane] = row.pz[slot.lane] = position.z;
+    row.clearance[slot.lane] = -1.0f;
 }
 
 void Solver::copyPositions(std::vector<glm::vec3>& out) const

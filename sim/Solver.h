@@ -76,6 +76,7 @@ public:
     // Bytes the solver holds for its particles (state, rest shape, lanes), for the memory budget.
     std::size_t memoryBytes() const;
 
+    struct CollisionField;  // the head's distances and normals, laid out for lookups (Solver.cpp)
     struct Block;  // 8 strands of equal particle count, interleaved (defined in Solver.cpp)
 
 private:
@@ -84,6 +85,7 @@ private:
     std::unique_ptr<ThreadPool> m_pool;
     SolverSettings m_settings;
     std::shared_ptr<const SignedDistanceField> m_sdf;
+    std::unique_ptr<CollisionField> m_field;
     std::vector<Capsule> m_capsules;
     glm::mat4 m_headToWorld{1.0f};
     glm::mat4 m_previousHeadToWorld{1.0f};

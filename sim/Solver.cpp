@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <span>
 
 namespace wisp {
 
@@ -92,7 +93,7 @@ inline V3 transform(const glm::mat3& m, const V3& v)  // m * v, glm is column-ma
 }  // namespace
 
 // Particle j of the block's 8 strands: position and previous position (Verlet keeps no velocity).
-struct ParticleRow {
+struct Solver::ParticleRow {
     Lane x, y, z;
     Lane px, py, pz;
     // A lower bound on (distance to the head - hair offset) at x: while it stays positive the head
@@ -101,19 +102,24 @@ struct ParticleRow {
 };
 // Rest shape, head space. Row 0: the root position. Row j > 0: unit direction from particle j-1
 // to j, the segment's rest length (metres) and the share of its bend error removed per substep.
-struct RestRow {
+struct Solver::RestRow {
     Lane x, y, z;
     Lane length;
     Lane inverseLength;  // 1 / length, kept off the strand's serial chain
     Lane bendAlpha;
 };
 
+using ParticleRow = Solver::ParticleRow;
+using RestRow = Solver::RestRow;
+
 struct Solver::Block {
     std::uint32_t points = 0;
     std::array<std::int64_t, kLanes> strand{};  // index into the caller's curves, -1 for padding
     Lane strandLength{};                         // rest arc length per lane, metres
-    std::vector<ParticleRow> state;
-    std::vector<RestRow> rest;
+    // Views into the solver's two row arrays: every block's rows follow the previous block's, so
+    // a thread streams through memory in one sequential run that the prefetcher can follow.
+    std::span<ParticleRow> state;
+    std::span<RestRow> rest;
 };
 
 struct StepConstants {
@@ -450,14 +456,21 @@ std::string Solver::setStrands(const HairCurves& rest)
         byCount[static_cast<std::uint32_t>(s.size())].push_back(static_cast<std::uint32_t>(i));
     }
 
+    std::size_t rows = 0;
+    for (const auto& [count, strands] : byCount)
+        rows += count * ((strands.size() + kLanes - 1) / kLanes);
+    std::vector<ParticleRow> stateRows(rows);
+    std::vector<RestRow> restRows(rows);
     std::vector<Block> blocks;
     std::size_t particles = 0;
+    std::size_t nextRow = 0;
     for (const auto& [count, strands] : byCount) {
         for (std::size_t first = 0; first < strands.size(); first += kLanes) {
             Block b;
             b.points = count;
-            b.state.resize(count);
-            b.rest.resize(count);
+            b.state = std::span<ParticleRow>(stateRows.data() + nextRow, count);
+            b.rest = std::span<RestRow>(restRows.data() + nextRow, count);
+            nextRow += count;
             for (int l = 0; l < kLanes; ++l) {
                 // Padding lanes repeat the block's first strand and are never copied out.
                 const bool real = first + static_cast<std::size_t>(l) < strands.size();
@@ -491,6 +504,8 @@ std::string Solver::setStrands(const HairCurves& rest)
         }
     }
     m_blocks = std::move(blocks);
+    m_stateRows = std::move(stateRows);  // moving keeps the buffers, so the blocks' views stay valid
+    m_restRows = std::move(restRows);
     m_slotOfStrand.assign(rest.strandCount(), {});
     for (std::uint32_t i = 0; i < m_blocks.size(); ++i)
         for (std::uint32_t l = 0; l < kLanes; ++l)
@@ -649,10 +664,9 @@ void Solver::copyPositions(std::vector<glm::vec3>& out) const
 
 std::size_t Solver::memoryBytes() const
 {
-    std::size_t bytes = m_restOffsets.capacity() * sizeof(std::uint32_t) + m_blocks.capacity() * sizeof(Block);
-    for (const Block& b : m_blocks)
-        bytes += b.state.capacity() * sizeof(ParticleRow) + b.rest.capacity() * sizeof(RestRow);
-    return bytes;
+    return m_restOffsets.capacity() * sizeof(std::uint32_t) + m_blocks.capacity() * sizeof(Block) +
+           m_slotOfStrand.capacity() * sizeof(Slot) + m_stateRows.capacity() * sizeof(ParticleRow) +
+           m_restRows.capacity() * sizeof(RestRow);
 }
 
 }  // namespace wisp

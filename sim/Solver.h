@@ -7,8 +7,8 @@
 // inextensibility by Dynamic Follow-The-Leader (Müller, Kim, Chentanez 2012, "Fast Simulation of
 // Inextensible Hair and Fur").
 //
-// Data-oriented: strands with the same particle count are packed 8 to a block, each block's
-// particles interleaved so that one instruction advances the same particle of 8 strands. A block is
+// Data-oriented: strands with the same particle count are packed 16 to a block, each block's
+// particles interleaved so that one instruction advances the same particle of 16 strands. A block is
 // the unit of parallel work, so results are bit-identical for any thread count.
 //
 // Thread: one owner thread calls everything (in the editor, the simulation thread).
@@ -77,7 +77,9 @@ public:
     std::size_t memoryBytes() const;
 
     struct CollisionField;  // the head's distances and normals, laid out for lookups (Solver.cpp)
-    struct Block;  // 8 strands of equal particle count, interleaved (defined in Solver.cpp)
+    struct ParticleRow;
+    struct RestRow;
+    struct Block;  // 16 strands of equal particle count, interleaved (defined in Solver.cpp)
 
 private:
     void updateBendAlpha(float substepSeconds);
@@ -90,6 +92,8 @@ private:
     glm::mat4 m_headToWorld{1.0f};
     glm::mat4 m_previousHeadToWorld{1.0f};
     std::vector<Block> m_blocks;
+    std::vector<ParticleRow> m_stateRows;
+    std::vector<RestRow> m_restRows;
     std::vector<std::uint32_t> m_restOffsets;  // layout of the caller's curves
     struct Slot {
         std::uint32_t block;

@@ -92,6 +92,7 @@ std::vector<OptionSpec> parameterOptions()
     std::vector<OptionSpec> options;
     for (const ParameterInfo& p : allParameters()) {
         std::ostringstream help;
+        help.precision(10);
         help << p.help << " [" << p.minimum << ".." << p.maximum;
         if (!p.unit.empty())
             help << " " << p.unit;

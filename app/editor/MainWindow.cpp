@@ -1,0 +1,236 @@
+#include "app/editor/MainWindow.h"
+
+#include "app/editor/Document.h"
+#include "app/editor/SimulationHost.h"
+#include "io/MeshReader.h"
+#include "sim/GrowthMap.h"
+#include "widgets/ParameterPanel.h"
+#include "widgets/Viewport.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QScrollArea>
+#include <QSettings>
+#include <QStatusBar>
+#include <QToolBar>
+#include <QUndoView>
+
+namespace wisp {
+
+namespace {
+
+std::vector<Param> parametersIn(ParamGroup group)
+{
+    std::vector<Param> ids;
+    for (const ParameterInfo& p : allParameters())
+        if (p.group == group)
+            ids.push_back(p.id);
+    return ids;
+}
+
+// The force panel: what an artist drags while the hair moves (issue: gravity, wind, turbulence,
+// drag, damping, stiffness, substeps), in that order.
+std::vector<Param> forceParameters()
+{
+    return {Param::Gravity,    Param::WindSpeed, Param::WindAzimuth, Param::WindElevation, Param::Turbulence,
+            Param::Drag,       Param::Damping,   Param::Stiffness,   Param::Friction,      Param::Substeps,
+            Param::TimeStep,   Param::HairOffset, Param::SimulateAllStrands};
+}
+
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent)
+{
+    setWindowTitle(QStringLiteral("Wisp"));
+    m_document = new Document(this);
+    m_simulation = new SimulationHost(this);
+    m_viewport = new Viewport(this);
+    m_viewport->setHead(m_document->head());
+    setCentralWidget(m_viewport);
+
+    createActions();
+    createDocks();
+    connectSimulation();
+    restoreSettings();
+    statusBar()->showMessage(tr("Space plays or pauses · Alt+drag or middle-drag orbits · Shift+middle-drag pans · "
+                                "wheel zooms · F frames the head"));
+    m_simulation->setScene(m_document->head(), m_document->growthWeights(), m_document->parameters());
+    m_simulation->play();
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::createActions()
+{
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    QAction* openHeadAction = file->addAction(tr("Open &Head…"), this, [this] {
+        QStringList patterns;
+        for (const std::string& ext : io::supportedMeshExtensions())
+            patterns << QStringLiteral("*.%1").arg(QString::fromStdString(ext));
+        const QString path = QFileDialog::getOpenFileName(this, tr("Open Head"), QString(),
+                                                          tr("Meshes (%1)").arg(patterns.join(' ')));
+        if (!path.isEmpty())
+            openHead(path);
+    });
+    openHeadAction->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
+    file->addSeparator();
+    QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
+    quit->setShortcut(QKeySequence::Quit);
+
+    QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    QAction* undo = m_document->undoStack()->createUndoAction(this, tr("&Undo"));
+    undo->setShortcut(QKeySequence::Undo);
+    QAction* redo = m_document->undoStack()->createRedoAction(this, tr("&Redo"));
+    redo->setShortcut(QKeySequence::Redo);
+    edit->addAction(undo);
+    edit->addAction(redo);
+
+    m_viewMenu = menuBar()->addMenu(tr("&View"));
+    QAction* frame = m_viewMenu->addAction(tr("&Frame Head"), m_viewport, &Viewport::frameHead);
+    frame->setShortcut(QKeySequence(Qt::Key_F));
+    QAction* grid = m_viewMenu->addAction(tr("Show &Grid"));
+    grid->setCheckable(true);
+    grid->setChecked(m_viewport->showGrid());
+    connect(grid, &QAction::toggled, m_viewport, &Viewport::setShowGrid);
+    m_viewMenu->addSeparator();
+
+    QMenu* sim = menuBar()->addMenu(tr("&Simulation"));
+    m_play = sim->addAction(tr("&Play"));
+    m_play->setCheckable(true);
+    m_play->setShortcut(QKeySequence(Qt::Key_Space));
+    m_play->setShortcutContext(Qt::WindowShortcut);
+    connect(m_play, &QAction::triggered, this, [this](bool on) { on ? m_simulation->play() : m_simulation->pause(); });
+    m_step = sim->addAction(tr("&Step"), m_simulation, &SimulationHost::stepOnce);
+    m_step->setShortcut(QKeySequence(Qt::Key_Period));
+    m_step->setToolTip(tr("Advance one time step while paused (.)"));
+    m_reset = sim->addAction(tr("&Reset to Rest"), m_simulation, &SimulationHost::resetToRest);
+    m_reset->setShortcut(QKeySequence(tr("Ctrl+R")));
+    updatePlayAction(false);
+
+    QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(tr("&About Wisp"), this, [this] {
+        QMessageBox::about(this, tr("About Wisp"),
+                           tr("<b>Wisp</b> — hair styling and simulation.<br>Paint where hair grows, shape it into "
+                              "wisps, and watch it move under gravity and wind while you edit."));
+    });
+
+    QToolBar* tools = addToolBar(tr("Simulation"));
+    tools->setObjectName(QStringLiteral("simulationToolBar"));
+    tools->addAction(m_play);
+    tools->addAction(m_step);
+    tools->addAction(m_reset);
+    tools->addSeparator();
+    tools->addAction(frame);
+    m_viewMenu->addAction(tools->toggleViewAction());
+}
+
+QDockWidget* MainWindow::addPanelDock(const QString& title, const QString& objectName, QWidget* panel,
+                                      Qt::DockWidgetArea area)
+{
+    auto* dock = new QDockWidget(title, this);
+    dock->setObjectName(objectName);
+    auto* scroll = new QScrollArea(dock);
+    scroll->setWidgetResizable(true);
+    scroll->setWidget(panel);
+    dock->setWidget(scroll);
+    addDockWidget(area, dock);
+    m_viewMenu->addAction(dock->toggleViewAction());
+    return dock;
+}
+
+void MainWindow::createDocks()
+{
+    m_forcePanel = new ParameterPanel(forceParameters());
+    m_groomPanel = new ParameterPanel(parametersIn(ParamGroup::Groom));
+    QDockWidget* forces = addPanelDock(tr("Forces"), QStringLiteral("forcesDock"), m_forcePanel, Qt::RightDockWidgetArea);
+    QDockWidget* groom = addPanelDock(tr("Groom"), QStringLiteral("groomDock"), m_groomPanel, Qt::RightDockWidgetArea);
+    tabifyDockWidget(forces, groom);
+    forces->raise();
+
+    m_history = new QUndoView(m_document->undoStack());
+    m_history->setEmptyLabel(tr("<opened>"));
+    QDockWidget* history = addPanelDock(tr("History"), QStringLiteral("historyDock"), m_history, Qt::RightDockWidgetArea);
+    history->hide();
+
+    for (ParameterPanel* panel : {m_forcePanel, m_groomPanel}) {
+        connect(panel, &ParameterPanel::valueEdited, this, [this](Param id, double value, bool dragging) {
+            const QString refusal = m_document->editParameter(id, value, dragging);
+            if (!refusal.isEmpty())
+                statusBar()->showMessage(refusal, 5000);
+        });
+    }
+    // Undo, redo and edits all come back through the document.
+    connect(m_document, &Document::parameterChanged, this, [this](Param) {
+        m_forcePanel->setValues(m_document->parameters());
+        m_groomPanel->setValues(m_document->parameters());
+        m_simulation->setParameters(m_document->parameters());
+    });
+    connect(m_document, &Document::headChanged, this, [this] {
+        m_viewport->setHead(m_document->head());
+        m_viewport->frameHead();
+        m_simulation->setScene(m_document->head(), m_document->growthWeights(), m_document->parameters());
+    });
+}
+
+void MainWindow::connectSimulation()
+{
+    connect(m_simulation, &SimulationHost::frameReady, this, [this] { m_viewport->setFrame(m_simulation->latestFrame()); },
+            Qt::QueuedConnection);
+    connect(m_simulation, &SimulationHost::playingChanged, this, &MainWindow::updatePlayAction, Qt::QueuedConnection);
+    connect(m_simulation, &SimulationHost::errorOccurred, this,
+            [this](const QString& message) { statusBar()->showMessage(message, 8000); }, Qt::QueuedConnection);
+}
+
+void MainWindow::updatePlayAction(bool playing)
+{
+    m_play->setChecked(playing);
+    m_play->setText(playing ? tr("&Pause") : tr("&Play"));
+    m_play->setToolTip(playing ? tr("Pause the simulation (Space)") : tr("Play the simulation (Space)"));
+    m_play->setIcon(style()->standardIcon(playing ? QStyle::SP_MediaPause : QStyle::SP_MediaPlay));
+    m_step->setEnabled(!playing);
+    m_step->setIcon(style()->standardIcon(QStyle::SP_MediaSeekForward));
+    m_reset->setIcon(style()->standardIcon(QStyle::SP_BrowserReload));
+}
+
+bool MainWindow::openHead(const QString& path)
+{
+    io::Result<io::MeshReadResult> mesh = io::readMesh(path.toStdString());
+    if (!mesh) {
+        QMessageBox::warning(this, tr("Cannot open head"), QString::fromStdString(mesh.error().toString()));
+        return false;
+    }
+    TriangleMesh head = std::move(mesh).value().mesh;
+    std::vector<float> weights = upperHeadGrowth(head);
+    m_document->replaceHead(std::move(head), std::move(weights), QFileInfo(path).fileName());
+    return true;
+}
+
+void MainWindow::restoreSettings()
+{
+    QSettings settings;
+    if (!restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray()))
+        resize(1400, 900);
+    restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
+}
+
+void MainWindow::saveSettings() const
+{
+    QSettings settings;
+    settings.setValue(QStringLiteral("window/geometry"), saveGeometry());
+    settings.setValue(QStringLiteral("window/state"), saveState());
+}
+
+void MainWindow::closeEvent(QCloseEvent* event)
+{
+    saveSettings();
+    m_simulation->pause();
+    event->accept();
+}
+
+}  // namespace wisp

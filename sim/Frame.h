@@ -1,0 +1,30 @@
+#pragma once
+// One published state of the simulation: immutable once made, shared by the simulation thread
+// (which makes it) and the viewport (which draws it). Readers hold a shared_ptr<const Frame>; the
+// simulation thread never touches a frame after publishing it, so no lock is held while drawing.
+
+#include "sim/HairCurves.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <memory>
+
+namespace wisp {
+
+struct Frame {
+    std::uint64_t step = 0;          // steps taken since the groom was (re)built or reset
+    std::uint64_t groomVersion = 0;  // changes when the strands' count or layout changes
+    double simulatedSeconds = 0.0;
+    HairCurves strands;              // every drawn strand, world space, metres; members rebuilt from keys
+    std::size_t simulatedStrands = 0;
+    std::size_t simulatedParticles = 0;
+    double stepMilliseconds = 0.0;   // wall-clock time of the solver step that made this frame
+    double timeScale = 1.0;          // simulated seconds per wall-clock second (below 1: slow motion)
+    bool fallingBehind = false;      // the solver could not keep real time
+    glm::vec3 wind{0.0f};            // m/s, world space (for the viewport's arrow)
+};
+
+using FramePtr = std::shared_ptr<const Frame>;
+
+}  // namespace wisp

@@ -1,0 +1,55 @@
+#pragma once
+// A panel of parameter rows, each a slider with a spin box, its unit and a tooltip, all taken
+// from the parameter registry (sim/Parameters.h): panels state no range, default or help of their own.
+//
+// Thread: GUI.
+
+#include "sim/Parameters.h"
+
+#include <QWidget>
+
+#include <vector>
+
+class QDoubleSpinBox;
+class QSlider;
+class QCheckBox;
+
+namespace wisp {
+
+class ParameterPanel : public QWidget {
+    Q_OBJECT
+public:
+    ParameterPanel(std::vector<Param> parameters, QWidget* parent = nullptr);
+
+    // Shows these values without emitting anything (for undo, presets, other panels).
+    void setValues(const ParameterValues& values);
+    double value(Param id) const;
+
+    QSlider* sliderFor(Param id) const;         // for tests and keyboard focus
+    QDoubleSpinBox* spinBoxFor(Param id) const;  // null for toggles
+    QCheckBox* checkBoxFor(Param id) const;      // null for numbers
+
+    static constexpr int kSliderSteps = 1000;
+
+signals:
+    // The artist changed a value. `dragging` is true while a slider is held, so that one drag can
+    // become one undo step; the last call of a gesture has dragging == false.
+    void valueEdited(wisp::Param id, double value, bool dragging);
+
+private:
+    struct Row {
+        Param id;
+        QSlider* slider = nullptr;
+        QDoubleSpinBox* spin = nullptr;
+        QCheckBox* check = nullptr;
+    };
+    const Row* rowFor(Param id) const;
+    void showValue(const Row& row, double value);
+    int sliderPosition(Param id, double value) const;
+    double valueAt(Param id, int position) const;
+
+    std::vector<Row> m_rows;
+    bool m_updating = false;
+};
+
+}  // namespace wisp

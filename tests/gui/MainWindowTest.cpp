@@ -1,0 +1,213 @@
+// The editor as an artist uses it: the real window, real widgets driven by mouse and key events,
+// and the published frames checked against the physics.
+#include "app/editor/Document.h"
+#include "app/editor/MainWindow.h"
+#include "app/editor/SimulationHost.h"
+#include "widgets/ParameterPanel.h"
+#include "widgets/Viewport.h"
+
+#include <QAction>
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QElapsedTimer>
+#include <QSlider>
+#include <QStandardPaths>
+#include <QStyleOptionSlider>
+#include <QTest>
+#include <QUndoStack>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+using namespace wisp;
+
+namespace {
+
+struct Ends {
+    glm::vec3 tip{0.0f};
+    glm::vec3 root{0.0f};
+};
+
+Ends meanEnds(const FramePtr& frame)
+{
+    Ends e;
+    const HairCurves& c = frame->strands;
+    for (std::size_t s = 0; s < c.strandCount(); ++s) {
+        e.root += c.strand(s).front();
+        e.tip += c.strand(s).back();
+    }
+    e.root /= static_cast<float>(c.strandCount());
+    e.tip /= static_cast<float>(c.strandCount());
+    return e;
+}
+
+bool waitForFrames(SimulationHost* host, std::uint64_t count, int timeoutMs = 10000)
+{
+    const std::uint64_t start = host->publishedFrames();
+    QElapsedTimer timer;
+    timer.start();
+    while (host->publishedFrames() < start + count && timer.elapsed() < timeoutMs)
+        QTest::qWait(10);
+    return host->publishedFrames() >= start + count;
+}
+
+// Types a value into a parameter's spin box as an artist would: select all, type, Enter.
+void typeValue(ParameterPanel* panel, Param id, const QString& text)
+{
+    QDoubleSpinBox* spin = panel->spinBoxFor(id);
+    ASSERT_NE(spin, nullptr);
+    spin->setFocus();
+    QTest::keyClick(spin, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(spin, text);
+    QTest::keyClick(spin, Qt::Key_Return);
+}
+
+class EditorTest : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        // Keep the artist's real settings out of the tests.
+        QStandardPaths::setTestModeEnabled(true);
+        window = std::make_unique<MainWindow>();
+        window->show();
+        ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
+        // A lighter groom keeps the real-time simulation quick on two cores.
+        window->document()->editParameter(Param::Density, 2.0, false);
+        window->document()->undoStack()->clear();
+        ASSERT_TRUE(waitForFrames(window->simulation(), 5));
+    }
+    void settle(int frames = 90) { ASSERT_TRUE(waitForFrames(window->simulation(), static_cast<std::uint64_t>(frames))); }
+    FramePtr frame() const { return window->simulation()->latestFrame(); }
+
+    std::unique_ptr<MainWindow> window;
+};
+
+}  // namespace
+
+TEST_F(EditorTest, StartsPlayingTheDefaultHeadAndHairstyle)
+{
+    EXPECT_TRUE(window->simulation()->isPlaying());
+    EXPECT_TRUE(window->playAction()->isChecked());
+    ASSERT_TRUE(frame());
+    EXPECT_GT(frame()->strands.strandCount(), 500u);
+    EXPECT_GT(frame()->step, 0u);
+}
+
+TEST_F(EditorTest, GravitySliderLowersTheTipsAndNegativeGravityFloatsThem)
+{
+    typeValue(window->forcePanel(), Param::WindSpeed, QStringLiteral("0"));
+    typeValue(window->forcePanel(), Param::Gravity, QStringLiteral("2"));
+    settle();
+    const float lightTip = meanEnds(frame()).tip.y;
+    typeValue(window->forcePanel(), Param::Gravity, QStringLiteral("30"));
+    settle();
+    const float heavyTip = meanEnds(frame()).tip.y;
+    EXPECT_LT(heavyTip, lightTip - 0.005f);
+
+    typeValue(window->forcePanel(), Param::Stiffness, QStringLiteral("0.02"));
+    typeValue(window->forcePanel(), Param::Gravity, QStringLiteral("-20"));
+    settle(150);
+    const Ends floating = meanEnds(frame());
+    EXPECT_GT(floating.tip.y, floating.root.y);
+    EXPECT_DOUBLE_EQ(window->document()->parameters().get(Param::Gravity), -20.0);
+}
+
+TEST_F(EditorTest, WindFromThePanelMovesTheTipsItsWay)
+{
+    typeValue(window->forcePanel(), Param::WindSpeed, QStringLiteral("0"));
+    settle();
+    const float calmX = meanEnds(frame()).tip.x;
+    typeValue(window->forcePanel(), Param::WindAzimuth, QStringLiteral("0"));  // toward +X
+    typeValue(window->forcePanel(), Param::WindSpeed, QStringLiteral("20"));
+    settle();
+    EXPECT_GT(meanEnds(frame()).tip.x, calmX + 0.01f);
+    EXPECT_GT(frame()->wind.x, 15.0f);  // the viewport's arrow gets it too
+}
+
+TEST_F(EditorTest, OneSliderDragIsOneUndoStep)
+{
+    QSlider* slider = window->forcePanel()->sliderFor(Param::Gravity);
+    ASSERT_NE(slider, nullptr);
+    QStyleOptionSlider option;
+    option.initFrom(slider);
+    option.orientation = slider->orientation();
+    option.minimum = slider->minimum();
+    option.maximum = slider->maximum();
+    option.sliderPosition = slider->sliderPosition();
+    option.sliderValue = slider->value();
+    const QRect handle = slider->style()->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider);
+    const double before = window->document()->parameters().get(Param::Gravity);
+    QPoint at = handle.center();
+    QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, at);
+    for (int i = 0; i < 8; ++i) {
+        at += QPoint(6, 0);
+        QMouseEvent move(QEvent::MouseMove, at, slider->mapToGlobal(at), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+        QApplication::sendEvent(slider, &move);
+    }
+    QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, at);
+    const double after = window->document()->parameters().get(Param::Gravity);
+    EXPECT_GT(after, before);
+    EXPECT_EQ(window->document()->undoStack()->count(), 1);
+    window->document()->undoStack()->undo();
+    EXPECT_DOUBLE_EQ(window->document()->parameters().get(Param::Gravity), before);
+    EXPECT_NEAR(window->forcePanel()->value(Param::Gravity), before, 1e-9);
+    window->document()->undoStack()->redo();
+    EXPECT_DOUBLE_EQ(window->document()->parameters().get(Param::Gravity), after);
+}
+
+TEST_F(EditorTest, SpacePausesAndNoNewFramesArrive)
+{
+    QTest::keyClick(window.get(), Qt::Key_Space);
+    QTest::qWait(100);
+    EXPECT_FALSE(window->simulation()->isPlaying());
+    const std::uint64_t paused = window->simulation()->publishedFrames();
+    QTest::qWait(300);
+    EXPECT_EQ(window->simulation()->publishedFrames(), paused);
+    // Step advances exactly one frame.
+    const std::uint64_t step = frame()->step;
+    window->stepAction()->trigger();
+    ASSERT_TRUE(waitForFrames(window->simulation(), 1));
+    EXPECT_EQ(frame()->step, step + 1);
+    QTest::keyClick(window.get(), Qt::Key_Space);
+    ASSERT_TRUE(waitForFrames(window->simulation(), 10));
+    EXPECT_TRUE(window->simulation()->isPlaying());
+}
+
+TEST_F(EditorTest, ResetReturnsToRest)
+{
+    QTest::keyClick(window.get(), Qt::Key_Space);  // pause
+    window->resetAction()->trigger();
+    ASSERT_TRUE(waitForFrames(window->simulation(), 1));
+    const FramePtr rest = frame();
+    EXPECT_EQ(rest->step, 0u);
+    QTest::keyClick(window.get(), Qt::Key_Space);  // play: the hair moves off its rest shape
+    settle(30);
+    QTest::keyClick(window.get(), Qt::Key_Space);
+    window->resetAction()->trigger();
+    ASSERT_TRUE(waitForFrames(window->simulation(), 1));
+    const FramePtr again = frame();
+    ASSERT_EQ(again->strands.positions.size(), rest->strands.positions.size());
+    for (std::size_t i = 0; i < rest->strands.positions.size(); ++i)
+        ASSERT_LT(glm::distance(again->strands.positions[i], rest->strands.positions[i]), 1e-5f);
+}
+
+TEST(Editor, ClosingWhileSimulatingExitsWithinASecondAndLeavesNoThread)
+{
+    QStandardPaths::setTestModeEnabled(true);
+    auto threads = [] {
+        return std::distance(std::filesystem::directory_iterator("/proc/self/task"), std::filesystem::directory_iterator());
+    };
+    const auto before = threads();
+    auto window = std::make_unique<MainWindow>();
+    window->show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
+    ASSERT_TRUE(waitForFrames(window->simulation(), 10));
+    QElapsedTimer timer;
+    timer.start();
+    window->close();
+    window.reset();
+    EXPECT_LT(timer.elapsed(), 1000);
+    QTest::qWait(50);
+    EXPECT_LE(threads(), before);
+}

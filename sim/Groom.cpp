@@ -278,17 +278,13 @@ GroomSettings groomSettingsFrom(const ParameterValues& v)
 
 std::string validateGroomSettings(const GroomSettings& s)
 {
-    const std::pair<Param, double> checks[] = {
+    return checkParameterValues({
         {Param::Density, s.densityPerCm2},       {Param::WispSize, s.wispSize},
         {Param::ClumpDegree, s.clumpDegree},     {Param::ClumpRate, s.clumpRate},
         {Param::Length, s.lengthMetres},         {Param::LengthVariation, s.lengthVariation},
         {Param::Segments, s.segments},           {Param::CurlRadius, s.curlRadiusMetres},
         {Param::CurlTurns, s.curlTurnsPerMetre}, {Param::HairOffset, s.hairOffsetMetres},
-    };
-    for (const auto& [id, value] : checks)
-        if (std::string error = checkParameterValue(id, value); !error.empty())
-            return error;
-    return {};
+    });
 }
 
 GroomResult buildGroom(const TriangleMesh& head, std::span<const float> growthWeights, const GroomSettings& settings,

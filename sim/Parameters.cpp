@@ -104,6 +104,14 @@ std::string checkParameterValue(Param id, double value)
     return {};
 }
 
+std::string checkParameterValues(std::initializer_list<std::pair<Param, double>> values)
+{
+    for (const auto& [id, value] : values)
+        if (std::string error = checkParameterValue(id, value); !error.empty())
+            return error;
+    return {};
+}
+
 ParameterValues::ParameterValues()
 {
     for (const ParameterInfo& p : kParameters)

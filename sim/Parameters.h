@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cstddef>
+#include <initializer_list>
+#include <utility>
 #include <span>
 #include <string>
 #include <string_view>
@@ -66,6 +68,9 @@ const ParameterInfo* findParameter(std::string_view key);  // nullptr if no such
 // Empty when value is acceptable for the parameter; otherwise a message such as
 // "clump_degree: 3 is outside -1..1" or "gravity: nan is not a finite number".
 std::string checkParameterValue(Param id, double value);
+
+// The first refusal among (parameter, value) pairs, or empty when every value is acceptable.
+std::string checkParameterValues(std::initializer_list<std::pair<Param, double>> values);
 
 // One value for every parameter, starting at the registry's defaults.
 class ParameterValues {

@@ -252,6 +252,22 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, float fric
     previous = select(inside, position - kept, previous);
 }
 
+// Puts one lane's strand at its rest shape, at rest, in world space; its clearance becomes unknown.
+void placeLaneAtRest(Solver::Block& block, int lane, const glm::mat3& rotation, const glm::vec3& translation)
+{
+    const RestRow* rest = block.rest.data();
+    ParticleRow* row = block.state.data();
+    glm::vec3 p = rotation * glm::vec3(rest[0].x[lane], rest[0].y[lane], rest[0].z[lane]) + translation;
+    for (std::uint32_t j = 0; j < block.points; ++j) {
+        if (j > 0)
+            p += rotation * glm::vec3(rest[j].x[lane], rest[j].y[lane], rest[j].z[lane]) * rest[j].length[lane];
+        row[j].x[lane] = row[j].px[lane] = p.x;
+        row[j].y[lane] = row[j].py[lane] = p.y;
+        row[j].z[lane] = row[j].pz[lane] = p.z;
+        row[j].clearance[lane] = -1.0f;
+    }
+}
+
 template <bool Transformed>
 void advanceBlock(Solver::Block& block, const StepConstants& c)
 {
@@ -412,17 +428,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
         for (int l = 0; l < kLanes; ++l) {
             if (!bad[l])
                 continue;
-            glm::vec3 p(rootEnd.x[l], rootEnd.y[l], rootEnd.z[l]);
-            for (std::uint32_t j = 0; j < n; ++j) {
-                if (j > 0) {
-                    const glm::vec3 dir(rest[j].x[l], rest[j].y[l], rest[j].z[l]);
-                    p += c.rotation * dir * rest[j].length[l];
-                }
-                row[j].x[l] = row[j].px[l] = p.x;
-                row[j].y[l] = row[j].py[l] = p.y;
-                row[j].z[l] = row[j].pz[l] = p.z;
-                row[j].clearance[l] = -1.0f;
-            }
+            placeLaneAtRest(block, l, c.rotation, c.translation);
             if (block.strand[l] >= 0)
                 __atomic_fetch_add(c.resetCounter, 1, __ATOMIC_RELAXED);
         }
@@ -550,19 +556,9 @@ void Solver::resetToRest()
     m_previousHeadToWorld = m_headToWorld;
     const glm::mat3 rotation(m_headToWorld);
     const glm::vec3 translation(m_headToWorld[3]);
-    for (Block& b : m_blocks) {
-        for (int l = 0; l < kLanes; ++l) {
-            glm::vec3 p = rotation * glm::vec3(b.rest[0].x[l], b.rest[0].y[l], b.rest[0].z[l]) + translation;
-            for (std::uint32_t j = 0; j < b.points; ++j) {
-                if (j > 0)
-                    p += rotation * glm::vec3(b.rest[j].x[l], b.rest[j].y[l], b.rest[j].z[l]) * b.rest[j].length[l];
-                b.state[j].x[l] = b.state[j].px[l] = p.x;
-                b.state[j].y[l] = b.state[j].py[l] = p.y;
-                b.state[j].z[l] = b.state[j].pz[l] = p.z;
-                b.state[j].clearance[l] = -1.0f;
-            }
-        }
-    }
+    for (Block& b : m_blocks)
+        for (int l = 0; l < kLanes; ++l)
+            placeLaneAtRest(b, l, rotation, translation);
 }
 
 // Stiffness s is the share of a 2 cm segment's bend error removed per 1/60 s. A substep of dt

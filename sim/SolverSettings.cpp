@@ -36,15 +36,14 @@ bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y
 
 std::string validateSolverSettings(const SolverSettings& s)
 {
-    const std::pair<Param, double> checks[] = {
-        {Param::TimeStep, s.timeStepSeconds},  {Param::Substeps, s.substeps},
-        {Param::Turbulence, s.turbulence},      {Param::Drag, s.dragPerSecond},
-        {Param::Damping, s.dampingPerSecond},   {Param::Stiffness, s.stiffness},
-        {Param::Friction, s.friction},          {Param::HairOffset, s.hairOffsetMetres},
-    };
-    for (const auto& [id, value] : checks)
-        if (std::string error = checkParameterValue(id, value); !error.empty())
-            return error;
+    const std::string rangeError = checkParameterValues({
+        {Param::TimeStep, s.timeStepSeconds}, {Param::Substeps, s.substeps},
+        {Param::Turbulence, s.turbulence},     {Param::Drag, s.dragPerSecond},
+        {Param::Damping, s.dampingPerSecond},  {Param::Stiffness, s.stiffness},
+        {Param::Friction, s.friction},         {Param::HairOffset, s.hairOffsetMetres},
+    });
+    if (!rangeError.empty())
+        return rangeError;
     if (!finite(s.gravity) || glm::length(s.gravity) > 1000.0f)
         return "gravity: must be a finite vector shorter than 1000 m/s²";
     if (!finite(s.wind) || glm::length(s.wind) > 1000.0f)

@@ -72,6 +72,9 @@ protected:
         window = std::make_unique<MainWindow>();
         window->show();
         ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
+        // Shortcuts need an active window; Xvfb has no window manager to activate it.
+        window->activateWindow();
+        ASSERT_TRUE(QTest::qWaitForWindowActive(window.get()));
         // A lighter groom keeps the real-time simulation quick on two cores.
         window->document()->editParameter(Param::Density, 2.0, false);
         window->document()->undoStack()->clear();
@@ -158,7 +161,9 @@ TEST_F(EditorTest, OneSliderDragIsOneUndoStep)
 
 TEST_F(EditorTest, SpacePausesAndNoNewFramesArrive)
 {
-    QTest::keyClick(window.get(), Qt::Key_Space);
+    // As an artist does: click in the view, press Space.
+    QTest::mouseClick(window->viewport(), Qt::LeftButton, Qt::NoModifier, window->viewport()->rect().center());
+    QTest::keyClick(window->viewport(), Qt::Key_Space);
     QTest::qWait(100);
     EXPECT_FALSE(window->simulation()->isPlaying());
     const std::uint64_t paused = window->simulation()->publishedFrames();
@@ -169,21 +174,21 @@ TEST_F(EditorTest, SpacePausesAndNoNewFramesArrive)
     window->stepAction()->trigger();
     ASSERT_TRUE(waitForFrames(window->simulation(), 1));
     EXPECT_EQ(frame()->step, step + 1);
-    QTest::keyClick(window.get(), Qt::Key_Space);
+    QTest::keyClick(window->viewport(), Qt::Key_Space);
     ASSERT_TRUE(waitForFrames(window->simulation(), 10));
     EXPECT_TRUE(window->simulation()->isPlaying());
 }
 
 TEST_F(EditorTest, ResetReturnsToRest)
 {
-    QTest::keyClick(window.get(), Qt::Key_Space);  // pause
+    QTest::keyClick(window->viewport(), Qt::Key_Space);  // pause
     window->resetAction()->trigger();
     ASSERT_TRUE(waitForFrames(window->simulation(), 1));
     const FramePtr rest = frame();
     EXPECT_EQ(rest->step, 0u);
-    QTest::keyClick(window.get(), Qt::Key_Space);  // play: the hair moves off its rest shape
+    QTest::keyClick(window->viewport(), Qt::Key_Space);  // play: the hair moves off its rest shape
     settle(30);
-    QTest::keyClick(window.get(), Qt::Key_Space);
+    QTest::keyClick(window->viewport(), Qt::Key_Space);
     window->resetAction()->trigger();
     ASSERT_TRUE(waitForFrames(window->simulation(), 1));
     const FramePtr again = frame();

@@ -161,7 +161,7 @@ glm::vec3 pushOut(const SignedDistanceField* collider, glm::vec3 p, float offset
 // Rest shape of one key hair: it leaves the scalp along the normal, turns toward "down" along the
 // head as a combed strand does, drapes over the head (pushed out where it would go inside) and,
 // with curl, winds as a helix around that centreline. Segment lengths follow the strand's arc length.
-void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float length, int segments, float curlRadius,
+void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float partX, float length, int segments, float curlRadius,
                   float curlTurnsPerMetre, float curlPhase, float offset, const SignedDistanceField* collider,
                   std::span<glm::vec3> out)
 {
@@ -174,9 +174,13 @@ void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float length, 
     std::vector<glm::vec3> centre(out.size());
     std::vector<glm::vec3> tangent(out.size());
     centre[0] = root;
-    glm::vec3 down(0.0f, -1.0f, 0.0f);
-    glm::vec3 flow = down - normal * glm::dot(down, normal);
-    if (glm::length(flow) < 0.2f)  // crown: comb toward the back of the head
+    const glm::vec3 down(0.0f, -1.0f, 0.0f);
+    // Combed with a centre part: down, away from the part line and a little toward the back, so
+    // the front hair frames the face instead of falling over it.
+    const float side = std::clamp((root.x - partX) / 0.02f, -1.0f, 1.0f);
+    const glm::vec3 comb = glm::normalize(glm::vec3(0.8f * side, -1.0f, -0.6f));
+    glm::vec3 flow = comb - normal * glm::dot(comb, normal);
+    if (glm::length(flow) < 0.2f)  // the comb direction is along the normal: comb toward the back
         flow += glm::vec3(0.0f, 0.0f, -0.5f);
     flow = glm::normalize(flow);
     glm::vec3 direction = normal;
@@ -233,6 +237,7 @@ GroomResult finishGroom(Groom groom, const TriangleMesh& head, const SignedDista
     const std::vector<glm::vec3>& rootPositions = groom.rootPositions;
     const GroomSettings& s = groom.settings;
     const std::vector<glm::vec3> normals = vertexNormals(head);
+    const float partX = boundsOf(head).center().x;  // the head's mid-plane, where the part runs
     const auto points = static_cast<std::uint32_t>(s.segments + 1);
     groom.rest.clear();
     groom.rest.offsets.reserve(groom.roots.size() + 1);
@@ -249,7 +254,7 @@ GroomResult finishGroom(Groom groom, const TriangleMesh& head, const SignedDista
         glm::vec3 n = b0 * normals[tri.x] + sp.barycentric.x * normals[tri.y] + sp.barycentric.y * normals[tri.z];
         n = glm::length(n) > 1e-6f ? glm::normalize(n) : glm::vec3(0, 1, 0);
         const float phase = glm::two_pi<float>() * randomUnit(s.seed, CurlPhase, groom.rootIds[k]);
-        buildKeyRest(rootPositions[k], n, groom.lengths[k], s.segments, s.curlRadiusMetres, s.curlTurnsPerMetre, phase,
+        buildKeyRest(rootPositions[k], n, partX, groom.lengths[k], s.segments, s.curlRadiusMetres, s.curlTurnsPerMetre, phase,
                      s.hairOffsetMetres, collider, groom.rest.strandForWrite(k));
     }
     const HairCurves keys = keyRestCurves(groom);

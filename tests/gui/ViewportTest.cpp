@@ -1,0 +1,683 @@
+// The 3D viewport, checked on its pixels: the real widget on a real GL context (Mesa llvmpipe under
+// Xvfb in CI), the default head, and hand-made strands at known places, located in the image by
+// projecting them with the viewport's own camera.
+#include "widgets/Viewport.h"
+#include "sim/DefaultHead.h"
+#include "sim/Frame.h"
+#include "widgets/GuideGeometry.h"
+#include "widgets/HairDetail.h"
+#include "widgets/HairStripLayout.h"
+#include "widgets/OrbitCamera.h"
+#include "widgets/ViewportOverlay.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
+
+#include <QApplication>
+#include <QElapsedTimer>
+#include <QImage>
+#include <QMouseEvent>
+#include <QTest>
+#include <QTimer>
+#include <QWheelEvent>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <limits>
+#include <memory>
+
+using namespace wisp;
+
+namespace {
+
+const DefaultHead& defaultHead()
+{
+    static const DefaultHead head = makeDefaultHead();
+    return head;
+}
+
+// --- Pixel predicates (sRGB, as grabbed) ----------------------------------------------------------
+
+bool isSkin(QColor c)
+{
+    return c.red() > 100 && c.red() > c.green() + 12 && c.green() >= c.blue() && c.red() - c.blue() > 35;
+}
+bool isGreenHair(QColor c)
+{
+    return c.green() > c.red() + 40 && c.green() > c.blue() + 40;
+}
+bool isWindBlue(QColor c)
+{
+    return c.blue() > c.red() + 40 && c.blue() > 90;
+}
+bool near(QColor a, QColor b, int tolerance)
+{
+    return std::abs(a.red() - b.red()) <= tolerance && std::abs(a.green() - b.green()) <= tolerance
+        && std::abs(a.blue() - b.blue()) <= tolerance;
+}
+
+int countPixels(const QImage& image, const std::function<bool(QColor)>& predicate, QRect area = {})
+{
+    if (area.isNull())
+        area = image.rect();
+    area &= image.rect();
+    int count = 0;
+    for (int y = area.top(); y <= area.bottom(); ++y)
+        for (int x = area.left(); x <= area.right(); ++x)
+            count += predicate(image.pixelColor(x, y)) ? 1 : 0;
+    return count;
+}
+
+QRect around(glm::vec2 p, int radius)
+{
+    return { static_cast<int>(std::lround(p.x)) - radius, static_cast<int>(std::lround(p.y)) - radius, 2 * radius + 1,
+        2 * radius + 1 };
+}
+
+// Below the HUD line, whose fps figure changes from paint to paint.
+int differingPixels(const QImage& a, const QImage& b)
+{
+    int count = 0;
+    for (int y = 40; y < std::min(a.height(), b.height()); ++y)
+        for (int x = 0; x < std::min(a.width(), b.width()); ++x)
+            count += near(a.pixelColor(x, y), b.pixelColor(x, y), 8) ? 0 : 1;
+    return count;
+}
+
+// --- Hand-made hair ---------------------------------------------------------------------------------
+
+// A straight lock hanging beside the head (on its +X side, which the start-up view looks at):
+// `strands` strands on a disc of radius 4 mm, each `points` points from `top` down `length` metres.
+glm::vec3 lockTop(const Aabb& head)
+{
+    return { head.max.x + 0.05f, head.center().y + 0.10f, head.center().z + 0.02f };
+}
+constexpr float kLockLength = 0.20f;
+
+void addLock(HairCurves& curves, const glm::vec3& top, int strands, int points, float length)
+{
+    for (int s = 0; s < strands; ++s) {
+        // Golden-angle spiral: even cover of the disc.
+        const float r = 0.004f * std::sqrt((s + 0.5f) / strands);
+        const float a = 2.39996f * static_cast<float>(s);
+        const glm::vec3 root = top + glm::vec3(r * std::cos(a), 0.0f, r * std::sin(a));
+        const std::size_t i = curves.addStrand(static_cast<std::uint32_t>(points));
+        auto out = curves.strandForWrite(i);
+        for (int k = 0; k < points; ++k)
+            out[k] = root - glm::vec3(0.0f, length * static_cast<float>(k) / static_cast<float>(points - 1), 0.0f);
+    }
+}
+
+std::shared_ptr<Frame> lockFrame(const Aabb& head, int strands = 120)
+{
+    auto frame = std::make_shared<Frame>();
+    addLock(frame->strands, lockTop(head), strands, 16, kLockLength);
+    frame->simulatedStrands = frame->strands.strandCount();
+    frame->simulatedParticles = frame->strands.pointCount();
+    frame->stepMilliseconds = 0.123;
+    return frame;
+}
+
+// About `strands` strands of `points` points rooted over the top and back of the head, hanging
+// with some sway: the size of the editor's default scene, for timing.
+std::shared_ptr<Frame> scalpFrame(const Aabb& head, int strands, int points, float phase)
+{
+    auto frame = std::make_shared<Frame>();
+    const glm::vec3 c{ head.center().x, head.max.y - 0.3f * head.size().y, head.center().z };
+    const float radius = 0.5f * std::max(head.size().x, head.size().z) + 0.005f;
+    for (int s = 0; s < strands; ++s) {
+        // Fibonacci sphere, upper cap only.
+        const float y = 1.0f - 0.9f * (s + 0.5f) / strands;
+        const float ring = std::sqrt(std::max(0.0f, 1.0f - y * y));
+        const float a = 2.39996f * static_cast<float>(s);
+        const glm::vec3 n{ ring * std::cos(a), y, ring * std::sin(a) };
+        const std::size_t i = frame->strands.addStrand(static_cast<std::uint32_t>(points));
+        auto out = frame->strands.strandForWrite(i);
+        glm::vec3 p = c + n * radius;
+        glm::vec3 dir = glm::normalize(n + glm::vec3(0.0f, 0.3f, 0.0f));
+        for (int k = 0; k < points; ++k) {
+            out[k] = p;
+            dir = glm::normalize(dir + glm::vec3(0.02f * std::sin(phase + 0.1f * s), -0.25f, 0.0f));
+            p += dir * 0.02f;
+        }
+    }
+    frame->simulatedStrands = frame->strands.strandCount();
+    frame->simulatedParticles = frame->strands.pointCount();
+    return frame;
+}
+
+void sendMouse(QWidget* w, QEvent::Type type, QPointF pos, Qt::MouseButton button, Qt::MouseButtons buttons,
+    Qt::KeyboardModifiers modifiers)
+{
+    QMouseEvent event(type, pos, w->mapToGlobal(pos), button, buttons, modifiers);
+    QApplication::sendEvent(w, &event);
+}
+
+void drag(QWidget* w, Qt::MouseButton button, Qt::KeyboardModifiers modifiers, QPointF from, QPointF to)
+{
+    sendMouse(w, QEvent::MouseButtonPress, from, button, button, modifiers);
+    for (int i = 1; i <= 4; ++i)
+        sendMouse(w, QEvent::MouseMove, from + (to - from) * (i / 4.0), Qt::NoButton, button, modifiers);
+    sendMouse(w, QEvent::MouseButtonRelease, to, button, Qt::NoButton, modifiers);
+}
+
+void wheel(QWidget* w, int eighthsOfDegree)
+{
+    const QPointF pos(w->width() / 2.0, w->height() / 2.0);
+    QWheelEvent event(pos, w->mapToGlobal(pos), QPoint(), QPoint(0, eighthsOfDegree), Qt::NoButton, Qt::NoModifier,
+        Qt::NoScrollPhase, false);
+    QApplication::sendEvent(w, &event);
+}
+
+class ViewportTest : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        viewport = std::make_unique<Viewport>();
+        viewport->resize(640, 480);
+        viewport->setHead(defaultHead().mesh);
+        viewport->setHairColours(QColor(40, 235, 40), QColor(40, 235, 40));
+        viewport->show();
+        ASSERT_TRUE(QTest::qWaitForWindowExposed(viewport.get()));
+        ASSERT_TRUE(viewport->glStatus().isEmpty()) << viewport->glStatus().toStdString();
+        head = viewport->headBounds();
+    }
+    QImage grab() { return viewport->grabFramebuffer().convertToFormat(QImage::Format_RGB32); }
+    // Skin anywhere but under the HUD line (top) and the axis gizmo (bottom left, its red X).
+    int skinPixels(const QImage& image)
+    {
+        return countPixels(image, isSkin, QRect(0, 40, image.width(), image.height() - 40))
+            - countPixels(image, isSkin, QRect(0, image.height() - 100, 100, 100));
+    }
+
+    std::unique_ptr<Viewport> viewport;
+    Aabb head;
+};
+
+// --- Pure parts -------------------------------------------------------------------------------------
+
+TEST(OrbitCameraTest, FramesBoundsInTheMiddleAndKeepsDirection)
+{
+    OrbitCamera camera;
+    const Aabb box{ { -0.1f, -0.2f, -0.1f }, { 0.1f, 0.1f, 0.1f } };
+    camera.orbit(40.0f, -25.0f);
+    const glm::vec3 direction = camera.forward();
+    camera.frame(box, 1.5f);
+    EXPECT_NEAR(glm::length(camera.pivot() - box.center()), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::dot(camera.forward(), direction), 1.0f, 1e-6f);
+    const glm::vec2 centre = camera.project(box.center(), { 600.0f, 400.0f });
+    EXPECT_NEAR(centre.x, 300.0f, 0.01f);
+    EXPECT_NEAR(centre.y, 200.0f, 0.01f);
+    // Every corner of the box is on screen.
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner{ i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y,
+            i & 4 ? box.max.z : box.min.z };
+        const glm::vec2 p = camera.project(corner, { 600.0f, 400.0f });
+        EXPECT_GT(p.x, 0.0f);
+        EXPECT_LT(p.x, 600.0f);
+        EXPECT_GT(p.y, 0.0f);
+        EXPECT_LT(p.y, 400.0f);
+    }
+}
+
+TEST(OrbitCameraTest, YIsUpAndPanFollowsTheCursor)
+{
+    OrbitCamera camera;
+    camera.reset({ { -0.1f, -0.1f, -0.1f }, { 0.1f, 0.1f, 0.1f } }, 1.0f);
+    EXPECT_GT(camera.up().y, 0.9f);
+    EXPECT_GT(camera.eye().y, camera.pivot().y); // the start-up view looks slightly down
+    const glm::vec2 size{ 500.0f, 500.0f };
+    const glm::vec3 point = camera.pivot();
+    const glm::vec2 before = camera.project(point, size);
+    camera.pan(30.0f, -20.0f, size.y);
+    const glm::vec2 after = camera.project(point, size);
+    EXPECT_NEAR(after.x - before.x, 30.0f, 0.05f);
+    EXPECT_NEAR(after.y - before.y, -20.0f, 0.05f);
+    const float distance = camera.distance();
+    camera.zoom(1.0f);
+    EXPECT_NEAR(camera.distance(), distance * OrbitCamera::kZoomPerStep, 1e-6f);
+    camera.orbit(0.0f, 1e6f); // pitch stops short of the pole
+    EXPECT_LE(camera.pitch(), OrbitCamera::kMaxPitchRadians);
+    camera.zoom(std::numeric_limits<float>::quiet_NaN());
+    EXPECT_TRUE(std::isfinite(camera.distance()));
+}
+
+TEST(HairStripLayoutTest, EveryLevelOfDetailKeepsRootsAndTipsAndSkipsPointlessStrands)
+{
+    // Strands of 16, 2, 1, 0 and 3 points.
+    const std::vector<std::uint32_t> offsets{ 0, 16, 18, 19, 19, 22 };
+    const HairStripLayout layout = buildHairStripLayout(offsets);
+    EXPECT_EQ(layout.drawnStrands, 3u);
+    EXPECT_TRUE(layout.matches(offsets));
+    const std::uint32_t samplesPer = HairStripLayout::kSamplesPerSegment;
+    // Two vertices per sample: 15, 1 and 2 segments of kSamplesPerSegment samples, plus the tips.
+    EXPECT_EQ(layout.vertices.size(), 2u * ((15 + 1 + 2) * samplesPer + 3));
+    for (std::size_t step = 0; step < HairStripLayout::kSampleSteps.size(); ++step) {
+        const auto& lines = layout.lines[step];
+        const auto& ribbons = layout.ribbons[step];
+        ASSERT_EQ(lines.prefix.size(), 4u);
+        EXPECT_EQ(lines.prefix.back(), lines.indices.size());
+        EXPECT_EQ(ribbons.prefix.back(), ribbons.indices.size());
+        // Each strip starts at a root sample and ends at a tip sample, then a restart.
+        std::size_t begin = 0;
+        for (std::size_t k = 1; k < lines.prefix.size(); ++k) {
+            const std::size_t end = lines.prefix[k];
+            ASSERT_GE(end - begin, 3u);
+            EXPECT_EQ(lines.indices[end - 1], HairStripLayout::kRestart);
+            const glm::uvec2 root = layout.vertices[lines.indices[begin]];
+            const glm::uvec2 tip = layout.vertices[lines.indices[end - 2]];
+            EXPECT_EQ(root.y & 0xFFFu, 0u);
+            EXPECT_EQ((root.y >> HairStripLayout::kSampleShift) & 0x1Fu, 0u);
+            const std::uint32_t segments = (tip.y >> HairStripLayout::kSegmentBits) & 0xFFFu;
+            EXPECT_EQ(tip.y & 0xFFFu, segments - 1);
+            EXPECT_EQ((tip.y >> HairStripLayout::kSampleShift) & 0x1Fu, samplesPer);
+            EXPECT_EQ(end - begin - 1, segments * samplesPer / HairStripLayout::kSampleSteps[step] + 1);
+            begin = end;
+        }
+        // Ribbons: both edges of every sample line takes.
+        EXPECT_EQ(ribbons.indices.size(), 2 * (lines.indices.size() - 3) + 3);
+    }
+    // Decreasing offsets are refused, not read.
+    EXPECT_EQ(buildHairStripLayout(std::vector<std::uint32_t>{ 0, 10, 5 }).drawnStrands, 1u);
+}
+
+TEST(HairStripLayoutTest, PrefixesAreEvenSamplesOfTheStrands)
+{
+    // 1000 strands in groom order; the first tenth of the drawing order should come from all over
+    // that order, not from its start.
+    std::vector<std::uint32_t> offsets{ 0 };
+    for (int s = 0; s < 1000; ++s)
+        offsets.push_back(offsets.back() + 4);
+    const HairStripLayout layout = buildHairStripLayout(offsets);
+    int quarters[4] = { 0, 0, 0, 0 };
+    const auto& lines = layout.lines[0];
+    for (std::size_t k = 0; k < 100; ++k) {
+        const std::uint32_t point = layout.vertices[lines.indices[lines.prefix[k]]].x;
+        ++quarters[std::min(3u, point / 4 / 250)];
+    }
+    for (int q : quarters)
+        EXPECT_GT(q, 12) << q;
+}
+
+TEST(HairDetailTest, PreviewsWhenOverBudgetAndRecovers)
+{
+    HairDetail detail;
+    const std::size_t strands = 4600;
+    EXPECT_FALSE(detail.previewing());
+    EXPECT_EQ(detail.fraction(strands), 1.0f);
+    detail.paintTook(HairDetail::kBudgetMilliseconds * 0.5, false, 1.0f, strands);
+    EXPECT_FALSE(detail.previewing());
+    // Too slow: preview, coarse curves with every strand first, then fewer strands.
+    detail.paintTook(HairDetail::kBudgetMilliseconds * 4.0, false, 1.0f, strands);
+    EXPECT_TRUE(detail.previewing());
+    EXPECT_EQ(detail.fraction(strands), 1.0f);
+    detail.paintTook(HairDetail::kBudgetMilliseconds * 1.6, true, 1.0f, strands);
+    const float cut = detail.fraction(strands);
+    EXPECT_LT(cut, 0.8f);
+    EXPECT_GE(cut, static_cast<float>(HairDetail::kMinimumStrands) / strands);
+    // Never below the floor, however slow.
+    for (int i = 0; i < 20; ++i)
+        detail.paintTook(1000.0, true, detail.fraction(strands), strands);
+    EXPECT_NEAR(detail.fraction(strands) * strands, static_cast<float>(HairDetail::kMinimumStrands), 1.0f);
+    // Fast again: the fraction grows back, then preview ends.
+    for (int i = 0; i < 30; ++i)
+        detail.paintTook(HairDetail::kBudgetMilliseconds * 0.3, true, detail.fraction(strands), strands);
+    EXPECT_FALSE(detail.previewing());
+    // Small grooms are always drawn whole.
+    detail.paintTook(1000.0, false, 1.0f, 300);
+    EXPECT_FALSE(detail.previewing());
+    EXPECT_EQ(detail.fraction(300), 1.0f);
+}
+
+TEST(ViewportOverlayTest, HudLine)
+{
+    Frame frame;
+    addLock(frame.strands, glm::vec3(0.0f), 3, 4, 0.1f);
+    frame.simulatedParticles = 7632;
+    frame.stepMilliseconds = 0.1234;
+    EXPECT_EQ(composeHudText(&frame, 59.7), QStringLiteral("fps 60 · sim 0.12 ms/step · 3 strands · 7632 particles"));
+    frame.timeScale = 0.5;
+    frame.fallingBehind = true;
+    EXPECT_EQ(composeHudText(&frame, 30.0),
+        QStringLiteral("fps 30 · sim 0.12 ms/step · 3 strands · 7632 particles · slow motion x0.5 · falling behind"));
+    EXPECT_EQ(composeHudText(nullptr, std::numeric_limits<double>::quiet_NaN()), QStringLiteral("fps 0 · no hair"));
+    frame.timeScale = 1.0;
+    frame.fallingBehind = false;
+    EXPECT_TRUE(composeHudText(&frame, 30.0, 0.4, true).endsWith(QStringLiteral("particles · preview 40%")));
+    EXPECT_TRUE(composeHudText(&frame, 30.0, 1.0, true).endsWith(QStringLiteral("particles · preview")));
+}
+
+TEST(GuideGeometryTest, WindArrowPointsAtTheHeadFromUpwindAndScalesWithSpeed)
+{
+    const Aabb head{ { -0.09f, -0.23f, -0.11f }, { 0.09f, 0.14f, 0.12f } };
+    EXPECT_FALSE(buildWindArrow(head, glm::vec3(0.0f)).visible);
+    EXPECT_FALSE(buildWindArrow(head, glm::vec3(std::numeric_limits<float>::quiet_NaN())).visible);
+    const WindArrow slow = buildWindArrow(head, { 2.0f, 0.0f, 0.0f });
+    const WindArrow fast = buildWindArrow(head, { 10.0f, 0.0f, 0.0f });
+    ASSERT_TRUE(slow.visible);
+    EXPECT_LT(slow.tip.x, head.min.x); // blowing toward +X: it comes from -X
+    EXPECT_GT(fast.tip.x - fast.tail.x, slow.tip.x - slow.tail.x);
+    EXPECT_FALSE(fast.triangles.empty());
+    const GroundGrid grid = buildGroundGrid(head);
+    EXPECT_FLOAT_EQ(grid.centre.y, head.min.y);
+    EXPECT_FALSE(grid.lines.empty());
+}
+
+// --- The widget ---------------------------------------------------------------------------------------
+
+TEST_F(ViewportTest, DrawsSkinHairAndBackgroundWhereTheyProject)
+{
+    viewport->setFrame(lockFrame(head));
+    const QImage image = grab();
+    ASSERT_EQ(image.size(), QSize(640, 480));
+
+    const glm::vec2 headCentre = viewport->project(head.center());
+    EXPECT_EQ(countPixels(image, isSkin, around(headCentre, 2)), 25)
+        << "head centre at " << headCentre.x << ", " << headCentre.y;
+
+    // Down the middle of the lock: hair-coloured, with at least most of a small window covered.
+    for (float along : { 0.25f, 0.5f, 0.75f }) {
+        const glm::vec2 p = viewport->project(lockTop(head) - glm::vec3(0.0f, along * kLockLength, 0.0f));
+        EXPECT_GE(countPixels(image, isGreenHair, around(p, 2)), 15)
+            << "lock at " << along << ": " << p.x << ", " << p.y;
+    }
+    // Top-right corner (the HUD is top-left, the gizmo bottom-left): background.
+    EXPECT_TRUE(near(image.pixelColor(637, 2), Viewport::backgroundColour(2.5 / 480.0), 6))
+        << image.pixelColor(637, 2).name().toStdString();
+    EXPECT_EQ(countPixels(image, isGreenHair, QRect(560, 0, 80, 60)), 0);
+    EXPECT_GE(viewport->samples(), 0);
+}
+
+TEST_F(ViewportTest, StartsOnAThreeQuarterViewOfTheHeadInTheMiddle)
+{
+    const glm::vec2 centre = viewport->project(head.center());
+    EXPECT_NEAR(centre.x, 320.0f, 1.0f);
+    EXPECT_NEAR(centre.y, 240.0f, 1.0f);
+    // Neither front nor profile: the camera is off both the Z axis and the X axis, and above.
+    const glm::vec3 eye = viewport->camera().eye() - head.center();
+    EXPECT_GT(eye.x, 0.2f * glm::length(eye));
+    EXPECT_GT(eye.z, 0.5f * glm::length(eye));
+    EXPECT_GT(eye.y, 0.0f);
+    const QImage image = grab();
+    // The head fills a good part of the view without touching its edges.
+    const int skin = skinPixels(image);
+    EXPECT_GT(skin, 640 * 480 / 10);
+    EXPECT_EQ(countPixels(image, isSkin, QRect(0, 0, 640, 4)), 0);
+    EXPECT_EQ(countPixels(image, isSkin, QRect(0, 476, 640, 4)), 0);
+}
+
+TEST_F(ViewportTest, WheelZoomsTowardThePivot)
+{
+    const int before = skinPixels(grab());
+    const float distance = viewport->camera().distance();
+    const glm::vec3 pivot = viewport->camera().pivot();
+    wheel(viewport.get(), 240);
+    EXPECT_LT(viewport->camera().distance(), distance);
+    EXPECT_EQ(viewport->camera().pivot(), pivot);
+    const int after = skinPixels(grab());
+    EXPECT_GT(after, before * 1.3) << before << " -> " << after;
+    wheel(viewport.get(), -480);
+    EXPECT_GT(viewport->camera().distance(), distance);
+}
+
+TEST_F(ViewportTest, MiddleDragOrbitsShiftMiddleDragPansAltLeftDragOrbits)
+{
+    const QImage start = grab();
+    const float yaw = viewport->camera().yaw();
+    drag(viewport.get(), Qt::MiddleButton, Qt::NoModifier, { 300, 240 }, { 380, 240 });
+    EXPECT_NEAR(viewport->camera().yaw(), yaw - 80.0f * OrbitCamera::kOrbitRadiansPerPixel, 1e-4f);
+    const QImage orbited = grab();
+    EXPECT_GT(differingPixels(start, orbited), 5000);
+    // The pivot stays on the head: it is still in the middle after orbiting.
+    const glm::vec2 centre = viewport->project(head.center());
+    EXPECT_NEAR(centre.x, 320.0f, 1.0f);
+
+    // Pan: the head follows the cursor.
+    drag(viewport.get(), Qt::MiddleButton, Qt::ShiftModifier, { 300, 240 }, { 340, 210 });
+    const glm::vec2 panned = viewport->project(head.center());
+    EXPECT_NEAR(panned.x - centre.x, 40.0f, 1.0f);
+    EXPECT_NEAR(panned.y - centre.y, -30.0f, 1.0f);
+    EXPECT_EQ(countPixels(grab(), isSkin, around(panned, 2)), 25);
+
+    const float pitch = viewport->camera().pitch();
+    drag(viewport.get(), Qt::LeftButton, Qt::AltModifier, { 300, 240 }, { 300, 280 });
+    EXPECT_NEAR(viewport->camera().pitch(), pitch + 40.0f * OrbitCamera::kOrbitRadiansPerPixel, 1e-4f);
+
+    // A plain left drag belongs to the editor's tools: the camera stays.
+    const glm::vec3 eye = viewport->camera().eye();
+    drag(viewport.get(), Qt::LeftButton, Qt::NoModifier, { 300, 240 }, { 400, 300 });
+    EXPECT_EQ(viewport->camera().eye(), eye);
+}
+
+TEST_F(ViewportTest, FKeyFramesTheHead)
+{
+    drag(viewport.get(), Qt::MiddleButton, Qt::ShiftModifier, { 300, 240 }, { 500, 400 });
+    wheel(viewport.get(), -360);
+    drag(viewport.get(), Qt::MiddleButton, Qt::NoModifier, { 300, 240 }, { 200, 200 });
+    EXPECT_EQ(countPixels(grab(), isSkin, QRect(318, 238, 5, 5)), 0); // the head has left the middle
+
+    viewport->setFocus();
+    QTest::keyClick(viewport.get(), Qt::Key_F);
+    const glm::vec2 centre = viewport->project(head.center());
+    EXPECT_NEAR(centre.x, 320.0f, 1.0f);
+    EXPECT_NEAR(centre.y, 240.0f, 1.0f);
+    const QImage image = grab();
+    EXPECT_EQ(countPixels(image, isSkin, QRect(318, 238, 5, 5)), 25);
+    EXPECT_GT(skinPixels(image), 640 * 480 / 10);
+
+    // frameHead() (the menu's action) does the same.
+    wheel(viewport.get(), 600);
+    viewport->frameHead();
+    EXPECT_NEAR(viewport->project(head.center()).x, 320.0f, 1.0f);
+}
+
+TEST_F(ViewportTest, HudShowsTheFramesNumbers)
+{
+    auto frame = lockFrame(head, 77);
+    frame->simulatedParticles = 1234;
+    viewport->setFrame(frame);
+    grab();
+    EXPECT_TRUE(viewport->hudText().contains(QStringLiteral("77 strands"))) << viewport->hudText().toStdString();
+    EXPECT_TRUE(viewport->hudText().contains(QStringLiteral("1234 particles")));
+    EXPECT_TRUE(viewport->hudText().contains(QStringLiteral("sim 0.12 ms/step")));
+    EXPECT_FALSE(viewport->hudText().contains(QStringLiteral("slow motion")));
+
+    auto slow = std::make_shared<Frame>(*frame);
+    slow->timeScale = 0.25;
+    slow->fallingBehind = true;
+    viewport->setFrame(slow);
+    EXPECT_TRUE(viewport->hudText().contains(QStringLiteral("slow motion x0.25")));
+    EXPECT_TRUE(viewport->hudText().contains(QStringLiteral("falling behind")));
+    // The HUD is painted over the GL content, top-left: light text there, none without it.
+    const QImage image = grab();
+    EXPECT_GT(countPixels(
+                  image, [](QColor c) { return c.lightness() > 180; }, QRect(0, 0, 300, 30)),
+        20);
+}
+
+TEST_F(ViewportTest, FrameRateIsMeasuredAndReported)
+{
+    double reported = -1.0;
+    QObject::connect(viewport.get(), &Viewport::fpsChanged, [&](double fps) { reported = fps; });
+    viewport->setFrame(lockFrame(head));
+    for (int i = 0; i < 12; ++i) {
+        viewport->repaint();
+        QTest::qWait(20); // at most ~50 paints a second
+    }
+    EXPECT_GT(viewport->framesPerSecond(), 1.0);
+    EXPECT_LT(viewport->framesPerSecond(), 100.0);
+    EXPECT_GE(reported, 0.0);
+    EXPECT_TRUE(viewport->hudText().startsWith(QStringLiteral("fps ")));
+}
+
+TEST_F(ViewportTest, BadFramesDrawWhatTheyCanAndNeverCrash)
+{
+    viewport->setFrame(nullptr);
+    grab();
+    EXPECT_TRUE(viewport->hudText().contains(QStringLiteral("no hair")));
+    viewport->setFrame(std::make_shared<Frame>());
+    grab();
+    EXPECT_TRUE(viewport->hudText().contains(QStringLiteral("0 strands")));
+
+    // A good lock, then strands of 0, 1 and 2 points, then a sheet of strands across the head's
+    // centre with one NaN (or infinite) point each, which must not be drawn at all.
+    auto frame = lockFrame(head);
+    frame->strands.addStrand(0);
+    const std::size_t one = frame->strands.addStrand(1);
+    frame->strands.strandForWrite(one)[0] = head.center();
+    const std::size_t two = frame->strands.addStrand(2);
+    frame->strands.strandForWrite(two)[0] = lockTop(head) + glm::vec3(0.0f, 0.0f, 0.03f);
+    frame->strands.strandForWrite(two)[1] = lockTop(head) + glm::vec3(0.0f, -0.1f, 0.03f);
+    const glm::vec3 front = head.center() + glm::vec3(0.0f, 0.0f, 0.2f); // in front of the face
+    for (int s = 0; s < 60; ++s) {
+        const std::size_t i = frame->strands.addStrand(16);
+        auto out = frame->strands.strandForWrite(i);
+        for (int k = 0; k < 16; ++k)
+            out[k] = front + glm::vec3(-0.03f + 0.001f * s, 0.03f - 0.004f * k, 0.0f);
+        out[s % 16]
+            = glm::vec3(s % 2 ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity());
+    }
+    viewport->setFrame(frame);
+    const QImage image = grab();
+    const glm::vec2 sheet = viewport->project(front);
+    EXPECT_EQ(countPixels(image, isGreenHair, around(sheet, 12)), 0);
+    const glm::vec2 lock = viewport->project(lockTop(head) - glm::vec3(0.0f, 0.5f * kLockLength, 0.0f));
+    EXPECT_GE(countPixels(image, isGreenHair, around(lock, 2)), 15);
+
+    // Offsets that point past the points: nothing drawn, nothing read out of bounds.
+    auto broken = std::make_shared<Frame>(*lockFrame(head));
+    broken->strands.offsets.push_back(broken->strands.offsets.back() + 1000);
+    viewport->setFrame(broken);
+    EXPECT_EQ(countPixels(grab(), isGreenHair, around(lock, 4)), 0);
+
+    // And back to a good frame of another layout.
+    viewport->setFrame(lockFrame(head, 50));
+    EXPECT_GE(countPixels(grab(), isGreenHair, around(lock, 2)), 10);
+}
+
+TEST_F(ViewportTest, SurvivesANewContextAndAnUnusableHead)
+{
+    // Moving the widget into another window gives it a new GL context: everything is uploaded again.
+    viewport->setFrame(lockFrame(head));
+    grab();
+    QWidget window;
+    window.resize(640, 480);
+    viewport->setParent(&window);
+    viewport->move(0, 0);
+    window.show();
+    viewport->show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+    const QImage moved = grab();
+    EXPECT_EQ(countPixels(moved, isSkin, around(viewport->project(head.center()), 2)), 25);
+    const glm::vec2 lock = viewport->project(lockTop(head) - glm::vec3(0.0f, 0.5f * kLockLength, 0.0f));
+    EXPECT_GE(countPixels(moved, isGreenHair, around(lock, 2)), 15);
+    viewport->setParent(nullptr);
+
+    // A head that cannot be drawn (an index out of range, a NaN) draws nothing, and framing falls
+    // back to an average head's size.
+    TriangleMesh broken = defaultHead().mesh;
+    broken.triangles.push_back({ 0u, 1u, 999999999u });
+    viewport->setHead(broken);
+    viewport->show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(viewport.get()));
+    EXPECT_EQ(skinPixels(grab()), 0);
+    TriangleMesh empty;
+    viewport->setHead(empty);
+    viewport->frameHead();
+    EXPECT_EQ(skinPixels(grab()), 0);
+    EXPECT_TRUE(std::isfinite(viewport->camera().distance()));
+    viewport->setHead(defaultHead().mesh);
+    EXPECT_GT(skinPixels(grab()), 640 * 480 / 10);
+}
+
+TEST_F(ViewportTest, GridAndWindArrowAreShownAndHidden)
+{
+    EXPECT_TRUE(viewport->showGrid());
+    const QImage withGrid = grab();
+    viewport->setShowGrid(false);
+    EXPECT_FALSE(viewport->showGrid());
+    const QImage withoutGrid = grab();
+    EXPECT_GT(differingPixels(withGrid, withoutGrid), 500);
+    // The top of the view, above the head, shows sky: no grid there.
+    EXPECT_EQ(differingPixels(withGrid.copy(0, 0, 640, 110), withoutGrid.copy(0, 0, 640, 110)), 0);
+
+    // Wind blowing toward -X (from the +X side, which the camera faces): the arrow is upwind.
+    const glm::vec3 wind{ -8.0f, 0.0f, 0.0f };
+    viewport->setWind(wind);
+    const QImage withWind = grab();
+    const WindArrow arrow = buildWindArrow(head, wind);
+    ASSERT_TRUE(arrow.visible);
+    const glm::vec2 middle = viewport->project(0.5f * (arrow.tail + arrow.tip));
+    EXPECT_GE(countPixels(withWind, isWindBlue, around(middle, 1)), 3) << middle.x << ", " << middle.y;
+    EXPECT_EQ(countPixels(withoutGrid, isWindBlue, around(middle, 1)), 0);
+
+    // Still air hides it; a frame's wind shows it again.
+    viewport->setWind(glm::vec3(0.0f));
+    EXPECT_EQ(differingPixels(grab(), withoutGrid), 0);
+    auto frame = std::make_shared<Frame>();
+    frame->wind = wind;
+    viewport->setFrame(frame);
+    EXPECT_GE(countPixels(grab(), isWindBlue, around(middle, 1)), 3);
+}
+
+// Paints per second as the editor drives the viewport: a new frame arrives through the event loop
+// whenever the last one was taken, and the widget repaints on its own schedule.
+double paintRate(Viewport& viewport, const std::vector<FramePtr>& frames, int milliseconds)
+{
+    std::size_t next = 0;
+    QTimer feeder;
+    feeder.setInterval(0);
+    QObject::connect(&feeder, &QTimer::timeout, [&] { viewport.setFrame(frames[next++ % frames.size()]); });
+    const std::uint64_t before = viewport.paintCount();
+    QElapsedTimer timer;
+    timer.start();
+    feeder.start();
+    while (timer.elapsed() < milliseconds)
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+    feeder.stop();
+    return static_cast<double>(viewport.paintCount() - before) / (static_cast<double>(timer.nsecsElapsed()) * 1e-9);
+}
+
+// The editor's default scene is ~4,600 strands of 16 points, new every frame. Prints the rates
+// (llvmpipe in CI), and checks what the level of detail promises rather than a machine's speed.
+TEST_F(ViewportTest, DrawRateWithTheDefaultSceneSize)
+{
+    std::vector<FramePtr> frames;
+    for (int i = 0; i < 3; ++i)
+        frames.push_back(scalpFrame(head, 4600, 16, static_cast<float>(i)));
+    viewport->setLevelOfDetail(false);
+    viewport->setFrame(frames[0]);
+    grab(); // the first paint builds the layout
+    const double full = paintRate(*viewport, frames, 1200);
+    const double fullMs = viewport->lastPaintMilliseconds();
+    EXPECT_EQ(viewport->lastDrawnFraction(), 1.0f);
+
+    viewport->setLevelOfDetail(true);
+    const double adaptive = paintRate(*viewport, frames, 1500);
+    std::printf("[ viewport ] 4600 strands x 16 points, 640x480, %d samples, %s: every strand %.1f fps "
+                "(%.1f ms GL), level of detail %.1f fps (%.0f%% strands, %.1f ms GL)\n",
+        viewport->samples(), viewport->softwareRenderer() ? "software GL" : "hardware GL", full, fullMs, adaptive,
+        100.0 * viewport->lastDrawnFraction(), viewport->lastPaintMilliseconds());
+    RecordProperty("fps_full", static_cast<int>(std::lround(full)));
+    RecordProperty("fps_level_of_detail", static_cast<int>(std::lround(adaptive)));
+    EXPECT_GT(full, 1.0);
+    EXPECT_GE(adaptive, full * 0.9); // never worse than drawing everything (allowing noise)
+
+    if (viewport->lastPaintWasPreview()) {
+        // Once frames stop coming, one full-detail paint follows on its own.
+        EXPECT_TRUE(viewport->hudText().contains(QStringLiteral("preview")));
+        const std::uint64_t paints = viewport->paintCount();
+        QElapsedTimer timer;
+        timer.start();
+        while (viewport->lastPaintWasPreview() && timer.elapsed() < 3000)
+            QTest::qWait(20);
+        EXPECT_FALSE(viewport->lastPaintWasPreview());
+        EXPECT_GT(viewport->paintCount(), paints);
+        EXPECT_EQ(viewport->lastDrawnFraction(), 1.0f);
+    }
+}
+
+} // namespace

@@ -1,0 +1,77 @@
+#include "widgets/GlSupport.h"
+
+#include <QDebug>
+#include <QMatrix4x4>
+#include <QOpenGLShaderProgram>
+
+#include <glm/common.hpp>
+#include <glm/exponential.hpp>
+
+namespace wisp {
+
+std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(const QString& name, QString* error)
+{
+    auto program = std::make_unique<QOpenGLShaderProgram>();
+    const QString base = QStringLiteral(":/shaders/") + name;
+    if (!program->addShaderFromSourceFile(QOpenGLShader::Vertex, base + QStringLiteral(".vert"))
+        || !program->addShaderFromSourceFile(QOpenGLShader::Fragment, base + QStringLiteral(".frag"))
+        || !program->link()) {
+        if (error)
+            *error = name + QStringLiteral(": ") + program->log();
+        return nullptr;
+    }
+    return program;
+}
+
+void setUniform(QOpenGLShaderProgram& program, const char* name, const glm::mat4& value)
+{
+    // QMatrix4x4's float constructor reads row-major; GLM stores columns.
+    program.setUniformValue(name, QMatrix4x4(&value[0][0]).transposed());
+}
+
+void setUniform(QOpenGLShaderProgram& program, const char* name, const glm::vec4& value)
+{
+    program.setUniformValue(name, value.x, value.y, value.z, value.w);
+}
+
+void setUniform(QOpenGLShaderProgram& program, const char* name, const glm::vec3& value)
+{
+    program.setUniformValue(name, value.x, value.y, value.z);
+}
+
+void setUniform(QOpenGLShaderProgram& program, const char* name, const glm::vec2& value)
+{
+    program.setUniformValue(name, value.x, value.y);
+}
+
+void setUniform(QOpenGLShaderProgram& program, const char* name, float value)
+{
+    program.setUniformValue(name, value);
+}
+
+void setUniform(QOpenGLShaderProgram& program, const char* name, int value)
+{
+    program.setUniformValue(name, value);
+}
+
+glm::vec3 linearFromSrgb(const glm::vec3& srgb)
+{
+    return glm::pow(glm::clamp(srgb, 0.0f, 1.0f), glm::vec3(2.2f));
+}
+
+#ifndef NDEBUG
+void checkGlErrors(GlFunctions* gl, const char* where)
+{
+    if (!gl)
+        return;
+    // A bounded loop: a lost context can report errors forever.
+    for (int i = 0; i < 16; ++i) {
+        const GLenum code = gl->glGetError();
+        if (code == GL_NO_ERROR)
+            return;
+        qWarning("GL error 0x%04x in %s", static_cast<unsigned>(code), where);
+    }
+}
+#endif
+
+} // namespace wisp

@@ -1,0 +1,115 @@
+#include "widgets/GuideGeometry.h"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace wisp {
+namespace {
+
+bool finite(const glm::vec3& v)
+{
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Two unit vectors perpendicular to `axis` and to each other.
+void basisAround(const glm::vec3& axis, glm::vec3& u, glm::vec3& v)
+{
+    const glm::vec3 helper = std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    u = glm::normalize(glm::cross(axis, helper));
+    v = glm::cross(axis, u);
+}
+
+} // namespace
+
+GroundGrid buildGroundGrid(const Aabb& head)
+{
+    GroundGrid grid;
+    if (!finite(head.min) || !finite(head.max))
+        return grid;
+    constexpr float kSpacing = 0.05f; // metres
+    constexpr int kMajorEvery = 5;
+    const float halfExtent = std::clamp(2.5f * std::max(head.size().x, head.size().z), 0.4f, 5.0f);
+    const int halfLines = static_cast<int>(std::ceil(halfExtent / kSpacing));
+    // Snap the centre to the grid, so lines stay on world coordinates as heads change.
+    const glm::vec3 c = head.center();
+    grid.centre = { std::round(c.x / kSpacing) * kSpacing, head.min.y, std::round(c.z / kSpacing) * kSpacing };
+    grid.fadeRadiusMetres = halfLines * kSpacing;
+
+    const glm::vec4 minor{ 0.55f, 0.57f, 0.62f, 0.22f };
+    const glm::vec4 major{ 0.62f, 0.64f, 0.70f, 0.42f };
+    const glm::vec4 xAxis{ 0.85f, 0.32f, 0.32f, 0.65f }; // the line z = 0 runs along X
+    const glm::vec4 zAxis{ 0.32f, 0.48f, 0.90f, 0.65f }; // the line x = 0 runs along Z
+    const float reach = halfLines * kSpacing;
+    const glm::vec3 none{ 0.0f };
+    for (int i = -halfLines; i <= halfLines; ++i) {
+        const float offset = i * kSpacing;
+        const float x = grid.centre.x + offset;
+        const float z = grid.centre.z + offset;
+        const int worldX = static_cast<int>(std::lround(x / kSpacing));
+        const int worldZ = static_cast<int>(std::lround(z / kSpacing));
+        const glm::vec4 alongZ = worldX == 0 ? zAxis : (worldX % kMajorEvery == 0 ? major : minor);
+        const glm::vec4 alongX = worldZ == 0 ? xAxis : (worldZ % kMajorEvery == 0 ? major : minor);
+        grid.lines.push_back({ { x, grid.centre.y, grid.centre.z - reach }, none, alongZ });
+        grid.lines.push_back({ { x, grid.centre.y, grid.centre.z + reach }, none, alongZ });
+        grid.lines.push_back({ { grid.centre.x - reach, grid.centre.y, z }, none, alongX });
+        grid.lines.push_back({ { grid.centre.x + reach, grid.centre.y, z }, none, alongX });
+    }
+    return grid;
+}
+
+WindArrow buildWindArrow(const Aabb& head, const glm::vec3& windMetresPerSecond)
+{
+    WindArrow arrow;
+    const float speed = glm::length(windMetresPerSecond);
+    if (!finite(windMetresPerSecond) || !std::isfinite(speed) || speed < kStillAirMetresPerSecond || !finite(head.min)
+        || !finite(head.max))
+        return arrow;
+    const glm::vec3 direction = windMetresPerSecond / speed;
+    const float length
+        = std::clamp(kWindArrowMinMetres + kWindArrowMetresPerMps * speed, kWindArrowMinMetres, kWindArrowMaxMetres);
+    // Aim at the upper head, where the hair is; stop a little outside the head's half-width.
+    const glm::vec3 size = head.size();
+    const glm::vec3 target = head.center() + glm::vec3(0.0f, 0.25f * size.y, 0.0f);
+    const float clearance = 0.5f * std::max({ size.x, size.z, 0.05f }) + 0.06f;
+    arrow.tip = target - direction * clearance;
+    arrow.tail = arrow.tip - direction * length;
+    arrow.visible = true;
+
+    constexpr int kSides = 20;
+    const float shaftRadius = 0.0035f;
+    const float coneRadius = 0.010f;
+    const float coneLength = std::min(0.028f, 0.45f * length);
+    const glm::vec3 coneBase = arrow.tip - direction * coneLength;
+    const glm::vec4 colour{ 0.45f, 0.78f, 1.0f, 1.0f };
+    glm::vec3 u, v;
+    basisAround(direction, u, v);
+    auto ring = [&](int i) {
+        const float a = glm::two_pi<float>() * static_cast<float>(i) / kSides;
+        return std::cos(a) * u + std::sin(a) * v;
+    };
+    // The cone's side normal leans toward the tip by the cone's slope.
+    const float slope = coneRadius / coneLength;
+    auto& t = arrow.triangles;
+    for (int i = 0; i < kSides; ++i) {
+        const glm::vec3 r0 = ring(i), r1 = ring(i + 1);
+        // Shaft side (two triangles) and its back cap.
+        const glm::vec3 a0 = arrow.tail + r0 * shaftRadius, a1 = arrow.tail + r1 * shaftRadius;
+        const glm::vec3 b0 = coneBase + r0 * shaftRadius, b1 = coneBase + r1 * shaftRadius;
+        t.insert(t.end(), { { a0, r0, colour }, { b0, r0, colour }, { b1, r1, colour } });
+        t.insert(t.end(), { { a0, r0, colour }, { b1, r1, colour }, { a1, r1, colour } });
+        t.insert(
+            t.end(), { { arrow.tail, -direction, colour }, { a1, -direction, colour }, { a0, -direction, colour } });
+        // Cone side and its base.
+        const glm::vec3 c0 = coneBase + r0 * coneRadius, c1 = coneBase + r1 * coneRadius;
+        const glm::vec3 n0 = glm::normalize(r0 + slope * direction), n1 = glm::normalize(r1 + slope * direction);
+        const glm::vec3 nTip = glm::normalize(ring(i) + ring(i + 1) + 2.0f * slope * direction);
+        t.insert(t.end(), { { c0, n0, colour }, { arrow.tip, nTip, colour }, { c1, n1, colour } });
+        t.insert(t.end(), { { coneBase, -direction, colour }, { c1, -direction, colour }, { c0, -direction, colour } });
+    }
+    return arrow;
+}
+
+} // namespace wisp

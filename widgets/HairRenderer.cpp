@@ -1,0 +1,270 @@
+#include "widgets/HairRenderer.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
+#include <QOpenGLShaderProgram>
+
+#include <algorithm>
+#include <cmath>
+
+namespace wisp {
+namespace {
+
+bool finitePoint(const glm::vec3& p)
+{
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+// Offsets anyone may have built: non-decreasing and inside the point array, or nothing is drawn.
+bool offsetsUsable(const HairCurves& strands)
+{
+    if (strands.offsets.empty())
+        return false;
+    for (std::size_t i = 1; i < strands.offsets.size(); ++i)
+        if (strands.offsets[i] < strands.offsets[i - 1])
+            return false;
+    return strands.offsets.back() <= strands.positions.size();
+}
+
+} // namespace
+
+HairRenderer::~HairRenderer() = default;
+
+bool HairRenderer::initialize(GlFunctions* gl)
+{
+    m_gl = gl;
+    m_program = loadShaderProgram(QStringLiteral("hair"), &m_error);
+    if (!m_program)
+        return false;
+    gl->glGenVertexArrays(1, &m_vao);
+    gl->glGenBuffers(1, &m_layoutBuffer);
+    gl->glGenBuffers(1, &m_indexBuffer);
+    gl->glGenBuffers(1, &m_pointBuffer);
+    gl->glGenTextures(1, &m_pointTexture);
+    gl->glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &m_maxTexels);
+
+    gl->glBindVertexArray(m_vao);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, m_layoutBuffer);
+    gl->glEnableVertexAttribArray(0);
+    gl->glVertexAttribIPointer(0, 2, GL_UNSIGNED_INT, sizeof(glm::uvec2), nullptr);
+    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer); // recorded in the VAO
+    gl->glBindVertexArray(0);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+    m_program->bind();
+    m_program->setUniformValue("u_points", 0);
+    m_program->release();
+    // Everything that came before this context (a reparented widget gets a new one) is gone.
+    m_layout = HairStripLayout{};
+    m_vertexCount = 0;
+    m_pointCapacity = 0;
+    checkGlErrors(gl, "HairRenderer::initialize");
+    return true;
+}
+
+void HairRenderer::release()
+{
+    if (!m_gl)
+        return;
+    m_gl->glDeleteTextures(1, &m_pointTexture);
+    m_gl->glDeleteBuffers(1, &m_pointBuffer);
+    m_gl->glDeleteBuffers(1, &m_indexBuffer);
+    m_gl->glDeleteBuffers(1, &m_layoutBuffer);
+    m_gl->glDeleteVertexArrays(1, &m_vao);
+    m_pointTexture = m_pointBuffer = m_indexBuffer = m_layoutBuffer = m_vao = 0;
+    m_program.reset();
+    m_gl = nullptr;
+    m_vertexCount = 0;
+    m_pointCapacity = 0;
+    m_layout = HairStripLayout{};
+}
+
+void HairRenderer::clear()
+{
+    m_vertexCount = 0;
+    m_skippedStrands = 0;
+}
+
+void HairRenderer::rebuildLayout(std::span<const std::uint32_t> offsets)
+{
+    m_layout = buildHairStripLayout(offsets);
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, m_layoutBuffer);
+    m_gl->glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_layout.vertices.size() * sizeof(glm::uvec2)),
+        m_layout.vertices.data(), GL_STATIC_DRAW);
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+    // All six index lists in one buffer, one upload.
+    std::vector<std::uint32_t> indices;
+    for (int primitive = 0; primitive < 2; ++primitive) {
+        const auto& lists = primitive == 0 ? m_layout.lines : m_layout.ribbons;
+        for (std::size_t step = 0; step < lists.size(); ++step) {
+            m_indexOffsets[static_cast<std::size_t>(primitive)][step] = indices.size() * sizeof(std::uint32_t);
+            indices.insert(indices.end(), lists[step].indices.begin(), lists[step].indices.end());
+        }
+    }
+    // The element buffer binding is VAO state: bind the VAO to touch it.
+    m_gl->glBindVertexArray(m_vao);
+    m_gl->glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)),
+        indices.data(), GL_STATIC_DRAW);
+    m_gl->glBindVertexArray(0);
+    m_vertexCount = static_cast<GLsizei>(m_layout.vertices.size());
+    checkGlErrors(m_gl, "HairRenderer::rebuildLayout");
+}
+
+void HairRenderer::upload(const HairCurves& strands)
+{
+    if (!m_program)
+        return;
+    const std::size_t pointCount = strands.positions.size();
+    if (!offsetsUsable(strands) || strands.strandCount() == 0 || pointCount == 0
+        || pointCount > static_cast<std::size_t>(m_maxTexels)) {
+        clear();
+        return;
+    }
+    if (!m_layout.matches(strands.offsets))
+        rebuildLayout(strands.offsets);
+    m_vertexCount = static_cast<GLsizei>(m_layout.vertices.size());
+
+    m_gl->glBindBuffer(GL_TEXTURE_BUFFER, m_pointBuffer);
+    const auto bytes = static_cast<GLsizeiptr>(pointCount * sizeof(glm::vec4));
+    if (pointCount > m_pointCapacity) {
+        m_gl->glBufferData(GL_TEXTURE_BUFFER, bytes, nullptr, GL_STREAM_DRAW);
+        m_pointCapacity = pointCount;
+        // The texture refers to the buffer's storage, which glBufferData just replaced.
+        m_gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
+        m_gl->glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, m_pointBuffer);
+        m_gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    }
+    // Invalidating the buffer lets the driver hand out fresh memory instead of waiting for the
+    // previous frame's draw to finish reading it (orphaning).
+    auto* out = static_cast<glm::vec4*>(
+        m_gl->glMapBufferRange(GL_TEXTURE_BUFFER, 0, bytes, GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT));
+    if (!out) {
+        m_gl->glBindBuffer(GL_TEXTURE_BUFFER, 0);
+        clear();
+        checkGlErrors(m_gl, "HairRenderer::upload (map)");
+        return;
+    }
+    // One pass per strand: first find out whether it is finite, then copy it with the verdict in w.
+    m_skippedStrands = 0;
+    const glm::vec3* points = strands.positions.data();
+    for (std::size_t s = 0; s < strands.strandCount(); ++s) {
+        const std::uint32_t begin = strands.offsets[s];
+        const std::uint32_t end = strands.offsets[s + 1];
+        bool finite = true;
+        for (std::uint32_t i = begin; i < end; ++i)
+            finite = finite && finitePoint(points[i]);
+        const float drawable = finite ? 1.0f : 0.0f;
+        if (!finite && end - begin >= 2 && end - begin - 1 <= HairStripLayout::kMaxSegments)
+            ++m_skippedStrands;
+        for (std::uint32_t i = begin; i < end; ++i)
+            out[i] = finite ? glm::vec4(points[i], 1.0f) : glm::vec4(0.0f, 0.0f, 0.0f, drawable);
+    }
+    m_gl->glUnmapBuffer(GL_TEXTURE_BUFFER);
+    // A typical segment length (from up to 256 strands' first segments), to pick how finely the
+    // curves are sampled for the zoom.
+    double length = 0.0;
+    int counted = 0;
+    const std::size_t stride = std::max<std::size_t>(1, strands.strandCount() / 256);
+    for (std::size_t s = 0; s < strands.strandCount(); s += stride) {
+        const std::uint32_t begin = strands.offsets[s];
+        if (strands.offsets[s + 1] - begin < 2)
+            continue;
+        const float segment = glm::length(points[begin + 1] - points[begin]);
+        if (std::isfinite(segment)) {
+            length += segment;
+            ++counted;
+        }
+    }
+    m_segmentMetres = counted > 0 ? static_cast<float>(length / counted) : 0.0f;
+    m_gl->glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    checkGlErrors(m_gl, "HairRenderer::upload");
+}
+
+void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fraction, bool coarse)
+{
+    m_lastDrawnStrands = 0;
+    if (!m_program || m_vertexCount == 0 || m_layout.drawnStrands == 0)
+        return;
+
+    const std::size_t total = m_layout.drawnStrands;
+    const float wanted = std::isfinite(fraction) ? std::clamp(fraction, 0.0f, 1.0f) : 1.0f;
+    const std::size_t drawn = std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(wanted * total)), 1, total);
+    // Each drawn strand stands for total / drawn strands. Widening it by as much would keep the
+    // hair's density but turn a preview into a few thick ribbons; the square root keeps most of
+    // the density (thin strands are faint, so widening them mostly adds coverage) and the look.
+    const float widthScale = std::sqrt(static_cast<float>(total) / static_cast<float>(drawn));
+
+    // Lines while even the nearest hair is at most about a pixel wide (a line is one pixel wide;
+    // half a pixel more is not worth twice the primitives). The nearest hair is at most a head's
+    // radius and a half in front of the head's centre.
+    const float nearestDepth = std::max(-view.headCentreView.z - 1.5f * view.headRadiusMetres, 1e-3f);
+    const float pixelsPerMetre = view.projection[1][1] * 0.5f * view.viewportPixels.y / nearestDepth;
+    // A preview (coarse) takes lines up to a few pixels: speed is what it is for.
+    const float rootPixels = style.rootWidthMetres * widthScale * pixelsPerMetre;
+    const bool lines = rootPixels <= style.minWidthPixels + (coarse ? 2.0f : 0.5f);
+    // Samples per segment: enough to keep chords about pixelsPerSample long at the head's depth.
+    const float centreDepth = std::max(-view.headCentreView.z, 1e-3f);
+    const float segmentPixels = m_segmentMetres * view.projection[1][1] * 0.5f * view.viewportPixels.y / centreDepth;
+    const float wantedSamples = segmentPixels / std::max(style.pixelsPerSample, 1.0f);
+    const std::size_t stepIndex = coarse || wantedSamples <= 1.0f ? 2 : (wantedSamples <= 2.0f ? 1 : 0);
+    const auto primitive = lines ? HairStripLayout::Primitive::Lines : HairStripLayout::Primitive::Ribbons;
+    const HairStripLayout::IndexList& list = m_layout.indices(primitive, stepIndex);
+
+    GlFunctions* gl = m_gl;
+    gl->glEnable(GL_DEPTH_TEST);
+    gl->glDepthMask(GL_TRUE);
+    gl->glDisable(GL_CULL_FACE); // the ribbon's winding flips with the strand's screen direction
+    // Thin strands carry their coverage in alpha. With MSAA, alpha-to-coverage turns it into
+    // sample coverage, which needs no sorting of the 70k segments; without it, plain blending.
+    const bool alphaToCoverage = view.samples > 1;
+    if (alphaToCoverage) {
+        gl->glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+        gl->glDisable(GL_BLEND);
+    } else {
+        gl->glEnable(GL_BLEND);
+        gl->glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    }
+
+    QOpenGLShaderProgram& program = *m_program;
+    program.bind();
+    setUniform(program, "u_view", view.view);
+    setUniform(program, "u_projection", view.projection);
+    setUniform(program, "u_viewportPixels", view.viewportPixels);
+    setUniform(program, "u_samplesPerSegment", static_cast<float>(HairStripLayout::kSamplesPerSegment));
+    setUniform(program, "u_ribbon", lines ? 0.0f : 1.0f);
+    setUniform(program, "u_rootWidthMetres", style.rootWidthMetres * widthScale);
+    setUniform(program, "u_tipWidthMetres", style.tipWidthMetres * widthScale);
+    setUniform(program, "u_minWidthPixels", std::max(style.minWidthPixels, 0.01f));
+    setUniform(program, "u_rootColour", linearFromSrgb(style.rootColour));
+    setUniform(program, "u_tipColour", linearFromSrgb(style.tipColour));
+    setUniform(program, "u_keyLightView", view.keyLightView);
+    setUniform(program, "u_fillLightView", view.fillLightView);
+    setUniform(program, "u_headCentreView", view.headCentreView);
+    setUniform(program, "u_tipFade", std::clamp(style.tipFade, 0.0f, 1.0f));
+
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
+    gl->glBindVertexArray(m_vao);
+    gl->glEnable(GL_PRIMITIVE_RESTART);
+    gl->glPrimitiveRestartIndex(HairStripLayout::kRestart);
+    const std::size_t byteOffset = m_indexOffsets[lines ? 0 : 1][stepIndex];
+    gl->glDrawElements(lines ? GL_LINE_STRIP : GL_TRIANGLE_STRIP, static_cast<GLsizei>(list.prefix[drawn]),
+        GL_UNSIGNED_INT, reinterpret_cast<const void*>(byteOffset));
+    gl->glDisable(GL_PRIMITIVE_RESTART);
+    gl->glBindVertexArray(0);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    program.release();
+
+    gl->glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    gl->glDisable(GL_BLEND);
+    m_lastDrawnStrands = drawn;
+    m_lastDrewLines = lines;
+    m_lastSamplesPerSegment
+        = static_cast<int>(HairStripLayout::kSamplesPerSegment / HairStripLayout::kSampleSteps[stepIndex]);
+    checkGlErrors(gl, "HairRenderer::draw");
+}
+
+} // namespace wisp

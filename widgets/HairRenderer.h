@@ -1,0 +1,92 @@
+#pragma once
+// Draws a frame's strands as smooth, shaded, tapered hair (see resources/shaders/hair.*).
+//
+// Per frame the CPU only copies the points into a buffer texture (one pass, which also flags
+// strands with non-finite points so the shader drops them); the Catmull-Rom subdivision, the
+// Kajiya-Kay shading and the ribbon expansion run in the vertex shader, over a static layout
+// (HairStripLayout) rebuilt only when the strands' layout changes. One draw call for all strands.
+//
+// Strands at most a pixel wide on screen are drawn as line strips, wider ones (close-ups) as
+// camera-facing ribbons; both carry the strand's true width as coverage in alpha, so the switch
+// does not show. draw() can draw an even sample of the strands (level of detail, see HairDetail).
+//
+// Thread: GUI, with the viewport's GL context current (every member function).
+
+#include "sim/HairCurves.h"
+#include "widgets/GlSupport.h"
+#include "widgets/HairStripLayout.h"
+#include "widgets/RenderView.h"
+
+#include <glm/vec3.hpp>
+
+#include <QOpenGLShaderProgram>
+#include <QString>
+
+#include <array>
+#include <memory>
+#include <span>
+
+namespace wisp {
+
+struct HairStyle {
+    glm::vec3 rootColour{ 0.14f, 0.085f, 0.05f }; // sRGB 0..1
+    glm::vec3 tipColour{ 0.50f, 0.33f, 0.19f }; // sRGB 0..1
+    float rootWidthMetres = 0.0006f; // a drawn strand stands for a lock of ~20 hairs
+    float tipWidthMetres = 0.00012f;
+    float minWidthPixels = 1.0f; // narrower strands are drawn this wide, fainter
+    float tipFade = 0.6f; // how far the tip fades out, 0..1
+    // Curves get as many Catmull-Rom samples per segment (1, 2 or 4) as keep the chords about
+    // this long on screen; longer chords would show as corners.
+    float pixelsPerSample = 12.0f;
+};
+
+class HairRenderer {
+public:
+    HairRenderer() = default;
+    ~HairRenderer(); // GL objects must already be released (release() with the context current)
+    HairRenderer(const HairRenderer&) = delete;
+    HairRenderer& operator=(const HairRenderer&) = delete;
+
+    // False (and why, in error()) when the shaders do not build; draw() then does nothing.
+    bool initialize(GlFunctions* gl);
+    void release();
+
+    // Streams the strands in; `strands` need only live for this call.
+    void upload(const HairCurves& strands);
+    void clear();
+    // Draws `fraction` (0..1) of the strands, an even sample, each made wider to make up for the
+    // rest; `coarse` draws one sample per segment (the points themselves) whatever the zoom.
+    void draw(const RenderView& view, const HairStyle& style, float fraction = 1.0f, bool coarse = false);
+
+    QString error() const { return m_error; }
+    std::size_t strandCount() const { return m_vertexCount > 0 ? m_layout.drawnStrands : 0; } // drawable
+    std::size_t skippedStrands() const { return m_skippedStrands; } // had non-finite points
+    std::size_t lastDrawnStrands() const { return m_lastDrawnStrands; }
+    bool lastDrewLines() const { return m_lastDrewLines; }
+    int lastSamplesPerSegment() const { return m_lastSamplesPerSegment; }
+
+private:
+    void rebuildLayout(std::span<const std::uint32_t> offsets);
+
+    GlFunctions* m_gl = nullptr;
+    std::unique_ptr<QOpenGLShaderProgram> m_program;
+    GLuint m_vao = 0;
+    GLuint m_layoutBuffer = 0; // HairStripLayout::vertices
+    GLuint m_indexBuffer = 0; // every index list of m_layout, one after another (element buffer of m_vao)
+    GLuint m_pointBuffer = 0; // vec4 per point, read through m_pointTexture
+    GLuint m_pointTexture = 0;
+    std::size_t m_pointCapacity = 0; // points m_pointBuffer can hold
+    GLint m_maxTexels = 0; // GL_MAX_TEXTURE_BUFFER_SIZE: frames with more points are not drawn
+    HairStripLayout m_layout;
+    // Byte offset of each index list in m_indexBuffer: [primitive][step].
+    std::array<std::array<std::size_t, 3>, 2> m_indexOffsets{};
+    float m_segmentMetres = 0.0f; // typical segment length of the last frame
+    GLsizei m_vertexCount = 0; // 0: nothing to draw
+    std::size_t m_skippedStrands = 0;
+    std::size_t m_lastDrawnStrands = 0;
+    bool m_lastDrewLines = false;
+    int m_lastSamplesPerSegment = 0;
+    QString m_error;
+};
+
+} // namespace wisp

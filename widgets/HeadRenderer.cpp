@@ -1,0 +1,113 @@
+#include "widgets/HeadRenderer.h"
+
+#include <QOpenGLShaderProgram>
+
+#include <cstddef>
+
+namespace wisp {
+
+HeadRenderer::~HeadRenderer() = default;
+
+bool HeadRenderer::initialize(GlFunctions* gl)
+{
+    m_gl = gl;
+    m_program = loadShaderProgram(QStringLiteral("head"), &m_error);
+    if (!m_program)
+        return false;
+    gl->glGenVertexArrays(1, &m_vao);
+    gl->glGenBuffers(1, &m_vertexBuffer);
+    gl->glGenBuffers(1, &m_indexBuffer);
+    gl->glBindVertexArray(m_vao);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, m_vertexBuffer);
+    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer); // recorded in the VAO
+    gl->glEnableVertexAttribArray(0);
+    gl->glVertexAttribPointer(
+        0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, position)));
+    gl->glEnableVertexAttribArray(1);
+    gl->glVertexAttribPointer(
+        1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, normal)));
+    gl->glBindVertexArray(0);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
+    m_indexCount = 0;
+    m_dirty = !m_triangles.empty();
+    checkGlErrors(gl, "HeadRenderer::initialize");
+    return true;
+}
+
+void HeadRenderer::release()
+{
+    if (!m_gl)
+        return;
+    m_gl->glDeleteBuffers(1, &m_indexBuffer);
+    m_gl->glDeleteBuffers(1, &m_vertexBuffer);
+    m_gl->glDeleteVertexArrays(1, &m_vao);
+    m_indexBuffer = m_vertexBuffer = m_vao = 0;
+    m_indexCount = 0;
+    m_program.reset();
+    m_gl = nullptr;
+}
+
+void HeadRenderer::setMesh(const TriangleMesh& mesh)
+{
+    m_vertices.clear();
+    m_triangles.clear();
+    m_dirty = true;
+    if (!validateMesh(mesh).empty())
+        return;
+    const std::vector<glm::vec3> normals = vertexNormals(mesh);
+    m_vertices.resize(mesh.positions.size());
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+        m_vertices[i] = { mesh.positions[i], normals[i] };
+    m_triangles = mesh.triangles;
+}
+
+void HeadRenderer::uploadPending()
+{
+    m_dirty = false;
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, m_vertexBuffer);
+    m_gl->glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data(),
+        GL_STATIC_DRAW);
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
+    // The element buffer binding is VAO state: bind the VAO to touch it.
+    m_gl->glBindVertexArray(m_vao);
+    m_gl->glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_triangles.size() * sizeof(glm::uvec3)),
+        m_triangles.data(), GL_STATIC_DRAW);
+    m_gl->glBindVertexArray(0);
+    m_indexCount = static_cast<GLsizei>(m_triangles.size() * 3);
+    checkGlErrors(m_gl, "HeadRenderer::uploadPending");
+}
+
+void HeadRenderer::draw(const RenderView& view)
+{
+    if (!m_program)
+        return;
+    if (m_dirty)
+        uploadPending();
+    if (m_indexCount == 0)
+        return;
+
+    GlFunctions* gl = m_gl;
+    gl->glEnable(GL_DEPTH_TEST);
+    gl->glDepthMask(GL_TRUE);
+    gl->glDisable(GL_BLEND);
+    // The mesh is closed and wound counter-clockwise seen from outside.
+    gl->glEnable(GL_CULL_FACE);
+    gl->glCullFace(GL_BACK);
+    gl->glFrontFace(GL_CCW);
+
+    QOpenGLShaderProgram& program = *m_program;
+    program.bind();
+    setUniform(program, "u_view", view.view);
+    setUniform(program, "u_viewProjection", view.viewProjection);
+    setUniform(program, "u_skinColour", linearFromSrgb({ kSkinSrgb[0], kSkinSrgb[1], kSkinSrgb[2] }));
+    setUniform(program, "u_keyLightView", view.keyLightView);
+    setUniform(program, "u_fillLightView", view.fillLightView);
+    gl->glBindVertexArray(m_vao);
+    gl->glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);
+    gl->glBindVertexArray(0);
+    program.release();
+    gl->glDisable(GL_CULL_FACE);
+    checkGlErrors(gl, "HeadRenderer::draw");
+}
+
+} // namespace wisp

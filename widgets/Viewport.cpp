@@ -1,0 +1,495 @@
+#include "widgets/Viewport.h"
+
+#include "widgets/GuideGeometry.h"
+#include "widgets/ViewportOverlay.h"
+
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QOpenGLContext>
+#include <QOpenGLDebugLogger>
+#include <QOpenGLVersionFunctionsFactory>
+#include <QPainter>
+#include <QSurfaceFormat>
+#include <QWheelEvent>
+
+#include <algorithm>
+#include <cmath>
+
+// The shaders are compiled into the static wisp_widgets library, whose resource initialiser the
+// linker drops unless something refers to it; Q_INIT_RESOURCE must be called outside a namespace.
+static void initialiseWidgetResources()
+{
+    Q_INIT_RESOURCE(resources);
+}
+
+namespace wisp {
+namespace {
+
+// A plausible adult head with neck, for framing before any head is set (metres).
+constexpr Aabb kFallbackHeadBounds{ { -0.09f, -0.23f, -0.11f }, { 0.09f, 0.14f, 0.12f } };
+
+const glm::vec3 kBackgroundTop{ 0.235f, 0.247f, 0.275f }; // sRGB
+const glm::vec3 kBackgroundBottom{ 0.105f, 0.110f, 0.125f };
+
+glm::vec3 toVec(const QColor& c)
+{
+    return { float(c.redF()), float(c.greenF()), float(c.blueF()) };
+}
+QColor toColour(const glm::vec3& c)
+{
+    return QColor::fromRgbF(c.x, c.y, c.z);
+}
+
+bool finiteBounds(const Aabb& b)
+{
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(b.min[i]) || !std::isfinite(b.max[i]) || b.min[i] > b.max[i])
+            return false;
+    return true;
+}
+
+QSurfaceFormat viewportFormat()
+{
+    QSurfaceFormat format;
+    format.setRenderableType(QSurfaceFormat::OpenGL);
+    format.setVersion(3, 3);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    format.setDepthBufferSize(24);
+    // 4x MSAA. WISP_VIEWPORT_SAMPLES overrides it: on a software rasteriser MSAA costs about half
+    // the frame rate, and alpha already smooths the hair.
+    bool overridden = false;
+    const int samples = qEnvironmentVariableIntValue("WISP_VIEWPORT_SAMPLES", &overridden);
+    format.setSamples(overridden ? std::clamp(samples, 0, 16) : 4);
+#ifndef NDEBUG
+    format.setOption(QSurfaceFormat::DebugContext);
+#endif
+    return format;
+}
+
+} // namespace
+
+Viewport::Viewport(QWidget* parent)
+    : QOpenGLWidget(parent)
+    , m_headBounds(kFallbackHeadBounds)
+{
+    initialiseWidgetResources();
+    setFormat(viewportFormat());
+    setFocusPolicy(Qt::StrongFocus); // F must reach us after a click in the view
+    setMinimumSize(160, 120);
+    m_camera.reset(m_headBounds, 4.0f / 3.0f);
+    rebuildGuides();
+    m_frameClock.invalidate();
+    // After a reduced paint, once nothing has asked for another for a moment, draw everything.
+    m_refineTimer.setSingleShot(true);
+    m_refineTimer.setInterval(300);
+    connect(&m_refineTimer, &QTimer::timeout, this, [this] {
+        m_refining = true;
+        update();
+    });
+}
+
+Viewport::~Viewport()
+{
+    // GL objects belong to the context: free them while it is current. QOpenGLWidget's own
+    // destructor destroys the context afterwards, whose aboutToBeDestroyed must not reach this
+    // half-destroyed object.
+    releaseGl();
+    if (QOpenGLContext* glContext = context())
+        disconnect(glContext, nullptr, this, nullptr);
+}
+
+void Viewport::releaseGl()
+{
+    if (!m_gl)
+        return;
+    const bool current = isValid();
+    if (current)
+        makeCurrent();
+    if (current) {
+        m_guides.release();
+        m_hair.release();
+        m_head.release();
+        m_background.release();
+    }
+    m_gl = nullptr;
+    m_glReady = false;
+    if (current)
+        doneCurrent();
+}
+
+// --- Scene --------------------------------------------------------------------------------------
+
+void Viewport::setHead(const TriangleMesh& head)
+{
+    m_head.setMesh(head);
+    const bool usable = validateMesh(head).empty();
+    const Aabb bounds = usable ? boundsOf(head) : kFallbackHeadBounds;
+    m_hasHead = usable;
+    m_headBounds = finiteBounds(bounds) ? bounds : kFallbackHeadBounds;
+    if (!m_cameraTouched)
+        m_camera.reset(m_headBounds, aspect());
+    rebuildGuides();
+    update();
+}
+
+void Viewport::setFrame(FramePtr frame)
+{
+    m_frame = std::move(frame);
+    m_frameDirty = true;
+    if (m_frame && m_frame->wind != m_wind) {
+        m_wind = m_frame->wind;
+        m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
+    }
+    update();
+}
+
+void Viewport::setWind(const glm::vec3& windMetresPerSecond)
+{
+    if (windMetresPerSecond == m_wind)
+        return;
+    m_wind = windMetresPerSecond;
+    m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
+    update();
+}
+
+void Viewport::rebuildGuides()
+{
+    m_guides.setGrid(buildGroundGrid(m_headBounds));
+    m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
+}
+
+void Viewport::setShowGrid(bool show)
+{
+    if (show == m_showGrid)
+        return;
+    m_showGrid = show;
+    update();
+}
+
+void Viewport::setHairColours(const QColor& root, const QColor& tip)
+{
+    m_hairStyle.rootColour = toVec(root);
+    m_hairStyle.tipColour = toVec(tip);
+    update();
+}
+
+QColor Viewport::hairRootColour() const
+{
+    return toColour(m_hairStyle.rootColour);
+}
+QColor Viewport::hairTipColour() const
+{
+    return toColour(m_hairStyle.tipColour);
+}
+
+void Viewport::setHairStyle(const HairStyle& style)
+{
+    m_hairStyle = style;
+    update();
+}
+
+QColor Viewport::backgroundColour(double heightFraction)
+{
+    const float t = static_cast<float>(std::clamp(heightFraction, 0.0, 1.0));
+    return toColour(kBackgroundTop + (kBackgroundBottom - kBackgroundTop) * t);
+}
+
+QString Viewport::hudText() const
+{
+    return composeHudText(m_frame.get(), m_fps, m_lastPreview ? m_lastFraction : 1.0, m_lastPreview);
+}
+
+void Viewport::setLevelOfDetail(bool enabled)
+{
+    m_levelOfDetail = enabled;
+    m_detail.reset();
+    update();
+}
+
+// --- Camera -------------------------------------------------------------------------------------
+
+float Viewport::aspect() const
+{
+    return height() > 0 ? static_cast<float>(width()) / static_cast<float>(height()) : 1.0f;
+}
+
+glm::vec2 Viewport::project(const glm::vec3& worldMetres) const
+{
+    return m_camera.project(worldMetres, glm::vec2(width(), height()));
+}
+
+void Viewport::frameHead()
+{
+    m_camera.frame(m_headBounds, aspect());
+    update();
+}
+
+void Viewport::cameraMovedByUser()
+{
+    m_cameraTouched = true;
+    update();
+}
+
+void Viewport::mousePressEvent(QMouseEvent* event)
+{
+    const Qt::KeyboardModifiers mods = event->modifiers();
+    Drag drag = Drag::None;
+    if (event->button() == Qt::MiddleButton) {
+        // Blender: middle orbits, Shift pans, Ctrl zooms. Maya: Alt + middle pans.
+        if (mods & Qt::ShiftModifier || mods & Qt::AltModifier)
+            drag = Drag::Pan;
+        else if (mods & Qt::ControlModifier)
+            drag = Drag::Dolly;
+        else
+            drag = Drag::Orbit;
+    } else if (event->button() == Qt::LeftButton && (mods & Qt::AltModifier)) {
+        drag = Drag::Orbit; // Maya
+    } else if (event->button() == Qt::RightButton && (mods & Qt::AltModifier)) {
+        drag = Drag::Dolly; // Maya
+    }
+    if (drag == Drag::None) {
+        event->ignore(); // for the editor's tools
+        return;
+    }
+    m_drag = drag;
+    m_dragButton = event->button();
+    m_lastMouse = event->position();
+    event->accept();
+}
+
+void Viewport::mouseMoveEvent(QMouseEvent* event)
+{
+    if (m_drag == Drag::None) {
+        event->ignore();
+        return;
+    }
+    const QPointF delta = event->position() - m_lastMouse;
+    m_lastMouse = event->position();
+    switch (m_drag) {
+    case Drag::Orbit:
+        m_camera.orbit(static_cast<float>(delta.x()), static_cast<float>(delta.y()));
+        break;
+    case Drag::Pan:
+        m_camera.pan(static_cast<float>(delta.x()), static_cast<float>(delta.y()), static_cast<float>(height()));
+        break;
+    case Drag::Dolly:
+        m_camera.dolly(static_cast<float>(delta.y()));
+        break;
+    case Drag::None:
+        break;
+    }
+    cameraMovedByUser();
+    event->accept();
+}
+
+void Viewport::mouseReleaseEvent(QMouseEvent* event)
+{
+    if (m_drag != Drag::None && event->button() == m_dragButton) {
+        m_drag = Drag::None;
+        m_dragButton = Qt::NoButton;
+        event->accept();
+        return;
+    }
+    event->ignore();
+}
+
+void Viewport::wheelEvent(QWheelEvent* event)
+{
+    // angleDelta is in eighths of a degree; a notch of a common mouse wheel is 15 degrees.
+    const QPoint angle = event->angleDelta();
+    const int eighths = angle.y() != 0 ? angle.y() : angle.x();
+    if (eighths == 0) {
+        event->ignore();
+        return;
+    }
+    m_camera.zoom(static_cast<float>(eighths) / 120.0f);
+    cameraMovedByUser();
+    event->accept();
+}
+
+void Viewport::keyPressEvent(QKeyEvent* event)
+{
+    if (event->key() == Qt::Key_F && !(event->modifiers() & (Qt::ControlModifier | Qt::AltModifier))) {
+        frameHead();
+        event->accept();
+        return;
+    }
+    QOpenGLWidget::keyPressEvent(event);
+}
+
+// --- GL -----------------------------------------------------------------------------------------
+
+void Viewport::initializeGL()
+{
+    // A reparented widget gets a new context: free our objects with the old one, while it is
+    // still alive, and build them anew here.
+    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &Viewport::releaseGl, Qt::UniqueConnection);
+    m_gl = nullptr;
+    m_glReady = false;
+    m_frameDirty = true;
+
+    const QSurfaceFormat actual = context()->format();
+    const bool versionOk = actual.version() >= qMakePair(3, 3) && !context()->isOpenGLES();
+    auto* functions = versionOk ? QOpenGLVersionFunctionsFactory::get<GlFunctions>(context()) : nullptr;
+    if (!functions || !functions->initializeOpenGLFunctions()) {
+        m_glStatus = tr("The 3D view needs OpenGL 3.3 core; this system offers %1.%2.")
+                         .arg(actual.majorVersion())
+                         .arg(actual.minorVersion());
+        return;
+    }
+    m_gl = functions;
+    const QByteArray renderer = reinterpret_cast<const char*>(m_gl->glGetString(GL_RENDERER));
+    m_softwareGl = renderer.contains("llvmpipe") || renderer.contains("softpipe") || renderer.contains("SwiftShader")
+        || renderer.contains("Software");
+
+#ifndef NDEBUG
+    if (actual.testOption(QSurfaceFormat::DebugContext)) {
+        auto* logger = new QOpenGLDebugLogger(this);
+        if (logger->initialize()) {
+            connect(logger, &QOpenGLDebugLogger::messageLogged, this, [](const QOpenGLDebugMessage& message) {
+                if (message.severity() & (QOpenGLDebugMessage::HighSeverity | QOpenGLDebugMessage::MediumSeverity))
+                    qWarning("GL: %s", qPrintable(message.message()));
+            });
+            logger->startLogging();
+        }
+    }
+#endif
+
+    QStringList errors;
+    if (!m_background.initialize(m_gl))
+        errors << m_background.error();
+    if (!m_head.initialize(m_gl))
+        errors << m_head.error();
+    if (!m_hair.initialize(m_gl))
+        errors << m_hair.error();
+    if (!m_guides.initialize(m_gl))
+        errors << m_guides.error();
+    m_glStatus = errors.join(QLatin1Char('\n'));
+    if (!m_glStatus.isEmpty())
+        qWarning("Viewport: %s", qPrintable(m_glStatus));
+    m_glReady = true; // a renderer whose shader failed draws nothing; the others still work
+    checkGlErrors(m_gl, "Viewport::initializeGL");
+}
+
+void Viewport::resizeGL(int, int)
+{
+    // Until the artist takes the camera, keep the head framed as the window takes its size.
+    if (!m_cameraTouched)
+        m_camera.reset(m_headBounds, aspect());
+}
+
+RenderView Viewport::renderView() const
+{
+    RenderView view;
+    const float ratio = static_cast<float>(devicePixelRatio());
+    view.viewportPixels = glm::vec2(std::max(1.0f, width() * ratio), std::max(1.0f, height() * ratio));
+    view.view = m_camera.view();
+    view.projection = m_camera.projection(aspect());
+    view.viewProjection = view.projection * view.view;
+    // Key from the upper left and in front, fill low from the right: the classic portrait setup.
+    view.keyLightView = glm::normalize(glm::vec3(-0.45f, 0.65f, 0.60f));
+    view.fillLightView = glm::normalize(glm::vec3(0.70f, -0.15f, 0.45f));
+    // The cranium's centre, not the box's (which the neck pulls down): hair wraps around it.
+    const glm::vec3 cranium{ m_headBounds.center().x, m_headBounds.max.y - 0.3f * m_headBounds.size().y,
+        m_headBounds.center().z };
+    view.headCentreView = glm::vec3(view.view * glm::vec4(cranium, 1.0f));
+    view.headRadiusMetres = 0.5f * std::max(m_headBounds.size().x, m_headBounds.size().z);
+    view.samples = m_samples;
+    return view;
+}
+
+void Viewport::measureFrameRate()
+{
+    ++m_paintCount;
+    if (m_frameClock.isValid()) {
+        const double seconds = static_cast<double>(m_frameClock.nsecsElapsed()) * 1e-9;
+        if (seconds > 0.0 && seconds < 0.5) {
+            const double rate = 1.0 / seconds;
+            // Exponential smoothing over ~10 paints: steady to read, still follows a real change.
+            m_fps = m_fps > 0.0 ? m_fps + 0.1 * (rate - m_fps) : rate;
+        }
+    }
+    m_frameClock.start();
+    if (!m_emitClock.isValid() || m_emitClock.elapsed() >= 250) {
+        m_emitClock.start();
+        emit fpsChanged(m_fps);
+    }
+}
+
+void Viewport::paintUnavailable()
+{
+    QPainter painter(this);
+    painter.fillRect(rect(), backgroundColour(0.5));
+    painter.setPen(QColor(230, 230, 230));
+    painter.drawText(rect().adjusted(20, 20, -20, -20), Qt::AlignCenter | Qt::TextWordWrap, m_glStatus);
+}
+
+void Viewport::paintGL()
+{
+    measureFrameRate();
+    if (!m_glReady || !m_gl) {
+        paintUnavailable();
+        return;
+    }
+    GlFunctions* gl = m_gl;
+    QElapsedTimer paintClock;
+    paintClock.start();
+
+    if (m_frameDirty) {
+        m_frameDirty = false;
+        if (m_frame)
+            m_hair.upload(m_frame->strands);
+        else
+            m_hair.clear();
+    }
+
+    gl->glGetIntegerv(GL_SAMPLES, &m_samples);
+    const RenderView view = renderView();
+    gl->glViewport(0, 0, static_cast<GLsizei>(view.viewportPixels.x), static_cast<GLsizei>(view.viewportPixels.y));
+    // QPainter leaves its state behind from the previous paint: set everything relied on.
+    gl->glDisable(GL_SCISSOR_TEST);
+    gl->glDisable(GL_STENCIL_TEST);
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl->glDepthMask(GL_TRUE);
+    gl->glDepthFunc(GL_LESS);
+    gl->glClearColor(kBackgroundBottom.x, kBackgroundBottom.y, kBackgroundBottom.z, 1.0f);
+    gl->glClearDepth(1.0);
+    gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+    m_background.draw(kBackgroundTop, kBackgroundBottom);
+    m_head.draw(view);
+    const bool refining = m_refining;
+    m_refining = false;
+    const bool preview = m_levelOfDetail && !refining && m_detail.previewing();
+    const float fraction = preview ? m_detail.fraction(m_hair.strandCount()) : 1.0f;
+    m_hair.draw(view, m_hairStyle, fraction, preview);
+    m_guides.drawWindArrow(view);
+    if (m_showGrid)
+        m_guides.drawGrid(view);
+    gl->glDisable(GL_DEPTH_TEST);
+    checkGlErrors(gl, "Viewport::paintGL");
+
+    // A software rasteriser works when flushed: finish here so the time is the paint's real cost
+    // (the compositor would wait for it anyway). On a graphics card this would only stall the
+    // pipeline, and there the detail never needs to drop.
+    if (m_softwareGl)
+        gl->glFinish();
+    m_lastPaintMs = static_cast<double>(paintClock.nsecsElapsed()) * 1e-6;
+    const std::size_t strands = m_hair.strandCount();
+    m_lastFraction = strands > 0 ? static_cast<float>(m_hair.lastDrawnStrands()) / static_cast<float>(strands) : 1.0f;
+    m_lastPreview = preview;
+    if (m_levelOfDetail && !refining)
+        m_detail.paintTook(m_lastPaintMs, preview, fraction, strands);
+    if (preview)
+        m_refineTimer.start();
+
+    QPainter painter(this);
+    const double gizmoSize = 76.0;
+    drawAxisGizmo(painter, QRectF(8.0, height() - gizmoSize - 8.0, gizmoSize, gizmoSize), view.view);
+    drawHud(painter, hudText());
+}
+
+} // namespace wisp

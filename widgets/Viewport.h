@@ -1,0 +1,159 @@
+#pragma once
+// The editor's 3D viewport: the head, the newest simulation frame's hair, a ground grid, the wind
+// arrow, an axis gizmo and a heads-up line, under an orbit camera driven as in DCC tools:
+//   Alt + left drag, or middle drag     orbit
+//   Shift + middle drag (or Alt+middle)  pan
+//   wheel, Ctrl + middle drag, Alt + right drag   zoom toward the pivot
+//   F                                    frame the head
+// Left clicks without Alt are left to the editor's tools (the events are ignored here).
+//
+// It draws whatever FramePtr it was given last and never touches simulation state: frames are
+// immutable and shared, so drawing holds no lock.
+//
+// OpenGL 3.3 core with 4x MSAA, asked of this widget only (the application's default format is
+// left alone). Without such a context the viewport paints an explanation instead of crashing.
+//
+// Thread: GUI, every member function.
+
+#include "sim/Frame.h"
+#include "sim/TriangleMesh.h"
+#include "widgets/BackgroundRenderer.h"
+#include "widgets/GlSupport.h"
+#include "widgets/GuideRenderer.h"
+#include "widgets/HairDetail.h"
+#include "widgets/HairRenderer.h"
+#include "widgets/HeadRenderer.h"
+#include "widgets/OrbitCamera.h"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <QColor>
+#include <QElapsedTimer>
+#include <QOpenGLWidget>
+#include <QPointF>
+#include <QTimer>
+
+#include <cstdint>
+
+namespace wisp {
+
+class Viewport : public QOpenGLWidget {
+    Q_OBJECT
+public:
+    explicit Viewport(QWidget* parent = nullptr);
+    ~Viewport() override; // makes the context current and frees the GL objects
+
+    // Copies the head; uploads it on the next paint. Until the artist moves the camera, the view
+    // follows the head (start-up 3/4 view, framed).
+    void setHead(const TriangleMesh& head);
+    // The newest simulation frame (null: no hair). Keeps the shared_ptr (no copy of the points)
+    // and schedules a repaint; the points are streamed to the GPU in that paint.
+    void setFrame(FramePtr frame);
+    FramePtr frame() const { return m_frame; }
+    // For the wind arrow. Frames carry their wind too; whichever arrived last is shown.
+    void setWind(const glm::vec3& windMetresPerSecond);
+    glm::vec3 wind() const { return m_wind; }
+
+    OrbitCamera& camera() { return m_camera; }
+    const OrbitCamera& camera() const { return m_camera; }
+    Aabb headBounds() const { return m_headBounds; }
+    // Where a world point lands in this widget, logical pixels from the top-left corner.
+    glm::vec2 project(const glm::vec3& worldMetres) const;
+
+    bool showGrid() const { return m_showGrid; }
+    void setHairColours(const QColor& root, const QColor& tip);
+    QColor hairRootColour() const;
+    QColor hairTipColour() const;
+    void setHairStyle(const HairStyle& style); // widths, taper, subdivision; colours included
+    const HairStyle& hairStyle() const { return m_hairStyle; }
+
+    // Level of detail while things move (see HairDetail): on by default; off draws every strand
+    // in every paint. It only ever engages where painting a frame takes longer than its budget.
+    void setLevelOfDetail(bool enabled);
+    bool levelOfDetail() const { return m_levelOfDetail; }
+    float lastDrawnFraction() const { return m_lastFraction; } // of the strands, in the last paint
+    bool lastPaintWasPreview() const { return m_lastPreview; }
+    double lastPaintMilliseconds() const { return m_lastPaintMs; } // GL work of the last paint
+    bool softwareRenderer() const { return m_softwareGl; }
+
+    // The heads-up line as it is drawn (composed from the current frame and frame rate).
+    QString hudText() const;
+    // Paints per second, smoothed; pauses of more than half a second (nothing to draw) are not
+    // counted as slow drawing.
+    double framesPerSecond() const { return m_fps; }
+    std::uint64_t paintCount() const { return m_paintCount; } // paintGL calls so far
+    // The background at a height of the view: 0 is the top edge, 1 the bottom.
+    static QColor backgroundColour(double heightFraction);
+    // Empty when GL is ready; otherwise why nothing 3D is drawn (no 3.3 context, a shader error).
+    QString glStatus() const { return m_glStatus; }
+    int samples() const { return m_samples; } // MSAA samples of the framebuffer, known after a paint
+
+public slots:
+    void frameHead(); // F: fit the camera to the head's bounds, keeping its direction
+    void setShowGrid(bool show);
+
+signals:
+    void fpsChanged(double framesPerSecond);
+
+protected:
+    void initializeGL() override;
+    void resizeGL(int width, int height) override;
+    void paintGL() override;
+    void mousePressEvent(QMouseEvent* event) override;
+    void mouseMoveEvent(QMouseEvent* event) override;
+    void mouseReleaseEvent(QMouseEvent* event) override;
+    void wheelEvent(QWheelEvent* event) override;
+    void keyPressEvent(QKeyEvent* event) override;
+
+private:
+    enum class Drag { None, Orbit, Pan, Dolly };
+
+    void releaseGl();
+    RenderView renderView() const;
+    float aspect() const;
+    void measureFrameRate();
+    void rebuildGuides();
+    void cameraMovedByUser();
+    void paintUnavailable();
+
+    OrbitCamera m_camera;
+    bool m_cameraTouched = false; // the artist moved it: stop following head and window changes
+    Aabb m_headBounds;
+    bool m_hasHead = false;
+
+    FramePtr m_frame;
+    bool m_frameDirty = false; // m_frame not yet streamed to the GPU
+    glm::vec3 m_wind{ 0.0f };
+    bool m_showGrid = true;
+    HairStyle m_hairStyle;
+
+    GlFunctions* m_gl = nullptr;
+    bool m_glReady = false;
+    QString m_glStatus;
+    int m_samples = 0;
+    BackgroundRenderer m_background;
+    HeadRenderer m_head;
+    HairRenderer m_hair;
+    GuideRenderer m_guides;
+
+    Drag m_drag = Drag::None;
+    Qt::MouseButton m_dragButton = Qt::NoButton;
+    QPointF m_lastMouse;
+
+    HairDetail m_detail;
+    bool m_levelOfDetail = true;
+    bool m_refining = false; // this paint draws every strand: things stopped moving
+    QTimer m_refineTimer; // fires when no paint followed a reduced one for a while
+    float m_lastFraction = 1.0f;
+    bool m_lastPreview = false;
+    double m_lastPaintMs = 0.0;
+    bool m_softwareGl = false; // Mesa llvmpipe and friends: paints are timed with glFinish
+
+    QElapsedTimer m_frameClock; // time between paints
+    QElapsedTimer m_emitClock; // time since fpsChanged was last emitted
+    double m_fps = 0.0;
+    std::uint64_t m_paintCount = 0;
+};
+
+} // namespace wisp

@@ -1,0 +1,30 @@
+#pragma once
+// What the viewport paints over its GL content with QPainter: the heads-up line and the axis gizmo.
+//
+// Thread: GUI.
+
+#include "sim/Frame.h"
+
+#include <glm/mat4x4.hpp>
+
+#include <QRectF>
+#include <QString>
+
+class QPainter;
+
+namespace wisp {
+
+// "fps 60 · sim 0.12 ms/step · 4582 strands · 7632 particles", then " · slow motion x0.5" when the
+// simulation runs slower than real time on purpose, " · falling behind" when it cannot keep up and
+// " · preview" while the hair is drawn with less detail (level of detail, see HairDetail), with the
+// fraction of strands drawn when that is not all of them: " · preview 40%".
+QString composeHudText(const Frame* frame, double framesPerSecond, double drawnFraction = 1.0, bool preview = false);
+
+// Top-left corner, light text on a translucent dark panel so it reads on any background.
+void drawHud(QPainter& painter, const QString& text);
+
+// World X (red), Y (green) and Z (blue) as the camera sees them, in `area` (logical pixels).
+// Axes pointing away from the viewer are drawn first and dimmer.
+void drawAxisGizmo(QPainter& painter, const QRectF& area, const glm::mat4& view);
+
+} // namespace wisp

@@ -1,0 +1,373 @@
+#include "app/editor/SimulationHost.h"
+
+#include "app/editor/SimulationHostPacer.h"
+#include "sim/HairSimulation.h"
+#include "sim/SolverSettings.h"
+
+#include <QMetaObject>
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <span>
+#include <string>
+#include <utility>
+
+namespace wisp {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Thread: any. One core stays with the GUI so that drawing and input never queue behind the solver.
+int solverThreadsFor(unsigned cores) { return std::max(1, static_cast<int>(cores) - 1); }
+
+// Thread: any. True when `a` and `b` build the same groom: the same Groom-group parameters and the
+// same choice of simulated strands. Everything else is a force or solver setting the running
+// solver takes without a regroom.
+bool sameGroom(const ParameterValues& a, const ParameterValues& b)
+{
+    for (const ParameterInfo& p : allParameters())
+        if ((p.group == ParamGroup::Groom || p.id == Param::SimulateAllStrands) && a.get(p.id) != b.get(p.id))
+            return false;
+    return true;
+}
+
+}  // namespace
+
+// Everything the simulation thread owns. It lives on that thread's stack, so nothing else can
+// reach the solver: the GUI thread only fills SimulationHost::m_inbox.
+//
+// Thread: simulation, every member.
+class SimulationHost::Loop {
+public:
+    explicit Loop(SimulationHost& host) : m_host(host), m_epoch(Clock::now()) {}
+
+    // Thread: simulation. Takes requests and steps until the host stops.
+    void run()
+    {
+        Inbox taken;
+        while (takeRequests(taken)) {
+            // A groom takes a while: a host being destroyed meanwhile should not wait for one more.
+            if (taken.scene && !stopRequested())
+                adoptScene(std::move(*taken.scene));
+            if (taken.parameters && !stopRequested())
+                adoptParameters(*taken.parameters);
+            if (taken.playing != m_playing) {
+                m_playing = taken.playing;
+                if (m_playing)
+                    m_pacer.restart(now());
+            }
+            for (Action action : taken.actions) {
+                if (action == Action::Step)
+                    step(false);
+                else
+                    resetToRest();
+            }
+            if (m_playing && m_sim && now() >= m_pacer.dueSeconds())
+                step(true);
+        }
+    }
+
+private:
+    // Thread: simulation. Seconds since the loop started (the pacer's clock).
+    double now() const { return std::chrono::duration<double>(Clock::now() - m_epoch).count(); }
+
+    // Thread: simulation. Sleeps until a request arrives or, while playing, the next step is due;
+    // then moves the requests out (the lock is held only for that). False when the host stops.
+    bool takeRequests(Inbox& taken)
+    {
+        taken.scene.reset();
+        taken.parameters.reset();
+        taken.actions.clear();
+        std::unique_lock lock(m_host.m_mutex);
+        Inbox& inbox = m_host.m_inbox;
+        const auto ready = [&] {
+            return inbox.stopping || inbox.scene || inbox.parameters || !inbox.actions.empty() ||
+                   inbox.playing != m_playing;
+        };
+        if (m_playing && m_sim) {
+            const auto due = m_epoch + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(m_pacer.dueSeconds()));
+            m_host.m_wake.wait_until(lock, due, ready);
+        } else {
+            m_host.m_wake.wait(lock, ready);
+        }
+        if (inbox.stopping)
+            return false;
+        taken.scene = std::exchange(inbox.scene, std::nullopt);
+        taken.parameters = std::exchange(inbox.parameters, std::nullopt);
+        taken.actions.swap(inbox.actions);
+        taken.playing = inbox.playing;
+        return true;
+    }
+
+    // Thread: simulation.
+    bool stopRequested() const
+    {
+        std::lock_guard lock(m_host.m_mutex);
+        return m_host.m_inbox.stopping;
+    }
+
+    // Thread: simulation. A new head: groom it, or keep the previous scene and say why not.
+    void adoptScene(Scene scene)
+    {
+        if (std::string error = groom(scene.head, scene.growthWeights, scene.values); !error.empty()) {
+            m_host.postError(error);
+            return;
+        }
+        m_growthWeights = std::move(scene.growthWeights);
+    }
+
+    // Thread: simulation. New parameters: regroom if the groom's own parameters changed, otherwise
+    // (and also when that regroom is refused) hand the forces to the running solver.
+    void adoptParameters(const ParameterValues& values)
+    {
+        if (!m_sim)
+            return;  // nothing runs yet; the next scene brings its own values
+        const bool refusedBefore = m_refusedGroom && sameGroom(values, *m_refusedGroom);
+        if (!sameGroom(values, m_groomedWith) && !refusedBefore) {
+            const std::string error = groom(m_sim->head(), m_growthWeights, values);
+            if (error.empty())
+                return;
+            m_refusedGroom = values;  // do not regroom (and report) the same refusal on every force change
+            m_host.postError(error);
+        }
+        const bool newRequest = values.getInt(Param::Substeps) != m_pacer.requestedSubsteps();
+        const int substeps = newRequest ? values.getInt(Param::Substeps) : m_pacer.substeps();
+        if (std::string error = m_sim->applyForces(withSubsteps(values, substeps)); !error.empty()) {
+            m_host.postError(error);
+            return;
+        }
+        m_values = values;
+        if (newRequest)
+            m_pacer.setRequestedSubsteps(substeps);
+        m_host.m_effectiveSubsteps.store(m_pacer.substeps());
+    }
+
+    // Thread: simulation. Builds a new HairSimulation and swaps it in only when it succeeded, so a
+    // refusal leaves the running one untouched. `head` may belong to the running simulation.
+    std::string groom(const TriangleMesh& head, std::span<const float> growthWeights, const ParameterValues& values)
+    {
+        auto next = std::make_unique<HairSimulation>(m_host.m_solverThreads);
+        try {
+            if (std::string error = next->setup(head, growthWeights, values); !error.empty())
+                return error;
+        } catch (const std::exception& e) {
+            // sim/ does not throw, but a groom can ask for more memory than there is.
+            return std::string("groom: ") + e.what();
+        }
+        m_sim = std::move(next);
+        m_values = values;
+        m_groomedWith = values;
+        m_refusedGroom.reset();
+        ++m_groomVersion;
+        m_step = 0;
+        m_simulatedSeconds = 0.0;
+        m_pacer.setRequestedSubsteps(values.getInt(Param::Substeps));
+        m_host.m_effectiveSubsteps.store(m_pacer.substeps());
+        if (m_playing)
+            m_pacer.restart(now());  // the groom's duration is not the solver falling behind
+        m_host.publish(makeFrame());
+        m_host.postSceneReady();
+        return {};
+    }
+
+    // Thread: simulation. One solver step and its frame. A paced step (playing) is timed against the
+    // wall clock and may change the substeps for the next one; stepOnce's is not paced.
+    void step(bool paced)
+    {
+        if (!m_sim)
+            return;
+        const double start = now();
+        m_sim->step();
+        const double solverSeconds = now() - start;
+        const double timeStep = m_sim->solver().settings().timeStepSeconds;
+        ++m_step;
+        m_simulatedSeconds += timeStep;
+        std::shared_ptr<Frame> frame = makeFrame();
+        frame->stepMilliseconds = solverSeconds * 1000.0;
+        if (paced) {
+            const SimulationHostPacer::StepReport report = m_pacer.finishStep(start, now(), solverSeconds, timeStep);
+            frame->fallingBehind = report.fallingBehind;
+            frame->timeScale = report.timeScale;
+            if (report.substepsChanged) {
+                // The requested values were accepted before, so fewer substeps are too.
+                m_sim->applyForces(withSubsteps(m_values, m_pacer.substeps()));
+                m_host.m_effectiveSubsteps.store(m_pacer.substeps());
+            }
+        }
+        m_host.publish(std::move(frame));
+    }
+
+    // Thread: simulation.
+    void resetToRest()
+    {
+        if (!m_sim)
+            return;
+        m_sim->resetToRest();
+        m_step = 0;
+        m_simulatedSeconds = 0.0;
+        m_host.publish(makeFrame());
+    }
+
+    // Thread: simulation. A frame of the solver's current state; not yet shared with anyone.
+    std::shared_ptr<Frame> makeFrame() const
+    {
+        auto frame = std::make_shared<Frame>();
+        frame->step = m_step;
+        frame->groomVersion = m_groomVersion;
+        frame->simulatedSeconds = m_simulatedSeconds;
+        m_sim->buildFrame(frame->strands);
+        frame->simulatedStrands = m_sim->solver().strandCount();
+        frame->simulatedParticles = m_sim->solver().particleCount();
+        frame->wind = solverSettingsFrom(m_values).wind;
+        frame->fallingBehind = m_pacer.substeps() < m_pacer.requestedSubsteps();
+        return frame;
+    }
+
+    // Thread: any. `values` with the solver's substeps replaced by what the machine affords now.
+    static ParameterValues withSubsteps(ParameterValues values, int substeps)
+    {
+        values.set(Param::Substeps, substeps);
+        return values;
+    }
+
+    SimulationHost& m_host;
+    const Clock::time_point m_epoch;
+    std::unique_ptr<HairSimulation> m_sim;  // null until the first groom succeeds
+    std::vector<float> m_growthWeights;     // of m_sim's head, for regrooms
+    ParameterValues m_values;               // what the running solver was given (as requested)
+    ParameterValues m_groomedWith;          // what m_sim's groom was built from
+    std::optional<ParameterValues> m_refusedGroom;
+    SimulationHostPacer m_pacer;
+    bool m_playing = false;
+    std::uint64_t m_step = 0;
+    std::uint64_t m_groomVersion = 0;
+    double m_simulatedSeconds = 0.0;  // since the groom or the last reset
+};
+
+SimulationHost::SimulationHost(QObject* parent)
+    : QObject(parent), m_solverThreads(solverThreadsFor(std::thread::hardware_concurrency()))
+{
+    m_thread = std::thread([this] { Loop(*this).run(); });
+}
+
+SimulationHost::~SimulationHost()
+{
+    {
+        std::lock_guard lock(m_mutex);
+        m_inbox.stopping = true;
+    }
+    m_wake.notify_all();
+    if (m_thread.joinable())
+        m_thread.join();
+    // Frame and error signals still queued for this object are dropped by ~QObject.
+}
+
+void SimulationHost::setScene(TriangleMesh head, std::vector<float> growthWeights, ParameterValues values)
+{
+    std::optional<Scene> superseded;  // freed after unlocking: the simulation thread never waits on a free
+    {
+        std::lock_guard lock(m_mutex);
+        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), std::move(growthWeights), values});
+        m_inbox.parameters.reset();  // the scene's values are newer
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::setParameters(const ParameterValues& values)
+{
+    {
+        std::lock_guard lock(m_mutex);
+        // Folded into a scene still waiting: one groom with the newest values instead of two.
+        if (m_inbox.scene)
+            m_inbox.scene->values = values;
+        else
+            m_inbox.parameters = values;
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::play()
+{
+    {
+        std::lock_guard lock(m_mutex);
+        if (m_inbox.playing)
+            return;
+        m_inbox.playing = true;
+        m_playing.store(true);
+    }
+    m_wake.notify_one();
+    emit playingChanged(true);
+}
+
+void SimulationHost::pause()
+{
+    {
+        std::lock_guard lock(m_mutex);
+        if (!m_inbox.playing)
+            return;
+        m_inbox.playing = false;
+        m_playing.store(false);
+    }
+    m_wake.notify_one();
+    emit playingChanged(false);
+}
+
+bool SimulationHost::isPlaying() const { return m_playing.load(); }
+
+void SimulationHost::stepOnce()
+{
+    {
+        std::lock_guard lock(m_mutex);
+        if (m_inbox.playing)
+            return;
+        m_inbox.actions.push_back(Action::Step);
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::resetToRest()
+{
+    {
+        std::lock_guard lock(m_mutex);
+        m_inbox.actions.push_back(Action::Reset);
+    }
+    m_wake.notify_one();
+}
+
+FramePtr SimulationHost::latestFrame() const { return m_latest.load(); }
+
+std::uint64_t SimulationHost::publishedFrames() const { return m_published.load(); }
+
+int SimulationHost::effectiveSubsteps() const { return m_effectiveSubsteps.load(); }
+
+void SimulationHost::publish(FramePtr frame)
+{
+    m_latest.store(std::move(frame));
+    m_published.fetch_add(1);
+    // One pending signal at most: a GUI busy for several frames is told once and draws the newest.
+    if (!m_frameSignalPending.exchange(true)) {
+        QMetaObject::invokeMethod(
+            this,
+            [this] {
+                m_frameSignalPending.store(false);  // before emitting: a frame published meanwhile signals again
+                emit frameReady();
+            },
+            Qt::QueuedConnection);
+    }
+}
+
+void SimulationHost::postError(const std::string& message)
+{
+    QMetaObject::invokeMethod(
+        this, [this, text = QString::fromStdString(message)] { emit errorOccurred(text); }, Qt::QueuedConnection);
+}
+
+void SimulationHost::postSceneReady()
+{
+    QMetaObject::invokeMethod(this, [this] { emit sceneReady(); }, Qt::QueuedConnection);
+}
+
+}  // namespace wisp

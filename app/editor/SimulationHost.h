@@ -1,0 +1,133 @@
+#pragma once
+// The editor's simulation thread. It owns the HairSimulation (groom, collider, solver) and is the
+// only thread that touches it; the GUI thread talks to it through queued messages and reads back
+// immutable frames, so the GUI never waits for the solver (see DESIGN.md, "Shape of the program").
+//
+// - Messages: setScene, setParameters, play/pause, stepOnce and resetToRest only record a request
+//   under a mutex held for a few pointer moves and wake the thread. Scene and parameters coalesce:
+//   only the newest of each matters, and parameters sent while a scene is still waiting are folded
+//   into that scene (one groom, not two).
+// - Pace: while playing, one step per time_step of wall clock, on a fixed cadence, sleeping on a
+//   condition variable in between (never spinning). A solver that cannot keep up is not chased:
+//   frames say fallingBehind with timeScale < 1 (slow motion), and if that persists the substeps
+//   are lowered (never below 1) until a step fits, then given back once there is headroom; frames
+//   keep saying fallingBehind while fewer substeps than requested run (SimulationHostPacer.h).
+// - Frames: a new Frame per step (and after a groom, a reset or stepOnce), published by swapping
+//   one atomic shared_ptr; nothing writes a frame after that.
+// - Regroom (a new scene, or a change of a Groom-group parameter or of simulate_all_strands) runs
+//   on the simulation thread into a new HairSimulation: the previous frame stays visible meanwhile,
+//   and a refused groom leaves the previous scene running (errorOccurred says why).
+//
+// Thread: the object lives on the GUI thread; each function says where it runs.
+
+#include "sim/Frame.h"
+#include "sim/Parameters.h"
+#include "sim/TriangleMesh.h"
+
+#include <QObject>
+#include <QString>
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+namespace wisp {
+
+class SimulationHost : public QObject {
+    Q_OBJECT
+public:
+    // Thread: GUI. Starts the simulation thread, idle until the first scene arrives.
+    explicit SimulationHost(QObject* parent = nullptr);
+    // Thread: GUI. Stops and joins the simulation thread: at once when it is waiting or stepping,
+    // after the groom when it is regrooming (a default-scene groom takes a fraction of a second);
+    // queued work that has not started is dropped.
+    ~SimulationHost() override;
+
+    // Thread: GUI; returns at once. Grooms `head` where `growthWeights` allow (one weight per vertex)
+    // with `values`, on the simulation thread; sceneReady and a step-0 frame follow, or
+    // errorOccurred and the previous scene keeps running.
+    void setScene(TriangleMesh head, std::vector<float> growthWeights, ParameterValues values);
+    // Thread: GUI; returns at once. Forces and solver parameters apply from the next step; a change
+    // of any Groom-group parameter or of simulate_all_strands regrooms on the simulation thread
+    // (the previous frame stays visible meanwhile). A groom refused once is not retried until its
+    // groom parameters change again.
+    void setParameters(const ParameterValues& values);
+    // Thread: GUI. Start and stop stepping in real time; playingChanged follows a change at once.
+    // A step already running when pause() is called still publishes its frame; none after it.
+    void play();
+    void pause();
+    // Thread: any.
+    bool isPlaying() const;
+    // Thread: GUI. One step while paused (ignored while playing), published as one frame.
+    void stepOnce();
+    // Thread: GUI. Every particle back at its rest shape, step 0, published as one frame; playing
+    // continues from rest if it was playing.
+    void resetToRest();
+
+    // Thread: any. The newest published frame, null before the first groom; copies one pointer
+    // (std::atomic<std::shared_ptr>), never waits for the solver.
+    FramePtr latestFrame() const;
+    // Thread: any. Frames published since construction.
+    std::uint64_t publishedFrames() const;
+    // Thread: any. Substeps the solver runs now: the requested substeps, or fewer while the machine
+    // cannot keep real time (0 before the first groom).
+    int effectiveSubsteps() const;
+    // Thread: any. Threads the solver uses: one per core less one kept for the GUI, at least 1.
+    int solverThreadCount() const { return m_solverThreads; }
+
+signals:
+    // Delivered on the GUI thread: the simulation thread posts one queued call per frame unless one
+    // is already pending, so a slow GUI gets one signal for many frames and reads latestFrame().
+    // (Receivers may still connect with Qt::QueuedConnection; it only adds one event-loop turn.)
+    void frameReady();
+    // Emitted on the GUI thread from play() and pause().
+    void playingChanged(bool playing);
+    // Delivered on the GUI thread: a refused groom or parameter set; the previous state keeps running.
+    void errorOccurred(const QString& message);
+    // Delivered on the GUI thread after a (re)groom completed and its step-0 frame was published.
+    void sceneReady();
+
+private:
+    class Loop;
+    friend class Loop;
+
+    struct Scene {
+        TriangleMesh head;
+        std::vector<float> growthWeights;
+        ParameterValues values;
+    };
+    enum class Action { Step, Reset };
+    // Requests from the GUI thread not yet taken by the simulation thread (guarded by m_mutex).
+    struct Inbox {
+        std::optional<Scene> scene;
+        std::optional<ParameterValues> parameters;
+        std::vector<Action> actions;  // in the order asked
+        bool playing = false;
+        bool stopping = false;
+    };
+
+    // Thread: simulation.
+    void publish(FramePtr frame);
+    void postError(const std::string& message);
+    void postSceneReady();
+
+    const int m_solverThreads;
+    mutable std::mutex m_mutex;
+    std::condition_variable m_wake;
+    Inbox m_inbox;
+
+    std::atomic<bool> m_playing{false};  // mirrors m_inbox.playing for lock-free reads
+    std::atomic<std::shared_ptr<const Frame>> m_latest;
+    std::atomic<std::uint64_t> m_published{0};
+    std::atomic<bool> m_frameSignalPending{false};
+    std::atomic<int> m_effectiveSubsteps{0};
+
+    std::thread m_thread;  // last: started once everything it reads exists
+};
+
+}  // namespace wisp

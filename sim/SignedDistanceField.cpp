@@ -1,6 +1,7 @@
 #include "sim/SignedDistanceField.h"
 
 #include "sim/MeshBvh.h"  // closestPointOnTriangle
+#include "sim/ThreadName.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -89,7 +90,10 @@ bool parallelFor(int threadCount, int count, Fn&& fn)
     try {
         pool.reserve(static_cast<std::size_t>(threads - 1));
         for (int t = 1; t < threads; ++t)
-            pool.emplace_back(worker);
+            pool.emplace_back([&worker] {
+                nameThisThread("wisp-sdf");
+                worker();
+            });
     } catch (...) {
         // No more threads to be had: the ones running (and this one) finish the work.
     }

@@ -1,5 +1,7 @@
 #include "sim/ThreadPool.h"
 
+#include "sim/ThreadName.h"
+
 #include <algorithm>
 
 namespace wisp {
@@ -9,7 +11,10 @@ ThreadPool::ThreadPool(int threadCount)
     if (threadCount <= 0)
         threadCount = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     for (int i = 1; i < threadCount; ++i)
-        m_workers.emplace_back([this] { workerLoop(); });
+        m_workers.emplace_back([this] {
+            nameThisThread("wisp-solver");
+            workerLoop();
+        });
 }
 
 ThreadPool::~ThreadPool()

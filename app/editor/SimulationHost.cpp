@@ -3,6 +3,7 @@
 #include "app/editor/SimulationHostPacer.h"
 #include "sim/HairSimulation.h"
 #include "sim/SolverSettings.h"
+#include "sim/ThreadName.h"
 
 #include <QMetaObject>
 
@@ -250,7 +251,10 @@ private:
 SimulationHost::SimulationHost(QObject* parent)
     : QObject(parent), m_solverThreads(solverThreadsFor(std::thread::hardware_concurrency()))
 {
-    m_thread = std::thread([this] { Loop(*this).run(); });
+    m_thread = std::thread([this] {
+        nameThisThread("wisp-sim");
+        Loop(*this).run();
+    });
 }
 
 SimulationHost::~SimulationHost()

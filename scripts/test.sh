@@ -11,7 +11,6 @@ scripts/setup.sh "$@"
 
 build_dir=build
 [ "${1:-}" = "--sanitize" ] && build_dir=build-asan
-export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 cd "$build_dir"
 xvfb-run -a -s "-screen 0 1600x1000x24" ctest --output-on-failure -j2 --timeout 600

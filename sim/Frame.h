@@ -9,14 +9,23 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace wisp {
+
+// How a region's hair looks: sRGB 0..1 at the root and the tip.
+struct StrandLook {
+    glm::vec3 rootColour{0.0f};
+    glm::vec3 tipColour{0.0f};
+};
 
 struct Frame {
     std::uint64_t step = 0;          // steps taken since the groom was (re)built or reset
     std::uint64_t groomVersion = 0;  // changes when the strands' count or layout changes
     double simulatedSeconds = 0.0;
     HairCurves strands;              // every drawn strand, world space, metres; members rebuilt from keys
+    std::vector<StrandLook> looks;              // one per growing region
+    std::vector<std::uint16_t> lookOfStrand;    // per drawn strand, index into looks; empty: the viewport's colours
     std::size_t simulatedStrands = 0;
     std::size_t simulatedParticles = 0;
     double stepMilliseconds = 0.0;   // wall-clock time of the solver step that made this frame

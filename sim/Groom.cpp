@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <map>
+#include <tuple>
 #include <unordered_map>
 
 namespace wisp {
@@ -232,34 +234,207 @@ float clumpAt(float u, float clumpDegree, float clumpRate)
     return clumpDegree * x * x * (3.0f - 2.0f * x);  // smoothstep: no kink where clumping starts
 }
 
-GroomResult finishGroom(Groom groom, const TriangleMesh& head, const SignedDistanceField* collider)
+// The normal of the head at a surface point, interpolated from vertex normals.
+glm::vec3 normalAt(const TriangleMesh& head, const std::vector<glm::vec3>& normals, const SurfacePoint& sp)
 {
-    const std::vector<glm::vec3>& rootPositions = groom.rootPositions;
-    const GroomSettings& s = groom.settings;
-    const std::vector<glm::vec3> normals = vertexNormals(head);
-    const float partX = boundsOf(head).center().x;  // the head's mid-plane, where the part runs
-    const auto points = static_cast<std::uint32_t>(s.segments + 1);
+    const glm::uvec3 tri = head.triangles[sp.triangle];
+    const float b0 = 1.0f - sp.barycentric.x - sp.barycentric.y;
+    const glm::vec3 n = b0 * normals[tri.x] + sp.barycentric.x * normals[tri.y] + sp.barycentric.y * normals[tri.z];
+    return glm::length(n) > 1e-6f ? glm::normalize(n) : glm::vec3(0, 1, 0);
+}
+
+// The strands of each wisp, in strand order.
+std::vector<std::vector<std::uint32_t>> membersOfWisps(const Groom& groom)
+{
+    std::vector<std::vector<std::uint32_t>> members(groom.wispCount());
+    for (std::uint32_t i = 0; i < groom.strandCount(); ++i)
+        members[groom.wispOf[i]].push_back(i);
+    return members;
+}
+
+void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::uint32_t> members,
+                      std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out);
+
+// Everything of a groom the layout of its pores cannot tell: what the head looks like there and
+// the rest shapes. Rest shapes of wisps equal to one of `previous` (same region, site, members and
+// settings) are copied from it instead of being built again.
+struct RestContext {
+    const TriangleMesh& head;
+    const std::vector<glm::vec3>& normals;
+    float partX;
+    const SignedDistanceField* collider;
+};
+
+std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* previous)
+{
+    const auto points = static_cast<std::uint32_t>(groom.settings.segments + 1);
     groom.rest.clear();
     groom.rest.offsets.reserve(groom.roots.size() + 1);
     groom.rest.positions.reserve(groom.roots.size() * points);
     for (std::size_t i = 0; i < groom.roots.size(); ++i)
         groom.rest.addStrand(points);
+    const std::vector<std::vector<std::uint32_t>> members = membersOfWisps(groom);
 
-    // Key rest shapes first, then members from them.
-    for (std::size_t w = 0; w < groom.keyStrand.size(); ++w) {
-        const std::uint32_t k = groom.keyStrand[w];
-        const SurfacePoint& sp = groom.roots[k];
-        const glm::uvec3 tri = head.triangles[sp.triangle];
-        const float b0 = 1.0f - sp.barycentric.x - sp.barycentric.y;
-        glm::vec3 n = b0 * normals[tri.x] + sp.barycentric.x * normals[tri.y] + sp.barycentric.y * normals[tri.z];
-        n = glm::length(n) > 1e-6f ? glm::normalize(n) : glm::vec3(0, 1, 0);
-        const float phase = glm::two_pi<float>() * randomUnit(s.seed, CurlPhase, groom.rootIds[k]);
-        buildKeyRest(rootPositions[k], n, partX, groom.lengths[k], s.segments, s.curlRadiusMetres, s.curlTurnsPerMetre, phase,
-                     s.hairOffsetMetres, collider, groom.rest.strandForWrite(k));
+    // Previous wisps by (region id, site).
+    std::unordered_map<std::uint64_t, std::uint32_t> previousWisp;
+    std::vector<std::vector<std::uint32_t>> previousMembers;
+    if (previous && previous->settings.segments == groom.settings.segments &&
+        previous->settings.hairOffsetMetres == groom.settings.hairOffsetMetres && previous->wispCount() > 0) {
+        previousMembers = membersOfWisps(*previous);
+        for (std::uint32_t w = 0; w < previous->wispCount(); ++w) {
+            const std::uint64_t region = previous->regionIds[previous->regionOfStrand[previous->keyStrand[w]]];
+            previousWisp.emplace((region << 32) | previous->siteOfWisp[w], w);
+        }
     }
-    const HairCurves keys = keyRestCurves(groom);
-    buildMembers(groom, keys.positions, glm::mat3(1.0f), groom.rest);
-    return {std::move(groom), {}};
+    auto sameSettings = [](const GroomSettings& a, const GroomSettings& b) {
+        return a.densityPerCm2 == b.densityPerCm2 && a.wispSize == b.wispSize && a.clumpDegree == b.clumpDegree &&
+               a.clumpRate == b.clumpRate && a.lengthMetres == b.lengthMetres &&
+               a.lengthVariation == b.lengthVariation && a.curlRadiusMetres == b.curlRadiusMetres &&
+               a.curlTurnsPerMetre == b.curlTurnsPerMetre && a.seed == b.seed;
+    };
+    // A wisp is reusable when it has the same members with the same identities.
+    auto reusable = [&](std::size_t w) -> std::int64_t {
+        if (previousWisp.empty())
+            return -1;
+        const std::uint64_t region = groom.regionIds[groom.regionOfStrand[groom.keyStrand[w]]];
+        const auto it = previousWisp.find((region << 32) | groom.siteOfWisp[w]);
+        if (it == previousWisp.end())
+            return -1;
+        const std::uint32_t pw = it->second;
+        if (!sameSettings(groom.settingsOfWisp(w), previous->settingsOfWisp(pw)))
+            return -1;
+        const std::vector<std::uint32_t>& now = members[w];
+        const std::vector<std::uint32_t>& before = previousMembers[pw];
+        if (now.size() != before.size())
+            return -1;
+        for (std::size_t m = 0; m < now.size(); ++m)
+            if (groom.rootIds[now[m]] != previous->rootIds[before[m]] ||
+                (groom.keyStrand[w] == now[m]) != (previous->keyStrand[pw] == before[m]))
+                return -1;
+        return pw;
+    };
+
+    std::size_t reused = 0;
+    for (std::size_t w = 0; w < groom.wispCount(); ++w) {
+        if (const std::int64_t pw = reusable(w); pw >= 0) {
+            const std::vector<std::uint32_t>& before = previousMembers[static_cast<std::size_t>(pw)];
+            for (std::size_t m = 0; m < members[w].size(); ++m) {
+                const std::span<const glm::vec3> src = previous->rest.strand(before[m]);
+                std::copy(src.begin(), src.end(), groom.rest.strandForWrite(members[w][m]).begin());
+            }
+            ++reused;
+            continue;
+        }
+        const std::uint32_t k = groom.keyStrand[w];
+        const GroomSettings& s = groom.settingsOfWisp(w);
+        const glm::vec3 n = normalAt(context.head, context.normals, groom.roots[k]);
+        const float phase = glm::two_pi<float>() * randomUnit(s.seed, CurlPhase, groom.rootIds[k]);
+        std::span<glm::vec3> key = groom.rest.strandForWrite(k);
+        buildKeyRest(groom.rootPositions[k], n, context.partX, groom.lengths[k], s.segments, s.curlRadiusMetres,
+                     s.curlTurnsPerMetre, phase, s.hairOffsetMetres, context.collider, key);
+        buildWispMembers(groom, w, members[w], key, glm::mat3(1.0f), groom.rest);
+    }
+    return reused;
+}
+
+// What of a region's groom does not depend on its painted weights: the pores, the wisp sites (a
+// coarser blue-noise subset, so a wisp's neighbourhood does not shift when an artist paints
+// elsewhere) and each pore's nearest site.
+struct PoreLayout {
+    std::vector<Pore> pores;
+    std::vector<std::uint32_t> sites;       // pore index of each site
+    std::vector<std::uint32_t> siteOfPore;  // nearest site of each pore
+};
+
+PoreLayout makePoreLayout(const TriangleMesh& head, const GroomSettings& settings)
+{
+    PoreLayout layout;
+    float radius = 0.0f;
+    layout.pores = poreSet(head, settings.densityPerCm2 * 1e4f, settings.seed, &radius);
+    const std::vector<Pore>& pores = layout.pores;
+    std::vector<std::uint32_t> order(pores.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return pores[a].priority < pores[b].priority; });
+    const float wispRadius = radius * std::sqrt(static_cast<float>(settings.wispSize));
+    layout.sites = thinToBlueNoise(pores, order, wispRadius);
+    PointGrid siteGrid(wispRadius);
+    for (std::uint32_t i = 0; i < layout.sites.size(); ++i)
+        siteGrid.insert(pores[layout.sites[i]].position, i);
+    layout.siteOfPore.resize(pores.size());
+    for (std::uint32_t id = 0; id < pores.size(); ++id) {
+        std::uint32_t nearest = 0;
+        float best = INFINITY;
+        siteGrid.forNeighbours(pores[id].position, [&](std::uint32_t site) {
+            const glm::vec3 d = pores[layout.sites[site]].position - pores[id].position;
+            const float d2 = glm::dot(d, d);
+            if (d2 < best || (d2 == best && site < nearest)) {
+                best = d2;
+                nearest = site;
+            }
+        });
+        layout.siteOfPore[id] = nearest;
+    }
+    return layout;
+}
+
+// One region's strands and wisps, appended to `groom`: a pore grows a strand when its painted
+// weight beats its own random threshold, so the local density follows the weight and a weight-0
+// area has no strand at all. The strands sharing a site form a wisp whose key hair is the member
+// nearest the site.
+void growRegion(Groom& groom, const TriangleMesh& head, const PoreLayout& layout, std::span<const float> weights,
+                const GroomSettings& settings, std::uint16_t region)
+{
+    std::unordered_map<std::uint32_t, std::uint32_t> wispOfSite;
+    std::vector<float> keyDistance;
+    const std::size_t firstWisp = groom.keyStrand.size();
+    for (std::uint32_t id = 0; id < layout.pores.size(); ++id) {
+        const Pore& pore = layout.pores[id];
+        const glm::uvec3 tri = head.triangles[pore.surface.triangle];
+        const float b0 = 1.0f - pore.surface.barycentric.x - pore.surface.barycentric.y;
+        const float weight = b0 * weights[tri.x] + pore.surface.barycentric.x * weights[tri.y] +
+                             pore.surface.barycentric.y * weights[tri.z];
+        if (!(weight > randomUnit(settings.seed, Keep, id)))
+            continue;
+        const auto strand = static_cast<std::uint32_t>(groom.roots.size());
+        groom.roots.push_back(pore.surface);
+        groom.rootIds.push_back(id);
+        groom.rootPositions.push_back(pore.position);
+        groom.regionOfStrand.push_back(region);
+        const float jitter = 2.0f * randomUnit(settings.seed, LengthJitter, id) - 1.0f;
+        groom.lengths.push_back(settings.lengthMetres * (1.0f + settings.lengthVariation * jitter));
+
+        const std::uint32_t site = layout.siteOfPore[id];
+        const float d = glm::distance(pore.position, layout.pores[layout.sites[site]].position);
+        auto [it, added] = wispOfSite.emplace(site, static_cast<std::uint32_t>(groom.keyStrand.size()));
+        if (added) {
+            groom.keyStrand.push_back(strand);
+            groom.siteOfWisp.push_back(site);
+            keyDistance.push_back(d);
+        }
+        const std::uint32_t w = it->second;
+        groom.wispOf.push_back(w);
+        if (d < keyDistance[w - firstWisp]) {
+            keyDistance[w - firstWisp] = d;
+            groom.keyStrand[w] = strand;
+        }
+    }
+}
+
+// A region's seed: the shared seed, mixed with the region's identity so regions do not repeat
+// each other's pores (region 0 keeps the shared seed).
+std::uint32_t regionSeed(std::uint32_t seed, std::uint32_t regionId)
+{
+    return regionId == 0 ? seed : static_cast<std::uint32_t>(hashKeys(seed, 0x5e9105u, regionId));
+}
+
+GroomSettings mergedSettings(const GroomSettings& region, const GroomSettings& shared, std::uint32_t regionId)
+{
+    GroomSettings s = region;
+    s.segments = shared.segments;
+    s.seed = regionSeed(shared.seed, regionId);
+    s.hairOffsetMetres = shared.hairOffsetMetres;
+    return s;
 }
 
 }  // namespace
@@ -292,10 +467,104 @@ std::string validateGroomSettings(const GroomSettings& s)
     });
 }
 
+// What a GroomBuilder keeps between builds on one head.
+struct GroomBuilder::Cache {
+    const TriangleMesh* head = nullptr;  // identity check only; the caller keeps the head alive
+    std::size_t vertices = 0, triangles = 0;
+    std::vector<glm::vec3> normals;
+    float partX = 0.0f;  // the head's mid-plane, where the part runs
+    double areaM2 = 0.0;
+    struct Key {
+        float density;
+        int wispSize;
+        std::uint32_t seed;
+        bool operator<(const Key& o) const
+        {
+            return std::tie(density, wispSize, seed) < std::tie(o.density, o.wispSize, o.seed);
+        }
+    };
+    std::map<Key, std::shared_ptr<const PoreLayout>> layouts;
+};
+
+GroomBuilder::GroomBuilder() : m_cache(std::make_unique<Cache>()) {}
+GroomBuilder::~GroomBuilder() = default;
+GroomBuilder::GroomBuilder(GroomBuilder&&) noexcept = default;
+GroomBuilder& GroomBuilder::operator=(GroomBuilder&&) noexcept = default;
+
+void GroomBuilder::forgetHead() { *m_cache = Cache{}; }
+
+GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomRegionInput> regions,
+                                const GroomSettings& shared, const SignedDistanceField* collider, const Groom* previous)
+{
+    m_reused = m_built = 0;
+    Cache& cache = *m_cache;
+    if (cache.head != &head || cache.vertices != head.positions.size() || cache.triangles != head.triangles.size()) {
+        if (std::string error = validateMesh(head); !error.empty())
+            return {{}, "head: " + error};
+        forgetHead();
+        cache.head = &head;
+        cache.vertices = head.positions.size();
+        cache.triangles = head.triangles.size();
+        cache.normals = vertexNormals(head);
+        cache.partX = boundsOf(head).center().x;
+        for (std::uint32_t t = 0; t < head.triangles.size(); ++t)
+            cache.areaM2 += triangleArea(head, t);
+    }
+    if (std::string error = checkParameterValues({{Param::Segments, shared.segments},
+                                                  {Param::HairOffset, shared.hairOffsetMetres}});
+        !error.empty())
+        return {{}, error};
+    if (regions.size() > 0xffff)
+        return {{}, "regions: " + std::to_string(regions.size()) + " is more than 65535"};
+
+    GroomResult result;
+    Groom& groom = result.groom;
+    groom.settings = shared;
+    std::map<Cache::Key, std::shared_ptr<const PoreLayout>> used;
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+        const GroomRegionInput& region = regions[r];
+        const GroomSettings settings = mergedSettings(region.settings, shared, region.id);
+        if (std::string error = validateGroomSettings(settings); !error.empty())
+            return {{}, "region " + std::to_string(r + 1) + ": " + error};
+        if (region.weights.size() != head.positions.size())
+            return {{}, "region " + std::to_string(r + 1) + ": growth map has " + std::to_string(region.weights.size()) +
+                            " weights for " + std::to_string(head.positions.size()) + " vertices"};
+        bool anyGrowth = false;
+        for (std::size_t i = 0; i < region.weights.size(); ++i) {
+            if (!std::isfinite(region.weights[i]))
+                return {{}, "region " + std::to_string(r + 1) + ": growth map: weight " + std::to_string(i) +
+                                " is not a finite number"};
+            anyGrowth = anyGrowth || region.weights[i] > 0.0f;
+        }
+        // Bounded work: refuse densities that would place more than ~4 million strands.
+        if (cache.areaM2 * settings.densityPerCm2 * 1e4 > 4.0e6)
+            return {{}, "density: " + std::to_string(settings.densityPerCm2) + " strands/cm² on " +
+                            std::to_string(cache.areaM2 * 1e4) + " cm² would place more than 4 million strands"};
+        groom.regionIds.push_back(region.id);
+        groom.regionSettings.push_back(settings);
+        groom.regionStiffnessScale.push_back(region.stiffnessScale);
+        if (!anyGrowth)
+            continue;
+        const Cache::Key key{settings.densityPerCm2, settings.wispSize, settings.seed};
+        std::shared_ptr<const PoreLayout>& layout = used[key];
+        if (!layout) {
+            const auto found = cache.layouts.find(key);
+            layout = found != cache.layouts.end() ? found->second
+                                                  : std::make_shared<const PoreLayout>(makePoreLayout(head, settings));
+        }
+        growRegion(groom, head, *layout, region.weights, settings, static_cast<std::uint16_t>(r));
+    }
+    cache.layouts = std::move(used);  // keep the layouts in use, drop the rest
+    if (regions.size() == 1)
+        groom.settings = groom.regionSettings.front();
+    m_reused = buildRest(groom, {head, cache.normals, cache.partX, collider}, previous);
+    m_built = groom.wispCount() - m_reused;
+    return result;
+}
+
 GroomResult buildGroom(const TriangleMesh& head, std::span<const float> growthWeights, const GroomSettings& settings,
                        const SignedDistanceField* collider)
 {
-    GroomResult result;
     if (std::string error = validateMesh(head); !error.empty())
         return {{}, "head: " + error};
     if (std::string error = validateGroomSettings(settings); !error.empty())
@@ -311,86 +580,12 @@ GroomResult buildGroom(const TriangleMesh& head, std::span<const float> growthWe
     }
     if (!anyGrowth)
         return {{}, "growth map: every weight is 0, so no hair grows; paint where hair should grow"};
-
-    // Bounded work: refuse densities that would place more than ~4 million strands.
-    double area = 0.0;
-    for (std::uint32_t t = 0; t < head.triangles.size(); ++t)
-        area += triangleArea(head, t);
-    const double densityPerM2 = static_cast<double>(settings.densityPerCm2) * 1e4;
-    if (area * densityPerM2 > 4.0e6)
-        return {{}, "density: " + std::to_string(settings.densityPerCm2) + " strands/cm² on " +
-                        std::to_string(area * 1e4) + " cm² would place more than 4 million strands"};
-
-    Groom& groom = result.groom;
-    groom.settings = settings;
-    float radius = 0.0f;
-    const std::vector<Pore> pores = poreSet(head, static_cast<float>(densityPerM2), settings.seed, &radius);
-
-    // Wisp sites: a coarser blue-noise subset of the pores, also weight-independent, so a wisp's
-    // neighbourhood does not shift when an artist paints elsewhere.
-    std::vector<std::uint32_t> order(pores.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return pores[a].priority < pores[b].priority; });
-    const float wispRadius = radius * std::sqrt(static_cast<float>(settings.wispSize));
-    const std::vector<std::uint32_t> sites = thinToBlueNoise(pores, order, wispRadius);
-    PointGrid siteGrid(wispRadius);
-    for (std::uint32_t i = 0; i < sites.size(); ++i)
-        siteGrid.insert(pores[sites[i]].position, i);
-
-    // Growth: a pore grows a strand when its painted weight beats its own random threshold, so the
-    // local density follows the weight and a weight-0 area has no strand at all.
-    std::vector<glm::vec3> rootPositions;
-    std::vector<std::uint32_t> siteOf;
-    for (std::uint32_t id = 0; id < pores.size(); ++id) {
-        const Pore& pore = pores[id];
-        const glm::uvec3 tri = head.triangles[pore.surface.triangle];
-        const float b0 = 1.0f - pore.surface.barycentric.x - pore.surface.barycentric.y;
-        const float weight = b0 * growthWeights[tri.x] + pore.surface.barycentric.x * growthWeights[tri.y] +
-                             pore.surface.barycentric.y * growthWeights[tri.z];
-        if (!(weight > randomUnit(settings.seed, Keep, id)))
-            continue;
-        std::uint32_t nearest = 0;
-        float best = INFINITY;
-        siteGrid.forNeighbours(pore.position, [&](std::uint32_t site) {
-            const glm::vec3 d = pores[sites[site]].position - pore.position;
-            const float d2 = glm::dot(d, d);
-            if (d2 < best || (d2 == best && site < nearest)) {
-                best = d2;
-                nearest = site;
-            }
-        });
-        groom.roots.push_back(pore.surface);
-        groom.rootIds.push_back(id);
-        rootPositions.push_back(pore.position);
-        siteOf.push_back(nearest);
-        const float jitter = 2.0f * randomUnit(settings.seed, LengthJitter, id) - 1.0f;
-        groom.lengths.push_back(settings.lengthMetres * (1.0f + settings.lengthVariation * jitter));
-    }
-    if (groom.roots.empty())
+    const GroomRegionInput region{0, growthWeights, settings, 1.0f};
+    GroomBuilder builder;
+    GroomResult result = builder.build(head, std::span(&region, 1), settings, collider);
+    if (result.ok() && result.groom.roots.empty())
         return {{}, "growth map: the painted area is too small or too faint for any strand at this density"};
-
-    // Wisps: the strands sharing a site; the key hair is the member nearest the site.
-    std::vector<std::int64_t> wispOfSite(sites.size(), -1);
-    std::vector<float> keyDistance;
-    groom.wispOf.resize(groom.roots.size());
-    for (std::uint32_t i = 0; i < groom.roots.size(); ++i) {
-        const std::uint32_t site = siteOf[i];
-        const float d = glm::distance(rootPositions[i], pores[sites[site]].position);
-        if (wispOfSite[site] < 0) {
-            wispOfSite[site] = static_cast<std::int64_t>(groom.keyStrand.size());
-            groom.keyStrand.push_back(i);
-            keyDistance.push_back(d);
-        }
-        const auto w = static_cast<std::uint32_t>(wispOfSite[site]);
-        groom.wispOf[i] = w;
-        if (d < keyDistance[w]) {
-            keyDistance[w] = d;
-            groom.keyStrand[w] = i;
-        }
-    }
-    groom.rootPositions = std::move(rootPositions);
-    return finishGroom(std::move(groom), head, collider);
+    return result;
 }
 
 GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int width, int height, int particlesPerStrand,
@@ -436,11 +631,18 @@ GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int wid
             rootPositions.push_back(pointOn(head, sp));
             groom.lengths.push_back(lengthMetres);
             groom.wispOf.push_back(static_cast<std::uint32_t>(groom.keyStrand.size()));
+            groom.siteOfWisp.push_back(static_cast<std::uint32_t>(groom.keyStrand.size()));
             groom.keyStrand.push_back(static_cast<std::uint32_t>(groom.roots.size() - 1));
+            groom.regionOfStrand.push_back(0);
         }
     }
     groom.rootPositions = std::move(rootPositions);
-    return finishGroom(std::move(groom), head, collider);
+    groom.regionIds = {0};
+    groom.regionSettings = {groom.settings};
+    groom.regionStiffnessScale = {1.0f};
+    const std::vector<glm::vec3> normals = vertexNormals(head);
+    buildRest(groom, {head, normals, boundsOf(head).center().x, collider}, nullptr);
+    return result;
 }
 
 HairCurves keyRestCurves(const Groom& groom)
@@ -458,58 +660,70 @@ HairCurves keyRestCurves(const Groom& groom)
 void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, const glm::mat3& headRotation,
                   HairCurves& out)
 {
-    const GroomSettings& s = groom.settings;
-    const std::size_t points = static_cast<std::size_t>(s.segments) + 1;
-    // Offsets are measured between rest roots in head space.
-    std::vector<glm::mat3> transport(points);
-    std::vector<glm::vec3> tangent(points);
-    std::vector<std::vector<std::uint32_t>> members(groom.wispCount());
-    for (std::uint32_t i = 0; i < groom.strandCount(); ++i)
-        members[groom.wispOf[i]].push_back(i);
+    const std::size_t points = static_cast<std::size_t>(groom.settings.segments) + 1;
+    const std::vector<std::vector<std::uint32_t>> members = membersOfWisps(groom);
+    for (std::size_t w = 0; w < groom.wispCount(); ++w)
+        buildWispMembers(groom, w, members[w], keyPositions.subspan(w * points, points), headRotation, out);
+}
 
-    for (std::size_t w = 0; w < groom.wispCount(); ++w) {
-        const std::uint32_t k = groom.keyStrand[w];
-        const std::span<const glm::vec3> key = keyPositions.subspan(w * points, points);
-        std::copy(key.begin(), key.end(), out.strandForWrite(k).begin());
-        if (members[w].size() < 2)
+namespace {
+
+// Writes wisp w's key (from `key`) and its members into `out` (Lee et al.: members follow their key
+// hair, clumping toward it by clump-degree from clump-rate on).
+void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::uint32_t> members,
+                      std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out)
+{
+    const GroomSettings& s = groom.settingsOfWisp(w);
+    const std::size_t points = key.size();
+    const std::uint32_t k = groom.keyStrand[w];
+    std::span<glm::vec3> keyOut = out.strandForWrite(k);
+    if (keyOut.data() != key.data())
+        std::copy(key.begin(), key.end(), keyOut.begin());
+    if (members.size() < 2)
+        return;
+    // Parallel transport along the key: a member's root offset turns with the key's tangent, so
+    // members stay beside their key wherever the key bends. Offsets are measured between rest roots
+    // in head space.
+    thread_local std::vector<glm::mat3> transport;
+    thread_local std::vector<glm::vec3> tangent;
+    transport.resize(points);
+    tangent.resize(points);
+    for (std::size_t j = 0; j < points; ++j) {
+        const std::size_t a = j == 0 ? 0 : j - 1;
+        const std::size_t b = std::min(j + 1, points - 1);
+        const glm::vec3 d = key[b] - key[a];
+        const float len = glm::length(d);
+        tangent[j] = len > 1e-9f ? d / len : (j > 0 ? tangent[j - 1] : glm::vec3(0, 1, 0));
+        transport[j] = j == 0 ? headRotation : minimalRotationMatrix(tangent[j - 1], tangent[j]) * transport[j - 1];
+    }
+    const float keyLength = groom.lengths[k];
+    const glm::vec3 keyRoot = groom.rootPositions[k];
+    for (std::uint32_t m : members) {
+        if (m == k)
             continue;
-        // Parallel transport along the key: a member's root offset turns with the key's tangent,
-        // so members stay beside their key wherever the key bends.
+        const glm::vec3 rootOffset = groom.rootPositions[m] - keyRoot;
+        std::span<glm::vec3> dst = out.strandForWrite(m);
+        const float scale = groom.lengths[m] / keyLength;
         for (std::size_t j = 0; j < points; ++j) {
-            const std::size_t a = j == 0 ? 0 : j - 1;
-            const std::size_t b = std::min(j + 1, points - 1);
-            const glm::vec3 d = key[b] - key[a];
-            const float len = glm::length(d);
-            tangent[j] = len > 1e-9f ? d / len : (j > 0 ? tangent[j - 1] : glm::vec3(0, 1, 0));
-            transport[j] = j == 0 ? headRotation : minimalRotationMatrix(tangent[j - 1], tangent[j]) * transport[j - 1];
-        }
-        const float keyLength = groom.lengths[k];
-        const glm::vec3 keyRoot = groom.rootPositions[k];
-        for (std::uint32_t m : members[w]) {
-            if (m == k)
-                continue;
-            const glm::vec3 rootOffset = groom.rootPositions[m] - keyRoot;
-            std::span<glm::vec3> dst = out.strandForWrite(m);
-            const float scale = groom.lengths[m] / keyLength;
-            for (std::size_t j = 0; j < points; ++j) {
-                const float u = static_cast<float>(j) / static_cast<float>(points - 1);
-                const float f = u * scale * static_cast<float>(points - 1);
-                glm::vec3 onKey;
-                glm::mat3 frame;
-                if (f >= static_cast<float>(points - 1)) {  // longer than its key: continue along the tip
-                    const float beyond = (f - static_cast<float>(points - 1)) * glm::distance(key[points - 1], key[points - 2]);
-                    onKey = key[points - 1] + beyond * tangent[points - 1];
-                    frame = transport[points - 1];
-                } else {
-                    const auto j0 = static_cast<std::size_t>(f);
-                    const float t = f - static_cast<float>(j0);
-                    onKey = glm::mix(key[j0], key[j0 + 1], t);
-                    frame = t < 0.5f ? transport[j0] : transport[j0 + 1];
-                }
-                dst[j] = onKey + (1.0f - clumpAt(u, s.clumpDegree, s.clumpRate)) * (frame * rootOffset);
+            const float u = static_cast<float>(j) / static_cast<float>(points - 1);
+            const float f = u * scale * static_cast<float>(points - 1);
+            glm::vec3 onKey;
+            glm::mat3 frame;
+            if (f >= static_cast<float>(points - 1)) {  // longer than its key: continue along the tip
+                const float beyond = (f - static_cast<float>(points - 1)) * glm::distance(key[points - 1], key[points - 2]);
+                onKey = key[points - 1] + beyond * tangent[points - 1];
+                frame = transport[points - 1];
+            } else {
+                const auto j0 = static_cast<std::size_t>(f);
+                const float t = f - static_cast<float>(j0);
+                onKey = glm::mix(key[j0], key[j0 + 1], t);
+                frame = t < 0.5f ? transport[j0] : transport[j0 + 1];
             }
+            dst[j] = onKey + (1.0f - clumpAt(u, s.clumpDegree, s.clumpRate)) * (frame * rootOffset);
         }
     }
 }
+
+}  // namespace
 
 }  // namespace wisp

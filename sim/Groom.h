@@ -11,6 +11,7 @@
 #include <glm/mat3x3.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -39,21 +40,41 @@ GroomSettings groomSettingsFrom(const ParameterValues& values);
 // Empty when usable; otherwise names the setting and the problem ("segments: 1 is outside 2..127").
 std::string validateGroomSettings(const GroomSettings& settings);
 
+// One growth region's part of a groom (see GrowthRegion.h): where it grows and its wisp settings.
+struct GroomRegionInput {
+    std::uint32_t id = 0;             // stable region identity; seeds its roots
+    std::span<const float> weights;   // one per head vertex, 0..1
+    GroomSettings settings;           // its wisp settings; segments, seed and hair offset come from the shared ones
+    float stiffnessScale = 1.0f;      // multiplies the solver's stiffness for this region's strands
+};
+
 struct Groom {
-    GroomSettings settings;
+    GroomSettings settings;  // shared by every region: segments, seed, hair offset (and, with one region, its settings)
     // Per strand (every drawn strand):
     std::vector<SurfacePoint> roots;
     std::vector<glm::vec3> rootPositions;  // head space, metres (the surface points, evaluated)
     std::vector<std::uint32_t> rootIds;  // stable identity of the root in the weight-independent pore set
     std::vector<float> lengths;          // metres
     std::vector<std::uint32_t> wispOf;
+    std::vector<std::uint16_t> regionOfStrand;  // index into the per-region vectors below
     HairCurves rest;  // rest shape of every strand, head space (members built from their key hair)
     // Per wisp:
     std::vector<std::uint32_t> keyStrand;  // the strand that is the wisp's key hair
+    std::vector<std::uint32_t> siteOfWisp; // the wisp's site in its region's layout (identity for reuse)
+    // Per region that grew (in the order given):
+    std::vector<std::uint32_t> regionIds;
+    std::vector<GroomSettings> regionSettings;  // complete: the shared settings merged in
+    std::vector<float> regionStiffnessScale;
 
     std::size_t strandCount() const { return roots.size(); }
     std::size_t wispCount() const { return keyStrand.size(); }
     bool isKey(std::size_t strand) const { return keyStrand[wispOf[strand]] == strand; }
+    const GroomSettings& settingsOfWisp(std::size_t wisp) const { return regionSettings[regionOfStrand[keyStrand[wisp]]]; }
+    // Identity of a strand across regrooms: its region and its pore in that region's layout.
+    std::uint64_t strandIdentity(std::size_t strand) const
+    {
+        return (static_cast<std::uint64_t>(regionIds[regionOfStrand[strand]]) << 32) | rootIds[strand];
+    }
 };
 
 struct GroomResult {
@@ -68,6 +89,35 @@ struct GroomResult {
 // (Lee et al. 3.4) so the rest shape drapes over the head.
 GroomResult buildGroom(const TriangleMesh& head, std::span<const float> growthWeights, const GroomSettings& settings,
                        const SignedDistanceField* collider = nullptr);
+
+// Builds the groom of several regions on one head, as the editor does on every brush dab and slider
+// move. It keeps what does not depend on the painted weights (each region's pore and wisp-site
+// layout, the head's normals), and with `previous` (a groom it built on the same head) it copies the
+// rest shapes of wisps whose members and settings did not change, so a dab costs work near the
+// brush, not over the whole head. Regions that grow no strand are allowed (an empty groom too).
+//
+// Thread: one owner.
+class GroomBuilder {
+public:
+    GroomBuilder();
+    ~GroomBuilder();
+    GroomBuilder(GroomBuilder&&) noexcept;
+    GroomBuilder& operator=(GroomBuilder&&) noexcept;
+
+    GroomResult build(const TriangleMesh& head, std::span<const GroomRegionInput> regions, const GroomSettings& shared,
+                      const SignedDistanceField* collider, const Groom* previous = nullptr);
+    // Drops everything kept for the head (call when the head changes).
+    void forgetHead();
+    // Wisps whose rest shapes the last build copied from `previous`, and built anew.
+    std::size_t reusedWisps() const { return m_reused; }
+    std::size_t builtWisps() const { return m_built; }
+
+private:
+    struct Cache;
+    std::unique_ptr<Cache> m_cache;
+    std::size_t m_reused = 0;
+    std::size_t m_built = 0;
+};
 
 // The first paper's layout: width x height strands of `particlesPerStrand` particles each, rooted on a
 // grid over the top of the head (azimuth x polar angle around the head's centre), every strand its

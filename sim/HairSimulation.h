@@ -5,7 +5,9 @@
 //
 // Thread: owned and called by one thread.
 
+#include "sim/Frame.h"
 #include "sim/Groom.h"
+#include "sim/GrowthRegion.h"
 #include "sim/Parameters.h"
 #include "sim/Solver.h"
 #include "sim/TriangleMesh.h"
@@ -13,6 +15,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace wisp {
 
@@ -24,9 +27,24 @@ public:
     explicit HairSimulation(int threadCount = 0);
     ~HairSimulation();
 
-    // Grooms `head` where `growthWeights` allow, bakes its collider and starts the solver at rest.
-    // On error returns the message and keeps what it had.
+    // Grooms `head` where `growthWeights` allow (one region with the Wisp-group entries of
+    // `values`), bakes its collider and starts the solver at rest. On error returns the message and
+    // keeps what it had.
     std::string setup(const TriangleMesh& head, std::span<const float> growthWeights, const ParameterValues& values);
+    // The editor's groom: the growing regions of `regions` (see growingRegions) on `head`.
+    std::string setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
+                      const ParameterValues& values);
+    // Regrooms on the same head (painted weights, wisp or groom parameters changed) while the hair
+    // moves: every simulated strand that still exists keeps its motion, new strands start at rest,
+    // removed ones vanish, nothing else jumps. On error returns the message and keeps running as before.
+    std::string regroom(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values);
+    // Strands whose motion the last regroom carried over, and strands it started at rest.
+    std::size_t carriedStrands() const { return m_carried; }
+    std::size_t startedStrands() const { return m_started; }
+    const GroomBuilder& groomBuilder() const { return m_builder; }
+
+    // How each groom region's hair looks (per entry of groom().regionIds).
+    const std::vector<StrandLook>& looks() const { return m_looks; }
     // The first paper's grid layout (see buildGridGroom); every strand simulated.
     std::string setupGrid(const TriangleMesh& head, int width, int height, int particlesPerStrand, float lengthMetres,
                           const ParameterValues& values);
@@ -55,13 +73,20 @@ public:
 private:
     std::string prepareHead(const TriangleMesh& head);
     std::string start(Groom groom, const ParameterValues& values);
+    std::string groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values,
+                             const Groom* previous, Groom& out, std::vector<StrandLook>& looks);
+    std::string setStrandStiffness(const Groom& groom);
 
     Solver m_solver;
     TriangleMesh m_head;
     std::shared_ptr<SignedDistanceField> m_sdf;
     std::unique_ptr<MeshBvh> m_bvh;
     Groom m_groom;
+    GroomBuilder m_builder;
+    std::vector<StrandLook> m_looks;
     bool m_allStrands = false;
+    std::size_t m_carried = 0;
+    std::size_t m_started = 0;
 };
 
 }  // namespace wisp

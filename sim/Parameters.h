@@ -14,7 +14,8 @@
 namespace wisp {
 
 enum class Param : int {
-    // Groom (Lee et al.: pore density, wisp size, clump-degree, clump-rate; plus length and curl)
+    // Wisp: per growth region (Lee et al.: pore density, wisp size, clump-degree, clump-rate; plus
+    // length, curl and a stiffness scale)
     Density,
     WispSize,
     ClumpDegree,
@@ -24,6 +25,8 @@ enum class Param : int {
     Segments,
     CurlRadius,
     CurlTurns,
+    StiffnessScale,
+    // Groom: the whole groom
     Seed,
     // Forces
     Gravity,
@@ -43,7 +46,9 @@ enum class Param : int {
     Count
 };
 
-enum class ParamGroup { Groom, Forces, Solver };
+// Wisp: a growth region's own (GrowthRegion.h); Groom: shared by every region's groom (segments,
+// seed, hair offset); Forces and Solver: the simulation's.
+enum class ParamGroup { Wisp, Groom, Forces, Solver };
 enum class ParamKind { Real, Integer, Toggle };
 
 struct ParameterInfo {

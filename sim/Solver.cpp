@@ -116,6 +116,7 @@ struct Solver::Block {
     std::uint32_t points = 0;
     std::array<std::int64_t, kLanes> strand{};  // index into the caller's curves, -1 for padding
     Lane strandLength{};                         // rest arc length per lane, metres
+    Lane stiffnessScale{};                       // per lane: multiplies the settings' stiffness
     // Views into the solver's two row arrays: every block's rows follow the previous block's, so
     // a thread streams through memory in one sequential run that the prefetcher can follow.
     std::span<ParticleRow> state;
@@ -504,6 +505,7 @@ std::string Solver::setStrands(const HairCurves& rest)
                     }
                 }
                 b.strandLength[l] = total;
+                b.stiffnessScale[l] = 1.0f;
             }
             particles += count * std::min<std::size_t>(kLanes, strands.size() - first);
             blocks.push_back(std::move(b));
@@ -567,22 +569,26 @@ void Solver::resetToRest()
 // or how finely strands are divided (a segment's sag under its own weight scales with h^2).
 void Solver::updateBendAlpha(float substepSeconds)
 {
-    const float stiffness = m_settings.stiffness;
-    if (m_bendAlphaFor == glm::vec2(stiffness, substepSeconds) && !m_bendAlphaStale)
+    const float globalStiffness = m_settings.stiffness;
+    if (m_bendAlphaFor == glm::vec2(globalStiffness, substepSeconds) && !m_bendAlphaStale)
         return;
-    m_bendAlphaFor = {stiffness, substepSeconds};
+    m_bendAlphaFor = {globalStiffness, substepSeconds};
     m_bendAlphaStale = false;
     constexpr float kReferenceSegment = 0.02f;  // metres
-    const float logRemaining = stiffness >= 1.0f ? -INFINITY : std::log1p(-stiffness) * 60.0f * substepSeconds;
     m_pool->parallelFor(m_blocks.size(), 16, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i)
-            for (std::uint32_t j = 1; j < m_blocks[i].points; ++j) {
-                RestRow& r = m_blocks[i].rest[j];
-                for (int l = 0; l < kLanes; ++l) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const Block& b = m_blocks[i];
+            for (int l = 0; l < kLanes; ++l) {
+                const float stiffness = std::min(1.0f, globalStiffness * b.stiffnessScale[l]);
+                const float logRemaining =
+                    stiffness >= 1.0f ? -INFINITY : std::log1p(-stiffness) * 60.0f * substepSeconds;
+                for (std::uint32_t j = 1; j < b.points; ++j) {
+                    RestRow& r = b.rest[j];
                     const float ratio = kReferenceSegment / r.length[l];
                     r.bendAlpha[l] = stiffness <= 0.0f ? 0.0f : 1.0f - std::exp(logRemaining * ratio * ratio);
                 }
             }
+        }
     });
 }
 
@@ -639,6 +645,64 @@ void Solver::moveParticle(std::size_t strand, std::size_t point, const glm::vec3
     row.y[slot.lane] = row.py[slot.lane] = position.y;
     row.z[slot.lane] = row.pz[slot.lane] = position.z;
     row.clearance[slot.lane] = -1.0f;
+}
+
+std::string Solver::setStiffnessScales(std::span<const float> perStrand)
+{
+    if (perStrand.size() != m_strandCount)
+        return "stiffness scales: " + std::to_string(perStrand.size()) + " for " + std::to_string(m_strandCount) + " strands";
+    for (std::size_t i = 0; i < perStrand.size(); ++i)
+        if (!(perStrand[i] >= 0.0f && perStrand[i] <= 1e3f))
+            return "stiffness scale of strand " + std::to_string(i) + ": " + std::to_string(perStrand[i]) +
+                   " is not a finite number of at least 0";
+    for (std::size_t i = 0; i < perStrand.size(); ++i) {
+        const Slot slot = m_slotOfStrand[i];
+        m_blocks[slot.block].stiffnessScale[slot.lane] = perStrand[i];
+    }
+    for (Block& b : m_blocks)  // padding lanes copy their block's first strand
+        for (int l = 0; l < kLanes; ++l)
+            if (b.strand[l] < 0)
+                b.stiffnessScale[l] = b.stiffnessScale[0];
+    m_bendAlphaStale = true;
+    return {};
+}
+
+void Solver::copyState(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& previous) const
+{
+    copyPositions(positions);
+    previous.resize(positions.size());
+    for (std::size_t strand = 0; strand < m_strandCount; ++strand) {
+        const Slot slot = m_slotOfStrand[strand];
+        const Block& b = m_blocks[slot.block];
+        for (std::uint32_t j = 0; j < b.points; ++j) {
+            const ParticleRow& row = b.state[j];
+            previous[m_restOffsets[strand] + j] = {row.px[slot.lane], row.py[slot.lane], row.pz[slot.lane]};
+        }
+    }
+}
+
+bool Solver::setStrandState(std::size_t strand, std::span<const glm::vec3> positions, std::span<const glm::vec3> previous)
+{
+    if (strand >= m_strandCount)
+        return false;
+    const Slot slot = m_slotOfStrand[strand];
+    Block& b = m_blocks[slot.block];
+    if (positions.size() != b.points || previous.size() != b.points)
+        return false;
+    for (std::uint32_t j = 0; j < b.points; ++j)
+        if (!std::isfinite(positions[j].x + positions[j].y + positions[j].z + previous[j].x + previous[j].y + previous[j].z))
+            return false;
+    for (std::uint32_t j = 1; j < b.points; ++j) {  // the root stays where its rest shape pins it
+        ParticleRow& row = b.state[j];
+        row.x[slot.lane] = positions[j].x;
+        row.y[slot.lane] = positions[j].y;
+        row.z[slot.lane] = positions[j].z;
+        row.px[slot.lane] = previous[j].x;
+        row.py[slot.lane] = previous[j].y;
+        row.pz[slot.lane] = previous[j].z;
+        row.clearance[slot.lane] = -1.0f;
+    }
+    return true;
 }
 
 void Solver::copyPositions(std::vector<glm::vec3>& out) const

@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -64,8 +65,18 @@ public:
     // manipulation, and for tests that need a broken strand.
     void moveParticle(std::size_t strand, std::size_t point, const glm::vec3& position);
 
+    // Per strand (the layout of setStrands): multiplies settings().stiffness, the product capped at
+    // 1 (a region's stiffness scale, hairspray). All 1 after setStrands.
+    std::string setStiffnessScales(std::span<const float> perStrand);
+
     // World-space positions in the layout of the rest curves given to setStrands.
     void copyPositions(std::vector<glm::vec3>& out) const;
+    // Positions and previous positions (Verlet's velocity), world space, in that layout.
+    void copyState(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& previous) const;
+    // Carries one strand's motion over from another solver (a regroom while simulating): its
+    // points except the pinned root. False, changing nothing, when the point count differs or a
+    // value is not finite.
+    bool setStrandState(std::size_t strand, std::span<const glm::vec3> positions, std::span<const glm::vec3> previous);
 
     std::size_t strandCount() const { return m_strandCount; }
     std::size_t particleCount() const { return m_particleCount; }

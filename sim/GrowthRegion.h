@@ -1,0 +1,40 @@
+#pragma once
+// A growth region (a layer of the scalp): a painted mask saying where its hair grows, and the wisp
+// parameters its hair has there. Lee et al. divide the hair area into regions because different
+// parts of a hairstyle behave differently; regions may overlap (each grows its own strands).
+//
+// The region's wisp parameters are the Wisp-group entries of the registry (Parameters.h); the other
+// entries of `values` are ignored. Colour is the hair's colour, sRGB 0..1, root to tip.
+
+#include "sim/Parameters.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace wisp {
+
+struct GrowthRegion {
+    std::uint32_t id = 0;         // stable identity: seeds the region's roots, survives renames and reordering
+    std::string name;
+    std::vector<float> weights;   // one per head vertex, 0..1 (the painted growth map)
+    ParameterValues values;       // Wisp-group parameters of this region
+    glm::vec3 rootColour{0.16f, 0.10f, 0.06f};
+    glm::vec3 tipColour{0.45f, 0.30f, 0.17f};
+    bool visible = true;          // hidden regions grow no hair (neither drawn nor simulated)
+
+    bool operator==(const GrowthRegion&) const = default;
+};
+
+// The regions that grow hair: the solo'd one alone when `soloId` names a region, else every
+// visible one.
+std::vector<const GrowthRegion*> growingRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId);
+constexpr std::uint32_t kNoSolo = 0xffffffffu;
+
+// Empty when usable; otherwise names the region and the problem
+// ("region 'Fringe': weight 12 is not a finite number", "region 'Top': clump_degree: 3 is outside -1..1").
+std::string validateRegion(const GrowthRegion& region, std::size_t vertexCount);
+
+}  // namespace wisp

@@ -5,8 +5,12 @@
 #include "app/cli/Commands.h"
 #include "app/cli/StepTimer.h"
 
+#include "io/MeshReader.h"
 #include "sim/DefaultHead.h"
+#include "sim/GrowthMap.h"
 #include "sim/HairSimulation.h"
+#include "sim/MeshBvh.h"
+#include "sim/ScalpBrush.h"
 
 #include <glm/gtc/constants.hpp>
 
@@ -53,6 +57,7 @@ struct RunOptions {
     int warmupSteps = 20;
     int measuredSteps = 100;
     std::size_t sphereStrands = 10'000;
+    std::string headPath;  // brush-dab: a head file instead of the default head
 };
 
 template <typename StepFn>
@@ -137,6 +142,66 @@ BenchResult sphereWorkload(const RunOptions& o)
     return r;
 }
 
+// A head for the brush workload: the file given with --head (brought to a head's size, 0.25 m
+// tall, when its units are not metres), or the default head.
+TriangleMesh benchHead(const std::string& path)
+{
+    if (path.empty())
+        return makeDefaultHead().mesh;
+    io::Result<io::MeshReadResult> read = io::readMesh(path);
+    if (!read)
+        throw CliError{kBadInput, read.error().toString()};
+    TriangleMesh mesh = std::move(read).value().mesh;
+    const Aabb box = boundsOf(mesh);
+    const float height = box.size().y;
+    if (!(height > 0.1f && height < 0.5f))
+        for (glm::vec3& p : mesh.positions)
+            p = (p - box.center()) * (0.25f / height);
+    return mesh;
+}
+
+// One brush dab while the hair simulates, as the editor does it: the dab on the growth weights,
+// then the regroom that brings new roots into the running solver (HairSimulation::regroom). Dabs
+// walk around the scalp, adding on one lap and erasing on the next, so the groom neither fills up
+// nor empties. The default scene's groom parameters.
+BenchResult brushWorkload(const RunOptions& o)
+{
+    const TriangleMesh head = benchHead(o.headPath);
+    std::vector<GrowthRegion> regions(1);
+    regions[0].name = "Scalp";
+    regions[0].weights = upperHeadGrowth(head);
+    const ParameterValues v;
+    HairSimulation sim(o.threads);
+    if (std::string error = sim.setup(head, regions, kNoSolo, v); !error.empty())
+        throw CliError{kBadInput, "brush-dab: " + error};
+    const ScalpBrush brush(head);
+    const Aabb box = boundsOf(head);
+    std::vector<glm::vec3> path;
+    for (int i = 0; i < 48; ++i) {
+        const float a = glm::two_pi<float>() * static_cast<float>(i) / 48.0f;
+        const glm::vec3 around = box.center() + glm::vec3(0.6f * box.size().x * std::cos(a), 0.15f * box.size().y,
+                                                          0.6f * box.size().z * std::sin(a));
+        path.push_back(sim.bvh().closestPoint(around).point);
+    }
+    BrushSettings settings;
+    settings.radiusMetres = 0.02f;
+    int dab = 0;
+    BenchResult r{o.headPath.empty() ? "brush-dab" : "brush-dab (" + o.headPath.substr(o.headPath.rfind('/') + 1) + ")"};
+    r.threads = sim.solver().threadCount();
+    r.substeps = sim.solver().settings().substeps;
+    timeSteps(o, [&] {
+        settings.mode = (dab / static_cast<int>(path.size())) % 2 == 0 ? BrushMode::Add : BrushMode::Erase;
+        brush.dab(path[static_cast<std::size_t>(dab) % path.size()], settings, regions[0].weights);
+        ++dab;
+        if (std::string error = sim.regroom(regions, kNoSolo, v); !error.empty())
+            throw CliError{kBadInput, "brush-dab: " + error};
+    }, r);
+    r.particles = sim.solver().particleCount();
+    r.strands = sim.groom().strandCount();
+    r.solverBytesPerParticle = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(std::max<std::size_t>(1, r.particles));
+    return r;
+}
+
 struct Workload {
     std::string name;
     std::string description;
@@ -158,6 +223,9 @@ std::vector<Workload> workloads()
         grid("groom-1m", 250, 250, 16),
         {"sphere", "N strands x 15 particles on a 0.1 m sphere, wind (2, 0, 0.5) m/s (set N with --strands)",
          sphereWorkload},
+        {"brush-dab", "one 2 cm growth-brush dab plus the live regroom, on the default head or --head FILE "
+                      "(ms per dab; particles and strands are the simulation's)",
+         brushWorkload},
     };
 }
 
@@ -184,6 +252,7 @@ int runBench(int argc, char** argv)
         {"threads", "N", "solver threads (default: one per core)"},
         {"strands", "N", "strands of the sphere workload (default 10000)"},
         {"steps", "N", "measured steps per workload after 20 warm-up steps (default 100, at least 50)"},
+        {"head", "FILE", "head mesh for the brush-dab workload (OBJ, PLY, OFF, STL; default: the built-in head)"},
     };
     const CommandLine args(argc, argv, 2, options);
     const std::vector<Workload> all = workloads();
@@ -200,6 +269,7 @@ int runBench(int argc, char** argv)
     o.threads = static_cast<int>(args.integer("threads", 0, 0, 1024));
     o.measuredSteps = static_cast<int>(args.integer("steps", 100, 50, 1'000'000));
     o.sphereStrands = static_cast<std::size_t>(args.integer("strands", 10'000, 1, 4'000'000));
+    o.headPath = args.text("head").value_or("");
     const auto only = args.text("workload");
     if (only) {
         bool known = false;

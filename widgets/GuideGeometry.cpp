@@ -22,7 +22,47 @@ void basisAround(const glm::vec3& axis, glm::vec3& u, glm::vec3& v)
     v = glm::cross(axis, u);
 }
 
+// A ring as GL_TRIANGLES: two per segment, between the inner and the outer edge of the band.
+void appendRing(std::vector<GuideVertex>& out, const glm::vec3& centre, const glm::vec3& normal, float radiusMetres,
+    float bandMetres, const glm::vec4& colour)
+{
+    const float normalLength = glm::length(normal);
+    if (!finite(centre) || !finite(normal) || !(normalLength > 1e-6f) || !std::isfinite(bandMetres))
+        return;
+    const glm::vec3 axis = normal / normalLength;
+    glm::vec3 u, v;
+    basisAround(axis, u, v);
+    const glm::vec3 lifted = centre + axis * kBrushRingLiftMetres;
+    const float halfBand = 0.5f * std::max(bandMetres, 0.0f);
+    const float inner = std::max(radiusMetres - halfBand, 0.0f);
+    const float outer = radiusMetres + halfBand;
+    const glm::vec3 none{ 0.0f }; // unlit
+    auto edge = [&](int i, float radius) {
+        const float a = glm::two_pi<float>() * static_cast<float>(i) / kBrushRingSegments;
+        return GuideVertex{ lifted + radius * (std::cos(a) * u + std::sin(a) * v), none, colour };
+    };
+    for (int i = 0; i < kBrushRingSegments; ++i) {
+        const GuideVertex in0 = edge(i, inner), out0 = edge(i, outer);
+        const GuideVertex in1 = edge(i + 1, inner), out1 = edge(i + 1, outer);
+        out.insert(out.end(), { in0, out0, out1, in0, out1, in1 });
+    }
+}
+
 } // namespace
+
+std::vector<GuideVertex> buildBrushRings(const BrushCursor& cursor, float bandMetres, float mirrorBandMetres)
+{
+    std::vector<GuideVertex> triangles;
+    if (!std::isfinite(cursor.radiusMetres) || !(cursor.radiusMetres > 0.0f))
+        return triangles;
+    // sRGB: white adds; a light red (still bright against skin and dark hair) erases.
+    const glm::vec3 colour = cursor.erase ? glm::vec3(1.0f, 0.32f, 0.28f) : glm::vec3(1.0f);
+    appendRing(triangles, cursor.centre, cursor.normal, cursor.radiusMetres, bandMetres, glm::vec4(colour, 1.0f));
+    if (cursor.mirrored)
+        appendRing(triangles, cursor.mirrorCentre, cursor.mirrorNormal, cursor.radiusMetres, mirrorBandMetres,
+            glm::vec4(colour, 0.45f));
+    return triangles;
+}
 
 GroundGrid buildGroundGrid(const Aabb& head)
 {

@@ -1,6 +1,7 @@
 #pragma once
-// Geometry of the viewport's scene guides, built on the CPU: the ground grid under the head and the
-// wind arrow beside it. Pure C++ (no GL), so placement is tested without a context.
+// Geometry of the viewport's scene guides, built on the CPU: the ground grid under the head, the
+// wind arrow beside it and the paint brush's ring on the scalp. Pure C++ (no GL), so placement is
+// tested without a context.
 //
 // Thread: any.
 
@@ -44,5 +45,29 @@ constexpr float kWindArrowMetresPerMps = 0.012f;
 constexpr float kWindArrowMinMetres = 0.04f;
 constexpr float kWindArrowMaxMetres = 0.30f;
 constexpr float kStillAirMetresPerSecond = 1e-3f;
+
+// The paint brush's footprint under the mouse, as the editor's paint tool found it on the head.
+struct BrushCursor {
+    glm::vec3 centre{ 0.0f }; // world, metres: where the cursor's ray meets the head
+    glm::vec3 normal{ 0.0f, 1.0f, 0.0f }; // unit surface normal there
+    float radiusMetres = 0.02f;
+    bool erase = false; // the stroke removes weight: the ring is tinted red
+    bool mirrored = false; // X-symmetric painting: a second, dimmer ring at mirrorCentre
+    glm::vec3 mirrorCentre{ 0.0f };
+    glm::vec3 mirrorNormal{ 0.0f, 1.0f, 0.0f };
+
+    bool operator==(const BrushCursor&) const = default;
+};
+
+constexpr int kBrushRingSegments = 64;
+// Lifted off the surface it lies on, so the head's own depth does not hide it.
+constexpr float kBrushRingLiftMetres = 0.0005f;
+
+// The brush ring(s) as GL_TRIANGLES: a band `bandMetres` wide centred on the circle of the brush's
+// radius, in the plane perpendicular to the normal, lifted kBrushRingLiftMetres along it. The band
+// width is the caller's, so it can keep the ring a constant width on screen (the mirror ring lies
+// at another depth, hence its own width). White to add, red to erase; the mirror ring is dimmer
+// (lower alpha). Empty for a non-finite cursor or a radius that is not positive.
+std::vector<GuideVertex> buildBrushRings(const BrushCursor& cursor, float bandMetres, float mirrorBandMetres);
 
 } // namespace wisp

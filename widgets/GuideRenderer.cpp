@@ -17,8 +17,9 @@ bool GuideRenderer::initialize(GlFunctions* gl)
         return false;
     createMesh(m_gridMesh);
     createMesh(m_arrowMesh);
+    createMesh(m_brushMesh);
     // A new context has none of the old buffers' contents.
-    m_gridMesh.dirty = m_arrowMesh.dirty = true;
+    m_gridMesh.dirty = m_arrowMesh.dirty = m_brushMesh.dirty = true;
     checkGlErrors(gl, "GuideRenderer::initialize");
     return true;
 }
@@ -48,7 +49,7 @@ void GuideRenderer::release()
 {
     if (!m_gl)
         return;
-    for (Mesh* mesh : { &m_gridMesh, &m_arrowMesh }) {
+    for (Mesh* mesh : { &m_gridMesh, &m_arrowMesh, &m_brushMesh }) {
         m_gl->glDeleteBuffers(1, &mesh->buffer);
         m_gl->glDeleteVertexArrays(1, &mesh->vao);
         mesh->buffer = mesh->vao = 0;
@@ -68,6 +69,12 @@ void GuideRenderer::setWindArrow(WindArrow arrow)
 {
     m_arrow = std::move(arrow);
     m_arrowMesh.dirty = true;
+}
+
+void GuideRenderer::setBrushRings(std::vector<GuideVertex> triangles)
+{
+    m_brushRings = std::move(triangles);
+    m_brushMesh.dirty = true;
 }
 
 void GuideRenderer::upload(Mesh& mesh, const std::vector<GuideVertex>& vertices)
@@ -90,6 +97,7 @@ void GuideRenderer::bindProgram(const RenderView& view, float lit, float fadeRad
     setUniform(program, "u_lit", lit);
     setUniform(program, "u_fadeCentre", m_grid.centre);
     setUniform(program, "u_fadeRadius", fadeRadius);
+    setUniform(program, "u_alphaScale", 1.0f);
 }
 
 void GuideRenderer::drawWindArrow(const RenderView& view)
@@ -133,6 +141,49 @@ void GuideRenderer::drawGrid(const RenderView& view)
     m_gl->glDepthMask(GL_TRUE);
     m_gl->glDisable(GL_BLEND);
     checkGlErrors(m_gl, "GuideRenderer::drawGrid");
+}
+
+void GuideRenderer::drawBrushPass(GLsizei count, float alphaScale)
+{
+    setUniform(*m_program, "u_alphaScale", alphaScale);
+    m_gl->glDrawArrays(GL_TRIANGLES, 0, count);
+}
+
+void GuideRenderer::drawBrushRings(const RenderView& view)
+{
+    if (!m_program)
+        return;
+    if (m_brushMesh.dirty)
+        upload(m_brushMesh, m_brushRings);
+    if (m_brushMesh.count == 0)
+        return;
+    GlFunctions* gl = m_gl;
+    gl->glDepthMask(GL_FALSE); // an overlay: nothing drawn later should be hidden by it
+    gl->glEnable(GL_BLEND);
+    gl->glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    gl->glDisable(GL_CULL_FACE); // seen from either side
+    bindProgram(view, 0.0f, 0.0f);
+    gl->glBindVertexArray(m_brushMesh.vao);
+
+    // Hidden parts: faint, whatever is in front.
+    gl->glDisable(GL_DEPTH_TEST);
+    drawBrushPass(m_brushMesh.count, 0.3f);
+    // Visible parts: full strength. The ring is lifted off the surface, but where the scalp curves
+    // away under its flat circle, or at grazing angles, depth precision alone would let the skin
+    // win; the polygon offset pulls the ring a few depth steps toward the camera.
+    gl->glEnable(GL_DEPTH_TEST);
+    gl->glDepthFunc(GL_LEQUAL);
+    gl->glEnable(GL_POLYGON_OFFSET_FILL);
+    gl->glPolygonOffset(-1.0f, -4.0f);
+    drawBrushPass(m_brushMesh.count, 1.0f);
+    gl->glDisable(GL_POLYGON_OFFSET_FILL);
+    gl->glDepthFunc(GL_LESS);
+
+    gl->glBindVertexArray(0);
+    m_program->release();
+    gl->glDepthMask(GL_TRUE);
+    gl->glDisable(GL_BLEND);
+    checkGlErrors(gl, "GuideRenderer::drawBrushRings");
 }
 
 } // namespace wisp

@@ -1,6 +1,7 @@
 #pragma once
 // Draws the scene guides built by GuideGeometry: the ground grid (thin blended lines, drawn last so
-// the head and hair hide it) and the wind arrow (a shaded solid).
+// the head and hair hide it), the wind arrow (a shaded solid) and the paint brush's rings (flat
+// bands on the scalp, drawn over everything else).
 //
 // set*() keep the geometry on the CPU and mark it for upload on the next draw.
 // Thread: GUI; initialize(), release() and draw*() need the viewport's context current.
@@ -13,6 +14,7 @@
 #include <QString>
 
 #include <memory>
+#include <vector>
 
 namespace wisp {
 
@@ -29,9 +31,14 @@ public:
     void setGrid(GroundGrid grid);
     void setWindArrow(WindArrow arrow);
     const WindArrow& windArrow() const { return m_arrow; }
+    // Triangles from buildBrushRings; empty: no brush.
+    void setBrushRings(std::vector<GuideVertex> triangles);
 
     void drawWindArrow(const RenderView& view);
     void drawGrid(const RenderView& view);
+    // Depth-tested against the head and hair, pulled slightly toward the camera; the parts they
+    // hide show faintly through them, so the brush is never lost under the hair it paints beneath.
+    void drawBrushRings(const RenderView& view);
 
     QString error() const { return m_error; }
 
@@ -45,13 +52,16 @@ private:
     void createMesh(Mesh& mesh);
     void upload(Mesh& mesh, const std::vector<GuideVertex>& vertices);
     void bindProgram(const RenderView& view, float lit, float fadeRadius);
+    void drawBrushPass(GLsizei count, float alphaScale);
 
     GlFunctions* m_gl = nullptr;
     std::unique_ptr<QOpenGLShaderProgram> m_program;
     Mesh m_gridMesh;
     Mesh m_arrowMesh;
+    Mesh m_brushMesh;
     GroundGrid m_grid;
     WindArrow m_arrow;
+    std::vector<GuideVertex> m_brushRings;
     QString m_error;
 };
 

@@ -28,6 +28,19 @@ bool offsetsUsable(const HairCurves& strands)
     return strands.offsets.back() <= strands.positions.size();
 }
 
+bool sameLooks(std::span<const StrandLook> a, std::span<const StrandLook> b)
+{
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const StrandLook& x, const StrandLook& y) {
+        return x.rootColour == y.rootColour && x.tipColour == y.tipColour;
+    });
+}
+
+// What a point's w tells the shader (see hair.vert): the strand is skipped, takes the style's
+// colours, or takes look k (kFirstLookTag + k; floats hold these integers exactly).
+constexpr float kSkipTag = 0.0f;
+constexpr float kStyleTag = 1.0f;
+constexpr float kFirstLookTag = 2.0f;
+
 } // namespace
 
 HairRenderer::~HairRenderer() = default;
@@ -43,6 +56,8 @@ bool HairRenderer::initialize(GlFunctions* gl)
     gl->glGenBuffers(1, &m_indexBuffer);
     gl->glGenBuffers(1, &m_pointBuffer);
     gl->glGenTextures(1, &m_pointTexture);
+    gl->glGenBuffers(1, &m_lookBuffer);
+    gl->glGenTextures(1, &m_lookTexture);
     gl->glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &m_maxTexels);
 
     gl->glBindVertexArray(m_vao);
@@ -55,8 +70,11 @@ bool HairRenderer::initialize(GlFunctions* gl)
 
     m_program->bind();
     m_program->setUniformValue("u_points", 0);
+    m_program->setUniformValue("u_looks", 1);
     m_program->release();
     // Everything that came before this context (a reparented widget gets a new one) is gone.
+    m_looks.clear();
+    uploadLooks(); // storage even without looks: the shader's sampler must refer to something
     m_layout = HairStripLayout{};
     m_vertexCount = 0;
     m_pointCapacity = 0;
@@ -68,12 +86,15 @@ void HairRenderer::release()
 {
     if (!m_gl)
         return;
+    m_gl->glDeleteTextures(1, &m_lookTexture);
+    m_gl->glDeleteBuffers(1, &m_lookBuffer);
     m_gl->glDeleteTextures(1, &m_pointTexture);
     m_gl->glDeleteBuffers(1, &m_pointBuffer);
     m_gl->glDeleteBuffers(1, &m_indexBuffer);
     m_gl->glDeleteBuffers(1, &m_layoutBuffer);
     m_gl->glDeleteVertexArrays(1, &m_vao);
-    m_pointTexture = m_pointBuffer = m_indexBuffer = m_layoutBuffer = m_vao = 0;
+    m_lookTexture = m_lookBuffer = m_pointTexture = m_pointBuffer = m_indexBuffer = m_layoutBuffer = m_vao = 0;
+    m_looks.clear();
     m_program.reset();
     m_gl = nullptr;
     m_vertexCount = 0;
@@ -113,7 +134,35 @@ void HairRenderer::rebuildLayout(std::span<const std::uint32_t> offsets)
     checkGlErrors(m_gl, "HairRenderer::rebuildLayout");
 }
 
-void HairRenderer::upload(const HairCurves& strands)
+void HairRenderer::setLooks(std::span<const StrandLook> looks)
+{
+    if (!m_program || sameLooks(looks, m_looks))
+        return;
+    // More than a uint16 index can name would never be read.
+    const std::size_t count = std::min<std::size_t>(looks.size(), 65536);
+    m_looks.assign(looks.begin(), looks.begin() + static_cast<std::ptrdiff_t>(count));
+    uploadLooks();
+}
+
+void HairRenderer::uploadLooks()
+{
+    // At least one look's worth of texels, so the texture always has storage.
+    std::vector<glm::vec4> texels(2 * std::max<std::size_t>(m_looks.size(), 1), glm::vec4(0.0f));
+    for (std::size_t k = 0; k < m_looks.size(); ++k) {
+        texels[2 * k] = glm::vec4(linearFromSrgb(m_looks[k].rootColour), 1.0f);
+        texels[2 * k + 1] = glm::vec4(linearFromSrgb(m_looks[k].tipColour), 1.0f);
+    }
+    m_gl->glBindBuffer(GL_TEXTURE_BUFFER, m_lookBuffer);
+    m_gl->glBufferData(
+        GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(texels.size() * sizeof(glm::vec4)), texels.data(), GL_STATIC_DRAW);
+    m_gl->glBindTexture(GL_TEXTURE_BUFFER, m_lookTexture);
+    m_gl->glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, m_lookBuffer);
+    m_gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    m_gl->glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    checkGlErrors(m_gl, "HairRenderer::uploadLooks");
+}
+
+void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand)
 {
     if (!m_program)
         return;
@@ -147,20 +196,27 @@ void HairRenderer::upload(const HairCurves& strands)
         checkGlErrors(m_gl, "HairRenderer::upload (map)");
         return;
     }
-    // One pass per strand: first find out whether it is finite, then copy it with the verdict in w.
+    // One pass per strand: first find out whether it is finite, then copy it with the verdict (and
+    // its look) in w.
     m_skippedStrands = 0;
     const glm::vec3* points = strands.positions.data();
+    const bool withLooks = lookOfStrand.size() == strands.strandCount() && !m_looks.empty();
     for (std::size_t s = 0; s < strands.strandCount(); ++s) {
         const std::uint32_t begin = strands.offsets[s];
         const std::uint32_t end = strands.offsets[s + 1];
         bool finite = true;
         for (std::uint32_t i = begin; i < end; ++i)
             finite = finite && finitePoint(points[i]);
-        const float drawable = finite ? 1.0f : 0.0f;
         if (!finite && end - begin >= 2 && end - begin - 1 <= HairStripLayout::kMaxSegments)
             ++m_skippedStrands;
+        if (!finite) {
+            std::fill(out + begin, out + end, glm::vec4(0.0f, 0.0f, 0.0f, kSkipTag));
+            continue;
+        }
+        const bool hasLook = withLooks && lookOfStrand[s] < m_looks.size();
+        const float tag = hasLook ? kFirstLookTag + static_cast<float>(lookOfStrand[s]) : kStyleTag;
         for (std::uint32_t i = begin; i < end; ++i)
-            out[i] = finite ? glm::vec4(points[i], 1.0f) : glm::vec4(0.0f, 0.0f, 0.0f, drawable);
+            out[i] = glm::vec4(points[i], tag);
     }
     m_gl->glUnmapBuffer(GL_TEXTURE_BUFFER);
     // A typical segment length (from up to 256 strands' first segments), to pick how finely the
@@ -245,6 +301,8 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     setUniform(program, "u_headCentreView", view.headCentreView);
     setUniform(program, "u_tipFade", std::clamp(style.tipFade, 0.0f, 1.0f));
 
+    gl->glActiveTexture(GL_TEXTURE1);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, m_lookTexture);
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
     gl->glBindVertexArray(m_vao);
@@ -256,6 +314,9 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     gl->glDisable(GL_PRIMITIVE_RESTART);
     gl->glBindVertexArray(0);
     gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    gl->glActiveTexture(GL_TEXTURE1);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    gl->glActiveTexture(GL_TEXTURE0);
     program.release();
 
     gl->glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);

@@ -6,12 +6,18 @@
 // Kajiya-Kay shading and the ribbon expansion run in the vertex shader, over a static layout
 // (HairStripLayout) rebuilt only when the strands' layout changes. One draw call for all strands.
 //
+// Colours: the style's root and tip colours, or per strand a look (a region's root and tip colours)
+// when the frame assigns one. The look's index rides in the w of each streamed point, which is
+// written anyway (no extra per-frame data); the looks' colours sit in a small buffer texture,
+// sent again only when they change.
+//
 // Strands at most a pixel wide on screen are drawn as line strips, wider ones (close-ups) as
 // camera-facing ribbons; both carry the strand's true width as coverage in alpha, so the switch
 // does not show. draw() can draw an even sample of the strands (level of detail, see HairDetail).
 //
 // Thread: GUI, with the viewport's GL context current (every member function).
 
+#include "sim/Frame.h"
 #include "sim/HairCurves.h"
 #include "widgets/GlSupport.h"
 #include "widgets/HairStripLayout.h"
@@ -25,6 +31,7 @@
 #include <array>
 #include <memory>
 #include <span>
+#include <vector>
 
 namespace wisp {
 
@@ -51,8 +58,13 @@ public:
     bool initialize(GlFunctions* gl);
     void release();
 
-    // Streams the strands in; `strands` need only live for this call.
-    void upload(const HairCurves& strands);
+    // The looks that upload()'s lookOfStrand indexes (sRGB colours; at most 65536). Cheap when
+    // they have not changed. Call before upload(): a strand names a look only if it exists then.
+    void setLooks(std::span<const StrandLook> looks);
+    // Streams the strands in; `strands` need only live for this call. `lookOfStrand`: one look
+    // index per strand, or empty (or of another count) for the style's colours everywhere; a
+    // strand whose index has no look also takes the style's colours.
+    void upload(const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand = {});
     void clear();
     // Draws `fraction` (0..1) of the strands, an even sample, each made wider to make up for the
     // rest; `coarse` draws one sample per segment (the points themselves) whatever the zoom.
@@ -67,6 +79,7 @@ public:
 
 private:
     void rebuildLayout(std::span<const std::uint32_t> offsets);
+    void uploadLooks();
 
     GlFunctions* m_gl = nullptr;
     std::unique_ptr<QOpenGLShaderProgram> m_program;
@@ -75,6 +88,9 @@ private:
     GLuint m_indexBuffer = 0; // every index list of m_layout, one after another (element buffer of m_vao)
     GLuint m_pointBuffer = 0; // vec4 per point, read through m_pointTexture
     GLuint m_pointTexture = 0;
+    GLuint m_lookBuffer = 0; // two linear-RGBA texels per look: root, tip
+    GLuint m_lookTexture = 0;
+    std::vector<StrandLook> m_looks; // as last given (sRGB); m_lookBuffer holds them
     std::size_t m_pointCapacity = 0; // points m_pointBuffer can hold
     GLint m_maxTexels = 0; // GL_MAX_TEXTURE_BUFFER_SIZE: frames with more points are not drawn
     HairStripLayout m_layout;

@@ -2,7 +2,10 @@
 
 #include <QOpenGLShaderProgram>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <utility>
 
 namespace wisp {
 
@@ -16,6 +19,7 @@ bool HeadRenderer::initialize(GlFunctions* gl)
         return false;
     gl->glGenVertexArrays(1, &m_vao);
     gl->glGenBuffers(1, &m_vertexBuffer);
+    gl->glGenBuffers(1, &m_weightBuffer);
     gl->glGenBuffers(1, &m_indexBuffer);
     gl->glBindVertexArray(m_vao);
     gl->glBindBuffer(GL_ARRAY_BUFFER, m_vertexBuffer);
@@ -26,6 +30,9 @@ bool HeadRenderer::initialize(GlFunctions* gl)
     gl->glEnableVertexAttribArray(1);
     gl->glVertexAttribPointer(
         1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, normal)));
+    gl->glBindBuffer(GL_ARRAY_BUFFER, m_weightBuffer);
+    gl->glEnableVertexAttribArray(2);
+    gl->glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, sizeof(float), nullptr);
     gl->glBindVertexArray(0);
     gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
     m_indexCount = 0;
@@ -39,9 +46,10 @@ void HeadRenderer::release()
     if (!m_gl)
         return;
     m_gl->glDeleteBuffers(1, &m_indexBuffer);
+    m_gl->glDeleteBuffers(1, &m_weightBuffer);
     m_gl->glDeleteBuffers(1, &m_vertexBuffer);
     m_gl->glDeleteVertexArrays(1, &m_vao);
-    m_indexBuffer = m_vertexBuffer = m_vao = 0;
+    m_indexBuffer = m_weightBuffer = m_vertexBuffer = m_vao = 0;
     m_indexCount = 0;
     m_program.reset();
     m_gl = nullptr;
@@ -61,12 +69,27 @@ void HeadRenderer::setMesh(const TriangleMesh& mesh)
     m_triangles = mesh.triangles;
 }
 
+void HeadRenderer::setGrowthWeights(std::vector<float> weights)
+{
+    // Sanitised once here rather than per fragment: a NaN would survive the shader's clamp.
+    for (float& w : weights)
+        w = std::isfinite(w) ? std::clamp(w, 0.0f, 1.0f) : 0.0f;
+    m_weights = std::move(weights);
+    m_weightsDirty = true;
+}
+
 void HeadRenderer::uploadPending()
 {
     m_dirty = false;
     m_gl->glBindBuffer(GL_ARRAY_BUFFER, m_vertexBuffer);
     m_gl->glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data(),
         GL_STATIC_DRAW);
+    // Storage for the weights, filled by uploadWeights (the attribute is read even while the
+    // overlay is off; the shader then ignores its value).
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, m_weightBuffer);
+    m_gl->glBufferData(
+        GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
+    m_weightsDirty = true;
     m_gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
     // The element buffer binding is VAO state: bind the VAO to touch it.
     m_gl->glBindVertexArray(m_vao);
@@ -77,12 +100,27 @@ void HeadRenderer::uploadPending()
     checkGlErrors(m_gl, "HeadRenderer::uploadPending");
 }
 
-void HeadRenderer::draw(const RenderView& view)
+void HeadRenderer::uploadWeights()
+{
+    m_weightsDirty = false;
+    if (!hasGrowthOverlay())
+        return;
+    // The buffer was sized for this mesh in uploadPending, and the weights match the mesh.
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, m_weightBuffer);
+    m_gl->glBufferSubData(
+        GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(m_weights.size() * sizeof(float)), m_weights.data());
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
+    checkGlErrors(m_gl, "HeadRenderer::uploadWeights");
+}
+
+void HeadRenderer::draw(const RenderView& view, bool showGrowthOverlay)
 {
     if (!m_program)
         return;
     if (m_dirty)
         uploadPending();
+    if (m_weightsDirty)
+        uploadWeights();
     if (m_indexCount == 0)
         return;
 
@@ -102,6 +140,7 @@ void HeadRenderer::draw(const RenderView& view)
     setUniform(program, "u_skinColour", linearFromSrgb({ kSkinSrgb[0], kSkinSrgb[1], kSkinSrgb[2] }));
     setUniform(program, "u_keyLightView", view.keyLightView);
     setUniform(program, "u_fillLightView", view.fillLightView);
+    setUniform(program, "u_growthOverlay", showGrowthOverlay && hasGrowthOverlay() ? 1.0f : 0.0f);
     gl->glBindVertexArray(m_vao);
     gl->glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);
     gl->glBindVertexArray(0);

@@ -1,8 +1,11 @@
 #pragma once
-// Draws the head: a smooth-shaded, depth-tested mesh in a skin tone.
+// Draws the head: a smooth-shaded, depth-tested mesh in a skin tone, optionally tinted by the
+// painted growth weights (one per vertex) so the artist sees where hair grows.
 //
 // setMesh() only prepares vertex data on the CPU (smooth normals included); the upload happens on
 // the next draw, with the context current, so the head can be set before the widget is shown.
+// The weights live in a buffer of their own: a brush stroke changes them many times a second, and
+// then only they are sent again (glBufferSubData), never the positions and normals.
 //
 // Thread: GUI. initialize(), release() and draw() need the viewport's context current.
 
@@ -30,7 +33,13 @@ public:
 
     // An unusable mesh (see validateMesh) draws nothing.
     void setMesh(const TriangleMesh& mesh);
-    void draw(const RenderView& view);
+    // One weight per vertex, 0..1 (others are clamped; non-finite ones read as 0). Kept whatever
+    // their count, but shown only while it equals the mesh's vertex count, so the head and its
+    // weights may arrive in either order.
+    void setGrowthWeights(std::vector<float> weights);
+    bool hasGrowthOverlay() const { return !m_weights.empty() && m_weights.size() == m_vertices.size(); }
+    // `showGrowthOverlay`: tint by the weights, if there are usable ones; else plain skin.
+    void draw(const RenderView& view, bool showGrowthOverlay = false);
 
     QString error() const { return m_error; }
     static constexpr float kSkinSrgb[3] = { 0.87f, 0.68f, 0.58f };
@@ -41,17 +50,21 @@ private:
         glm::vec3 normal; // unit, area-weighted vertex normal
     };
     void uploadPending();
+    void uploadWeights();
 
     GlFunctions* m_gl = nullptr;
     std::unique_ptr<QOpenGLShaderProgram> m_program;
     GLuint m_vao = 0;
     GLuint m_vertexBuffer = 0;
+    GLuint m_weightBuffer = 0; // one float per vertex, sized with the mesh
     GLuint m_indexBuffer = 0;
     GLsizei m_indexCount = 0;
     // Kept after uploading: a new context (the widget moved to another window) needs them again.
     std::vector<Vertex> m_vertices;
     std::vector<glm::uvec3> m_triangles;
+    std::vector<float> m_weights;
     bool m_dirty = false;
+    bool m_weightsDirty = false;
     QString m_error;
 };
 

@@ -4,6 +4,8 @@
 #include "widgets/ViewportOverlay.h"
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
 
 #include <QKeyEvent>
@@ -33,6 +35,10 @@ constexpr Aabb kFallbackHeadBounds{ { -0.09f, -0.23f, -0.11f }, { 0.09f, 0.14f, 
 
 const glm::vec3 kBackgroundTop{ 0.235f, 0.247f, 0.275f }; // sRGB
 const glm::vec3 kBackgroundBottom{ 0.105f, 0.110f, 0.125f };
+
+// The brush ring's band, device pixels: thin enough not to hide what is painted, wide enough to
+// see on a busy head.
+constexpr float kBrushRingPixels = 2.5f;
 
 glm::vec3 toVec(const QColor& c)
 {
@@ -155,6 +161,29 @@ void Viewport::setWind(const glm::vec3& windMetresPerSecond)
     update();
 }
 
+void Viewport::setBrushCursor(std::optional<BrushCursor> cursor)
+{
+    if (cursor == m_brushCursor)
+        return;
+    m_brushCursor = std::move(cursor);
+    m_brushDirty = true;
+    update();
+}
+
+void Viewport::setGrowthOverlay(std::vector<float> weights)
+{
+    m_head.setGrowthWeights(std::move(weights));
+    update();
+}
+
+void Viewport::setShowGrowthOverlay(bool show)
+{
+    if (show == m_showGrowthOverlay)
+        return;
+    m_showGrowthOverlay = show;
+    update();
+}
+
 void Viewport::rebuildGuides()
 {
     m_guides.setGrid(buildGroundGrid(m_headBounds));
@@ -219,6 +248,22 @@ float Viewport::aspect() const
 glm::vec2 Viewport::project(const glm::vec3& worldMetres) const
 {
     return m_camera.project(worldMetres, glm::vec2(width(), height()));
+}
+
+ViewRay Viewport::rayAt(QPointF logicalPixel) const
+{
+    // The same size and aspect that project() uses, so the two are exact inverses.
+    const glm::vec2 size(static_cast<float>(width()), static_cast<float>(height()));
+    const float rayAspect = size.y > 0.0f ? size.x / size.y : 1.0f;
+    const glm::vec2 ndc = size.x > 0.0f && size.y > 0.0f
+        ? glm::vec2(2.0f * static_cast<float>(logicalPixel.x()) / size.x - 1.0f,
+            1.0f - 2.0f * static_cast<float>(logicalPixel.y()) / size.y)
+        : glm::vec2(0.0f);
+    // In view space the ray through NDC (x, y) runs along (x / P00, y / P11, -1) from the eye.
+    const glm::mat4 projection = m_camera.projection(rayAspect);
+    const glm::vec3 directionView{ ndc.x / projection[0][0], ndc.y / projection[1][1], -1.0f };
+    const glm::mat4 viewToWorld = glm::inverse(m_camera.view());
+    return { glm::vec3(viewToWorld[3]), glm::normalize(glm::mat3(viewToWorld) * directionView) };
 }
 
 void Viewport::frameHead()
@@ -427,6 +472,34 @@ void Viewport::paintUnavailable()
     painter.drawText(rect().adjusted(20, 20, -20, -20), Qt::AlignCenter | Qt::TextWordWrap, m_glStatus);
 }
 
+float Viewport::metresPerPixelAt(const RenderView& view, const glm::vec3& worldMetres) const
+{
+    // projection[1][1] = 1 / tan(fovY / 2): the view is 2 depth / P11 metres tall at that depth.
+    const float depth = std::max(-(view.view * glm::vec4(worldMetres, 1.0f)).z, m_camera.nearPlane());
+    return 2.0f * depth / (view.projection[1][1] * view.viewportPixels.y);
+}
+
+void Viewport::updateBrushRings(const RenderView& view)
+{
+    if (!m_brushCursor) {
+        if (m_brushDirty)
+            m_guides.setBrushRings({});
+        m_brushDirty = false;
+        return;
+    }
+    // A constant width on screen: rebuilt when the cursor moves or the zoom changes the width.
+    const BrushCursor& cursor = *m_brushCursor;
+    const float band = kBrushRingPixels * metresPerPixelAt(view, cursor.centre);
+    const float mirrorBand = kBrushRingPixels * metresPerPixelAt(view, cursor.mirrorCentre);
+    const auto changed = [](float was, float now) { return !(std::abs(now - was) <= 0.02f * was); };
+    if (!m_brushDirty && !changed(m_brushBandMetres, band) && !changed(m_mirrorBandMetres, mirrorBand))
+        return;
+    m_brushDirty = false;
+    m_brushBandMetres = band;
+    m_mirrorBandMetres = mirrorBand;
+    m_guides.setBrushRings(buildBrushRings(cursor, band, mirrorBand));
+}
+
 void Viewport::paintGL()
 {
     measureFrameRate();
@@ -440,10 +513,12 @@ void Viewport::paintGL()
 
     if (m_frameDirty) {
         m_frameDirty = false;
-        if (m_frame)
-            m_hair.upload(m_frame->strands);
-        else
+        if (m_frame) {
+            m_hair.setLooks(m_frame->looks);
+            m_hair.upload(m_frame->strands, m_frame->lookOfStrand);
+        } else {
             m_hair.clear();
+        }
     }
 
     gl->glGetIntegerv(GL_SAMPLES, &m_samples);
@@ -460,7 +535,7 @@ void Viewport::paintGL()
     gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
     m_background.draw(kBackgroundTop, kBackgroundBottom);
-    m_head.draw(view);
+    m_head.draw(view, m_showGrowthOverlay);
     const bool refining = m_refining;
     m_refining = false;
     const bool preview = m_levelOfDetail && !refining && m_detail.previewing();
@@ -469,6 +544,10 @@ void Viewport::paintGL()
     m_guides.drawWindArrow(view);
     if (m_showGrid)
         m_guides.drawGrid(view);
+    // Last: its hidden parts are drawn over everything.
+    updateBrushRings(view);
+    if (m_brushCursor)
+        m_guides.drawBrushRings(view);
     gl->glDisable(GL_DEPTH_TEST);
     checkGlErrors(gl, "Viewport::paintGL");
 

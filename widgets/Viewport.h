@@ -5,7 +5,9 @@
 //   Shift + middle drag (or Alt+middle)  pan
 //   wheel, Ctrl + middle drag, Alt + right drag   zoom toward the pivot
 //   F                                    frame the head
-// Left clicks without Alt are left to the editor's tools (the events are ignored here).
+// Left clicks without Alt are left to the editor's tools (the events are ignored here); a paint
+// tool installs an event filter, picks with rayAt() and shows its brush with setBrushCursor().
+// The head can be tinted by painted growth weights (setGrowthOverlay).
 //
 // It draws whatever FramePtr it was given last and never touches simulation state: frames are
 // immutable and shared, so drawing holds no lock.
@@ -35,8 +37,16 @@
 #include <QTimer>
 
 #include <cstdint>
+#include <optional>
+#include <vector>
 
 namespace wisp {
+
+// A ray in world space, metres: from the camera's eye through a point of the view.
+struct ViewRay {
+    glm::vec3 origin{ 0.0f };
+    glm::vec3 direction{ 0.0f, 0.0f, -1.0f }; // unit
+};
 
 class Viewport : public QOpenGLWidget {
     Q_OBJECT
@@ -60,6 +70,22 @@ public:
     Aabb headBounds() const { return m_headBounds; }
     // Where a world point lands in this widget, logical pixels from the top-left corner.
     glm::vec2 project(const glm::vec3& worldMetres) const;
+    // The inverse of project(): the ray from the eye through a widget position (logical pixels
+    // from the top-left corner), for picking the head under the mouse.
+    ViewRay rayAt(QPointF logicalPixel) const;
+
+    // The paint brush's ring on the head (BrushCursor, in GuideGeometry.h); nullopt hides it.
+    // Repaints when it changes.
+    void setBrushCursor(std::optional<BrushCursor> cursor);
+    const std::optional<BrushCursor>& brushCursor() const { return m_brushCursor; }
+
+    // Painted growth weights, one per head vertex, 0..1, shown as a tint of the skin. Weights of
+    // another count than the head's vertices are not shown (kept, in case the matching head
+    // follows). Cheap enough to call for every step of a brush stroke: only the weights are sent
+    // to the GPU in the next paint.
+    void setGrowthOverlay(std::vector<float> weights);
+    void setShowGrowthOverlay(bool show);
+    bool showGrowthOverlay() const { return m_showGrowthOverlay; }
 
     bool showGrid() const { return m_showGrid; }
     void setHairColours(const QColor& root, const QColor& tip);
@@ -116,6 +142,8 @@ private:
     void rebuildGuides();
     void cameraMovedByUser();
     void paintUnavailable();
+    void updateBrushRings(const RenderView& view);
+    float metresPerPixelAt(const RenderView& view, const glm::vec3& worldMetres) const;
 
     OrbitCamera m_camera;
     bool m_cameraTouched = false; // the artist moved it: stop following head and window changes
@@ -127,6 +155,11 @@ private:
     glm::vec3 m_wind{ 0.0f };
     bool m_showGrid = true;
     HairStyle m_hairStyle;
+    std::optional<BrushCursor> m_brushCursor;
+    bool m_brushDirty = false; // rings not rebuilt since the cursor changed
+    float m_brushBandMetres = 0.0f; // of the rings last built (they keep a constant width on screen)
+    float m_mirrorBandMetres = 0.0f;
+    bool m_showGrowthOverlay = true;
 
     GlFunctions* m_gl = nullptr;
     bool m_glReady = false;

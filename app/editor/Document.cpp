@@ -3,30 +3,231 @@
 #include "app/editor/DocumentCommands.h"
 #include "sim/DefaultHead.h"
 
+#include <glm/common.hpp>
+
+#include <algorithm>
+
 namespace wisp {
+
+namespace {
+
+GrowthRegion firstRegion(std::vector<float> weights)
+{
+    GrowthRegion r;
+    r.id = 0;
+    r.name = "Scalp";
+    r.weights = std::move(weights);
+    return r;
+}
+
+}  // namespace
 
 Document::Document(QObject* parent) : QObject(parent)
 {
     DefaultHead d = makeDefaultHead();
     m_head = std::move(d.mesh);
-    m_growthWeights = std::move(d.growthWeights);
+    m_regions.push_back(firstRegion(std::move(d.growthWeights)));
+    m_current = 0;
 }
+
+int Document::indexOfRegion(std::uint32_t id) const
+{
+    for (std::size_t i = 0; i < m_regions.size(); ++i)
+        if (m_regions[i].id == id)
+            return static_cast<int>(i);
+    return -1;
+}
+
+void Document::setCurrentRegion(int index)
+{
+    if (m_regions.empty())
+        index = -1;
+    else
+        index = std::clamp(index, 0, regionCount() - 1);
+    if (index == m_current)
+        return;
+    m_current = index;
+    emit currentRegionChanged(index);
+}
+
+std::uint32_t Document::nextRegionId() const
+{
+    std::uint32_t next = 0;
+    for (const GrowthRegion& r : m_regions)
+        next = std::max(next, r.id + 1);
+    return next;
+}
+
+// --- Edits -----------------------------------------------------------------------------------
 
 QString Document::editParameter(Param id, double value, bool dragging)
 {
     ParameterValues check = m_parameters;
     if (std::string error = check.set(id, value); !error.empty())
         return QString::fromStdString(error);
-    const double rounded = check.get(id);
-    const double old = m_parameters.get(id);
-    m_undoStack.push(new SetParameterCommand(this, id, old, rounded, dragging));
+    m_undoStack.push(new SetParameterCommand(this, id, m_parameters.get(id), check.get(id), dragging));
     return {};
+}
+
+QString Document::editRegionParameter(int index, Param id, double value, bool dragging)
+{
+    if (index < 0 || index >= regionCount())
+        return tr("no region %1").arg(index + 1);
+    if (parameterInfo(id).group != ParamGroup::Wisp)
+        return tr("%1 is not a region's parameter").arg(QString::fromUtf8(parameterInfo(id).key.data()));
+    const GrowthRegion& r = region(index);
+    ParameterValues check = r.values;
+    if (std::string error = check.set(id, value); !error.empty())
+        return QString::fromStdString(error);
+    m_undoStack.push(new SetRegionParameterCommand(this, r.id, QString::fromStdString(r.name), id, r.values.get(id),
+                                                   check.get(id), dragging));
+    return {};
+}
+
+int Document::addRegion(const QString& name)
+{
+    std::vector<GrowthRegion> after = m_regions;
+    GrowthRegion r;
+    r.id = nextRegionId();
+    r.name = name.toStdString();
+    r.weights.assign(m_head.positions.size(), 0.0f);
+    if (m_current >= 0) {  // a new layer starts from the look being edited, as artists expect
+        r.values = region(m_current).values;
+        r.rootColour = region(m_current).rootColour;
+        r.tipColour = region(m_current).tipColour;
+    }
+    after.push_back(std::move(r));
+    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
+                                           tr("Add region %1").arg(name)));
+    setCurrentRegion(regionCount() - 1);
+    return m_current;
+}
+
+void Document::removeRegion(int index)
+{
+    if (index < 0 || index >= regionCount())
+        return;
+    std::vector<GrowthRegion> after = m_regions;
+    const std::uint32_t id = after[static_cast<std::size_t>(index)].id;
+    after.erase(after.begin() + index);
+    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId == id ? kNoSolo : m_soloId,
+                                           tr("Remove region %1").arg(QString::fromStdString(region(index).name))));
+}
+
+void Document::renameRegion(int index, const QString& name)
+{
+    if (index < 0 || index >= regionCount() || name.trimmed().isEmpty() || name.toStdString() == region(index).name)
+        return;
+    std::vector<GrowthRegion> after = m_regions;
+    after[static_cast<std::size_t>(index)].name = name.trimmed().toStdString();
+    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
+                                           tr("Rename region to %1").arg(name.trimmed())));
+}
+
+void Document::moveRegion(int from, int to)
+{
+    if (from < 0 || from >= regionCount() || to < 0 || to >= regionCount() || from == to)
+        return;
+    std::vector<GrowthRegion> after = m_regions;
+    GrowthRegion moved = std::move(after[static_cast<std::size_t>(from)]);
+    after.erase(after.begin() + from);
+    after.insert(after.begin() + to, std::move(moved));
+    const bool wasCurrent = m_current == from;
+    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
+                                           tr("Move region %1").arg(QString::fromStdString(region(from).name))));
+    if (wasCurrent)
+        setCurrentRegion(to);
+}
+
+void Document::setRegionVisible(int index, bool visible)
+{
+    if (index < 0 || index >= regionCount() || region(index).visible == visible)
+        return;
+    std::vector<GrowthRegion> after = m_regions;
+    after[static_cast<std::size_t>(index)].visible = visible;
+    const QString name = QString::fromStdString(region(index).name);
+    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
+                                           visible ? tr("Show region %1").arg(name) : tr("Hide region %1").arg(name)));
+}
+
+void Document::setSoloRegion(std::uint32_t id)
+{
+    if (id != kNoSolo && indexOfRegion(id) < 0)
+        return;
+    if (id == m_soloId)
+        return;
+    const QString text = id == kNoSolo ? tr("End solo")
+                                       : tr("Solo region %1").arg(QString::fromStdString(region(indexOfRegion(id)).name));
+    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, m_regions, id, text));
+}
+
+void Document::setRegionColours(int index, const glm::vec3& root, const glm::vec3& tip)
+{
+    if (index < 0 || index >= regionCount())
+        return;
+    const glm::vec3 r = glm::clamp(root, glm::vec3(0.0f), glm::vec3(1.0f));
+    const glm::vec3 t = glm::clamp(tip, glm::vec3(0.0f), glm::vec3(1.0f));
+    if (region(index).rootColour == r && region(index).tipColour == t)
+        return;
+    std::vector<GrowthRegion> after = m_regions;
+    after[static_cast<std::size_t>(index)].rootColour = r;
+    after[static_cast<std::size_t>(index)].tipColour = t;
+    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
+                                           tr("Colour region %1").arg(QString::fromStdString(region(index).name))));
+}
+
+// --- Strokes ----------------------------------------------------------------------------------
+
+void Document::beginStroke()
+{
+    if (m_current < 0)
+        return;
+    m_strokeRegion = m_current;
+    m_strokeBefore = region(m_current).weights;
+}
+
+std::vector<float>& Document::strokeWeights()
+{
+    static std::vector<float> none;
+    if (m_strokeRegion < 0)
+        return none;
+    return m_regions[static_cast<std::size_t>(m_strokeRegion)].weights;
+}
+
+void Document::strokeUpdated()
+{
+    if (m_strokeRegion >= 0)
+        emit regionWeightsChanged(m_regions[static_cast<std::size_t>(m_strokeRegion)].id);
+}
+
+void Document::endStroke(const QString& text)
+{
+    if (m_strokeRegion < 0)
+        return;
+    const GrowthRegion& r = m_regions[static_cast<std::size_t>(m_strokeRegion)];
+    std::vector<std::uint32_t> vertices;
+    std::vector<float> before, after;
+    for (std::size_t i = 0; i < r.weights.size(); ++i)
+        if (r.weights[i] != m_strokeBefore[i]) {
+            vertices.push_back(static_cast<std::uint32_t>(i));
+            before.push_back(m_strokeBefore[i]);
+            after.push_back(r.weights[i]);
+        }
+    const std::uint32_t id = r.id;
+    m_strokeRegion = -1;
+    m_strokeBefore.clear();
+    m_strokeBefore.shrink_to_fit();
+    if (!vertices.empty())
+        m_undoStack.push(new PaintStrokeCommand(this, id, std::move(vertices), std::move(before), std::move(after), text));
 }
 
 void Document::replaceHead(TriangleMesh head, std::vector<float> growthWeights, const QString& name)
 {
-    m_undoStack.push(new ReplaceHeadCommand(this, m_head, m_growthWeights, std::move(head), std::move(growthWeights), name));
+    std::vector<GrowthRegion> regions{firstRegion(std::move(growthWeights))};
+    m_undoStack.push(new ReplaceHeadCommand(this, m_head, m_regions, std::move(head), std::move(regions), name));
 }
+
+// --- For commands -----------------------------------------------------------------------------
 
 void Document::applyParameter(Param id, double value)
 {
@@ -36,11 +237,54 @@ void Document::applyParameter(Param id, double value)
     emit parameterChanged(id);
 }
 
-void Document::applyHead(TriangleMesh head, std::vector<float> growthWeights)
+void Document::applyRegionParameter(std::uint32_t regionId, Param id, double value)
+{
+    const int index = indexOfRegion(regionId);
+    if (index < 0 || region(index).values.get(id) == value)
+        return;
+    m_regions[static_cast<std::size_t>(index)].values.set(id, value);
+    emit regionParameterChanged(index, id);
+}
+
+void Document::applyRegions(std::vector<GrowthRegion> regions, std::uint32_t soloId)
+{
+    const std::uint32_t currentId = m_current >= 0 ? region(m_current).id : kNoSolo;
+    m_regions = std::move(regions);
+    m_soloId = soloId;
+    // The current index is valid before anyone hears of the change; its own signal follows.
+    const int stillThere = indexOfRegion(currentId);
+    const int current = m_regions.empty() ? -1
+                        : stillThere >= 0 ? stillThere
+                                          : std::min(std::max(m_current, 0), regionCount() - 1);
+    const bool currentMoved = current != m_current;
+    m_current = current;
+    emit regionsChanged();
+    if (currentMoved)
+        emit currentRegionChanged(m_current);
+}
+
+void Document::applyRegionWeights(std::uint32_t regionId, const std::vector<std::uint32_t>& vertices,
+                                  const std::vector<float>& values)
+{
+    const int index = indexOfRegion(regionId);
+    if (index < 0)
+        return;
+    std::vector<float>& weights = m_regions[static_cast<std::size_t>(index)].weights;
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+        if (vertices[i] < weights.size())
+            weights[vertices[i]] = values[i];
+    emit regionWeightsChanged(regionId);
+}
+
+void Document::applyHead(TriangleMesh head, std::vector<GrowthRegion> regions)
 {
     m_head = std::move(head);
-    m_growthWeights = std::move(growthWeights);
+    m_regions = std::move(regions);
+    m_soloId = kNoSolo;
+    m_current = m_regions.empty() ? -1 : 0;
     emit headChanged();
+    emit regionsChanged();
+    emit currentRegionChanged(m_current);
 }
 
 }  // namespace wisp

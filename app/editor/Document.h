@@ -1,15 +1,19 @@
 #pragma once
-// What the artist is editing: the head, its growth map and every parameter. It changes only through
-// undoable commands on its QUndoStack, so every edit can be undone and one gesture is one step.
+// What the artist is editing: the head, its growth regions (painted masks with their own wisp
+// parameters) and every global parameter. It changes only through undoable commands on its
+// QUndoStack, so every edit can be undone and one gesture (a slider drag, a brush stroke) is one step.
 //
 // Thread: GUI.
 
+#include "sim/GrowthRegion.h"
 #include "sim/Parameters.h"
 #include "sim/TriangleMesh.h"
 
 #include <QObject>
+#include <QString>
 #include <QUndoStack>
 
+#include <cstdint>
 #include <vector>
 
 namespace wisp {
@@ -17,33 +21,81 @@ namespace wisp {
 class Document : public QObject {
     Q_OBJECT
 public:
-    explicit Document(QObject* parent = nullptr);  // starts on the built-in head and its growth map
+    // Starts on the built-in head with one region ("Scalp") painted with its default growth map.
+    explicit Document(QObject* parent = nullptr);
 
     const TriangleMesh& head() const { return m_head; }
-    const std::vector<float>& growthWeights() const { return m_growthWeights; }
     const ParameterValues& parameters() const { return m_parameters; }
     QUndoStack* undoStack() { return &m_undoStack; }
 
-    // The artist's edit of one parameter, as an undo step. While `dragging`, successive edits of
-    // the same parameter merge into one step; the edit with dragging == false closes it.
-    // Returns the refusal message for an invalid value (nothing is pushed then).
-    QString editParameter(Param id, double value, bool dragging);
+    // --- Regions -------------------------------------------------------------------------------
+    const std::vector<GrowthRegion>& regions() const { return m_regions; }
+    int regionCount() const { return static_cast<int>(m_regions.size()); }
+    const GrowthRegion& region(int index) const { return m_regions[static_cast<std::size_t>(index)]; }
+    int indexOfRegion(std::uint32_t id) const;  // -1 if none has it
+    std::uint32_t soloRegion() const { return m_soloId; }  // kNoSolo when none is solo'd
 
-    // Replaces the head (and its growth map) as one undo step.
+    // The region the wisp panel edits and the brush paints (selection: not an edit, not undoable).
+    // -1 only when there is no region.
+    int currentRegion() const { return m_current; }
+    void setCurrentRegion(int index);
+
+    // --- Edits, each one undo step ---------------------------------------------------------------
+    // The artist's edit of one global parameter. While `dragging`, successive edits of the same
+    // parameter merge into one step; the edit with dragging == false closes it. Returns the refusal
+    // message for an invalid value (nothing is pushed then).
+    QString editParameter(Param id, double value, bool dragging);
+    // The same for a Wisp-group parameter of one region.
+    QString editRegionParameter(int index, Param id, double value, bool dragging);
+
+    // Adds a region with default wisp parameters and an empty mask after the others; it becomes
+    // the current region. Returns its index.
+    int addRegion(const QString& name);
+    void removeRegion(int index);
+    void renameRegion(int index, const QString& name);  // an empty name is refused (nothing pushed)
+    void moveRegion(int from, int to);
+    void setRegionVisible(int index, bool visible);
+    void setSoloRegion(std::uint32_t id);  // kNoSolo ends solo
+    void setRegionColours(int index, const glm::vec3& root, const glm::vec3& tip);
+
+    // A brush stroke on the current region's mask: begin, any number of live updates (the hair
+    // follows each), end. The whole stroke is one undo step holding only the weights it changed.
+    // A stroke that changed nothing leaves no step.
+    void beginStroke();
+    std::vector<float>& strokeWeights();  // the current region's weights, to change during a stroke
+    void strokeUpdated();                 // after changing them: emits regionWeightsChanged
+    void endStroke(const QString& text);
+    bool inStroke() const { return m_strokeRegion >= 0; }
+
+    // Replaces the head as one undo step; its regions start over as one region grown where
+    // `growthWeights` say.
     void replaceHead(TriangleMesh head, std::vector<float> growthWeights, const QString& name);
 
-    // For commands only: applies without touching the undo stack.
+    // --- For commands only: apply without touching the undo stack -------------------------------
     void applyParameter(Param id, double value);
-    void applyHead(TriangleMesh head, std::vector<float> growthWeights);
+    void applyRegionParameter(std::uint32_t regionId, Param id, double value);
+    void applyRegions(std::vector<GrowthRegion> regions, std::uint32_t soloId);  // structure changes
+    void applyRegionWeights(std::uint32_t regionId, const std::vector<std::uint32_t>& vertices,
+                            const std::vector<float>& values);
+    void applyHead(TriangleMesh head, std::vector<GrowthRegion> regions);
+    std::uint32_t nextRegionId() const;
 
 signals:
     void parameterChanged(wisp::Param id);
-    void headChanged();
+    void headChanged();                          // head and all regions replaced
+    void regionsChanged();                       // added, removed, renamed, reordered, shown, hidden, solo'd, recoloured
+    void regionParameterChanged(int index, wisp::Param id);
+    void regionWeightsChanged(std::uint32_t regionId);
+    void currentRegionChanged(int index);
 
 private:
     TriangleMesh m_head;
-    std::vector<float> m_growthWeights;
     ParameterValues m_parameters;
+    std::vector<GrowthRegion> m_regions;
+    std::uint32_t m_soloId = kNoSolo;
+    int m_current = -1;
+    int m_strokeRegion = -1;
+    std::vector<float> m_strokeBefore;
     QUndoStack m_undoStack;
 };
 

@@ -4,11 +4,20 @@
 
 namespace wisp {
 
+namespace {
+
+QString labelOf(Param id)
+{
+    const ParameterInfo& p = parameterInfo(id);
+    return QString::fromUtf8(p.label.data(), static_cast<int>(p.label.size()));
+}
+
+}  // namespace
+
 SetParameterCommand::SetParameterCommand(Document* document, Param id, double oldValue, double newValue, bool open)
     : m_document(document), m_param(id), m_old(oldValue), m_new(newValue), m_open(open)
 {
-    const ParameterInfo& p = parameterInfo(id);
-    setText(QStringLiteral("Set %1 to %2").arg(QString::fromUtf8(p.label.data(), static_cast<int>(p.label.size()))).arg(newValue));
+    setText(QStringLiteral("Set %1 to %2").arg(labelOf(id)).arg(newValue));
 }
 
 void SetParameterCommand::undo() { m_document->applyParameter(m_param, m_old); }
@@ -26,20 +35,85 @@ bool SetParameterCommand::mergeWith(const QUndoCommand* other)
     m_new = next->m_new;
     m_open = next->m_open;
     setObsolete(m_new == m_old);
-    const ParameterInfo& p = parameterInfo(m_param);
-    setText(QStringLiteral("Set %1 to %2").arg(QString::fromUtf8(p.label.data(), static_cast<int>(p.label.size()))).arg(m_new));
+    setText(QStringLiteral("Set %1 to %2").arg(labelOf(m_param)).arg(m_new));
     return true;
 }
 
-ReplaceHeadCommand::ReplaceHeadCommand(Document* document, TriangleMesh oldHead, std::vector<float> oldWeights,
-                                       TriangleMesh newHead, std::vector<float> newWeights, const QString& name)
+SetRegionParameterCommand::SetRegionParameterCommand(Document* document, std::uint32_t regionId,
+                                                     const QString& regionName, Param id, double oldValue,
+                                                     double newValue, bool open)
+    : m_document(document), m_region(regionId), m_regionName(regionName), m_param(id), m_old(oldValue), m_new(newValue),
+      m_open(open)
+{
+    updateText();
+}
+
+void SetRegionParameterCommand::updateText()
+{
+    setText(QStringLiteral("Set %1 of %2 to %3").arg(labelOf(m_param), m_regionName).arg(m_new));
+}
+
+void SetRegionParameterCommand::undo() { m_document->applyRegionParameter(m_region, m_param, m_old); }
+void SetRegionParameterCommand::redo()
+{
+    m_document->applyRegionParameter(m_region, m_param, m_new);
+    setObsolete(m_new == m_old);
+}
+
+bool SetRegionParameterCommand::mergeWith(const QUndoCommand* other)
+{
+    const auto* next = static_cast<const SetRegionParameterCommand*>(other);
+    if (!m_open || next->m_param != m_param || next->m_region != m_region)
+        return false;
+    m_new = next->m_new;
+    m_open = next->m_open;
+    setObsolete(m_new == m_old);
+    updateText();
+    return true;
+}
+
+SetRegionsCommand::SetRegionsCommand(Document* document, std::vector<GrowthRegion> before, std::uint32_t soloBefore,
+                                     std::vector<GrowthRegion> after, std::uint32_t soloAfter, const QString& text)
+    : m_document(document), m_before(std::move(before)), m_after(std::move(after)), m_soloBefore(soloBefore),
+      m_soloAfter(soloAfter)
+{
+    setText(text);
+}
+
+void SetRegionsCommand::undo() { m_document->applyRegions(m_before, m_soloBefore); }
+void SetRegionsCommand::redo() { m_document->applyRegions(m_after, m_soloAfter); }
+
+PaintStrokeCommand::PaintStrokeCommand(Document* document, std::uint32_t regionId, std::vector<std::uint32_t> vertices,
+                                       std::vector<float> before, std::vector<float> after, const QString& text)
+    : m_document(document), m_region(regionId), m_vertices(std::move(vertices)), m_before(std::move(before)),
+      m_after(std::move(after))
+{
+    setText(text);
+}
+
+void PaintStrokeCommand::undo()
+{
+    m_document->applyRegionWeights(m_region, m_vertices, m_before);
+    m_applied = false;
+}
+
+void PaintStrokeCommand::redo()
+{
+    if (m_applied)  // pushed after the stroke was painted live: nothing to do the first time
+        return;
+    m_document->applyRegionWeights(m_region, m_vertices, m_after);
+    m_applied = true;
+}
+
+ReplaceHeadCommand::ReplaceHeadCommand(Document* document, TriangleMesh oldHead, std::vector<GrowthRegion> oldRegions,
+                                       TriangleMesh newHead, std::vector<GrowthRegion> newRegions, const QString& name)
     : m_document(document), m_oldHead(std::move(oldHead)), m_newHead(std::move(newHead)),
-      m_oldWeights(std::move(oldWeights)), m_newWeights(std::move(newWeights))
+      m_oldRegions(std::move(oldRegions)), m_newRegions(std::move(newRegions))
 {
     setText(QStringLiteral("Load head %1").arg(name));
 }
 
-void ReplaceHeadCommand::undo() { m_document->applyHead(m_oldHead, m_oldWeights); }
-void ReplaceHeadCommand::redo() { m_document->applyHead(m_newHead, m_newWeights); }
+void ReplaceHeadCommand::undo() { m_document->applyHead(m_oldHead, m_oldRegions); }
+void ReplaceHeadCommand::redo() { m_document->applyHead(m_newHead, m_newRegions); }
 
 }  // namespace wisp

@@ -1,11 +1,14 @@
 #pragma once
-// One small QUndoCommand per kind of edit (as Tiled does), merged while a slider or stroke is dragged.
+// One small QUndoCommand per kind of edit (as Tiled does), merged while a slider is dragged.
+// Commands name regions by id, not index, so they stay right after reordering.
 
+#include "sim/GrowthRegion.h"
 #include "sim/Parameters.h"
 #include "sim/TriangleMesh.h"
 
 #include <QUndoCommand>
 
+#include <cstdint>
 #include <vector>
 
 namespace wisp {
@@ -30,17 +33,72 @@ private:
     bool m_open;  // the gesture is still going on: the next edit of this parameter merges here
 };
 
+// A Wisp-group parameter of one region; merges like SetParameterCommand (same region and parameter).
+class SetRegionParameterCommand : public QUndoCommand {
+public:
+    SetRegionParameterCommand(Document* document, std::uint32_t regionId, const QString& regionName, Param id,
+                              double oldValue, double newValue, bool open);
+    void undo() override;
+    void redo() override;
+    int id() const override { return kMergeIdBase + static_cast<int>(m_param); }
+    bool mergeWith(const QUndoCommand* other) override;
+
+    static constexpr int kMergeIdBase = 2000;
+
+private:
+    void updateText();
+    Document* m_document;
+    std::uint32_t m_region;
+    QString m_regionName;
+    Param m_param;
+    double m_old;
+    double m_new;
+    bool m_open;
+};
+
+// Any change of the region list itself (add, remove, rename, reorder, show, hide, solo, colour):
+// the whole list before and after. Regions are small next to the head (one float per vertex).
+class SetRegionsCommand : public QUndoCommand {
+public:
+    SetRegionsCommand(Document* document, std::vector<GrowthRegion> before, std::uint32_t soloBefore,
+                      std::vector<GrowthRegion> after, std::uint32_t soloAfter, const QString& text);
+    void undo() override;
+    void redo() override;
+
+private:
+    Document* m_document;
+    std::vector<GrowthRegion> m_before, m_after;
+    std::uint32_t m_soloBefore, m_soloAfter;
+};
+
+// One brush stroke: only the weights it changed. Its first redo is a no-op: the stroke was applied
+// live while painting.
+class PaintStrokeCommand : public QUndoCommand {
+public:
+    PaintStrokeCommand(Document* document, std::uint32_t regionId, std::vector<std::uint32_t> vertices,
+                       std::vector<float> before, std::vector<float> after, const QString& text);
+    void undo() override;
+    void redo() override;
+
+private:
+    Document* m_document;
+    std::uint32_t m_region;
+    std::vector<std::uint32_t> m_vertices;
+    std::vector<float> m_before, m_after;
+    bool m_applied = true;
+};
+
 class ReplaceHeadCommand : public QUndoCommand {
 public:
-    ReplaceHeadCommand(Document* document, TriangleMesh oldHead, std::vector<float> oldWeights, TriangleMesh newHead,
-                       std::vector<float> newWeights, const QString& name);
+    ReplaceHeadCommand(Document* document, TriangleMesh oldHead, std::vector<GrowthRegion> oldRegions,
+                       TriangleMesh newHead, std::vector<GrowthRegion> newRegions, const QString& name);
     void undo() override;
     void redo() override;
 
 private:
     Document* m_document;
     TriangleMesh m_oldHead, m_newHead;
-    std::vector<float> m_oldWeights, m_newWeights;
+    std::vector<GrowthRegion> m_oldRegions, m_newRegions;
 };
 
 }  // namespace wisp

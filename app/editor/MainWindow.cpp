@@ -1,13 +1,18 @@
 #include "app/editor/MainWindow.h"
 
+#include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
+#include "app/editor/PaintTool.h"
+#include "app/editor/RegionPanel.h"
 #include "app/editor/SimulationHost.h"
+#include "app/editor/WispPanel.h"
 #include "io/MeshReader.h"
 #include "sim/GrowthMap.h"
 #include "widgets/ParameterPanel.h"
 #include "widgets/Viewport.h"
 
 #include <QAction>
+#include <QCheckBox>
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDockWidget>
@@ -38,9 +43,9 @@ std::vector<Param> parametersIn(ParamGroup group)
 // drag, damping, stiffness, substeps), in that order.
 std::vector<Param> forceParameters()
 {
-    return {Param::Gravity,    Param::WindSpeed, Param::WindAzimuth, Param::WindElevation, Param::Turbulence,
-            Param::Drag,       Param::Damping,   Param::Stiffness,   Param::Friction,      Param::Substeps,
-            Param::TimeStep,   Param::HairOffset, Param::SimulateAllStrands};
+    return {Param::Gravity, Param::WindSpeed, Param::WindAzimuth, Param::WindElevation,
+            Param::Turbulence, Param::Drag, Param::Damping, Param::Stiffness,
+            Param::Friction, Param::Substeps, Param::TimeStep, Param::SimulateAllStrands};
 }
 
 }  // namespace
@@ -53,14 +58,16 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent)
     m_viewport = new Viewport(this);
     m_viewport->setHead(m_document->head());
     setCentralWidget(m_viewport);
+    m_paintTool = new PaintTool(m_document, m_viewport, this);
 
     createActions();
     createDocks();
     connectSimulation();
     restoreSettings();
     statusBar()->showMessage(tr("Space plays or pauses · Alt+drag or middle-drag orbits · Shift+middle-drag pans · "
-                                "wheel zooms · F frames the head"));
-    m_simulation->setScene(m_document->head(), m_document->growthWeights(), m_document->parameters());
+                                "wheel zooms · F frames the head · B paints where hair grows"));
+    showGrowthOverlay();
+    m_simulation->setScene(m_document->head(), m_document->regions(), m_document->soloRegion(), m_document->parameters());
     m_simulation->play();
 }
 
@@ -84,6 +91,7 @@ void MainWindow::createActions()
     quit->setShortcut(QKeySequence::Quit);
 
     QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    m_editMenu = edit;
     QAction* undo = m_document->undoStack()->createUndoAction(this, tr("&Undo"));
     undo->setShortcut(QKeySequence::Undo);
     QAction* redo = m_document->undoStack()->createRedoAction(this, tr("&Redo"));
@@ -99,6 +107,19 @@ void MainWindow::createActions()
     grid->setChecked(m_viewport->showGrid());
     connect(grid, &QAction::toggled, m_viewport, &Viewport::setShowGrid);
     m_viewMenu->addSeparator();
+
+    QMenu* toolsMenu = menuBar()->addMenu(tr("&Tools"));
+    m_paintAction = toolsMenu->addAction(tr("&Paint Growth"));
+    m_paintAction->setCheckable(true);
+    m_paintAction->setShortcut(QKeySequence(Qt::Key_B));
+    m_paintAction->setToolTip(tr("Paint where the current region's hair grows (B)"));
+    connect(m_paintAction, &QAction::toggled, m_paintTool, &PaintTool::setActive);
+    connect(m_paintTool, &PaintTool::activeChanged, m_paintAction, &QAction::setChecked);
+    m_overlayAction = m_viewMenu->addAction(tr("Show Growth &Weights"));
+    m_overlayAction->setCheckable(true);
+    m_overlayAction->setChecked(true);
+    m_overlayAction->setShortcut(QKeySequence(tr("Shift+W")));
+    connect(m_overlayAction, &QAction::toggled, m_viewport, &Viewport::setShowGrowthOverlay);
 
     QMenu* sim = menuBar()->addMenu(tr("&Simulation"));
     m_play = sim->addAction(tr("&Play"));
@@ -127,6 +148,7 @@ void MainWindow::createActions()
     tools->addAction(m_reset);
     tools->addSeparator();
     tools->addAction(frame);
+    tools->addAction(m_paintAction);
     m_viewMenu->addAction(tools->toggleViewAction());
 }
 
@@ -148,15 +170,31 @@ void MainWindow::createDocks()
 {
     m_forcePanel = new ParameterPanel(forceParameters());
     m_groomPanel = new ParameterPanel(parametersIn(ParamGroup::Groom));
+    m_regionPanel = new RegionPanel(m_document);
+    m_wispPanel = new WispPanel(m_document);
+    m_brushPanel = new BrushPanel(m_paintTool);
     QDockWidget* forces = addPanelDock(tr("Forces"), QStringLiteral("forcesDock"), m_forcePanel, Qt::RightDockWidgetArea);
     QDockWidget* groom = addPanelDock(tr("Groom"), QStringLiteral("groomDock"), m_groomPanel, Qt::RightDockWidgetArea);
     tabifyDockWidget(forces, groom);
     forces->raise();
+    QDockWidget* regions = addPanelDock(tr("Regions"), QStringLiteral("regionsDock"), m_regionPanel, Qt::LeftDockWidgetArea);
+    QDockWidget* wisp = addPanelDock(tr("Wisp"), QStringLiteral("wispDock"), m_wispPanel, Qt::LeftDockWidgetArea);
+    QDockWidget* brush = addPanelDock(tr("Brush"), QStringLiteral("brushDock"), m_brushPanel, Qt::LeftDockWidgetArea);
+    splitDockWidget(regions, wisp, Qt::Vertical);
+    tabifyDockWidget(wisp, brush);
+    wisp->raise();
+    connect(m_brushPanel, &BrushPanel::showOverlayToggled, m_overlayAction, &QAction::setChecked);
+    connect(m_overlayAction, &QAction::toggled, m_brushPanel->overlayBox(), &QCheckBox::setChecked);
 
     m_history = new QUndoView(m_document->undoStack());
     m_history->setEmptyLabel(tr("<opened>"));
     QDockWidget* history = addPanelDock(tr("History"), QStringLiteral("historyDock"), m_history, Qt::RightDockWidgetArea);
     history->hide();
+    QAction* showHistory = history->toggleViewAction();
+    showHistory->setText(tr("Undo &History"));
+    m_editMenu->addSeparator();
+    m_editMenu->addAction(showHistory);
+    connect(m_wispPanel, &WispPanel::editRefused, this, [this](const QString& why) { statusBar()->showMessage(why, 5000); });
 
     for (ParameterPanel* panel : {m_forcePanel, m_groomPanel}) {
         connect(panel, &ParameterPanel::valueEdited, this, [this](Param id, double value, bool dragging) {
@@ -174,8 +212,25 @@ void MainWindow::createDocks()
     connect(m_document, &Document::headChanged, this, [this] {
         m_viewport->setHead(m_document->head());
         m_viewport->frameHead();
-        m_simulation->setScene(m_document->head(), m_document->growthWeights(), m_document->parameters());
+        m_simulation->setScene(m_document->head(), m_document->regions(), m_document->soloRegion(),
+                               m_document->parameters());
+        showGrowthOverlay();
     });
+    // Painting, wisp sliders and region edits regroom the running simulation.
+    const auto regionsEdited = [this] {
+        m_simulation->setRegions(m_document->regions(), m_document->soloRegion());
+        showGrowthOverlay();
+    };
+    connect(m_document, &Document::regionsChanged, this, regionsEdited);
+    connect(m_document, &Document::regionParameterChanged, this, regionsEdited);
+    connect(m_document, &Document::regionWeightsChanged, this, regionsEdited);
+    connect(m_document, &Document::currentRegionChanged, this, &MainWindow::showGrowthOverlay);
+}
+
+void MainWindow::showGrowthOverlay()
+{
+    const int current = m_document->currentRegion();
+    m_viewport->setGrowthOverlay(current >= 0 ? m_document->region(current).weights : std::vector<float>{});
 }
 
 void MainWindow::connectSimulation()

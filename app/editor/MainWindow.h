@@ -12,8 +12,12 @@ class QUndoView;
 
 namespace wisp {
 
+class BrushPanel;
 class Document;
+class PaintTool;
 class ParameterPanel;
+class RegionPanel;
+class WispPanel;
 class SimulationHost;
 class Viewport;
 
@@ -31,6 +35,12 @@ public:
     QAction* playAction() const { return m_play; }
     QAction* stepAction() const { return m_step; }
     QAction* resetAction() const { return m_reset; }
+    QAction* paintAction() const { return m_paintAction; }
+    QAction* overlayAction() const { return m_overlayAction; }
+    PaintTool* paintTool() const { return m_paintTool; }
+    RegionPanel* regionPanel() const { return m_regionPanel; }
+    WispPanel* wispPanel() const { return m_wispPanel; }
+    BrushPanel* brushPanel() const { return m_brushPanel; }
 
     // Loads a head mesh file (OBJ, PLY, OFF, STL) as an undoable edit; reports problems in a dialog.
     bool openHead(const QString& path);
@@ -45,6 +55,7 @@ private:
     void restoreSettings();
     void saveSettings() const;
     void updatePlayAction(bool playing);
+    void showGrowthOverlay();  // the current region's weights on the head
     QDockWidget* addPanelDock(const QString& title, const QString& objectName, QWidget* panel, Qt::DockWidgetArea area);
 
     Document* m_document = nullptr;
@@ -53,10 +64,17 @@ private:
     ParameterPanel* m_forcePanel = nullptr;
     ParameterPanel* m_groomPanel = nullptr;
     QUndoView* m_history = nullptr;
+    PaintTool* m_paintTool = nullptr;
+    RegionPanel* m_regionPanel = nullptr;
+    WispPanel* m_wispPanel = nullptr;
+    BrushPanel* m_brushPanel = nullptr;
+    QAction* m_paintAction = nullptr;
+    QAction* m_overlayAction = nullptr;
     QAction* m_play = nullptr;
     QAction* m_step = nullptr;
     QAction* m_reset = nullptr;
     QMenu* m_viewMenu = nullptr;
+    QMenu* m_editMenu = nullptr;
 };
 
 }  // namespace wisp

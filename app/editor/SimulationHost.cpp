@@ -52,6 +52,8 @@ public:
             // A groom takes a while: a host being destroyed meanwhile should not wait for one more.
             if (taken.scene && !stopRequested())
                 adoptScene(std::move(*taken.scene));
+            if (taken.regions && !stopRequested())
+                adoptRegions(std::move(*taken.regions));
             if (taken.parameters && !stopRequested())
                 adoptParameters(*taken.parameters);
             if (taken.playing != m_playing) {
@@ -80,11 +82,12 @@ private:
     {
         taken.scene.reset();
         taken.parameters.reset();
+        taken.regions.reset();
         taken.actions.clear();
         std::unique_lock lock(m_host.m_mutex);
         Inbox& inbox = m_host.m_inbox;
         const auto ready = [&] {
-            return inbox.stopping || inbox.scene || inbox.parameters || !inbox.actions.empty() ||
+            return inbox.stopping || inbox.scene || inbox.parameters || inbox.regions || !inbox.actions.empty() ||
                    inbox.playing != m_playing;
         };
         if (m_playing && m_sim) {
@@ -98,6 +101,7 @@ private:
             return false;
         taken.scene = std::exchange(inbox.scene, std::nullopt);
         taken.parameters = std::exchange(inbox.parameters, std::nullopt);
+        taken.regions = std::exchange(inbox.regions, std::nullopt);
         taken.actions.swap(inbox.actions);
         taken.playing = inbox.playing;
         return true;
@@ -113,11 +117,36 @@ private:
     // Thread: simulation. A new head: groom it, or keep the previous scene and say why not.
     void adoptScene(Scene scene)
     {
-        if (std::string error = groom(scene.head, scene.growthWeights, scene.values); !error.empty()) {
+        auto next = std::make_unique<HairSimulation>(m_host.m_solverThreads);
+        const Regions& r = scene.regions;
+        std::string error;
+        try {
+            error = r.fromParameters ? next->setup(scene.head, r.regions.front().weights, scene.values)
+                                     : next->setup(scene.head, r.regions, r.soloId, scene.values);
+        } catch (const std::exception& e) {
+            error = std::string("groom: ") + e.what();  // sim/ does not throw, but memory can run out
+        }
+        if (!error.empty()) {
             m_host.postError(error);
             return;
         }
-        m_growthWeights = std::move(scene.growthWeights);
+        m_sim = std::move(next);
+        m_regions = std::move(scene.regions);
+        m_step = 0;
+        m_simulatedSeconds = 0.0;
+        groomed(scene.values);
+    }
+
+    // Thread: simulation. New regions for the running head: regroom in place, keeping the motion.
+    void adoptRegions(Regions regions)
+    {
+        if (!m_sim)
+            return;
+        if (std::string error = regroom(regions, m_values); !error.empty()) {
+            m_host.postError(error);
+            return;
+        }
+        m_regions = std::move(regions);
     }
 
     // Thread: simulation. New parameters: regroom if the groom's own parameters changed, otherwise
@@ -128,11 +157,10 @@ private:
             return;  // nothing runs yet; the next scene brings its own values
         const bool refusedBefore = m_refusedGroom && sameGroom(values, *m_refusedGroom);
         if (!sameGroom(values, m_groomedWith) && !refusedBefore) {
-            const std::string error = groom(m_sim->head(), m_growthWeights, values);
-            if (error.empty())
-                return;
-            m_refusedGroom = values;  // do not regroom (and report) the same refusal on every force change
-            m_host.postError(error);
+            if (std::string error = regroom(m_regions, values); !error.empty()) {
+                m_refusedGroom = values;  // do not regroom (and report) the same refusal on every force change
+                m_host.postError(error);
+            }
         }
         const bool newRequest = values.getInt(Param::Substeps) != m_pacer.requestedSubsteps();
         const int substeps = newRequest ? values.getInt(Param::Substeps) : m_pacer.substeps();
@@ -146,32 +174,38 @@ private:
         m_host.m_effectiveSubsteps.store(m_pacer.substeps());
     }
 
-    // Thread: simulation. Builds a new HairSimulation and swaps it in only when it succeeded, so a
-    // refusal leaves the running one untouched. `head` may belong to the running simulation.
-    std::string groom(const TriangleMesh& head, std::span<const float> growthWeights, const ParameterValues& values)
+    // Thread: simulation. Regrooms the running simulation (HairSimulation::regroom keeps the
+    // strands' motion, and the running groom when it refuses). A scene given by one growth map
+    // takes its wisp parameters from `values`.
+    std::string regroom(Regions& regions, const ParameterValues& values)
     {
-        auto next = std::make_unique<HairSimulation>(m_host.m_solverThreads);
+        if (regions.fromParameters)
+            regions.regions.front().values = values;
+        std::string error;
         try {
-            if (std::string error = next->setup(head, growthWeights, values); !error.empty())
-                return error;
+            error = m_sim->regroom(regions.regions, regions.soloId, values);
         } catch (const std::exception& e) {
-            // sim/ does not throw, but a groom can ask for more memory than there is.
-            return std::string("groom: ") + e.what();
+            error = std::string("groom: ") + e.what();
         }
-        m_sim = std::move(next);
+        if (error.empty())
+            groomed(values);
+        return error;
+    }
+
+    // Thread: simulation. After a (re)groom: the new layout's first frame, and sceneReady.
+    void groomed(const ParameterValues& values)
+    {
         m_values = values;
         m_groomedWith = values;
         m_refusedGroom.reset();
         ++m_groomVersion;
-        m_step = 0;
-        m_simulatedSeconds = 0.0;
         m_pacer.setRequestedSubsteps(values.getInt(Param::Substeps));
+        m_sim->applyForces(withSubsteps(values, m_pacer.substeps()));
         m_host.m_effectiveSubsteps.store(m_pacer.substeps());
         if (m_playing)
             m_pacer.restart(now());  // the groom's duration is not the solver falling behind
         m_host.publish(makeFrame());
         m_host.postSceneReady();
-        return {};
     }
 
     // Thread: simulation. One solver step and its frame. A paced step (playing) is timed against the
@@ -220,6 +254,9 @@ private:
         frame->groomVersion = m_groomVersion;
         frame->simulatedSeconds = m_simulatedSeconds;
         m_sim->buildFrame(frame->strands);
+        frame->looks = m_sim->looks();
+        if (!frame->looks.empty())
+            frame->lookOfStrand = m_sim->groom().regionOfStrand;
         frame->simulatedStrands = m_sim->solver().strandCount();
         frame->simulatedParticles = m_sim->solver().particleCount();
         frame->wind = solverSettingsFrom(m_values).wind;
@@ -237,7 +274,7 @@ private:
     SimulationHost& m_host;
     const Clock::time_point m_epoch;
     std::unique_ptr<HairSimulation> m_sim;  // null until the first groom succeeds
-    std::vector<float> m_growthWeights;     // of m_sim's head, for regrooms
+    Regions m_regions;                      // m_sim's regions, for regrooms
     ParameterValues m_values;               // what the running solver was given (as requested)
     ParameterValues m_groomedWith;          // what m_sim's groom was built from
     std::optional<ParameterValues> m_refusedGroom;
@@ -271,11 +308,45 @@ SimulationHost::~SimulationHost()
 
 void SimulationHost::setScene(TriangleMesh head, std::vector<float> growthWeights, ParameterValues values)
 {
+    GrowthRegion region;
+    region.name = "growth map";
+    region.weights = std::move(growthWeights);
+    region.values = values;
+    Regions regions{{std::move(region)}, kNoSolo, true};
     std::optional<Scene> superseded;  // freed after unlocking: the simulation thread never waits on a free
     {
         std::lock_guard lock(m_mutex);
-        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), std::move(growthWeights), values});
+        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), std::move(regions), std::move(values)});
         m_inbox.parameters.reset();  // the scene's values are newer
+        m_inbox.regions.reset();
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::setScene(TriangleMesh head, std::vector<GrowthRegion> regions, std::uint32_t soloId,
+                              ParameterValues values)
+{
+    std::optional<Scene> superseded;
+    {
+        std::lock_guard lock(m_mutex);
+        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), Regions{std::move(regions), soloId, false},
+                                                        std::move(values)});
+        m_inbox.parameters.reset();
+        m_inbox.regions.reset();
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::setRegions(std::vector<GrowthRegion> regions, std::uint32_t soloId)
+{
+    std::optional<Regions> superseded;
+    {
+        std::lock_guard lock(m_mutex);
+        if (m_inbox.scene) {  // folded into the scene still waiting
+            m_inbox.scene->regions = Regions{std::move(regions), soloId, false};
+        } else {
+            superseded = std::exchange(m_inbox.regions, Regions{std::move(regions), soloId, false});
+        }
     }
     m_wake.notify_one();
 }

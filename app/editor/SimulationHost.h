@@ -21,6 +21,7 @@
 // Thread: the object lives on the GUI thread; each function says where it runs.
 
 #include "sim/Frame.h"
+#include "sim/GrowthRegion.h"
 #include "sim/Parameters.h"
 #include "sim/TriangleMesh.h"
 
@@ -52,6 +53,12 @@ public:
     // with `values`, on the simulation thread; sceneReady and a step-0 frame follow, or
     // errorOccurred and the previous scene keeps running.
     void setScene(TriangleMesh head, std::vector<float> growthWeights, ParameterValues values);
+    // The editor's scene: `head` grown by its regions (see growingRegions for soloId).
+    void setScene(TriangleMesh head, std::vector<GrowthRegion> regions, std::uint32_t soloId, ParameterValues values);
+    // Thread: GUI; returns at once. New regions for the running head (a brush dab, a wisp slider, a
+    // region shown or hidden): regroomed on the simulation thread while the hair keeps moving; the
+    // strands that still exist keep their motion, new ones start at rest. Only the newest matters.
+    void setRegions(std::vector<GrowthRegion> regions, std::uint32_t soloId);
     // Thread: GUI; returns at once. Forces and solver parameters apply from the next step; a change
     // of any Groom-group parameter or of simulate_all_strands regrooms on the simulation thread
     // (the previous frame stays visible meanwhile). A groom refused once is not retried until its
@@ -96,9 +103,16 @@ private:
     class Loop;
     friend class Loop;
 
+    struct Regions {
+        std::vector<GrowthRegion> regions;
+        std::uint32_t soloId = kNoSolo;
+        // A scene given by one growth map: its one region takes the Wisp-group values of every
+        // parameter set (the CLI's and the tests' way), and an empty map is an error.
+        bool fromParameters = false;
+    };
     struct Scene {
         TriangleMesh head;
-        std::vector<float> growthWeights;
+        Regions regions;
         ParameterValues values;
     };
     enum class Action { Step, Reset };
@@ -106,6 +120,7 @@ private:
     struct Inbox {
         std::optional<Scene> scene;
         std::optional<ParameterValues> parameters;
+        std::optional<Regions> regions;
         std::vector<Action> actions;  // in the order asked
         bool playing = false;
         bool stopping = false;

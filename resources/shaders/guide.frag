@@ -7,6 +7,7 @@ uniform float u_lit;          // 1: shade by the key light (solids); 0: flat (li
 uniform vec3 u_keyLightView;
 uniform vec3 u_fadeCentre;    // world, metres
 uniform float u_fadeRadius;   // metres; lines fade out toward this distance (0: no fade)
+uniform float u_alphaScale;   // 1 normally; the brush ring's hidden parts are drawn fainter
 
 out vec4 fragColour;
 
@@ -23,5 +24,5 @@ void main()
         float d = length(v_positionWorld.xz - u_fadeCentre.xz);
         alpha *= 1.0 - smoothstep(0.35 * u_fadeRadius, u_fadeRadius, d);
     }
-    fragColour = vec4(colour, alpha);
+    fragColour = vec4(colour, alpha * u_alphaScale);
 }

@@ -1,5 +1,5 @@
 #version 330 core
-// Scene guides (ground grid, wind arrow): coloured geometry in world space.
+// Scene guides (ground grid, wind arrow, brush rings): coloured geometry in world space.
 layout(location = 0) in vec3 a_position;  // world, metres
 layout(location = 1) in vec3 a_normal;    // zero for lines
 layout(location = 2) in vec4 a_colour;    // sRGB, alpha

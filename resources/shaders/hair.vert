@@ -6,7 +6,10 @@
 
 layout(location = 0) in uvec2 a_ref;
 
-uniform samplerBuffer u_points;  // xyz: world position, metres; w: 1 if the strand is drawable, 0 to skip it
+// xyz: world position, metres; w: 0 to skip the strand (a non-finite point), 1 for the style's
+// colours (u_rootColour, u_tipColour), 2 + k for look k of u_looks.
+uniform samplerBuffer u_points;
+uniform samplerBuffer u_looks;   // look k: texel 2k its root colour, 2k + 1 its tip colour (linear RGB)
 uniform mat4 u_view;
 uniform mat4 u_projection;
 uniform vec2 u_viewportPixels;
@@ -16,7 +19,7 @@ uniform float u_rootWidthMetres;  // a drawn strand stands for a lock of hairs, 
 uniform float u_tipWidthMetres;
 uniform float u_minWidthPixels;   // narrower strands are drawn this wide and fainter (coverage)
 
-uniform vec3 u_rootColour;  // linear RGB
+uniform vec3 u_rootColour;  // linear RGB, for strands without a look
 uniform vec3 u_tipColour;   // linear RGB
 uniform vec3 u_keyLightView;
 uniform vec3 u_fillLightView;
@@ -40,7 +43,7 @@ float kajiyaKaySpecular(vec3 tangent, vec3 halfVector, float exponent)
 // Scheuermann's practical take on Marschner's model: a whitish one shifted toward the tip and a
 // broader one tinted with the hair's colour shifted toward the root. The head gives the hair a
 // volume normal, so hair on the side away from the light falls into shadow.
-vec3 shadeHair(vec3 positionView, vec3 T, float along)
+vec3 shadeHair(vec3 positionView, vec3 T, float along, vec3 rootColour, vec3 tipColour)
 {
     vec3 V = normalize(-positionView);
     vec3 L = u_keyLightView;
@@ -48,7 +51,7 @@ vec3 shadeHair(vec3 positionView, vec3 T, float along)
     vec3 N = V - T * dot(T, V);
     N = dot(N, N) > 1e-8 ? normalize(N) : V;
 
-    vec3 base = mix(u_rootColour, u_tipColour, smoothstep(0.0, 1.0, along));
+    vec3 base = mix(rootColour, tipColour, smoothstep(0.0, 1.0, along));
     float tl = dot(T, L);
     float diffuse = sqrt(max(1.0 - tl * tl, 0.0));
     // Wrapped, so the shadow side is dim but never black (light scatters through hair).
@@ -131,5 +134,8 @@ void main()
 
     float coverage = min(widthPixels / drawnPixels, 1.0);
     float alpha = coverage * (1.0 - u_tipFade * smoothstep(0.55, 1.0, along));
-    v_colour = vec4(shadeHair(positionView.xyz, tangentView, along), alpha);
+    int look = int(q1.w + 0.5) - 2;
+    vec3 rootColour = look >= 0 ? texelFetch(u_looks, 2 * look).rgb : u_rootColour;
+    vec3 tipColour = look >= 0 ? texelFetch(u_looks, 2 * look + 1).rgb : u_tipColour;
+    v_colour = vec4(shadeHair(positionView.xyz, tangentView, along, rootColour, tipColour), alpha);
 }

@@ -2,18 +2,34 @@
 // Skin, cheaply: wrapped Lambert (light bleeds past the terminator as it does through skin, with a
 // warm tint there), a cool fill from the other side, a sky/ground ambient, a soft rim that
 // separates the silhouette from the background, and a faint broad sheen.
+// With the growth overlay on, the skin's albedo is tinted by the painted weight (before lighting,
+// so the head keeps its shape): a heat ramp from orange to magenta, colours no skin tone has.
 
 in vec3 v_positionView;
 in vec3 v_normalView;
+in float v_growthWeight;
 
 uniform vec3 u_skinColour;  // linear RGB
 uniform vec3 u_keyLightView;
 uniform vec3 u_fillLightView;
+uniform float u_growthOverlay;  // 1: tint by v_growthWeight; 0: plain skin (the weights may be unset)
 
 out vec4 fragColour;
 
+// Linear RGB. Weight 0 is plain skin; a little weight already shows clearly (orange), full weight
+// is a saturated magenta.
+vec3 growthTinted(vec3 skin, float weight)
+{
+    vec3 ramp = mix(vec3(1.0, 0.22, 0.01), vec3(0.80, 0.01, 0.75), weight);
+    return mix(skin, ramp, 0.85 * smoothstep(0.0, 0.2, weight));
+}
+
 void main()
 {
+    vec3 albedo = u_skinColour;
+    if (u_growthOverlay > 0.5)
+        albedo = growthTinted(u_skinColour, clamp(v_growthWeight, 0.0, 1.0));
+
     vec3 N = normalize(v_normalView);
     vec3 V = normalize(-v_positionView);
     vec3 L = u_keyLightView;
@@ -28,8 +44,8 @@ void main()
     float hemisphere = 0.5 + 0.5 * N.y;
     vec3 ambient = mix(vec3(0.10, 0.09, 0.09), vec3(0.22, 0.23, 0.26), hemisphere);
 
-    vec3 colour = u_skinColour * (vec3(1.0, 0.97, 0.93) * 0.95 * key + vec3(0.55, 0.6, 0.7) * 0.22 * fill + ambient);
-    colour += u_skinColour * vec3(0.45, 0.08, 0.02) * scatter;
+    vec3 colour = albedo * (vec3(1.0, 0.97, 0.93) * 0.95 * key + vec3(0.55, 0.6, 0.7) * 0.22 * fill + ambient);
+    colour += albedo * vec3(0.45, 0.08, 0.02) * scatter;
     float rim = pow(1.0 - max(dot(N, V), 0.0), 3.0);
     colour += vec3(0.30, 0.33, 0.38) * 0.35 * rim;
     vec3 H = normalize(L + V);

@@ -4,6 +4,7 @@
 #include "widgets/Viewport.h"
 #include "sim/DefaultHead.h"
 #include "sim/Frame.h"
+#include "sim/MeshBvh.h"
 #include "widgets/GuideGeometry.h"
 #include "widgets/HairDetail.h"
 #include "widgets/HairStripLayout.h"
@@ -23,11 +24,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 
 using namespace wisp;
 
@@ -52,6 +55,28 @@ bool isGreenHair(QColor c)
 bool isWindBlue(QColor c)
 {
     return c.blue() > c.red() + 40 && c.blue() > 90;
+}
+bool isNearWhite(QColor c)
+{
+    return c.red() > 225 && c.green() > 225 && c.blue() > 225;
+}
+bool isEraseRed(QColor c)
+{
+    return c.red() > 200 && c.green() < 150 && c.blue() < 150;
+}
+// The growth overlay's tint: orange to magenta, far from skin (whose green is above its blue and
+// close to its red).
+bool isGrowthTint(QColor c)
+{
+    return c.red() > 120 && c.red() > c.green() + 90;
+}
+bool isRed(QColor c)
+{
+    return c.red() > 90 && c.red() > c.green() + 60 && c.red() > c.blue() + 60;
+}
+bool isBlue(QColor c)
+{
+    return c.blue() > 90 && c.blue() > c.red() + 60 && c.blue() > c.green() + 60;
 }
 bool near(QColor a, QColor b, int tolerance)
 {
@@ -196,6 +221,82 @@ protected:
     std::unique_ptr<Viewport> viewport;
     Aabb head;
 };
+
+const MeshBvh& defaultHeadBvh()
+{
+    static const MeshBvh bvh(defaultHead().mesh);
+    return bvh;
+}
+
+// The first thing on the head under a widget position, if any.
+std::optional<MeshBvh::RayHit> headUnder(const Viewport& viewport, glm::vec2 pixel)
+{
+    const ViewRay ray = viewport.rayAt(QPointF(pixel.x, pixel.y));
+    return defaultHeadBvh().raycast(ray.origin, ray.direction, 100.0f);
+}
+
+// The head vertex, among those `wanted` picks, that faces the camera most squarely and that the
+// camera sees (nothing of the head in front of it), away from the HUD and the gizmo.
+std::optional<std::size_t> visibleFacingVertex(const Viewport& viewport, const std::function<bool(std::size_t)>& wanted)
+{
+    const TriangleMesh& mesh = defaultHead().mesh;
+    static const std::vector<glm::vec3> normals = vertexNormals(mesh);
+    std::vector<std::pair<float, std::size_t>> candidates;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        if (!wanted(i))
+            continue;
+        const glm::vec3 toEye = glm::normalize(viewport.camera().eye() - mesh.positions[i]);
+        candidates.emplace_back(glm::dot(normals[i], toEye), i);
+    }
+    std::sort(candidates.begin(), candidates.end(), std::greater<>());
+    for (std::size_t k = 0; k < std::min<std::size_t>(candidates.size(), 200); ++k) {
+        const std::size_t i = candidates[k].second;
+        const glm::vec2 pixel = viewport.project(mesh.positions[i]);
+        if (pixel.y < 50.0f || (pixel.x < 110.0f && pixel.y > viewport.height() - 110.0f))
+            continue;
+        const auto hit = headUnder(viewport, pixel);
+        if (hit && glm::length(hit->point - mesh.positions[i]) < 1e-3f)
+            return i;
+    }
+    return std::nullopt;
+}
+
+// Points on the brush's circle (as drawn: lifted off the surface), at `count` even angles.
+std::vector<glm::vec3> ringPoints(const BrushCursor& cursor, int count)
+{
+    const glm::vec3 n = glm::normalize(cursor.normal);
+    const glm::vec3 u = glm::normalize(glm::cross(n, std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+    const glm::vec3 v = glm::cross(n, u);
+    std::vector<glm::vec3> points;
+    for (int k = 0; k < count; ++k) {
+        const float a = glm::two_pi<float>() * static_cast<float>(k) / static_cast<float>(count);
+        points.push_back(
+            cursor.centre + n * kBrushRingLiftMetres + cursor.radiusMetres * (std::cos(a) * u + std::sin(a) * v));
+    }
+    return points;
+}
+
+// A brush high on the forehead (where the head is convex, so its flat ring is nowhere under the
+// skin), under the widget position above the head's centre.
+BrushCursor foreheadBrush(const Viewport& viewport, const Aabb& head)
+{
+    const glm::vec2 pixel = viewport.project(head.center() + glm::vec3(0.0f, 0.40f * head.size().y, 0.0f));
+    const auto hit = headUnder(viewport, pixel);
+    BrushCursor cursor;
+    if (!hit)
+        return cursor;
+    cursor.centre = hit->point;
+    cursor.normal = faceNormal(defaultHead().mesh, hit->surface.triangle);
+    cursor.radiusMetres = 0.02f;
+    return cursor;
+}
+
+void saveScreenshot(const QImage& image, const char* name)
+{
+    const QByteArray directory = qgetenv("WISP_SCREENSHOT_DIR");
+    if (!directory.isEmpty())
+        image.save(QString::fromLocal8Bit(directory) + QLatin1Char('/') + QLatin1String(name));
+}
 
 // --- Pure parts -------------------------------------------------------------------------------------
 
@@ -621,6 +722,261 @@ TEST_F(ViewportTest, GridAndWindArrowAreShownAndHidden)
     frame->wind = wind;
     viewport->setFrame(frame);
     EXPECT_GE(countPixels(grab(), isWindBlue, around(middle, 1)), 3);
+}
+
+TEST_F(ViewportTest, RayAtIsTheInverseOfProject)
+{
+    const auto checkRoundTrip = [&](const glm::vec3& point) {
+        const glm::vec2 pixel = viewport->project(point);
+        const ViewRay ray = viewport->rayAt(QPointF(pixel.x, pixel.y));
+        EXPECT_NEAR(glm::length(ray.direction), 1.0f, 1e-5f);
+        EXPECT_LT(glm::length(ray.origin - viewport->camera().eye()), 1e-5f);
+        EXPECT_GT(glm::dot(point - ray.origin, ray.direction), 0.0f); // ahead, not behind
+        const float missMetres = glm::length(glm::cross(point - ray.origin, ray.direction));
+        EXPECT_LT(missMetres, 1e-4f) << point.x << ", " << point.y << ", " << point.z;
+    };
+    const std::vector<glm::vec3> points{ head.center(), head.max, head.min + glm::vec3(0.01f, 0.0f, 0.0f),
+        lockTop(head), defaultHead().mesh.positions[defaultHead().mesh.positions.size() / 3] };
+    for (const glm::vec3& p : points)
+        checkRoundTrip(p);
+    // Off the middle of the view, after orbiting, panning and zooming.
+    drag(viewport.get(), Qt::MiddleButton, Qt::NoModifier, { 300, 240 }, { 210, 300 });
+    drag(viewport.get(), Qt::MiddleButton, Qt::ShiftModifier, { 300, 240 }, { 350, 200 });
+    wheel(viewport.get(), 240);
+    for (const glm::vec3& p : points)
+        checkRoundTrip(p);
+    // The middle of the view looks along the camera's axis.
+    const ViewRay middle = viewport->rayAt(QPointF(viewport->width() / 2.0, viewport->height() / 2.0));
+    EXPECT_NEAR(glm::dot(middle.direction, viewport->camera().forward()), 1.0f, 1e-6f);
+}
+
+TEST_F(ViewportTest, BrushCursorDrawsARingOnTheHead)
+{
+    viewport->setFrame(nullptr);
+    BrushCursor cursor = foreheadBrush(*viewport, head);
+    ASSERT_GT(glm::length(cursor.normal), 0.5f) << "no head under the forehead's pixel";
+    const QImage before = grab();
+    const glm::vec2 centre = viewport->project(cursor.centre);
+    ASSERT_EQ(countPixels(before, isSkin, around(centre, 1)), 9);
+
+    viewport->setBrushCursor(cursor);
+    ASSERT_TRUE(viewport->brushCursor().has_value());
+    const QImage ring = grab();
+    saveScreenshot(ring, "viewport-brush-ring.png");
+    int onRing = 0;
+    const std::vector<glm::vec3> points = ringPoints(cursor, 24);
+    for (const glm::vec3& p : points) {
+        const glm::vec2 pixel = viewport->project(p);
+        const int white = countPixels(ring, isNearWhite, around(pixel, 1));
+        onRing += white >= 2 ? 1 : 0;
+        EXPECT_EQ(countPixels(before, isNearWhite, around(pixel, 1)), 0);
+    }
+    EXPECT_GE(onRing, 23) << "of " << points.size() << " points on the ring";
+    // A ring, not a disc: the middle is still skin, and so is a point halfway out.
+    EXPECT_EQ(countPixels(ring, isSkin, around(centre, 1)), 9);
+    const glm::vec2 halfway = 0.5f * (centre + viewport->project(points[3]));
+    EXPECT_EQ(countPixels(ring, isSkin, around(halfway, 1)), 9);
+
+    // Mirrored: a second ring on the other side, dimmer (blended: brighter than what is under it,
+    // short of white; fainter still where the head hides it).
+    cursor.mirrored = true;
+    cursor.mirrorCentre = cursor.centre * glm::vec3(-1.0f, 1.0f, 1.0f);
+    cursor.mirrorNormal = cursor.normal * glm::vec3(-1.0f, 1.0f, 1.0f);
+    viewport->setBrushCursor(cursor);
+    const QImage mirrored = grab();
+    BrushCursor mirror = cursor;
+    mirror.centre = cursor.mirrorCentre;
+    mirror.normal = cursor.mirrorNormal;
+    int brighter = 0;
+    for (const glm::vec3& p : ringPoints(mirror, 24)) {
+        const QRect area = around(viewport->project(p), 1);
+        const auto brightest = [&](const QImage& image) {
+            int most = 0;
+            for (int y = area.top(); y <= area.bottom(); ++y)
+                for (int x = area.left(); x <= area.right(); ++x)
+                    most = std::max(most, image.pixelColor(x, y).blue());
+            return most;
+        };
+        brighter += brightest(mirrored) >= brightest(before) + 10 ? 1 : 0;
+        EXPECT_EQ(countPixels(mirrored, isNearWhite, area), 0);
+    }
+    EXPECT_GE(brighter, 22);
+
+    // Erasing tints it red.
+    cursor.erase = true;
+    viewport->setBrushCursor(cursor);
+    const QImage erase = grab();
+    int red = 0;
+    for (const glm::vec3& p : points)
+        red += countPixels(erase, isEraseRed, around(viewport->project(p), 1)) >= 2 ? 1 : 0;
+    EXPECT_GE(red, 23);
+
+    // Gone again.
+    viewport->setBrushCursor(std::nullopt);
+    EXPECT_EQ(differingPixels(grab(), before), 0);
+}
+
+TEST_F(ViewportTest, GrowthOverlayTintsTheWeightedHalfOfTheHead)
+{
+    viewport->setFrame(nullptr); // nothing in front of the skin
+    const TriangleMesh& mesh = defaultHead().mesh;
+    const float middleY = head.center().y;
+    std::vector<float> weights(mesh.positions.size());
+    for (std::size_t i = 0; i < weights.size(); ++i)
+        weights[i] = mesh.positions[i].y > middleY ? 1.0f : 0.0f;
+    // Well away from the boundary, where the weight is blended across triangles.
+    const auto upper
+        = visibleFacingVertex(*viewport, [&](std::size_t i) { return mesh.positions[i].y > middleY + 0.03f; });
+    const auto lower
+        = visibleFacingVertex(*viewport, [&](std::size_t i) { return mesh.positions[i].y < middleY - 0.03f; });
+    ASSERT_TRUE(upper && lower);
+    const QRect upperArea = around(viewport->project(mesh.positions[*upper]), 1);
+    const QRect lowerArea = around(viewport->project(mesh.positions[*lower]), 1);
+    const QImage plain = grab();
+    ASSERT_EQ(countPixels(plain, isSkin, upperArea), 9);
+    ASSERT_EQ(countPixels(plain, isSkin, lowerArea), 9);
+
+    EXPECT_TRUE(viewport->showGrowthOverlay());
+    viewport->setGrowthOverlay(weights);
+    const QImage tinted = grab();
+    saveScreenshot(tinted, "viewport-growth-overlay.png");
+    EXPECT_EQ(countPixels(tinted, isGrowthTint, upperArea), 9);
+    EXPECT_EQ(differingPixels(plain.copy(lowerArea), tinted.copy(lowerArea)), 0);
+
+    viewport->setShowGrowthOverlay(false);
+    EXPECT_FALSE(viewport->showGrowthOverlay());
+    EXPECT_EQ(differingPixels(grab(), plain), 0);
+    viewport->setShowGrowthOverlay(true);
+    EXPECT_EQ(countPixels(grab(), isGrowthTint, upperArea), 9);
+
+    // Weights for some other mesh are not shown.
+    viewport->setGrowthOverlay(std::vector<float>(10, 1.0f));
+    EXPECT_EQ(differingPixels(grab(), plain), 0);
+
+    // A brush stroke sends new weights many times a second: time it on this head.
+    QElapsedTimer timer;
+    timer.start();
+    constexpr int kUpdates = 20;
+    for (int k = 0; k < kUpdates; ++k) {
+        weights[static_cast<std::size_t>(k)] = 0.5f;
+        viewport->setGrowthOverlay(weights);
+        viewport->repaint();
+    }
+    std::printf("[ viewport ] %zu head vertices: a weight update and repaint takes %.1f ms\n", weights.size(),
+        static_cast<double>(timer.elapsed()) / kUpdates);
+    EXPECT_EQ(countPixels(grab(), isGrowthTint, upperArea), 9);
+}
+
+TEST_F(ViewportTest, GrowthOverlayAndBrushOnTheDefaultScalp)
+{
+    viewport->setFrame(nullptr);
+    const TriangleMesh& mesh = defaultHead().mesh;
+    const std::vector<float>& weights = defaultHead().growthWeights;
+    ASSERT_EQ(weights.size(), mesh.positions.size());
+    // On the crown, well inside the painted area.
+    const auto scalp = visibleFacingVertex(
+        *viewport, [&](std::size_t i) { return weights[i] > 0.99f && mesh.positions[i].y > head.max.y - 0.05f; });
+    ASSERT_TRUE(scalp);
+    viewport->setGrowthOverlay(weights);
+    BrushCursor cursor = foreheadBrush(*viewport, head);
+    cursor.mirrored = true;
+    cursor.mirrorCentre = cursor.centre * glm::vec3(-1.0f, 1.0f, 1.0f);
+    cursor.mirrorNormal = cursor.normal * glm::vec3(-1.0f, 1.0f, 1.0f);
+    viewport->setBrushCursor(cursor);
+    const QImage image = grab();
+    saveScreenshot(image, "viewport-scalp-overlay-and-brush.png");
+    EXPECT_EQ(countPixels(image, isGrowthTint, around(viewport->project(mesh.positions[*scalp]), 1)), 9);
+    // The face grows no hair: the middle of the view is plain skin.
+    EXPECT_EQ(countPixels(image, isSkin, around(viewport->project(head.center()), 2)), 25);
+}
+
+TEST_F(ViewportTest, StrandsTakeTheirLooksColours)
+{
+    // Two locks side by side, one red and one blue, and a third whose look does not exist (the
+    // viewport's own green).
+    auto frame = std::make_shared<Frame>();
+    const glm::vec3 redTop = lockTop(head);
+    const glm::vec3 blueTop = lockTop(head) + glm::vec3(0.0f, 0.0f, -0.06f);
+    const glm::vec3 greenTop = lockTop(head) + glm::vec3(0.0f, 0.0f, 0.06f);
+    addLock(frame->strands, redTop, 120, 16, kLockLength);
+    addLock(frame->strands, blueTop, 120, 16, kLockLength);
+    addLock(frame->strands, greenTop, 120, 16, kLockLength);
+    StrandLook red;
+    red.rootColour = red.tipColour = glm::vec3(1.0f, 0.0f, 0.0f);
+    StrandLook blue;
+    blue.rootColour = blue.tipColour = glm::vec3(0.0f, 0.0f, 1.0f);
+    frame->looks.push_back(red);
+    frame->looks.push_back(blue);
+    frame->lookOfStrand.assign(120, 0);
+    frame->lookOfStrand.insert(frame->lookOfStrand.end(), 120, 1);
+    frame->lookOfStrand.insert(frame->lookOfStrand.end(), 120, 7);
+    viewport->setFrame(frame);
+    const QImage image = grab();
+    saveScreenshot(image, "viewport-strand-looks.png");
+    const auto middleOf = [&](const glm::vec3& top, float along) {
+        return around(viewport->project(top - glm::vec3(0.0f, along * kLockLength, 0.0f)), 2);
+    };
+    for (float along : { 0.25f, 0.5f, 0.75f }) {
+        EXPECT_GE(countPixels(image, isRed, middleOf(redTop, along)), 15) << along;
+        EXPECT_EQ(countPixels(image, isBlue, middleOf(redTop, along)), 0) << along;
+        EXPECT_GE(countPixels(image, isBlue, middleOf(blueTop, along)), 15) << along;
+        EXPECT_EQ(countPixels(image, isRed, middleOf(blueTop, along)), 0) << along;
+        EXPECT_GE(countPixels(image, isGreenHair, middleOf(greenTop, along)), 15) << along;
+    }
+
+    // New looks on the same strands (a region's colour edited): the colours follow.
+    auto swapped = std::make_shared<Frame>(*frame);
+    std::swap(swapped->looks[0], swapped->looks[1]);
+    viewport->setFrame(swapped);
+    const QImage after = grab();
+    EXPECT_GE(countPixels(after, isBlue, middleOf(redTop, 0.5f)), 15);
+    EXPECT_GE(countPixels(after, isRed, middleOf(blueTop, 0.5f)), 15);
+
+    // Without looks, every strand takes the viewport's colours.
+    auto plain = std::make_shared<Frame>(*frame);
+    plain->looks.clear();
+    plain->lookOfStrand.clear();
+    viewport->setFrame(plain);
+    const QImage green = grab();
+    EXPECT_GE(countPixels(green, isGreenHair, middleOf(redTop, 0.5f)), 15);
+    EXPECT_GE(countPixels(green, isGreenHair, middleOf(blueTop, 0.5f)), 15);
+}
+
+TEST_F(ViewportTest, OverlayBrushAndLooksSurviveANewContext)
+{
+    const TriangleMesh& mesh = defaultHead().mesh;
+    const std::vector<float>& weights = defaultHead().growthWeights;
+    const auto scalp = visibleFacingVertex(
+        *viewport, [&](std::size_t i) { return weights[i] > 0.99f && mesh.positions[i].y > head.max.y - 0.05f; });
+    ASSERT_TRUE(scalp);
+    viewport->setGrowthOverlay(weights);
+    BrushCursor cursor = foreheadBrush(*viewport, head);
+    viewport->setBrushCursor(cursor);
+    auto frame = lockFrame(head);
+    StrandLook red;
+    red.rootColour = red.tipColour = glm::vec3(1.0f, 0.0f, 0.0f);
+    frame->looks.push_back(red);
+    frame->lookOfStrand.assign(frame->strands.strandCount(), 0);
+    viewport->setFrame(frame);
+    grab();
+
+    // Moving the widget into another window gives it a new GL context: all of it is sent again.
+    QWidget window;
+    window.resize(640, 480);
+    viewport->setParent(&window);
+    viewport->move(0, 0);
+    window.show();
+    viewport->show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+    const QImage moved = grab();
+    EXPECT_EQ(countPixels(moved, isGrowthTint, around(viewport->project(mesh.positions[*scalp]), 1)), 9);
+    int onRing = 0;
+    for (const glm::vec3& p : ringPoints(cursor, 24))
+        onRing += countPixels(moved, isNearWhite, around(viewport->project(p), 1)) >= 2 ? 1 : 0;
+    EXPECT_GE(onRing, 23);
+    const glm::vec2 lock = viewport->project(lockTop(head) - glm::vec3(0.0f, 0.5f * kLockLength, 0.0f));
+    EXPECT_GE(countPixels(moved, isRed, around(lock, 2)), 15);
+    viewport->setParent(nullptr);
 }
 
 // Paints per second as the editor drives the viewport: a new frame arrives through the event loop

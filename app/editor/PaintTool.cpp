@@ -1,0 +1,243 @@
+#include "app/editor/PaintTool.h"
+
+#include "app/editor/Document.h"
+#include "widgets/Viewport.h"
+
+#include <glm/geometric.hpp>
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+
+#include <algorithm>
+#include <cmath>
+
+namespace wisp {
+
+namespace {
+
+// Dabs along a stroke this far apart, as a share of the radius: close enough that a fast stroke
+// leaves an even band, far enough that a slow one does not pile up dabs on one spot.
+constexpr float kDabSpacing = 0.25f;
+constexpr float kRadiusStep = 1.15f;  // [ and ] scale the radius by this
+
+bool isPaintButton(const QMouseEvent* e)
+{
+    return !(e->modifiers() & Qt::AltModifier);  // Alt + drag belongs to the camera
+}
+
+}  // namespace
+
+PaintTool::PaintTool(Document* document, Viewport* viewport, QObject* parent)
+    : QObject(parent), m_document(document), m_viewport(viewport)
+{
+    rebuildForHead();
+    connect(m_document, &Document::headChanged, this, &PaintTool::rebuildForHead);
+    m_viewport->installEventFilter(this);
+    m_viewport->setMouseTracking(true);  // the ring follows the cursor without a button held
+}
+
+PaintTool::~PaintTool() = default;
+
+void PaintTool::rebuildForHead()
+{
+    endStroke();
+    const TriangleMesh& head = m_document->head();
+    m_bvh = std::make_unique<MeshBvh>(head);
+    m_brush = std::make_unique<ScalpBrush>(head);
+}
+
+void PaintTool::setActive(bool active)
+{
+    if (active == m_active)
+        return;
+    if (!active)
+        endStroke();
+    m_active = active;
+    if (!active)
+        m_viewport->setBrushCursor(std::nullopt);
+    m_viewport->setCursor(active ? Qt::CrossCursor : Qt::ArrowCursor);
+    emit activeChanged(active);
+}
+
+void PaintTool::setRadius(double metres)
+{
+    const float r = std::clamp(static_cast<float>(metres), kBrushRadiusMinMetres, kBrushRadiusMaxMetres);
+    if (!std::isfinite(metres) || r == m_settings.radiusMetres)
+        return;
+    m_settings.radiusMetres = r;
+    if (m_active && m_lastCursor.x() >= 0.0)
+        updateCursor(m_lastCursor, Qt::NoModifier);
+    emit settingsChanged();
+}
+
+void PaintTool::setStrength(double strength)
+{
+    if (!std::isfinite(strength))
+        return;
+    m_settings.strength = std::clamp(static_cast<float>(strength), 0.0f, 1.0f);
+    emit settingsChanged();
+}
+
+void PaintTool::setFalloff(double falloff)
+{
+    if (!std::isfinite(falloff))
+        return;
+    m_settings.falloff = std::clamp(static_cast<float>(falloff), 0.0f, 1.0f);
+    emit settingsChanged();
+}
+
+void PaintTool::setMode(BrushMode mode)
+{
+    m_settings.mode = mode;
+    emit settingsChanged();
+}
+
+void PaintTool::setMirror(bool mirror)
+{
+    m_settings.mirrorX = mirror;
+    if (m_active && m_lastCursor.x() >= 0.0)
+        updateCursor(m_lastCursor, Qt::NoModifier);
+    emit settingsChanged();
+}
+
+std::optional<PaintTool::Hit> PaintTool::hitAt(QPointF widgetPosition) const
+{
+    const ViewRay ray = m_viewport->rayAt(widgetPosition);
+    const auto hit = m_bvh->raycast(ray.origin, ray.direction, 1e4f);
+    if (!hit)
+        return std::nullopt;
+    const TriangleMesh& head = m_document->head();
+    const glm::uvec3 tri = head.triangles[hit->surface.triangle];
+    glm::vec3 n = glm::cross(head.positions[tri.y] - head.positions[tri.x], head.positions[tri.z] - head.positions[tri.x]);
+    n = glm::length(n) > 0.0f ? glm::normalize(n) : -glm::normalize(ray.direction);
+    if (glm::dot(n, ray.direction) > 0.0f)  // the face we look at
+        n = -n;
+    return Hit{hit->point, n};
+}
+
+// Held modifiers change the mode for as long as they are held: Ctrl erases, Shift smooths.
+BrushMode PaintTool::modeFor(Qt::KeyboardModifiers modifiers) const
+{
+    if (modifiers & Qt::ControlModifier)
+        return m_settings.mode == BrushMode::Erase ? BrushMode::Add : BrushMode::Erase;
+    if (modifiers & Qt::ShiftModifier)
+        return BrushMode::Smooth;
+    return m_settings.mode;
+}
+
+void PaintTool::updateCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifiers)
+{
+    m_lastCursor = widgetPosition;
+    const std::optional<Hit> hit = hitAt(widgetPosition);
+    if (!hit) {
+        m_viewport->setBrushCursor(std::nullopt);
+        return;
+    }
+    BrushCursor cursor;
+    cursor.centre = hit->point;
+    cursor.normal = hit->normal;
+    cursor.radiusMetres = m_settings.radiusMetres;
+    cursor.erase = modeFor(modifiers) == BrushMode::Erase;
+    cursor.mirrored = m_settings.mirrorX;
+    const float plane = mirrorPlaneX();
+    cursor.mirrorCentre = {2.0f * plane - hit->point.x, hit->point.y, hit->point.z};
+    cursor.mirrorNormal = {-hit->normal.x, hit->normal.y, hit->normal.z};
+    m_viewport->setBrushCursor(cursor);
+}
+
+// Dabs from the stroke's last dab to `to`, kDabSpacing radii apart, then lets the hair follow.
+void PaintTool::dabAlong(const Hit& to, Qt::KeyboardModifiers modifiers)
+{
+    BrushSettings s = m_settings;
+    s.mode = modeFor(modifiers);
+    std::vector<float>& weights = m_document->strokeWeights();
+    if (weights.size() != m_brush->vertexCount())
+        return;
+    const float spacing = kDabSpacing * s.radiusMetres;
+    bool changed = false;
+    if (!m_lastDab) {
+        changed = !m_brush->dab(to.point, s, weights).empty();
+        m_lastDab = to.point;
+    } else {
+        const glm::vec3 from = *m_lastDab;
+        const float length = glm::distance(from, to.point);
+        const int steps = static_cast<int>(length / spacing);
+        for (int i = 1; i <= steps; ++i) {
+            const glm::vec3 p = glm::mix(from, to.point, static_cast<float>(i) * spacing / length);
+            changed = !m_brush->dab(p, s, weights).empty() || changed;
+            m_lastDab = p;
+        }
+    }
+    if (changed)
+        m_document->strokeUpdated();
+}
+
+void PaintTool::endStroke()
+{
+    if (!m_stroking)
+        return;
+    m_stroking = false;
+    m_lastDab.reset();
+    m_document->endStroke(tr("Paint stroke"));
+}
+
+bool PaintTool::eventFilter(QObject* watched, QEvent* event)
+{
+    if (watched != m_viewport || !m_active)
+        return QObject::eventFilter(watched, event);
+    switch (event->type()) {
+    case QEvent::MouseButtonPress: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        if (e->button() != Qt::LeftButton || !isPaintButton(e) || m_document->currentRegion() < 0)
+            return false;
+        updateCursor(e->position(), e->modifiers());
+        const std::optional<Hit> hit = hitAt(e->position());
+        if (!hit)
+            return false;  // off the head: nothing to paint, and nothing else wants a left click
+        m_document->beginStroke();
+        m_stroking = true;
+        dabAlong(*hit, e->modifiers());
+        return true;
+    }
+    case QEvent::MouseMove: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        updateCursor(e->position(), e->modifiers());
+        if (!m_stroking)
+            return false;  // camera drags pass through
+        if (const std::optional<Hit> hit = hitAt(e->position()))
+            dabAlong(*hit, e->modifiers());
+        return true;
+    }
+    case QEvent::MouseButtonRelease: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        if (e->button() != Qt::LeftButton || !m_stroking)
+            return false;
+        endStroke();
+        return true;
+    }
+    case QEvent::Leave:
+        m_viewport->setBrushCursor(std::nullopt);
+        return false;
+    case QEvent::KeyPress:
+    case QEvent::KeyRelease: {
+        auto* e = static_cast<QKeyEvent*>(event);
+        if (event->type() == QEvent::KeyPress && e->key() == Qt::Key_BracketLeft) {
+            setRadius(m_settings.radiusMetres / kRadiusStep);
+            return true;
+        }
+        if (event->type() == QEvent::KeyPress && e->key() == Qt::Key_BracketRight) {
+            setRadius(m_settings.radiusMetres * kRadiusStep);
+            return true;
+        }
+        if (e->key() == Qt::Key_Control || e->key() == Qt::Key_Shift) {  // the ring shows the held mode
+            if (m_lastCursor.x() >= 0.0)
+                updateCursor(m_lastCursor, e->modifiers());
+        }
+        return false;
+    }
+    default:
+        return false;
+    }
+}
+
+}  // namespace wisp

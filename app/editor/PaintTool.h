@@ -1,0 +1,84 @@
+#pragma once
+// The growth brush: paints the current region's mask on the head under the cursor, as sculpting
+// and texture-painting tools do.
+//   left drag                   paint (add)
+//   Ctrl + left drag            erase (hold Ctrl to erase, as Blender's brushes invert)
+//   Shift + left drag           smooth
+//   [ and ]                     smaller and larger brush
+// The surface under the cursor is found by a ray cast through a BVH of the head, so it stays
+// interactive on a 270k-triangle head. X-mirror symmetry is on by default. While the tool is
+// active, Alt + drag and the middle button still move the camera (the viewport handles those).
+//
+// The tool is an event filter on the viewport: the viewport itself knows nothing of painting.
+//
+// Thread: GUI.
+
+#include "sim/MeshBvh.h"
+#include "sim/ScalpBrush.h"
+
+#include <glm/vec3.hpp>
+
+#include <QObject>
+#include <QPointF>
+
+#include <memory>
+#include <optional>
+
+namespace wisp {
+
+class Document;
+class Viewport;
+
+class PaintTool : public QObject {
+    Q_OBJECT
+public:
+    PaintTool(Document* document, Viewport* viewport, QObject* parent = nullptr);
+    ~PaintTool() override;
+
+    bool isActive() const { return m_active; }
+    const BrushSettings& settings() const { return m_settings; }
+    float mirrorPlaneX() const { return m_brush ? m_brush->mirrorPlaneX() : 0.0f; }
+
+    // Brush limits, metres.
+    static constexpr float kMinRadius = 0.001f;
+    static constexpr float kMaxRadius = 0.2f;
+
+public slots:
+    void setActive(bool active);
+    void setRadius(double metres);
+    void setStrength(double strength);
+    void setFalloff(double falloff);
+    void setMode(wisp::BrushMode mode);
+    void setMirror(bool mirror);
+
+signals:
+    void activeChanged(bool active);
+    void settingsChanged();
+
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override;
+
+private:
+    struct Hit {
+        glm::vec3 point;
+        glm::vec3 normal;
+    };
+    void rebuildForHead();
+    std::optional<Hit> hitAt(QPointF widgetPosition) const;
+    BrushMode modeFor(Qt::KeyboardModifiers modifiers) const;
+    void updateCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifiers);
+    void dabAlong(const Hit& to, Qt::KeyboardModifiers modifiers);
+    void endStroke();
+
+    Document* m_document;
+    Viewport* m_viewport;
+    std::unique_ptr<MeshBvh> m_bvh;
+    std::unique_ptr<ScalpBrush> m_brush;
+    BrushSettings m_settings;
+    bool m_active = false;
+    bool m_stroking = false;
+    std::optional<glm::vec3> m_lastDab;  // of the stroke going on
+    QPointF m_lastCursor{-1.0, -1.0};
+};
+
+}  // namespace wisp

@@ -3,6 +3,7 @@
 #include "app/editor/Document.h"
 #include "app/editor/MainWindow.h"
 #include "app/editor/SimulationHost.h"
+#include "GuiTestSupport.h"
 #include "widgets/ParameterPanel.h"
 #include "widgets/Viewport.h"
 
@@ -23,42 +24,9 @@
 #include <string>
 
 using namespace wisp;
+using namespace wisp::test;
 
 namespace {
-
-struct Ends {
-    glm::vec3 tip{0.0f};
-    glm::vec3 root{0.0f};
-};
-
-Ends meanEnds(const FramePtr& frame)
-{
-    Ends e;
-    const HairCurves& c = frame->strands;
-    for (std::size_t s = 0; s < c.strandCount(); ++s) {
-        e.root += c.strand(s).front();
-        e.tip += c.strand(s).back();
-    }
-    e.root /= static_cast<float>(c.strandCount());
-    e.tip /= static_cast<float>(c.strandCount());
-    return e;
-}
-
-// Waits until `count` frames have been published after `start` (a publishedFrames() value read
-// before the action that publishes them: the host may publish before the action returns).
-bool waitForFramesSince(SimulationHost* host, std::uint64_t start, std::uint64_t count, int timeoutMs = 10000)
-{
-    QElapsedTimer timer;
-    timer.start();
-    while (host->publishedFrames() < start + count && timer.elapsed() < timeoutMs)
-        QTest::qWait(10);
-    return host->publishedFrames() >= start + count;
-}
-
-bool waitForFrames(SimulationHost* host, std::uint64_t count, int timeoutMs = 10000)
-{
-    return waitForFramesSince(host, host->publishedFrames(), count, timeoutMs);
-}
 
 // Threads this process has started whose name says they are Wisp's (the simulation thread and the
 // solver's pool name themselves; Mesa's and Qt's own threads are not ours to count).
@@ -73,17 +41,6 @@ int wispThreads()
             ++count;
     }
     return count;
-}
-
-// Types a value into a parameter's spin box as an artist would: select all, type, Enter.
-void typeValue(ParameterPanel* panel, Param id, const QString& text)
-{
-    QDoubleSpinBox* spin = panel->spinBoxFor(id);
-    ASSERT_NE(spin, nullptr);
-    spin->setFocus();
-    QTest::keyClick(spin, Qt::Key_A, Qt::ControlModifier);
-    QTest::keyClicks(spin, text);
-    QTest::keyClick(spin, Qt::Key_Return);
 }
 
 class EditorTest : public ::testing::Test {
@@ -101,9 +58,9 @@ protected:
         // A lighter groom keeps the real-time simulation quick on two cores.
         window->document()->editParameter(Param::Density, 2.0, false);
         window->document()->undoStack()->clear();
-        ASSERT_TRUE(waitForFrames(window->simulation(), 5));
+        ASSERT_TRUE(waitForFrames(*window->simulation(), 5));
     }
-    void settle(int frames = 90) { ASSERT_TRUE(waitForFrames(window->simulation(), static_cast<std::uint64_t>(frames))); }
+    void settle(int frames = 90) { ASSERT_TRUE(waitForFrames(*window->simulation(), static_cast<std::uint64_t>(frames))); }
     FramePtr frame() const { return window->simulation()->latestFrame(); }
 
     std::unique_ptr<MainWindow> window;
@@ -196,10 +153,10 @@ TEST_F(EditorTest, SpacePausesAndNoNewFramesArrive)
     const std::uint64_t step = frame()->step;
     const std::uint64_t beforeStep = window->simulation()->publishedFrames();
     window->stepAction()->trigger();
-    ASSERT_TRUE(waitForFramesSince(window->simulation(), beforeStep, 1));
+    ASSERT_TRUE(waitForFramesSince(*window->simulation(), beforeStep, 1));
     EXPECT_EQ(frame()->step, step + 1);
     QTest::keyClick(window->viewport(), Qt::Key_Space);
-    ASSERT_TRUE(waitForFrames(window->simulation(), 10));
+    ASSERT_TRUE(waitForFrames(*window->simulation(), 10));
     EXPECT_TRUE(window->simulation()->isPlaying());
 }
 
@@ -209,7 +166,7 @@ TEST_F(EditorTest, ResetReturnsToRest)
     ASSERT_FALSE(window->simulation()->isPlaying());
     std::uint64_t beforeReset = window->simulation()->publishedFrames();
     window->resetAction()->trigger();
-    ASSERT_TRUE(waitForFramesSince(window->simulation(), beforeReset, 1));
+    ASSERT_TRUE(waitForFramesSince(*window->simulation(), beforeReset, 1));
     const FramePtr rest = frame();
     EXPECT_EQ(rest->step, 0u);
     QTest::keyClick(window->viewport(), Qt::Key_Space);  // play: the hair moves off its rest shape
@@ -218,7 +175,7 @@ TEST_F(EditorTest, ResetReturnsToRest)
     ASSERT_FALSE(window->simulation()->isPlaying());
     beforeReset = window->simulation()->publishedFrames();
     window->resetAction()->trigger();
-    ASSERT_TRUE(waitForFramesSince(window->simulation(), beforeReset, 1));
+    ASSERT_TRUE(waitForFramesSince(*window->simulation(), beforeReset, 1));
     const FramePtr again = frame();
     ASSERT_EQ(again->strands.positions.size(), rest->strands.positions.size());
     for (std::size_t i = 0; i < rest->strands.positions.size(); ++i)
@@ -232,7 +189,7 @@ TEST(Editor, ClosingWhileSimulatingExitsWithinASecondAndLeavesNoThread)
     auto window = std::make_unique<MainWindow>();
     window->show();
     ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
-    ASSERT_TRUE(waitForFrames(window->simulation(), 10));
+    ASSERT_TRUE(waitForFrames(*window->simulation(), 10));
     EXPECT_GE(wispThreads(), 1);  // the simulation thread is really there, and named
     QElapsedTimer timer;
     timer.start();

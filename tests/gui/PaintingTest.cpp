@@ -6,6 +6,7 @@
 #include "app/editor/PaintTool.h"
 #include "app/editor/SimulationHost.h"
 #include "app/editor/WispPanel.h"
+#include "GuiTestSupport.h"
 #include "sim/MeshBvh.h"
 #include "widgets/ParameterPanel.h"
 #include "widgets/Viewport.h"
@@ -219,12 +220,7 @@ TEST_F(PaintingTest, WispSizeOfOneRegionChangesOnlyThatRegionsStrands)
     ASSERT_FALSE(before->lookOfStrand.empty());
 
     // The wisp panel edits the current region (the new one): type a wisp size as an artist does.
-    QDoubleSpinBox* spin = window->wispPanel()->parameterPanel()->spinBoxFor(Param::WispSize);
-    ASSERT_NE(spin, nullptr);
-    spin->setFocus();
-    QTest::keyClick(spin, Qt::Key_A, Qt::ControlModifier);
-    QTest::keyClicks(spin, QStringLiteral("2"));
-    QTest::keyClick(spin, Qt::Key_Return);
+    wisp::test::typeValue(window->wispPanel()->parameterPanel(), Param::WispSize, QStringLiteral("2"));
     settle();
     ASSERT_EQ(doc->region(1).values.getInt(Param::WispSize), 2);
     EXPECT_EQ(doc->region(0).values.getInt(Param::WispSize), 12);

@@ -2,6 +2,7 @@
 // mouse and key events, every edit checked in the document and through undo and redo.
 #include "app/editor/Document.h"
 #include "app/editor/RegionPanel.h"
+#include "GuiTestSupport.h"
 #include "app/editor/WispPanel.h"
 #include "widgets/ParameterPanel.h"
 
@@ -28,6 +29,7 @@
 #include <vector>
 
 using namespace wisp;
+using wisp::test::typeValue;
 
 // Readable QStrings in failure messages.
 QT_BEGIN_NAMESPACE
@@ -101,17 +103,6 @@ void renameCurrentRow(QListWidget* list, const QString& text)
     QLineEdit* editor = openNameEditor(list);
     ASSERT_NE(editor, nullptr) << "F2 opened no name editor";
     typeName(list, editor, text);
-}
-
-// Types a value into a parameter's spin box: select all, type, Enter.
-void typeValue(ParameterPanel* panel, Param id, const QString& text)
-{
-    QDoubleSpinBox* spin = panel->spinBoxFor(id);
-    ASSERT_NE(spin, nullptr);
-    spin->setFocus();
-    QTest::keyClick(spin, Qt::Key_A, Qt::ControlModifier);
-    QTest::keyClicks(spin, text);
-    QTest::keyClick(spin, Qt::Key_Return);
 }
 
 // Presses the slider's handle, moves right in steps (each a live edit), releases.

@@ -3,6 +3,7 @@
 // say), not on the solver, and the GUI thread's event loop runs through QTest::qWait / QSignalSpy.
 // The pacing policy is also tested on its own, with made-up timings, in SimulationHostPacer tests.
 #include "app/editor/SimulationHost.h"
+#include "GuiTestSupport.h"
 #include "app/editor/SimulationHostPacer.h"
 #include "sim/DefaultHead.h"
 #include "sim/SolverSettings.h"
@@ -24,6 +25,7 @@
 #include <thread>
 
 using namespace wisp;
+using namespace wisp::test;
 
 namespace {
 
@@ -48,46 +50,6 @@ ParameterValues with(ParameterValues v, std::initializer_list<std::pair<Param, d
     for (const auto& [id, value] : changes)
         EXPECT_EQ(v.set(id, value), "");
     return v;
-}
-
-struct Ends {
-    glm::vec3 tip{0.0f};
-    glm::vec3 root{0.0f};
-};
-
-Ends meanEnds(const FramePtr& frame)
-{
-    Ends e;
-    const HairCurves& c = frame->strands;
-    for (std::size_t s = 0; s < c.strandCount(); ++s) {
-        e.root += c.strand(s).front();
-        e.tip += c.strand(s).back();
-    }
-    e.root /= static_cast<float>(c.strandCount());
-    e.tip /= static_cast<float>(c.strandCount());
-    return e;
-}
-
-bool waitUntil(const std::function<bool()>& done, int timeoutMs = 10000)
-{
-    QElapsedTimer timer;
-    timer.start();
-    while (!done() && timer.elapsed() < timeoutMs)
-        QTest::qWait(5);
-    return done();
-}
-
-// Waits for `count` frames published after `since` (a publishedFrames() taken before the request:
-// a paused step is published within microseconds, maybe before the wait starts).
-bool waitForFramesSince(const SimulationHost& host, std::uint64_t since, std::uint64_t count, int timeoutMs = 10000)
-{
-    return waitUntil([&] { return host.publishedFrames() >= since + count; }, timeoutMs);
-}
-
-// Waits for `count` more frames of a playing host.
-bool waitForFrames(const SimulationHost& host, std::uint64_t count, int timeoutMs = 10000)
-{
-    return waitForFramesSince(host, host.publishedFrames(), count, timeoutMs);
 }
 
 // Whole and self-consistent: what a reader of any published frame may rely on.

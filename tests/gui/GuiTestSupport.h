@@ -1,0 +1,74 @@
+#pragma once
+// What several GUI tests need: waiting for the simulation host's frames, measuring where the hair
+// hangs, and typing into a parameter panel as an artist does.
+
+#include "app/editor/SimulationHost.h"
+#include "sim/Frame.h"
+#include "widgets/ParameterPanel.h"
+
+#include <QDoubleSpinBox>
+#include <QElapsedTimer>
+#include <QTest>
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <functional>
+
+namespace wisp::test {
+
+// Polls `done` while the event loop runs, up to timeoutMs; its last answer.
+inline bool waitUntil(const std::function<bool()>& done, int timeoutMs = 10000)
+{
+    QElapsedTimer timer;
+    timer.start();
+    while (!done() && timer.elapsed() < timeoutMs)
+        QTest::qWait(5);
+    return done();
+}
+
+// Waits for `count` frames published after `since` (a publishedFrames() taken before the request:
+// a paused step is published within microseconds, maybe before the wait starts).
+inline bool waitForFramesSince(const SimulationHost& host, std::uint64_t since, std::uint64_t count,
+                               int timeoutMs = 10000)
+{
+    return waitUntil([&] { return host.publishedFrames() >= since + count; }, timeoutMs);
+}
+
+// Waits for `count` more frames of a playing host.
+inline bool waitForFrames(const SimulationHost& host, std::uint64_t count, int timeoutMs = 10000)
+{
+    return waitForFramesSince(host, host.publishedFrames(), count, timeoutMs);
+}
+
+// Mean root and tip of a frame's strands, metres.
+struct Ends {
+    glm::vec3 tip{0.0f};
+    glm::vec3 root{0.0f};
+};
+
+inline Ends meanEnds(const FramePtr& frame)
+{
+    Ends e;
+    const HairCurves& c = frame->strands;
+    for (std::size_t s = 0; s < c.strandCount(); ++s) {
+        e.root += c.strand(s).front();
+        e.tip += c.strand(s).back();
+    }
+    e.root /= static_cast<float>(c.strandCount());
+    e.tip /= static_cast<float>(c.strandCount());
+    return e;
+}
+
+// Types a value into a parameter's spin box: select all, type, Enter.
+inline void typeValue(ParameterPanel* panel, Param id, const QString& text)
+{
+    QDoubleSpinBox* spin = panel->spinBoxFor(id);
+    ASSERT_NE(spin, nullptr);
+    spin->setFocus();
+    QTest::keyClick(spin, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(spin, text);
+    QTest::keyClick(spin, Qt::Key_Return);
+}
+
+}  // namespace wisp::test

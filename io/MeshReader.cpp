@@ -1,5 +1,7 @@
 #include "io/MeshReader.h"
 
+#include "io/GltfReader.h"
+
 #include <OpenMesh/Core/IO/Options.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
 #include <OpenMesh/Core/IO/reader/OBJReader.hh>
@@ -1237,7 +1239,7 @@ void readStl(const std::string& path, std::string_view bytes, MeshBuilder& build
 const std::vector<std::string>& supportedMeshExtensions()
 {
     // Function-local so that other files' static initialisers may call this safely.
-    static const std::vector<std::string> extensions = {"obj", "ply", "off", "stl"};
+    static const std::vector<std::string> extensions = {"obj", "ply", "off", "stl", "gltf", "glb"};
     return extensions;
 }
 
@@ -1250,6 +1252,9 @@ Result<MeshReadResult> readMesh(const std::string& path)
         const std::vector<std::string>& known = supportedMeshExtensions();
         if (std::find(known.begin(), known.end(), ext) == known.end())
             fail({}, "'." + ext + "' files cannot be read as meshes; " + supportedList());
+        // glTF reads its own file and the buffers beside it (io/GltfReader.h).
+        if (ext == "gltf" || ext == "glb")
+            return readGltf(path);
 
         const std::string bytes = readWholeFile(path);
         MeshBuilder builder;

@@ -1,5 +1,5 @@
 #pragma once
-// Reads a head (or any collider) mesh from OBJ, PLY, OFF or STL into a TriangleMesh.
+// Reads a head (or any collider) mesh from OBJ, PLY, OFF, STL or glTF 2.0 into a TriangleMesh.
 //
 // Which code reads what, and why:
 //   .obj, .stl  OpenMesh's readers, feeding our own importer (not an OpenMesh mesh). OpenMesh's
@@ -17,12 +17,17 @@
 //               corrupt count can allocate gigabytes or loop for minutes.
 //   .off        our own reader (ASCII OFF, with optional ST/C/N per-vertex data ignored), for
 //               the same reason; binary OFF and 4D OFF are refused with a message.
-// The extension picks the format, case-insensitively; the contents are not sniffed.
+//   .gltf, .glb io/GltfReader (tinygltf, behind our own checks of the container, the JSON and
+//               every accessor): all triangle primitives of the default scene, node transforms
+//               applied, merged into one mesh. See GltfReader.h.
+// The extension picks the format, case-insensitively; the contents are not sniffed (except
+// that a binary glTF misnamed .gltf is recognised by its 'glTF' magic).
 //
 // Polygons are triangulated as fans from their first corner (fine for the convex polygons
 // modellers export; a concave polygon may fold). Triangles that repeat a vertex are dropped.
 // Coordinates come back exactly as stored: no unit scaling, no axis change, no vertex welding
-// (except STL, whose triangles carry no indices: OpenMesh merges bit-identical corners).
+// (except STL, whose triangles carry no indices: OpenMesh merges bit-identical corners; and
+// glTF, which splits vertices at every normal or UV seam: bit-identical corners are merged).
 //
 // Thread safety: readMesh may be called from any thread. OpenMesh's readers and its error
 // stream are process-wide, so calls that go through OpenMesh are serialised by a mutex.

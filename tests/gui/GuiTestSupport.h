@@ -17,8 +17,12 @@
 
 namespace wisp::test {
 
+// Default waits: generous for a Release build on a busy two-core machine, and longer still in the
+// sanitizer build, which runs several times slower (WISP_SLOW_BUILD_FACTOR, tests/CMakeLists.txt).
+constexpr int kWaitMs = 10000 * WISP_SLOW_BUILD_FACTOR;
+
 // Polls `done` while the event loop runs, up to timeoutMs; its last answer.
-inline bool waitUntil(const std::function<bool()>& done, int timeoutMs = 10000)
+inline bool waitUntil(const std::function<bool()>& done, int timeoutMs = kWaitMs)
 {
     QElapsedTimer timer;
     timer.start();
@@ -30,13 +34,13 @@ inline bool waitUntil(const std::function<bool()>& done, int timeoutMs = 10000)
 // Waits for `count` frames published after `since` (a publishedFrames() taken before the request:
 // a paused step is published within microseconds, maybe before the wait starts).
 inline bool waitForFramesSince(const SimulationHost& host, std::uint64_t since, std::uint64_t count,
-                               int timeoutMs = 10000)
+                               int timeoutMs = kWaitMs)
 {
     return waitUntil([&] { return host.publishedFrames() >= since + count; }, timeoutMs);
 }
 
 // Waits for `count` more frames of a playing host.
-inline bool waitForFrames(const SimulationHost& host, std::uint64_t count, int timeoutMs = 10000)
+inline bool waitForFrames(const SimulationHost& host, std::uint64_t count, int timeoutMs = kWaitMs)
 {
     return waitForFramesSince(host, host.publishedFrames(), count, timeoutMs);
 }

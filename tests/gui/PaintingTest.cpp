@@ -74,6 +74,7 @@ protected:
         doc->undoStack()->clear();
         // Paused: strands that are carried over keep exactly their state, so frames compare exactly.
         window->simulation()->pause();
+        ASSERT_TRUE(wisp::test::waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
         settle();
         bvh = std::make_unique<MeshBvh>(doc->head());
     }
@@ -82,7 +83,7 @@ protected:
     void settle()
     {
         QSignalSpy ready(window->simulation(), &SimulationHost::sceneReady);
-        while (ready.wait(600)) {
+        while (ready.wait(600 * WISP_SLOW_BUILD_FACTOR)) {
         }
     }
     FramePtr frame() const { return window->simulation()->latestFrame(); }

@@ -710,6 +710,6 @@ TEST_F(MeshReaderFiles, CutAndCorruptedFilesNeverCrash)
 
 TEST(MeshReaderApi, SupportedExtensions)
 {
-    const std::vector<std::string> expected = {"obj", "ply", "off", "stl"};
+    const std::vector<std::string> expected = {"obj", "ply", "off", "stl", "gltf", "glb"};
     EXPECT_EQ(supportedMeshExtensions(), expected);
 }

@@ -1,0 +1,52 @@
+#pragma once
+// Reads a head (or any collider) from glTF 2.0: `.gltf` (JSON with base64 data-URI buffers or
+// external .bin files next to it) and `.glb` (binary container), into one TriangleMesh.
+//
+// What is read: every triangle primitive (TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN, strips and
+// fans converted to triangles) of every mesh that a node of the default scene instances (scene 0
+// when the file names no default scene; every root node when it has no scenes), with the node's
+// world transform (matrix or translation/rotation/scale, composed down the hierarchy) applied,
+// all merged into one mesh. A transform that mirrors (negative determinant) flips the winding
+// back, so triangles stay counter-clockwise seen from outside. Default morph-target weights are
+// applied to positions; a skinned mesh is read in its bind pose (the glTF spec says to ignore the
+// skinned node's own transform). Corners at bit-identical positions (after the transforms) are
+// merged into one vertex: glTF splits a vertex wherever its normal or texture coordinate changes
+// (a cube's 8 corners are 24 vertices), Wisp reads neither, and split vertices would give the
+// head shading seams and open edges. Only vertices that triangles use are kept. Triangles
+// without three distinct corners (by index, or by position once merged) are dropped with a
+// warning (strips repeat vertices on purpose to join runs, so their dropped triangles are not
+// reported); POINTS and LINES primitives are skipped with a warning. Units and axes come back as stored: glTF is metres
+// and +Y up by specification, but many exporters ignore the unit, so io/HeadPlacement decides the scale.
+//
+// Why the file is not simply handed to tinygltf:
+//   - The GLB container is split here, with every length checked against the file, and handed
+//     on as a clean JSON + BIN pair: tinygltf 2.7 trusts the BIN chunk's length up to 8 bytes past
+//     the end of the data, and refuses unknown chunk types the spec says to skip.
+//   - The JSON is parsed here first, so that a syntax error names its byte, a required extension
+//     Wisp cannot honour (Draco, meshopt) is refused by name before anything else, and tinygltf
+//     sees only the parts that make geometry (asset, buffers, bufferViews, accessors, meshes,
+//     nodes, scenes): a malformed material, image, animation or camera cannot stop a head from
+//     loading, and no image is ever decoded (tinygltf's image loader is also a no-op).
+//   - Accessors are read here, not through tinygltf, with every offset, stride, count and index
+//     checked against its buffer (tinygltf leaves that to the caller), and sparse accessors are
+//     applied.
+// External buffers are looked up only relative to the .gltf's folder (never the working
+// directory) and must be regular files, so a URI naming a pipe cannot block the read.
+//
+// Errors are io::IoError naming the file, the place ("byte 20", "accessors[3]",
+// "meshes[0].primitives[1]", "nodes[7]", "extensionsRequired") and the problem.
+//
+// Thread safety: readGltf may be called from any thread; it keeps no state between calls.
+
+#include "io/IoError.h"
+#include "io/MeshReader.h"
+
+#include <string>
+
+namespace wisp::io {
+
+// Reads `path` as glTF 2.0. The binary container (GLB) is recognised by its 'glTF' magic, so a
+// binary file named .gltf still reads (with a warning); a .glb without the magic is refused.
+Result<MeshReadResult> readGltf(const std::string& path);
+
+} // namespace wisp::io

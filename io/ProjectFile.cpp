@@ -1,0 +1,503 @@
+#include "io/ProjectFile.h"
+
+#include "io/AtomicFile.h"
+#include "io/Base64.h"
+#include "io/PresetFile.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <unistd.h>
+
+namespace wisp::io {
+
+using nlohmann::json;
+using nlohmann::ordered_json;
+namespace fs = std::filesystem;
+using namespace detail;
+
+namespace {
+
+constexpr std::size_t kMaxPathBytes = 4096;
+
+fs::path projectFolder(const std::string& projectPath)
+{
+    std::error_code error;
+    fs::path absolute = fs::absolute(projectPath, error);
+    if (error)
+        absolute = projectPath;
+    return absolute.lexically_normal().parent_path();
+}
+
+fs::path resolveAgainst(const fs::path& folder, const std::string& source)
+{
+    const fs::path path(source);
+    return (path.is_absolute() ? path : folder / path).lexically_normal();
+}
+
+std::string regionPath(std::size_t index) { return "regions[" + std::to_string(index) + "]"; }
+
+bool isUnitColour(const glm::vec3& c)
+{
+    for (int i = 0; i < 3; ++i)
+        if (!(c[i] >= 0.0f && c[i] <= 1.0f))  // also false for NaN
+            return false;
+    return true;
+}
+
+// Throws the Refusal that reading such a file would give: the checks that need the whole project
+// (counts against the head, ids against each other). writeProject runs it too.
+void checkProject(const Project& project)
+{
+    if (!std::isfinite(project.headImportScale) || project.headImportScale <= 0.0f)
+        throw Refusal{"head.import_scale", "the import scale must be a positive number"};
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(project.headImportOffset[i]))
+            throw Refusal{"head.import_offset", "expected 3 finite numbers"};
+    if (!project.headEmbedded && project.headSource.empty())
+        throw Refusal{"head.source", "a head that is not stored in the project needs the file it comes from"};
+    const std::size_t vertexCount = project.head.vertexCount();
+    for (std::size_t t = 0; t < project.head.triangles.size(); ++t)
+        for (int corner = 0; corner < 3; ++corner)
+            if (project.head.triangles[t][corner] >= vertexCount)
+                throw Refusal{"head.triangles", "triangle " + std::to_string(t) + " refers to vertex " +
+                                                    std::to_string(project.head.triangles[t][corner]) +
+                                                    "; the head has " + std::to_string(vertexCount)};
+    if (std::string error = validateMesh(project.head); !error.empty())
+        throw Refusal{"head", error};
+
+    if (project.regions.size() > kMaxRegions)
+        throw Refusal{"regions", std::to_string(project.regions.size()) + " regions; at most " +
+                                     std::to_string(kMaxRegions) + " are allowed"};
+    std::map<std::uint32_t, std::size_t> indexOfId;
+    for (std::size_t i = 0; i < project.regions.size(); ++i) {
+        const GrowthRegion& region = project.regions[i];
+        const std::string path = regionPath(i);
+        if (region.id == kNoSolo)
+            throw Refusal{path + ".id", std::to_string(region.id) + " is reserved (it means \"no region\")"};
+        if (const auto [it, added] = indexOfId.emplace(region.id, i); !added)
+            throw Refusal{path + ".id", std::to_string(region.id) + " is already the id of " + regionPath(it->second)};
+        if (region.name.size() > kMaxNameBytes)
+            throw Refusal{path + ".name", "the name is " + std::to_string(region.name.size()) + " bytes long; at most " +
+                                              std::to_string(kMaxNameBytes) + " are allowed"};
+        if (region.weights.size() != vertexCount)
+            throw Refusal{path + ".weights", std::to_string(region.weights.size()) + " weights for a head of " +
+                                                 std::to_string(vertexCount) + " vertices"};
+        for (std::size_t v = 0; v < region.weights.size(); ++v)
+            if (const float w = region.weights[v]; !(w >= 0.0f && w <= 1.0f))
+                throw Refusal{path + ".weights", "the weight of vertex " + std::to_string(v) + " is " +
+                                                     std::to_string(w) + "; weights are 0..1"};
+        if (!isUnitColour(region.rootColour))
+            throw Refusal{path + ".root_colour", "expected 3 numbers 0..1"};
+        if (!isUnitColour(region.tipColour))
+            throw Refusal{path + ".tip_colour", "expected 3 numbers 0..1"};
+    }
+    if (project.soloRegion != kNoSolo && !indexOfId.contains(project.soloRegion))
+        throw Refusal{"solo_region", std::to_string(project.soloRegion) + " is the id of no region"};
+
+    const CameraState& camera = project.camera;
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(camera.pivot[i]))
+            throw Refusal{"camera.pivot", "expected 3 finite numbers"};
+    if (!std::isfinite(camera.yawRadians))
+        throw Refusal{"camera.yaw_radians", "not a finite number"};
+    if (!std::isfinite(camera.pitchRadians))
+        throw Refusal{"camera.pitch_radians", "not a finite number"};
+    if (!std::isfinite(camera.distanceMetres) || camera.distanceMetres <= 0.0f)
+        throw Refusal{"camera.distance_metres", "the distance must be a positive number"};
+    if (!(camera.fovYDegrees > 0.0f && camera.fovYDegrees < 180.0f))
+        throw Refusal{"camera.fov_y_degrees", "the field of view must be between 0 and 180 degrees"};
+}
+
+// ---- reading ----------------------------------------------------------------------------------
+
+float readFloat(const json& value, const std::string& path)
+{
+    const float number = static_cast<float>(readFiniteNumber(value, path));
+    if (!std::isfinite(number))
+        throw Refusal{path, describe(value) + " is too large"};
+    return number;
+}
+
+// A whole number 0..maximum (counts, ids).
+std::uint64_t readWhole(const json& value, const std::string& path, std::uint64_t maximum)
+{
+    const double number = readFiniteNumber(value, path);
+    if (std::floor(number) != number || number < 0.0 || number > static_cast<double>(maximum))
+        throw Refusal{path, describe(value) + " is not a whole number 0.." + std::to_string(maximum)};
+    return static_cast<std::uint64_t>(number);
+}
+
+const json* find(const json& object, const char* key)
+{
+    const auto it = object.find(key);
+    return it == object.end() ? nullptr : &*it;
+}
+
+const json& require(const json& object, const std::string& objectPath, const char* key)
+{
+    if (const json* value = find(object, key))
+        return *value;
+    throw Refusal{childPath(objectPath, key), "missing"};
+}
+
+void warnUnknownKeys(const json& object, const std::string& path, const std::set<std::string>& known, Warnings& warnings)
+{
+    for (const auto& [key, value] : object.items())
+        if (!known.contains(key))
+            warnings.add(childPath(path, key), "unknown key, ignored");
+}
+
+std::vector<float> readFloatArray(const json& value, const std::string& path)
+{
+    if (!value.is_string())
+        throw Refusal{path, describe(value) + " is not base64 text"};
+    std::optional<std::vector<float>> values = decodeFloat32Array(value.get_ref<const std::string&>());
+    if (!values)
+        throw Refusal{path, "not valid base64 of little-endian 32-bit floats"};
+    return std::move(*values);
+}
+
+std::vector<std::uint32_t> readUint32Array(const json& value, const std::string& path)
+{
+    if (!value.is_string())
+        throw Refusal{path, describe(value) + " is not base64 text"};
+    std::optional<std::vector<std::uint32_t>> values = decodeUint32Array(value.get_ref<const std::string&>());
+    if (!values)
+        throw Refusal{path, "not valid base64 of little-endian 32-bit unsigned integers"};
+    return std::move(*values);
+}
+
+glm::vec3 readFiniteVec3(const json& value, const std::string& path)
+{
+    const bool ok = value.is_array() && value.size() == 3 && std::all_of(value.begin(), value.end(), [](const json& c) {
+        return c.is_number() && std::isfinite(static_cast<float>(c.get<double>()));
+    });
+    if (!ok)
+        throw Refusal{path, "expected 3 finite numbers"};
+    return {static_cast<float>(value[0].get<double>()), static_cast<float>(value[1].get<double>()),
+            static_cast<float>(value[2].get<double>())};
+}
+
+void readEmbeddedHead(const json& head, std::uint64_t vertexCount, std::uint64_t triangleCount, TriangleMesh& mesh)
+{
+    const std::vector<float> positions = readFloatArray(require(head, "head", "positions"), "head.positions");
+    if (positions.size() != 3 * vertexCount)
+        throw Refusal{"head.positions", std::to_string(positions.size()) + " numbers where the " +
+                                            std::to_string(vertexCount) + " vertices need " +
+                                            std::to_string(3 * vertexCount)};
+    const std::vector<std::uint32_t> indices = readUint32Array(require(head, "head", "triangles"), "head.triangles");
+    if (indices.size() != 3 * triangleCount)
+        throw Refusal{"head.triangles", std::to_string(indices.size()) + " indices where the " +
+                                            std::to_string(triangleCount) + " triangles need " +
+                                            std::to_string(3 * triangleCount)};
+    mesh.positions.resize(vertexCount);
+    for (std::size_t v = 0; v < vertexCount; ++v)
+        mesh.positions[v] = {positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]};
+    mesh.triangles.resize(triangleCount);
+    for (std::size_t t = 0; t < triangleCount; ++t)
+        mesh.triangles[t] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+}
+
+void readReferencedHead(const std::string& projectPath, const fs::path& folder, const std::string& source,
+                        const std::string& absoluteSource, std::uint64_t vertexCount, const HeadLoader& loadHead,
+                        Project& project, Warnings& warnings)
+{
+    const fs::path primary = resolveAgainst(folder, source);
+    fs::path chosen = primary;
+    std::error_code error;
+    if (!fs::exists(primary, error)) {
+        const bool fallback = !absoluteSource.empty() && fs::path(absoluteSource) != primary;
+        if (fallback && fs::exists(absoluteSource, error)) {
+            chosen = absoluteSource;
+            warnings.add("head.source", "\"" + source + "\" is not at " + primary.string() + "; loaded " +
+                                            absoluteSource + ", where it was when the project was saved");
+        } else {
+            throw Refusal{"head.source", "cannot find the head file " + primary.string() + " (\"" + source +
+                                             "\" next to the project " + (folder / fs::path(projectPath).filename()).string() +
+                                             ")" + (fallback ? " nor at " + absoluteSource : "")};
+        }
+    }
+    if (!loadHead)
+        throw Refusal{"head.source", "the head is in " + chosen.string() + ", and no head loader was given"};
+    Result<TriangleMesh> loaded = loadHead(chosen.string());
+    if (!loaded)
+        throw Refusal{"head.source", "cannot load the head: " + loaded.error().toString()};
+    project.head = std::move(loaded).value();
+    // The same arithmetic as io/HeadPlacement.cpp's applyPlacement, so the head lands where the import put it.
+    for (glm::vec3& p : project.head.positions) {
+        const glm::vec3 upright = project.headImportZUp ? glm::vec3(p.x, p.z, -p.y) : p;
+        p = upright * project.headImportScale + project.headImportOffset;
+    }
+    if (project.head.vertexCount() != vertexCount)
+        throw Refusal{"head.source", chosen.string() + " has " + std::to_string(project.head.vertexCount()) +
+                                         " vertices, but the project was painted on " + std::to_string(vertexCount) +
+                                         " (was the file changed?)"};
+    project.headSource = chosen.string();
+}
+
+void readHead(const json& root, const std::string& projectPath, const fs::path& folder, const HeadLoader& loadHead,
+              Project& project, Warnings& warnings)
+{
+    const json& head = requireObject(require(root, "", "head"), "head");
+    warnUnknownKeys(head, "head",
+                    {"source", "absolute_source", "embedded", "import_scale", "import_offset", "import_z_up",
+                     "vertex_count", "triangle_count", "positions", "triangles"},
+                    warnings);
+    std::string source, absoluteSource;
+    if (const json* value = find(head, "source"))
+        source = readText(*value, "head.source", kMaxPathBytes);
+    if (const json* value = find(head, "absolute_source"))
+        absoluteSource = readText(*value, "head.absolute_source", kMaxPathBytes);
+    if (const json* value = find(head, "embedded"))
+        project.headEmbedded = readBool(*value, "head.embedded");
+    if (const json* value = find(head, "import_scale"))
+        project.headImportScale = readFloat(*value, "head.import_scale");
+    if (const json* value = find(head, "import_offset"))
+        project.headImportOffset = readFiniteVec3(*value, "head.import_offset");
+    if (const json* value = find(head, "import_z_up"))
+        project.headImportZUp = readBool(*value, "head.import_z_up");
+    const std::uint64_t vertexCount = readWhole(require(head, "head", "vertex_count"), "head.vertex_count", 0xffffffffu);
+    const std::uint64_t triangleCount =
+        readWhole(require(head, "head", "triangle_count"), "head.triangle_count", 0xffffffffu);
+    if (project.headEmbedded) {
+        readEmbeddedHead(head, vertexCount, triangleCount, project.head);
+        project.headSource = source.empty() ? "" : resolveAgainst(folder, source).string();
+    } else {
+        if (source.empty())
+            throw Refusal{"head.source", "a head that is not stored in the project needs the file it comes from"};
+        readReferencedHead(projectPath, folder, source, absoluteSource, vertexCount, loadHead, project, warnings);
+    }
+}
+
+GrowthRegion readRegion(const json& value, std::size_t index, Warnings& warnings)
+{
+    const std::string path = regionPath(index);
+    requireObject(value, path);
+    warnUnknownKeys(value, path, {"id", "name", "visible", "weights", "wisp", "root_colour", "tip_colour"}, warnings);
+    GrowthRegion region;
+    region.id = static_cast<std::uint32_t>(readWhole(require(value, path, "id"), path + ".id", 0xffffffffu));
+    region.name = "Region " + std::to_string(index + 1);
+    if (const json* name = find(value, "name"))
+        region.name = readText(*name, path + ".name", kMaxNameBytes);
+    if (const json* visible = find(value, "visible"))
+        region.visible = readBool(*visible, path + ".visible");
+    region.weights = readFloatArray(require(value, path, "weights"), path + ".weights");
+    if (const json* wisp = find(value, "wisp")) {
+        const std::string wispPath = path + ".wisp";
+        for (const auto& [key, parameter] : requireObject(*wisp, wispPath).items()) {
+            const std::string keyPath = childPath(wispPath, key);
+            const ParameterInfo* info = findParameter(key);
+            if (!info)
+                warnings.add(keyPath, "unknown key, ignored");
+            else if (info->group != ParamGroup::Wisp)
+                warnings.add(keyPath, "a global parameter, which belongs in \"parameters\"; ignored here");
+            else
+                readParameter(region.values, *info, parameter, keyPath);
+        }
+    }
+    if (const json* colour = find(value, "root_colour"))
+        region.rootColour = readColour(*colour, path + ".root_colour");
+    if (const json* colour = find(value, "tip_colour"))
+        region.tipColour = readColour(*colour, path + ".tip_colour");
+    return region;
+}
+
+void readCamera(const json& value, CameraState& camera, Warnings& warnings)
+{
+    requireObject(value, "camera");
+    warnUnknownKeys(value, "camera", {"pivot", "yaw_radians", "pitch_radians", "distance_metres", "fov_y_degrees"},
+                    warnings);
+    if (const json* pivot = find(value, "pivot"))
+        camera.pivot = readFiniteVec3(*pivot, "camera.pivot");
+    if (const json* yaw = find(value, "yaw_radians"))
+        camera.yawRadians = readFloat(*yaw, "camera.yaw_radians");
+    if (const json* pitch = find(value, "pitch_radians"))
+        camera.pitchRadians = readFloat(*pitch, "camera.pitch_radians");
+    if (const json* distance = find(value, "distance_metres"))
+        camera.distanceMetres = readFloat(*distance, "camera.distance_metres");
+    if (const json* fov = find(value, "fov_y_degrees"))
+        camera.fovYDegrees = readFloat(*fov, "camera.fov_y_degrees");
+}
+
+Project readProjectJson(const json& root, const std::string& projectPath, const HeadLoader& loadHead,
+                        Warnings& warnings)
+{
+    checkFormatAndVersion(root, "wisp-project", "project", kProjectVersion, "wisp-preset", "a Wisp preset");
+    warnUnknownKeys(root, "", {"format", "version", "head", "parameters", "regions", "solo_region", "camera"},
+                    warnings);
+    Project project;
+    readHead(root, projectPath, projectFolder(projectPath), loadHead, project, warnings);
+    if (const json* parameters = find(root, "parameters")) {
+        for (const auto& [key, value] : requireObject(*parameters, "parameters").items()) {
+            const std::string path = childPath("parameters", key);
+            if (const ParameterInfo* info = findParameter(key))
+                readParameter(project.parameters, *info, value, path);
+            else
+                warnings.add(path, "unknown key, ignored");
+        }
+    }
+    if (const json* regions = find(root, "regions")) {
+        if (!regions->is_array())
+            throw Refusal{"regions", "expected a list [ ... ] of regions, found " + describe(*regions)};
+        if (regions->size() > kMaxRegions)
+            throw Refusal{"regions", std::to_string(regions->size()) + " regions; at most " +
+                                         std::to_string(kMaxRegions) + " are allowed"};
+        for (std::size_t i = 0; i < regions->size(); ++i)
+            project.regions.push_back(readRegion((*regions)[i], i, warnings));
+    }
+    if (const json* solo = find(root, "solo_region"); solo && !solo->is_null())
+        project.soloRegion = static_cast<std::uint32_t>(readWhole(*solo, "solo_region", 0xffffffffu));
+    if (const json* camera = find(root, "camera"))
+        readCamera(*camera, project.camera, warnings);
+    checkProject(project);
+    return project;
+}
+
+// Keeps the file at `path` as `backup` without a moment when neither exists: a hard link (or a
+// copy where links are not supported) under a temporary name, renamed over the old backup.
+std::string keepBackup(const std::string& path, const std::string& backup)
+{
+    const std::string temporary = backup + ".tmp-" + std::to_string(::getpid());
+    std::error_code error;
+    fs::remove(temporary, error);
+    fs::create_hard_link(path, temporary, error);
+    if (error) {
+        error.clear();
+        fs::copy_file(path, temporary, fs::copy_options::overwrite_existing, error);
+    }
+    if (!error)
+        fs::rename(temporary, backup, error);
+    if (error) {
+        std::error_code ignored;
+        fs::remove(temporary, ignored);
+        return "cannot keep the previous file as " + backup + " (" + error.message() + "); nothing was saved";
+    }
+    return {};
+}
+
+}  // namespace
+
+std::string projectToJson(const Project& project, const std::string& projectPath)
+{
+    const fs::path folder = projectFolder(projectPath);
+    ordered_json root;
+    root["format"] = "wisp-project";
+    root["version"] = kProjectVersion;
+
+    ordered_json head;
+    if (project.headSource.empty()) {
+        head["source"] = "";
+        head["absolute_source"] = "";
+    } else {
+        const fs::path absolute = resolveAgainst(folder, project.headSource);
+        const fs::path relative = absolute.lexically_relative(folder);
+        head["source"] = relative.empty() ? absolute.string() : relative.string();
+        head["absolute_source"] = absolute.string();
+    }
+    head["embedded"] = project.headEmbedded;
+    head["import_scale"] = shortestDoubleForFloat(project.headImportScale);
+    head["import_offset"] = vec3ToJson(project.headImportOffset);
+    head["import_z_up"] = project.headImportZUp;
+    head["vertex_count"] = project.head.vertexCount();
+    head["triangle_count"] = project.head.triangleCount();
+    if (project.headEmbedded) {
+        std::vector<float> positions;
+        positions.reserve(3 * project.head.vertexCount());
+        for (const glm::vec3& p : project.head.positions)
+            positions.insert(positions.end(), {p.x, p.y, p.z});
+        std::vector<std::uint32_t> indices;
+        indices.reserve(3 * project.head.triangleCount());
+        for (const glm::uvec3& t : project.head.triangles)
+            indices.insert(indices.end(), {t.x, t.y, t.z});
+        head["positions"] = encodeFloat32Array(positions);
+        head["triangles"] = encodeUint32Array(indices);
+    }
+    root["head"] = std::move(head);
+
+    ordered_json parameters = ordered_json::object();
+    for (const ParameterInfo& info : allParameters())
+        writeParameter(parameters, info, project.parameters.get(info.id));
+    root["parameters"] = std::move(parameters);
+
+    ordered_json regions = ordered_json::array();
+    for (const GrowthRegion& region : project.regions) {
+        ordered_json r;
+        r["id"] = region.id;
+        r["name"] = region.name;
+        r["visible"] = region.visible;
+        r["weights"] = encodeFloat32Array(region.weights);
+        ordered_json wisp = ordered_json::object();
+        for (const ParameterInfo& info : allParameters())
+            if (info.group == ParamGroup::Wisp)
+                writeParameter(wisp, info, region.values.get(info.id));
+        r["wisp"] = std::move(wisp);
+        r["root_colour"] = vec3ToJson(region.rootColour);
+        r["tip_colour"] = vec3ToJson(region.tipColour);
+        regions.push_back(std::move(r));
+    }
+    root["regions"] = std::move(regions);
+    root["solo_region"] = project.soloRegion == kNoSolo ? ordered_json(nullptr) : ordered_json(project.soloRegion);
+
+    ordered_json camera;
+    camera["pivot"] = vec3ToJson(project.camera.pivot);
+    camera["yaw_radians"] = shortestDoubleForFloat(project.camera.yawRadians);
+    camera["pitch_radians"] = shortestDoubleForFloat(project.camera.pitchRadians);
+    camera["distance_metres"] = shortestDoubleForFloat(project.camera.distanceMetres);
+    camera["fov_y_degrees"] = shortestDoubleForFloat(project.camera.fovYDegrees);
+    root["camera"] = std::move(camera);
+    return dumpPretty(root);
+}
+
+Result<ProjectReadResult> readProject(const std::string& path, const HeadLoader& loadHead)
+{
+    std::string text;
+    try {
+        text = readWholeFile(path, kMaxProjectBytes, "project");
+    } catch (const Refusal& refusal) {
+        return IoError{path, refusal.location, refusal.message};
+    } catch (const std::bad_alloc&) {
+        return IoError{path, "", "not enough memory to read the project"};
+    }
+    return parseProject(text, path, loadHead);
+}
+
+Result<ProjectReadResult> parseProject(std::string_view text, const std::string& path, const HeadLoader& loadHead)
+{
+    try {
+        const json root = parseJson(text, kMaxProjectBytes, "project");
+        Warnings warnings;
+        Project project = readProjectJson(root, path, loadHead, warnings);
+        return ProjectReadResult{std::move(project), warnings.take()};
+    } catch (const Refusal& refusal) {
+        return IoError{path, refusal.location, refusal.message};
+    } catch (const json::exception& e) {  // a check above missed a case: still an error, not a crash
+        return IoError{path, "", e.what()};
+    } catch (const std::bad_alloc&) {
+        return IoError{path, "", "not enough memory to read the project"};
+    }
+}
+
+Result<std::monostate> writeProject(const std::string& path, const Project& project)
+{
+    try {
+        checkProject(project);
+    } catch (const Refusal& refusal) {
+        return IoError{path, refusal.location, "not saved: " + refusal.message};
+    }
+    const std::string text = projectToJson(project, path);
+    std::error_code error;
+    if (fs::is_directory(path, error))
+        return IoError{path, "", "this is a folder; a project is saved as a file"};
+    if (fs::exists(path, error))
+        if (std::string failure = keepBackup(path, path + ".bak"); !failure.empty())
+            return IoError{path, "", failure};
+    if (std::string failure = writeFileAtomically(path, [&](std::ostream& out) { out << text; }); !failure.empty())
+        return IoError{path, "", withoutPath(std::move(failure), path)};
+    return std::monostate{};
+}
+
+}  // namespace wisp::io

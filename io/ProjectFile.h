@@ -1,0 +1,113 @@
+#pragma once
+// Projects: everything needed to reopen the work exactly: the head (stored in the project, or a
+// reference to the mesh file it was imported from), every parameter, the growth regions with
+// their painted weights, wisp parameters and colours, the solo'd region and the camera.
+//
+// Format: JSON, "format": "wisp-project", "version": 1:
+//
+//   { "format": "wisp-project", "version": 1,
+//     "head": { "source": "heads/planck.obj",              // relative to the project's folder
+//               "absolute_source": "/home/ana/heads/planck.obj",  // where it was when saved
+//               "embedded": true, "import_scale": 0.01, "import_offset": [0, -1.62, 0.01],
+//               "import_z_up": false, "vertex_count": 642, "triangle_count": 1280,
+//               "positions": "<base64>", "triangles": "<base64>" },   // only when embedded
+//     "parameters": { "density": 8.0, ..., "simulate_all_strands": false },   // every registry key
+//     "regions": [ { "id": 0, "name": "Scalp", "visible": true, "weights": "<base64>",
+//                    "wisp": { "density": 8.0, ... }, "root_colour": [0.16, 0.1, 0.06],
+//                    "tip_colour": [0.45, 0.3, 0.17] } ],
+//     "solo_region": null,                                   // or a region's id
+//     "camera": { "pivot": [0, 1.6, 0], "yaw_radians": 0.5, "pitch_radians": -0.2,
+//                 "distance_metres": 0.8, "fov_y_degrees": 35 } }
+//
+// Binary arrays are base64 (io/Base64.h) of little-endian float32 (positions x y z per vertex,
+// one weight per vertex) or uint32 (three vertex indices per triangle). Floats are written as the
+// shortest decimal that reads back as the same float, doubles as the shortest that reads back as
+// the same double, so a write followed by a read gives bit-identical numbers.
+//
+// Reading validates everything and refuses with the key path, as presets do ("regions[0].weights:
+// 641 weights for a head of 642 vertices"); unknown keys are ignored with a warning. A region's
+// `values` holds only its Wisp-group parameters (GrowthRegion.h): the others read as defaults.
+// Writing refuses a project that reading would refuse, so every saved file opens again.
+//
+// Thread safety: any thread; no state. The head loader is called on the calling thread.
+
+#include "io/IoError.h"
+#include "sim/GrowthRegion.h"
+#include "sim/Parameters.h"
+#include "sim/TriangleMesh.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace wisp::io {
+
+constexpr int kProjectVersion = 1;
+constexpr std::size_t kMaxProjectBytes = std::size_t(1) << 30;
+
+// The orbit camera: it looks at `pivot` from `distanceMetres` away, turned by yaw about +Y and
+// pitched above (positive) or below the horizontal.
+struct CameraState {
+    glm::vec3 pivot{0.0f};  // metres
+    float yawRadians = 0.0f;
+    float pitchRadians = 0.0f;
+    float distanceMetres = 1.0f;  // > 0
+    float fovYDegrees = 35.0f;    // vertical field of view, 0..180 exclusive
+
+    bool operator==(const CameraState&) const = default;
+};
+
+struct Project {
+    TriangleMesh head;  // metres, as groomed: the source file's coordinates times headImportScale
+    // The file the head came from: "" for the built-in head. In memory an absolute path (readProject
+    // returns one); a relative path is taken as relative to the project file's folder. The file
+    // stores it relative to the project's folder, and the absolute path as a fallback.
+    std::string headSource;
+    bool headEmbedded = true;  // the head's vertices and triangles are stored in the project; when
+                               // false, readProject loads headSource again (it must not be "")
+    // How the import placed the file's vertices (io/HeadPlacement.h's HeadPlacement): a vertex p of
+    // the file is at upright(p) * headImportScale + headImportOffset in `head`, where upright turns
+    // +Z up to +Y up, (x, y, z) -> (x, z, -y), when headImportZUp. readProject redoes it for a
+    // referenced head; for an embedded head it is only kept, so that a re-import can offer it.
+    float headImportScale = 1.0f;          // metres per file unit (0.01 for centimetres)
+    glm::vec3 headImportOffset{0.0f};      // metres, added after turning and scaling
+    bool headImportZUp = false;
+    ParameterValues parameters;    // all of them, written with every registry key
+    std::vector<GrowthRegion> regions;
+    std::uint32_t soloRegion = kNoSolo;  // a region's id, or kNoSolo
+    CameraState camera;
+};
+
+struct ProjectReadResult {
+    Project project;
+    std::vector<std::string> warnings;  // unknown keys; a referenced head found only at its old absolute path
+};
+
+// Loads a head mesh file for a project whose head is not embedded. Given the absolute path; returns
+// the file's coordinates as stored (readProject then places them as the import did).
+using HeadLoader = std::function<Result<TriangleMesh>(const std::string& absolutePath)>;
+
+// `loadHead` is needed only for projects whose head is not embedded. A missing referenced head is
+// an error naming the project and the head paths tried: the relative "source" resolved against the
+// project's folder first, then "absolute_source" (with a warning when that one is used).
+Result<ProjectReadResult> readProject(const std::string& path, const HeadLoader& loadHead = {});
+// The same for a project's text already in memory (an autosave, a test): `projectPath` names it in
+// errors and is where a relative head source is resolved from.
+Result<ProjectReadResult> parseProject(std::string_view json, const std::string& projectPath,
+                                       const HeadLoader& loadHead = {});
+
+// Atomic (io/AtomicFile.h); an existing file at `path` is first kept as path + ".bak" (replacing an
+// older .bak). On failure nothing at `path` has changed and no temporary file is left.
+// (std::monostate stands for "nothing": IoError.h has no Result<void> yet.)
+Result<std::monostate> writeProject(const std::string& path, const Project& project);
+
+// The text writeProject writes; `projectPath` decides the relative head source.
+std::string projectToJson(const Project& project, const std::string& projectPath);
+
+}  // namespace wisp::io

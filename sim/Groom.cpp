@@ -263,6 +263,8 @@ struct RestContext {
     const std::vector<glm::vec3>& normals;
     float partX;
     const SignedDistanceField* collider;
+    // Rest shapes that are given, not built (imported strands), by strand index.
+    const std::unordered_map<std::uint32_t, std::vector<glm::vec3>>* givenRest = nullptr;
 };
 
 std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* previous)
@@ -326,6 +328,12 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
             continue;
         }
         const std::uint32_t k = groom.keyStrand[w];
+        if (context.givenRest) {
+            if (const auto given = context.givenRest->find(k); given != context.givenRest->end()) {
+                std::copy(given->second.begin(), given->second.end(), groom.rest.strandForWrite(k).begin());
+                continue;  // an imported strand is a wisp of its own
+            }
+        }
         const GroomSettings& s = groom.settingsOfWisp(w);
         const glm::vec3 n = normalAt(context.head, context.normals, groom.roots[k]);
         const float phase = glm::two_pi<float>() * randomUnit(s.seed, CurlPhase, groom.rootIds[k]);
@@ -421,6 +429,40 @@ void growRegion(Groom& groom, const TriangleMesh& head, const PoreLayout& layout
     }
 }
 
+// A region of imported strands: each strand, resampled to the shared segment count, becomes a
+// wisp of its own, moved so that its root sits on the nearest point of the head (the file's
+// roots lie on its own scalp, a little off ours). Strands of fewer than two distinct points
+// are skipped. The strand's index in the file is its identity across regrooms.
+void growImported(Groom& groom, const MeshBvh& bvh, const HairCurves& strands, const GroomSettings& settings,
+                  std::uint16_t region, std::unordered_map<std::uint32_t, std::vector<glm::vec3>>& givenRest)
+{
+    const std::size_t points = static_cast<std::size_t>(settings.segments) + 1;
+    for (std::uint32_t i = 0; i < strands.strandCount(); ++i) {
+        const std::span<const glm::vec3> s = strands.strand(i);
+        std::vector<glm::vec3> rest = resampleByArcLength(s, points);
+        if (rest.empty())
+            continue;
+        const MeshBvh::ClosestPoint root = bvh.closestPoint(rest.front());
+        const glm::vec3 shift = root.point - rest.front();
+        float length = 0.0f;
+        for (std::size_t j = 0; j < rest.size(); ++j) {
+            rest[j] += shift;
+            if (j > 0)
+                length += glm::distance(rest[j], rest[j - 1]);
+        }
+        const auto strand = static_cast<std::uint32_t>(groom.roots.size());
+        groom.roots.push_back(root.surface);
+        groom.rootIds.push_back(i);
+        groom.rootPositions.push_back(root.point);
+        groom.regionOfStrand.push_back(region);
+        groom.lengths.push_back(length);
+        groom.wispOf.push_back(static_cast<std::uint32_t>(groom.keyStrand.size()));
+        groom.keyStrand.push_back(strand);
+        groom.siteOfWisp.push_back(i);
+        givenRest.emplace(strand, std::move(rest));
+    }
+}
+
 // A region's seed: the shared seed, mixed with the region's identity so regions do not repeat
 // each other's pores (region 0 keeps the shared seed).
 std::uint32_t regionSeed(std::uint32_t seed, std::uint32_t regionId)
@@ -494,7 +536,8 @@ GroomBuilder& GroomBuilder::operator=(GroomBuilder&&) noexcept = default;
 void GroomBuilder::forgetHead() { *m_cache = Cache{}; }
 
 GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomRegionInput> regions,
-                                const GroomSettings& shared, const SignedDistanceField* collider, const Groom* previous)
+                                const GroomSettings& shared, const SignedDistanceField* collider, const Groom* previous,
+                                const MeshBvh* bvh)
 {
     m_reused = m_built = 0;
     Cache& cache = *m_cache;
@@ -521,11 +564,21 @@ GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomR
     Groom& groom = result.groom;
     groom.settings = shared;
     std::map<Cache::Key, std::shared_ptr<const PoreLayout>> used;
+    std::unordered_map<std::uint32_t, std::vector<glm::vec3>> givenRest;
     for (std::size_t r = 0; r < regions.size(); ++r) {
         const GroomRegionInput& region = regions[r];
         const GroomSettings settings = mergedSettings(region.settings, shared, region.id);
         if (std::string error = validateGroomSettings(settings); !error.empty())
             return {{}, "region " + std::to_string(r + 1) + ": " + error};
+        if (region.importedStrands) {
+            if (!bvh)
+                return {{}, "region " + std::to_string(r + 1) + ": imported strands need the head's BVH to be rooted"};
+            groom.regionIds.push_back(region.id);
+            groom.regionSettings.push_back(settings);
+            groom.regionStiffnessScale.push_back(region.stiffnessScale);
+            growImported(groom, *bvh, *region.importedStrands, settings, static_cast<std::uint16_t>(r), givenRest);
+            continue;
+        }
         if (region.weights.size() != head.positions.size())
             return {{}, "region " + std::to_string(r + 1) + ": growth map has " + std::to_string(region.weights.size()) +
                             " weights for " + std::to_string(head.positions.size()) + " vertices"};
@@ -557,7 +610,7 @@ GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomR
     cache.layouts = std::move(used);  // keep the layouts in use, drop the rest
     if (regions.size() == 1)
         groom.settings = groom.regionSettings.front();
-    m_reused = buildRest(groom, {head, cache.normals, cache.partX, collider}, previous);
+    m_reused = buildRest(groom, {head, cache.normals, cache.partX, collider, &givenRest}, previous);
     m_built = groom.wispCount() - m_reused;
     return result;
 }
@@ -643,6 +696,31 @@ GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int wid
     const std::vector<glm::vec3> normals = vertexNormals(head);
     buildRest(groom, {head, normals, boundsOf(head).center().x, collider}, nullptr);
     return result;
+}
+
+std::vector<glm::vec3> resampleByArcLength(std::span<const glm::vec3> strand, std::size_t points)
+{
+    if (strand.size() < 2 || points < 2)
+        return {};
+    std::vector<float> along(strand.size(), 0.0f);
+    for (std::size_t j = 1; j < strand.size(); ++j)
+        along[j] = along[j - 1] + glm::distance(strand[j], strand[j - 1]);
+    const float total = along.back();
+    if (!(total > 1e-7f) || !std::isfinite(total))
+        return {};
+    std::vector<glm::vec3> out(points);
+    std::size_t segment = 1;
+    for (std::size_t i = 0; i < points; ++i) {
+        const float target = total * static_cast<float>(i) / static_cast<float>(points - 1);
+        while (segment + 1 < strand.size() && along[segment] < target)
+            ++segment;
+        const float span = along[segment] - along[segment - 1];
+        const float t = span > 0.0f ? std::clamp((target - along[segment - 1]) / span, 0.0f, 1.0f) : 0.0f;
+        out[i] = glm::mix(strand[segment - 1], strand[segment], t);
+    }
+    out.front() = strand.front();
+    out.back() = strand.back();
+    return out;
 }
 
 HairCurves keyRestCurves(const Groom& groom)

@@ -46,6 +46,9 @@ struct GroomRegionInput {
     std::span<const float> weights;   // one per head vertex, 0..1
     GroomSettings settings;           // its wisp settings; segments, seed and hair offset come from the shared ones
     float stiffnessScale = 1.0f;      // multiplies the solver's stiffness for this region's strands
+    // Imported strands (GrowthRegion::importedStrands): each its own wisp, resampled to the shared
+    // segment count and rooted at the nearest point of the head; `weights` are then ignored.
+    const HairCurves* importedStrands = nullptr;
 };
 
 struct Groom {
@@ -104,8 +107,10 @@ public:
     GroomBuilder(GroomBuilder&&) noexcept;
     GroomBuilder& operator=(GroomBuilder&&) noexcept;
 
+    // `bvh` (of `head`) is needed only by regions of imported strands, to root them on the head.
     GroomResult build(const TriangleMesh& head, std::span<const GroomRegionInput> regions, const GroomSettings& shared,
-                      const SignedDistanceField* collider, const Groom* previous = nullptr);
+                      const SignedDistanceField* collider, const Groom* previous = nullptr,
+                      const MeshBvh* bvh = nullptr);
     // Drops everything kept for the head (call when the head changes).
     void forgetHead();
     // Wisps whose rest shapes the last build copied from `previous`, and built anew.
@@ -118,6 +123,10 @@ private:
     std::size_t m_reused = 0;
     std::size_t m_built = 0;
 };
+
+// `strand` resampled to `points` points evenly spaced along its arc length (the first and last
+// points kept). Strands of imported hair have any number of points; the solver wants one count.
+std::vector<glm::vec3> resampleByArcLength(std::span<const glm::vec3> strand, std::size_t points);
 
 // The first paper's layout: width x height strands of `particlesPerStrand` particles each, rooted on a
 // grid over the top of the head (azimuth x polar angle around the head's centre), every strand its

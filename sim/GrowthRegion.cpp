@@ -28,6 +28,14 @@ std::string validateRegion(const GrowthRegion& region, std::size_t vertexCount)
         if (p.group == ParamGroup::Wisp)
             if (std::string error = checkParameterValue(p.id, region.values.get(p.id)); !error.empty())
                 return where + error;
+    if (region.importedStrands) {
+        const HairCurves& c = *region.importedStrands;
+        if (c.offsets.empty() || c.offsets.front() != 0 || c.offsets.back() != c.positions.size())
+            return where + "imported strands: the offsets do not match the points";
+        for (std::size_t i = 0; i < c.positions.size(); ++i)
+            if (!std::isfinite(c.positions[i].x + c.positions[i].y + c.positions[i].z))
+                return where + "imported point " + std::to_string(i) + " is not finite";
+    }
     for (const glm::vec3& c : {region.rootColour, region.tipColour})
         for (int k = 0; k < 3; ++k)
             if (!(c[k] >= 0.0f && c[k] <= 1.0f))

@@ -6,11 +6,13 @@
 // The region's wisp parameters are the Wisp-group entries of the registry (Parameters.h); the other
 // entries of `values` are ignored. Colour is the hair's colour, sRGB 0..1, root to tip.
 
+#include "sim/HairCurves.h"
 #include "sim/Parameters.h"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,10 @@ struct GrowthRegion {
     glm::vec3 rootColour{0.16f, 0.10f, 0.06f};
     glm::vec3 tipColour{0.45f, 0.30f, 0.17f};
     bool visible = true;          // hidden regions grow no hair (neither drawn nor simulated)
+    // Strands brought in from a hair file (cyHair, USC .data), head space, metres: each becomes a
+    // wisp of its own whose key hair is the strand itself, rooted at the nearest point of the head;
+    // `weights` are then unused (painting does not apply). Null for a painted region.
+    std::shared_ptr<const HairCurves> importedStrands;
 
     bool operator==(const GrowthRegion&) const = default;
 };

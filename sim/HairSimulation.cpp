@@ -69,10 +69,11 @@ std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& region
     for (const GrowthRegion* r : growingRegions(regions, soloId)) {
         if (std::string error = validateRegion(*r, m_head.positions.size()); !error.empty())
             return error;
-        inputs.push_back({r->id, r->weights, groomSettingsFrom(r->values), r->values.getFloat(Param::StiffnessScale)});
+        inputs.push_back({r->id, r->weights, groomSettingsFrom(r->values), r->values.getFloat(Param::StiffnessScale),
+                          r->importedStrands.get()});
         looks.push_back({r->rootColour, r->tipColour});
     }
-    GroomResult result = m_builder.build(m_head, inputs, groomSettingsFrom(values), m_sdf.get(), previous);
+    GroomResult result = m_builder.build(m_head, inputs, groomSettingsFrom(values), m_sdf.get(), previous, m_bvh.get());
     if (!result.ok())
         return result.error;
     out = std::move(result.groom);

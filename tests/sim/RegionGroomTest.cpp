@@ -248,3 +248,64 @@ TEST(RegionGroom, BadRegionsAreRefusedByName)
     EXPECT_EQ(sim.groom().strandCount(), strands) << "a refused regroom keeps the running groom";
     EXPECT_EQ(validateRegion(regions[0], defaultHead().mesh.positions.size()), "");
 }
+
+TEST(RegionGroom, ImportedStrandsBecomeWispsRootedOnTheHeadWithTheirShape)
+{
+    const TriangleMesh& head = defaultHead().mesh;
+    const Aabb box = boundsOf(head);
+    // Three strands of 5, 9 and 30 points starting a few millimetres off the crown, hanging down.
+    auto imported = std::make_shared<HairCurves>();
+    const int counts[3] = {5, 9, 30};
+    for (int s = 0; s < 3; ++s) {
+        const glm::vec3 start(box.center().x + 0.02f * static_cast<float>(s - 1), box.max.y + 0.004f, box.center().z);
+        const auto points = imported->strandForWrite(imported->addStrand(static_cast<std::uint32_t>(counts[s])));
+        for (int j = 0; j < counts[s]; ++j)
+            points[j] = start + glm::vec3(0.03f * std::sin(0.3f * j), -0.2f * j / (counts[s] - 1), 0.0f);
+    }
+    std::vector<GrowthRegion> regions{regionNamed(0, "Scalp", defaultHead().growthWeights),
+                                      regionNamed(5, "Imported", std::vector<float>(head.positions.size(), 0.0f))};
+    regions[1].importedStrands = imported;
+    HairSimulation sim(1);
+    ASSERT_EQ(sim.setup(head, regions, 5, testParameters()), "");  // solo: only the imported strands
+    const Groom& g = sim.groom();
+    ASSERT_EQ(g.strandCount(), 3u);
+    ASSERT_EQ(g.wispCount(), 3u);
+    const std::size_t points = static_cast<std::size_t>(testParameters().getInt(Param::Segments)) + 1;
+    for (std::size_t i = 0; i < 3; ++i) {
+        const auto rest = g.rest.strand(i);
+        ASSERT_EQ(rest.size(), points);
+        // Rooted on the head: the root is the closest surface point, within a hair of the skin.
+        EXPECT_LT(sim.bvh().closestPoint(rest.front()).distance, 1e-5f);
+        // The shape is the file's, moved by the root's snap: every resampled point lies on the
+        // shifted polyline, and the arc length is kept within 1%.
+        const auto original = imported->strand(g.rootIds[i]);
+        const glm::vec3 shift = rest.front() - original.front();
+        float originalLength = 0.0f, restLength = 0.0f;
+        for (std::size_t j = 1; j < original.size(); ++j)
+            originalLength += glm::distance(original[j], original[j - 1]);
+        for (std::size_t j = 1; j < rest.size(); ++j)
+            restLength += glm::distance(rest[j], rest[j - 1]);
+        EXPECT_NEAR(restLength, originalLength, 0.02f * originalLength);  // chords of a resampled wave run a little short
+        EXPECT_LT(glm::distance(rest.back(), original.back() + shift), 1e-5f);
+    }
+    for (int i = 0; i < 100; ++i)
+        sim.step();
+    HairCurves frame;
+    sim.buildFrame(frame);
+    for (const glm::vec3& p : frame.positions)
+        ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
+    EXPECT_EQ(sim.solver().strandCount(), 3u) << "imported strands are all simulated (each is a key)";
+}
+
+TEST(RegionGroom, ResamplingKeepsEndsAndSpacesPointsEvenly)
+{
+    const std::vector<glm::vec3> polyline{{0, 0, 0}, {0, -0.1f, 0}, {0.3f, -0.1f, 0}};
+    const std::vector<glm::vec3> r = resampleByArcLength(polyline, 5);
+    ASSERT_EQ(r.size(), 5u);
+    EXPECT_EQ(r.front(), polyline.front());
+    EXPECT_EQ(r.back(), polyline.back());
+    for (std::size_t j = 1; j < r.size(); ++j)
+        EXPECT_NEAR(glm::distance(r[j], r[j - 1]), 0.1f, 0.02f);  // corners cut a chord a little short
+    EXPECT_TRUE(resampleByArcLength(std::vector<glm::vec3>{{1, 1, 1}}, 5).empty());
+    EXPECT_TRUE(resampleByArcLength(std::vector<glm::vec3>{{1, 1, 1}, {1, 1, 1}}, 5).empty());
+}

@@ -6,7 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -277,7 +279,8 @@ GrowthRegion readRegion(const json& value, std::size_t index, Warnings& warnings
 {
     const std::string path = regionPath(index);
     requireObject(value, path);
-    warnUnknownKeys(value, path, {"id", "name", "visible", "weights", "wisp", "root_colour", "tip_colour"}, warnings);
+    warnUnknownKeys(value, path,
+                    {"id", "name", "visible", "weights", "wisp", "root_colour", "tip_colour", "imported_strands"}, warnings);
     GrowthRegion region;
     region.id = static_cast<std::uint32_t>(readWhole(require(value, path, "id"), path + ".id", 0xffffffffu));
     region.name = "Region " + std::to_string(index + 1);
@@ -303,6 +306,26 @@ GrowthRegion readRegion(const json& value, std::size_t index, Warnings& warnings
         region.rootColour = readColour(*colour, path + ".root_colour");
     if (const json* colour = find(value, "tip_colour"))
         region.tipColour = readColour(*colour, path + ".tip_colour");
+    if (const json* strands = find(value, "imported_strands")) {
+        const std::string strandsPath = path + ".imported_strands";
+        requireObject(*strands, strandsPath);
+        auto curves = std::make_shared<HairCurves>();
+        curves->offsets = readUint32Array(require(*strands, strandsPath, "offsets"), strandsPath + ".offsets");
+        const std::vector<float> xyz = readFloatArray(require(*strands, strandsPath, "positions"), strandsPath + ".positions");
+        if (xyz.size() % 3 != 0)
+            throw Refusal{strandsPath + ".positions", std::to_string(xyz.size()) + " numbers are not whole points"};
+        curves->positions.resize(xyz.size() / 3);
+        for (std::size_t i = 0; i < curves->positions.size(); ++i) {
+            curves->positions[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+            if (!std::isfinite(xyz[3 * i] + xyz[3 * i + 1] + xyz[3 * i + 2]))
+                throw Refusal{strandsPath + ".positions", "point " + std::to_string(i) + " is not finite"};
+        }
+        if (curves->offsets.empty() || curves->offsets.front() != 0 || curves->offsets.back() != curves->positions.size() ||
+            !std::is_sorted(curves->offsets.begin(), curves->offsets.end()))
+            throw Refusal{strandsPath + ".offsets", "do not describe the " + std::to_string(curves->positions.size()) +
+                                                        " points (they must rise from 0 to the point count)"};
+        region.importedStrands = std::move(curves);
+    }
     return region;
 }
 
@@ -437,6 +460,17 @@ std::string projectToJson(const Project& project, const std::string& projectPath
         r["wisp"] = std::move(wisp);
         r["root_colour"] = vec3ToJson(region.rootColour);
         r["tip_colour"] = vec3ToJson(region.tipColour);
+        if (region.importedStrands) {
+            const HairCurves& c = *region.importedStrands;
+            std::vector<float> xyz;
+            xyz.reserve(c.positions.size() * 3);
+            for (const glm::vec3& p : c.positions)
+                xyz.insert(xyz.end(), {p.x, p.y, p.z});
+            ordered_json strands;
+            strands["offsets"] = encodeUint32Array(c.offsets);
+            strands["positions"] = encodeFloat32Array(xyz);
+            r["imported_strands"] = std::move(strands);
+        }
         regions.push_back(std::move(r));
     }
     root["regions"] = std::move(regions);

@@ -213,6 +213,36 @@ TEST_F(ProjectFileTest, RoundTripOfTheDefaultHeadIsBitIdentical)
     EXPECT_EQ(projectToJson(read.value().project, path), readText(path));
 }
 
+TEST_F(ProjectFileTest, ImportedStrandsComeBackBitIdentical)
+{
+    Project project = defaultHeadProject();
+    auto strands = std::make_shared<HairCurves>();
+    for (int s = 0; s < 3; ++s) {
+        const auto points = strands->strandForWrite(strands->addStrand(static_cast<std::uint32_t>(4 + s)));
+        for (std::size_t j = 0; j < points.size(); ++j)
+            points[j] = glm::vec3(0.1f * s, 0.3f - 0.017f * j, 1.0f / 3.0f);
+    }
+    project.regions.back().importedStrands = strands;
+    const std::string path = (m_dir / "imported.wisp").string();
+    ASSERT_TRUE(writeProject(path, project));
+    const Result<ProjectReadResult> read = readProject(path);
+    ASSERT_TRUE(read) << read.error().toString();
+    const auto& back = read.value().project.regions.back().importedStrands;
+    ASSERT_TRUE(back);
+    EXPECT_EQ(back->offsets, strands->offsets);
+    EXPECT_EQ(back->positions, strands->positions);  // exact: floats travel as their bits
+
+    // Offsets that do not describe the points are refused with their key path.
+    std::string text = readText(path);
+    const std::string good = "\"offsets\": \"";
+    const std::size_t at = text.find(good);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at + good.size(), 4, "AQAA");  // first offset 1 instead of 0
+    const Result<ProjectReadResult> broken = parseProject(text, path);
+    ASSERT_FALSE(broken);
+    EXPECT_NE(broken.error().toString().find("imported_strands.offsets"), std::string::npos) << broken.error().toString();
+}
+
 TEST_F(ProjectFileTest, FileIsVersionedJsonWithBase64Arrays)
 {
     const Project project = smallProject();

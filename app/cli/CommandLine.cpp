@@ -6,12 +6,18 @@
 
 namespace wisp::cli {
 
-CommandLine::CommandLine(int argc, char** argv, int first, const std::vector<OptionSpec>& options)
+CommandLine::CommandLine(int argc, char** argv, int first, const std::vector<OptionSpec>& options,
+                         std::size_t positionals)
 {
     for (int i = first; i < argc; ++i) {
         std::string arg = argv[i];
-        if (arg.rfind("--", 0) != 0 || arg.size() < 3)
+        if (arg.rfind("--", 0) != 0 || arg.size() < 3) {
+            if (m_positional.size() < positionals && !arg.empty()) {
+                m_positional.push_back(arg);
+                continue;
+            }
             throw CliError{kUsage, "unexpected argument '" + arg + "' (options start with --)"};
+        }
         std::string name = arg.substr(2);
         std::optional<std::string> value;
         if (const auto eq = name.find('='); eq != std::string::npos) {

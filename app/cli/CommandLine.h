@@ -26,8 +26,12 @@ struct OptionSpec {
 
 class CommandLine {
 public:
-    // Parses argv[first..]; throws CliError{kUsage} for unknown options or missing values.
-    CommandLine(int argc, char** argv, int first, const std::vector<OptionSpec>& options);
+    // Parses argv[first..]; throws CliError{kUsage} for unknown options or missing values, and for
+    // arguments that are not options unless `positionals` allows that many (files of convert and
+    // validate).
+    CommandLine(int argc, char** argv, int first, const std::vector<OptionSpec>& options, std::size_t positionals = 0);
+
+    const std::vector<std::string>& positional() const { return m_positional; }
 
     bool has(const std::string& name) const { return m_values.count(name) > 0; }
     std::optional<std::string> text(const std::string& name) const;
@@ -40,6 +44,7 @@ public:
 private:
     std::map<std::string, std::string> m_values;
     std::vector<std::string> m_order;
+    std::vector<std::string> m_positional;
 };
 
 // Option specs for every registry parameter (--gravity, --wind_speed, ...), help text from the registry.

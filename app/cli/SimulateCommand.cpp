@@ -4,14 +4,23 @@
 #include "app/cli/Commands.h"
 #include "app/cli/StepTimer.h"
 
+#include "app/cli/HeadLoading.h"
+#include "io/HairFiles.h"
 #include "io/MeshReader.h"
+#include "io/PresetFile.h"
 #include "io/ParameterText.h"
 #include "io/StrandText.h"
 #include "sim/DefaultHead.h"
 #include "sim/GrowthMap.h"
 #include "sim/HairSimulation.h"
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <memory>
 #include <iostream>
 
 namespace wisp::cli {
@@ -22,13 +31,21 @@ std::vector<OptionSpec> simulateOptions()
 {
     std::vector<OptionSpec> options = {
         {"help", "", "show this help"},
-        {"head", "FILE", "head mesh (OBJ, PLY, OFF, STL), +Y up; default: the built-in head and its growth map"},
-        {"scale", "FACTOR", "multiply the head's coordinates (e.g. 0.001 for a head modelled in millimetres)"},
-        {"params", "FILE", "parameter file: 'key = value' lines with the keys below"},
+        {"head", "FILE", "head mesh (OBJ, PLY, OFF, STL, glTF, GLB); default: the built-in head and its growth map"},
+        {"scale", "FACTOR", "the head's metres per file unit (default: millimetres, centimetres or metres, guessed "
+                            "from its size); the head is then centred"},
+        {"z-up", "", "the head file is +Z up (turned to Wisp's +Y up; glTF is always +Y up)"},
+        {"preset", "FILE", "a preset (JSON, see resources/presets): its parameters and its first region's wisp"},
+        {"params", "FILE", "parameter file: 'key = value' lines with the keys below (applied after --preset)"},
+        {"hair", "FILE", "grow these strands (.hair, .data; head space, metres) instead of the growth map: each is "
+                         "a simulated wisp rooted on the nearest point of the head"},
+        {"hair-scale", "FACTOR", "multiply the --hair strands' coordinates (e.g. 0.001 for strands in millimetres)"},
         {"steps", "N", "time steps to simulate (default 120)"},
         {"threads", "N", "solver threads (default: one per core)"},
         {"grid", "WxHxP", "the first paper's layout: W x H strands of P particles on the scalp"},
         {"out", "FILE", "write the strands there (wisp-strands text format, see the README)"},
+        {"export", "FILE", "write the strands as .hair, .data, .obj, .gltf or .glb (the last three with the head)"},
+        {"rest", "", "write the rest pose (the groom) instead of the last simulated frame"},
         {"keys-only", "", "write only the simulated strands (key hairs), not every drawn strand"},
         {"timing", "", "print every step's time"},
     };
@@ -49,6 +66,23 @@ int runSimulate(int argc, char** argv)
     }
 
     ParameterValues values;
+    if (const auto path = args.text("preset")) {
+        io::Result<io::PresetReadResult> preset = io::readPreset(*path);
+        if (!preset)
+            throw CliError{kBadInput, preset.error().toString()};
+        for (const std::string& warning : preset.value().warnings)
+            std::cerr << "wisp-cli simulate: " << *path << ": " << warning << "\n";
+        const io::Preset& p = preset.value().preset;
+        values = p.parameters;
+        if (!p.regions.empty()) {
+            for (const ParameterInfo& info : allParameters())
+                if (info.group == ParamGroup::Wisp)
+                    values.set(info.id, p.regions.front().wisp.get(info.id));
+            if (p.regions.size() > 1)
+                std::cerr << "wisp-cli simulate: " << *path << ": " << p.regions.size()
+                          << " regions; the command line grows one, with the first region's wisp\n";
+        }
+    }
     if (const auto path = args.text("params")) {
         const io::Result<io::ParameterFile> file = io::readParameterText(*path);
         if (!file)
@@ -63,17 +97,10 @@ int runSimulate(int argc, char** argv)
     TriangleMesh head;
     std::vector<float> weights;
     if (const auto path = args.text("head")) {
-        io::Result<io::MeshReadResult> mesh = io::readMesh(*path);
-        if (!mesh)
-            throw CliError{kBadInput, mesh.error().toString()};
-        for (const std::string& warning : mesh.value().warnings)
-            std::cerr << "wisp-cli simulate: " << *path << ": " << warning << "\n";
-        head = std::move(mesh).value().mesh;
-        const double scale = args.real("scale", 1.0);
-        if (!(scale > 0.0) || scale > 1e6)
-            throw CliError{kBadInput, "--scale: " + *args.text("scale") + " must be a positive factor"};
-        for (glm::vec3& p : head.positions)
-            p *= static_cast<float>(scale);
+        LoadedHead loaded = loadHead(*path, args.has("scale") ? std::optional(args.real("scale", 1.0)) : std::nullopt,
+                                     args.has("z-up"), "simulate");
+        std::cout << *path << ": " << io::describePlacement(loaded.placement) << "\n";
+        head = std::move(loaded.mesh);
         weights = upperHeadGrowth(head);
     } else {
         DefaultHead d = makeDefaultHead();
@@ -89,6 +116,33 @@ int runSimulate(int argc, char** argv)
         if (std::sscanf(grid->c_str(), "%dx%dx%d%c", &w, &h, &p, &tail) != 3)
             throw CliError{kBadInput, "--grid: '" + *grid + "' is not WxHxP (e.g. 35x35x30)"};
         error = sim.setupGrid(head, w, h, p, values.getFloat(Param::Length), values);
+    } else if (const auto hairPath = args.text("hair")) {
+        io::Result<io::HairReadResult> hair = io::readHair(*hairPath);
+        if (!hair)
+            throw CliError{kBadInput, hair.error().toString()};
+        for (const std::string& warning : hair.value().warnings)
+            std::cerr << "wisp-cli simulate: " << *hairPath << ": " << warning << "\n";
+        std::vector<GrowthRegion> regions(1);
+        regions[0].name = std::filesystem::path(*hairPath).filename().string();
+        regions[0].weights.assign(head.positions.size(), 0.0f);
+        regions[0].values = values;
+        HairCurves strands = std::move(hair).value().strands;
+        const double hairScale = args.real("hair-scale", 1.0);
+        if (!(hairScale > 0.0 && hairScale < 1e6))
+            throw CliError{kBadInput, "--hair-scale: " + *args.text("hair-scale") + " must be a positive factor"};
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (glm::vec3& p : strands.positions) {
+            p *= static_cast<float>(hairScale);
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        const Aabb box = boundsOf(head);
+        const float headExtent = glm::length(box.size()), hairExtent = glm::length(hi - lo);
+        if (hairExtent > 5.0f * headExtent)
+            std::cerr << "wisp-cli simulate: " << *hairPath << ": the strands span " << hairExtent << " m, the head "
+                      << headExtent << " m; if they are in other units, give --hair-scale\n";
+        regions[0].importedStrands = std::make_shared<HairCurves>(std::move(strands));
+        error = sim.setup(head, regions, kNoSolo, values);
     } else {
         error = sim.setup(head, weights, values);
     }
@@ -111,19 +165,29 @@ int runSimulate(int argc, char** argv)
     if (sim.solver().strandsReset() > 0)
         std::cout << "strands reset after going unstable: " << sim.solver().strandsReset() << "\n";
 
-    if (const auto out = args.text("out")) {
+    if (args.has("out") || args.has("export")) {
         HairCurves curves;
-        if (args.has("keys-only")) {
+        const bool keysOnly = args.has("keys-only") && !sim.simulatesAllStrands();
+        if (args.has("rest")) {
+            curves = keysOnly ? keyRestCurves(sim.groom()) : sim.groom().rest;
+        } else if (keysOnly) {
             curves = keyRestCurves(sim.groom());
-            if (sim.simulatesAllStrands())
-                curves = sim.groom().rest;
             sim.copySimulated(curves.positions);
         } else {
             sim.buildFrame(curves);
         }
-        if (std::string writeError = io::writeStrandText(*out, curves); !writeError.empty())
-            throw CliError{kBadInput, writeError};
-        std::cout << "wrote " << curves.strandCount() << " strands to " << *out << "\n";
+        if (const auto out = args.text("out")) {
+            if (std::string writeError = io::writeStrandText(*out, curves); !writeError.empty())
+                throw CliError{kBadInput, writeError};
+            std::cout << "wrote " << curves.strandCount() << " strands to " << *out << "\n";
+        }
+        if (const auto out = args.text("export")) {
+            io::HairExportOptions options;
+            options.head = &sim.head();
+            if (const auto writeError = io::writeHair(*out, curves, options))
+                throw CliError{kBadInput, writeError->toString()};
+            std::cout << "exported " << curves.strandCount() << " strands to " << *out << "\n";
+        }
     }
     return kSuccess;
 }

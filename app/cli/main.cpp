@@ -14,6 +14,8 @@ const char* kUsage =
     "commands:\n"
     "  simulate   groom a head, simulate N steps, write the strands, print timings\n"
     "  bench      time the solver on standard workloads (table, or --json lines)\n"
+    "  convert    hair from one format to another: wisp-cli convert IN OUT\n"
+    "  validate   say what a head, hair, preset or project file holds, or what is wrong with it\n"
     "\n"
     "'wisp-cli COMMAND --help' lists a command's options.\n"
     "exit status: 0 success, 1 bad input (a file or a value), 2 wrong usage\n";
@@ -36,6 +38,10 @@ int main(int argc, char** argv)
             return wisp::cli::runSimulate(argc, argv);
         if (!std::strcmp(command, "bench"))
             return wisp::cli::runBench(argc, argv);
+        if (!std::strcmp(command, "convert"))
+            return wisp::cli::runConvert(argc, argv);
+        if (!std::strcmp(command, "validate"))
+            return wisp::cli::runValidate(argc, argv);
     } catch (const wisp::cli::CliError& e) {
         std::cerr << "wisp-cli " << command << ": " << e.message << "\n";
         return e.exitCode;

@@ -2,6 +2,8 @@
 #include "io/StrandText.h"
 #include "sim/DefaultHead.h"
 
+#include "CliRunner.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -12,28 +14,10 @@
 #include <sys/wait.h>
 
 namespace fs = std::filesystem;
+using wisp::test::cli;
+using wisp::test::CliRun;
 
 namespace {
-
-struct CliRun {
-    int status = -1;
-    std::string output;  // stdout and stderr together
-};
-
-CliRun cli(const std::string& arguments)
-{
-    const std::string command = std::string(WISP_CLI_PATH) + " " + arguments + " 2>&1";
-    CliRun r;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe)
-        return r;
-    std::array<char, 4096> buffer{};
-    while (std::fgets(buffer.data(), buffer.size(), pipe))
-        r.output += buffer.data();
-    const int raw = pclose(pipe);
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return r;
-}
 
 fs::path tempDir()
 {

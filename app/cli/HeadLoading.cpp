@@ -1,0 +1,27 @@
+#include "app/cli/HeadLoading.h"
+
+#include "app/cli/CommandLine.h"
+#include "io/MeshReader.h"
+
+#include <iostream>
+
+namespace wisp::cli {
+
+LoadedHead loadHead(const std::string& path, std::optional<double> scale, bool zUp, const std::string& command)
+{
+    io::Result<io::MeshReadResult> read = io::readMesh(path);
+    if (!read)
+        throw CliError{kBadInput, read.error().toString()};
+    for (const std::string& warning : read.value().warnings)
+        std::cerr << "wisp-cli " << command << ": " << path << ": " << warning << "\n";
+    if (scale && !(*scale > 0.0 && *scale < 1e6))
+        throw CliError{kBadInput, "--scale: " + std::to_string(*scale) + " must be a positive factor"};
+    LoadedHead head{std::move(read).value().mesh, {}};
+    io::HeadPlacementSettings settings;
+    settings.explicitScale = scale ? static_cast<float>(*scale) : 0.0f;
+    settings.zUp = zUp && !io::formatFixesUpAxis(path);
+    head.placement = io::placeHead(head.mesh, settings);
+    return head;
+}
+
+}  // namespace wisp::cli

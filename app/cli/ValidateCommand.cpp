@@ -1,0 +1,165 @@
+// wisp-cli validate: says what a head, hair, preset or project file holds, or exactly what is
+// wrong with it (exit status 1).
+
+#include "app/cli/CommandLine.h"
+#include "app/cli/Commands.h"
+
+#include "io/HairFiles.h"
+#include "io/HeadPlacement.h"
+#include "io/MeshReader.h"
+#include "io/PresetFile.h"
+#include "io/ProjectFile.h"
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace wisp::cli {
+
+namespace {
+
+std::string extensionOf(const std::string& path)
+{
+    std::string e = std::filesystem::path(path).extension().string();
+    if (!e.empty())
+        e.erase(0, 1);
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return e;
+}
+
+bool contains(const std::vector<std::string>& list, const std::string& item)
+{
+    return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+std::string size(const Aabb& box)
+{
+    char text[96];
+    std::snprintf(text, sizeof text, "%.4g x %.4g x %.4g", box.size().x, box.size().y, box.size().z);
+    return text;
+}
+
+void printWarnings(const std::vector<std::string>& warnings)
+{
+    for (const std::string& w : warnings)
+        std::cout << "  warning: " << w << "\n";
+}
+
+void validateHead(const std::string& path)
+{
+    io::Result<io::MeshReadResult> read = io::readMesh(path);
+    if (!read)
+        throw CliError{kBadInput, read.error().toString()};
+    TriangleMesh mesh = std::move(read).value().mesh;
+    if (std::string problem = validateMesh(mesh); !problem.empty())
+        throw CliError{kBadInput, path + ": " + problem};
+    std::cout << path << ": head mesh, " << mesh.positions.size() << " vertices, " << mesh.triangles.size()
+              << " triangles, " << size(boundsOf(mesh)) << " file units\n";
+    const io::HeadPlacement placement = io::placeHead(mesh);
+    std::cout << "  " << io::describePlacement(placement) << " -> " << size(boundsOf(mesh)) << " m\n";
+    printWarnings(read.value().warnings);
+}
+
+void validateHair(const std::string& path)
+{
+    io::Result<io::HairReadResult> read = io::readHair(path);
+    if (!read)
+        throw CliError{kBadInput, read.error().toString()};
+    const HairCurves& c = read.value().strands;
+    std::uint32_t fewest = c.strandCount() ? ~0u : 0, most = 0;
+    for (std::size_t s = 0; s < c.strandCount(); ++s) {
+        fewest = std::min(fewest, c.pointsIn(s));
+        most = std::max(most, c.pointsIn(s));
+    }
+    Aabb box;
+    if (!c.positions.empty())
+        box = {c.positions.front(), c.positions.front()};
+    for (const glm::vec3& p : c.positions) {
+        box.min = glm::min(box.min, p);
+        box.max = glm::max(box.max, p);
+    }
+    std::cout << path << ": hair, " << c.strandCount() << " strands, " << c.positions.size() << " points (" << fewest
+              << " to " << most << " a strand), " << size(box) << " file units\n";
+    printWarnings(read.value().warnings);
+}
+
+void validatePreset(const io::PresetReadResult& read, const std::string& path)
+{
+    const io::Preset& p = read.preset;
+    std::cout << path << ": preset '" << p.name << "', " << p.regions.size() << " region(s)";
+    for (const io::RegionLook& r : p.regions)
+        std::cout << (&r == &p.regions.front() ? ": " : ", ") << r.name;
+    std::cout << "\n";
+    printWarnings(read.warnings);
+}
+
+void validateProject(const std::string& path)
+{
+    const io::HeadLoader loader = [](const std::string& headPath) -> io::Result<TriangleMesh> {
+        io::Result<io::MeshReadResult> mesh = io::readMesh(headPath);
+        if (!mesh)
+            return mesh.error();
+        return std::move(mesh).value().mesh;
+    };
+    io::Result<io::ProjectReadResult> read = io::readProject(path, loader);
+    if (!read)
+        throw CliError{kBadInput, read.error().toString()};
+    const io::Project& p = read.value().project;
+    std::cout << path << ": project, head " << (p.headEmbedded ? "embedded" : "from " + p.headSource) << " ("
+              << p.head.positions.size() << " vertices, " << p.head.triangles.size() << " triangles), "
+              << p.regions.size() << " region(s)";
+    for (const GrowthRegion& r : p.regions)
+        std::cout << (&r == &p.regions.front() ? ": " : ", ") << r.name
+                  << (r.importedStrands ? " (" + std::to_string(r.importedStrands->strandCount()) + " imported strands)" : "");
+    std::cout << "\n";
+    printWarnings(read.value().warnings);
+}
+
+}  // namespace
+
+int runValidate(int argc, char** argv)
+{
+    const std::vector<OptionSpec> options = {{"help", "", "show this help"}};
+    const CommandLine args(argc, argv, 2, options, 1);
+    if (args.has("help") || args.positional().empty()) {
+        (args.has("help") ? std::cout : std::cerr)
+            << "usage: wisp-cli validate FILE\n\n"
+               "Says what FILE holds, or exactly what is wrong with it (exit status 1):\n"
+               "  heads    .obj .ply .off .stl .gltf .glb\n"
+               "  hair     .hair .data\n"
+               "  presets  .json (format wisp-preset)\n"
+               "  projects .wisp\n";
+        return args.has("help") ? kSuccess : kUsage;
+    }
+    const std::string& path = args.positional().front();
+    const std::string ext = extensionOf(path);
+    if (contains(io::supportedMeshExtensions(), ext))
+        validateHead(path);
+    else if (contains(io::hairReadExtensions(), ext))
+        validateHair(path);
+    else if (ext == "wisp")
+        validateProject(path);
+    else if (ext == "json") {
+        io::Result<io::PresetReadResult> preset = io::readPreset(path);
+        if (!preset) {
+            // A project saved under .json is still a project.
+            if (preset.error().toString().find("this is a Wisp project") != std::string::npos)
+                validateProject(path);
+            else
+                throw CliError{kBadInput, preset.error().toString()};
+        } else {
+            validatePreset(preset.value(), path);
+        }
+    } else {
+        throw CliError{kBadInput, path + ": Wisp does not know the extension '." + ext +
+                                      "' (heads .obj .ply .off .stl .gltf .glb; hair .hair .data; presets .json; "
+                                      "projects .wisp)"};
+    }
+    return kSuccess;
+}
+
+}  // namespace wisp::cli

@@ -1,0 +1,31 @@
+#pragma once
+// Runs wisp-cli as a user does: a real process, its exit status and everything it printed.
+
+#include <array>
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+namespace wisp::test {
+
+struct CliRun {
+    int status = -1;
+    std::string output;  // stdout and stderr together
+};
+
+inline CliRun cli(const std::string& arguments)
+{
+    const std::string command = std::string(WISP_CLI_PATH) + " " + arguments + " 2>&1";
+    CliRun r;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe)
+        return r;
+    std::array<char, 4096> buffer{};
+    while (std::fgets(buffer.data(), buffer.size(), pipe))
+        r.output += buffer.data();
+    const int raw = pclose(pipe);
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    return r;
+}
+
+}  // namespace wisp::test

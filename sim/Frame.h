@@ -19,6 +19,14 @@ struct StrandLook {
     glm::vec3 tipColour{0.0f};
 };
 
+// The groom behind a frame, shared by every frame of one groom: the rest pose of every drawn
+// strand (head space) and which strands are the simulated key hairs, for exports of the rest pose
+// or of the keys only.
+struct GroomShape {
+    HairCurves rest;
+    std::vector<std::uint32_t> keyStrands;  // ascending
+};
+
 struct Frame {
     std::uint64_t step = 0;          // steps taken since the groom was (re)built or reset
     std::uint64_t groomVersion = 0;  // changes when the strands' count or layout changes
@@ -32,6 +40,7 @@ struct Frame {
     double timeScale = 1.0;          // simulated seconds per wall-clock second (below 1: slow motion)
     bool fallingBehind = false;      // the solver could not keep real time
     glm::vec3 wind{0.0f};            // m/s, world space (for the viewport's arrow)
+    std::shared_ptr<const GroomShape> groomShape;
 };
 
 using FramePtr = std::shared_ptr<const Frame>;

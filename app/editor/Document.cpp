@@ -221,10 +221,99 @@ void Document::endStroke(const QString& text)
         m_undoStack.push(new PaintStrokeCommand(this, id, std::move(vertices), std::move(before), std::move(after), text));
 }
 
-void Document::replaceHead(TriangleMesh head, std::vector<float> growthWeights, const QString& name)
+void Document::replaceHead(TriangleMesh head, std::vector<float> growthWeights, const QString& name,
+                           const QString& source, const io::HeadPlacement& placement)
 {
     std::vector<GrowthRegion> regions{firstRegion(std::move(growthWeights))};
-    m_undoStack.push(new ReplaceHeadCommand(this, m_head, m_regions, std::move(head), std::move(regions), name));
+    auto* command = new ReplaceHeadCommand(this, m_head, m_regions, std::move(head), std::move(regions), name);
+    command->setOrigins({m_headSource, m_headPlacement}, {source, placement});
+    m_undoStack.push(command);
+}
+
+void Document::applyPreset(const io::Preset& preset)
+{
+    std::vector<GrowthRegion> after = m_regions;
+    for (std::size_t i = 0; i < after.size() && !preset.regions.empty(); ++i) {
+        const io::RegionLook& look = preset.regions[std::min(i, preset.regions.size() - 1)];
+        for (const ParameterInfo& p : allParameters())
+            if (p.group == ParamGroup::Wisp)
+                after[i].values.set(p.id, look.wisp.get(p.id));
+        after[i].rootColour = look.rootColour;
+        after[i].tipColour = look.tipColour;
+    }
+    ParameterValues parameters = m_parameters;
+    for (const ParameterInfo& p : allParameters())
+        if (p.group != ParamGroup::Wisp)
+            parameters.set(p.id, preset.parameters.get(p.id));
+    m_undoStack.push(new ApplyLookCommand(this, m_parameters, m_regions, parameters, std::move(after),
+                                          tr("Apply preset %1").arg(QString::fromStdString(preset.name))));
+}
+
+io::Preset Document::toPreset(const QString& name) const
+{
+    io::Preset preset;
+    preset.name = name.toStdString();
+    preset.parameters = m_parameters;
+    for (const GrowthRegion& r : m_regions)
+        preset.regions.push_back({r.name, r.values, r.rootColour, r.tipColour});
+    return preset;
+}
+
+int Document::addImportedHair(std::shared_ptr<const HairCurves> strands, const QString& name)
+{
+    std::vector<GrowthRegion> after = m_regions;
+    GrowthRegion r;
+    r.id = nextRegionId();
+    r.name = name.toStdString();
+    r.weights.assign(m_head.positions.size(), 0.0f);
+    r.importedStrands = std::move(strands);
+    after.push_back(std::move(r));
+    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
+                                           tr("Import hair %1").arg(name)));
+    setCurrentRegion(regionCount() - 1);
+    return m_current;
+}
+
+io::Project Document::toProject() const
+{
+    io::Project p;
+    p.head = m_head;
+    p.headSource = m_headSource.toStdString();
+    p.headEmbedded = true;  // a project opens even when the head file has moved
+    p.headImportScale = m_headPlacement.scale;
+    p.headImportOffset = m_headPlacement.offset;
+    p.headImportZUp = m_headPlacement.rotatedUpright;
+    p.parameters = m_parameters;
+    p.regions = m_regions;
+    p.soloRegion = m_soloId;
+    return p;
+}
+
+void Document::loadProject(io::Project project)
+{
+    m_undoStack.clear();
+    m_headSource = QString::fromStdString(project.headSource);
+    m_headPlacement = {};
+    m_headPlacement.scale = project.headImportScale;
+    m_headPlacement.offset = project.headImportOffset;
+    m_headPlacement.rotatedUpright = project.headImportZUp;
+    m_parameters = project.parameters;
+    m_soloId = kNoSolo;
+    applyHead(std::move(project.head), std::move(project.regions));
+    if (project.soloRegion != kNoSolo && indexOfRegion(project.soloRegion) >= 0)
+        m_soloId = project.soloRegion;
+    emit parametersReplaced();
+    emit regionsChanged();
+    m_undoStack.setClean();
+}
+
+void Document::reset()
+{
+    io::Project fresh;
+    DefaultHead d = makeDefaultHead();
+    fresh.head = std::move(d.mesh);
+    fresh.regions.push_back(firstRegion(std::move(d.growthWeights)));
+    loadProject(std::move(fresh));
 }
 
 // --- For commands -----------------------------------------------------------------------------
@@ -274,6 +363,19 @@ void Document::applyRegionWeights(std::uint32_t regionId, const std::vector<std:
         if (vertices[i] < weights.size())
             weights[vertices[i]] = values[i];
     emit regionWeightsChanged(regionId);
+}
+
+void Document::applyHeadOrigin(const QString& source, const io::HeadPlacement& placement)
+{
+    m_headSource = source;
+    m_headPlacement = placement;
+}
+
+void Document::applyLook(const ParameterValues& parameters, std::vector<GrowthRegion> regions)
+{
+    m_parameters = parameters;
+    emit parametersReplaced();
+    applyRegions(std::move(regions), m_soloId);
 }
 
 void Document::applyHead(TriangleMesh head, std::vector<GrowthRegion> regions)

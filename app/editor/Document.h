@@ -5,6 +5,9 @@
 //
 // Thread: GUI.
 
+#include "io/HeadPlacement.h"
+#include "io/PresetFile.h"
+#include "io/ProjectFile.h"
 #include "sim/GrowthRegion.h"
 #include "sim/Parameters.h"
 #include "sim/TriangleMesh.h"
@@ -68,8 +71,30 @@ public:
     bool inStroke() const { return m_strokeRegion >= 0; }
 
     // Replaces the head as one undo step; its regions start over as one region grown where
-    // `growthWeights` say.
-    void replaceHead(TriangleMesh head, std::vector<float> growthWeights, const QString& name);
+    // `growthWeights` say. `source` is the file it came from (empty: built in) and `placement`
+    // how it was brought to metres, +Y up and centred (io/HeadPlacement.h).
+    void replaceHead(TriangleMesh head, std::vector<float> growthWeights, const QString& name,
+                     const QString& source = {}, const io::HeadPlacement& placement = {});
+
+    // Applies a preset as one undo step: every global parameter, and each region's wisp
+    // parameters and colours from the preset's region of the same index (regions beyond the
+    // preset's take its last region). Painted weights and the head stay.
+    void applyPreset(const io::Preset& preset);
+    // The current look as a preset (no head, no weights).
+    io::Preset toPreset(const QString& name) const;
+
+    // Adds a region of imported strands (head space, metres) as one undo step; it becomes current.
+    int addImportedHair(std::shared_ptr<const HairCurves> strands, const QString& name);
+
+    // --- Projects --------------------------------------------------------------------------------
+    const QString& headSource() const { return m_headSource; }
+    const io::HeadPlacement& headPlacement() const { return m_headPlacement; }
+    // Everything but the camera (the caller fills it in).
+    io::Project toProject() const;
+    // Replaces the whole document with a project's (not undoable: the undo history starts over).
+    void loadProject(io::Project project);
+    // Back to the built-in head and hairstyle, history cleared.
+    void reset();
 
     // --- For commands only: apply without touching the undo stack -------------------------------
     void applyParameter(Param id, double value);
@@ -78,10 +103,13 @@ public:
     void applyRegionWeights(std::uint32_t regionId, const std::vector<std::uint32_t>& vertices,
                             const std::vector<float>& values);
     void applyHead(TriangleMesh head, std::vector<GrowthRegion> regions);
+    void applyHeadOrigin(const QString& source, const io::HeadPlacement& placement);
+    void applyLook(const ParameterValues& parameters, std::vector<GrowthRegion> regions);  // presets
     std::uint32_t nextRegionId() const;
 
 signals:
     void parameterChanged(wisp::Param id);
+    void parametersReplaced();                   // every global parameter may have changed (preset, project)
     void headChanged();                          // head and all regions replaced
     void regionsChanged();                       // added, removed, renamed, reordered, shown, hidden, solo'd, recoloured
     void regionParameterChanged(int index, wisp::Param id);
@@ -90,6 +118,8 @@ signals:
 
 private:
     TriangleMesh m_head;
+    QString m_headSource;
+    io::HeadPlacement m_headPlacement;
     ParameterValues m_parameters;
     std::vector<GrowthRegion> m_regions;
     std::uint32_t m_soloId = kNoSolo;

@@ -113,7 +113,34 @@ ReplaceHeadCommand::ReplaceHeadCommand(Document* document, TriangleMesh oldHead,
     setText(QStringLiteral("Load head %1").arg(name));
 }
 
-void ReplaceHeadCommand::undo() { m_document->applyHead(m_oldHead, m_oldRegions); }
-void ReplaceHeadCommand::redo() { m_document->applyHead(m_newHead, m_newRegions); }
+void ReplaceHeadCommand::setOrigins(Origin before, Origin after)
+{
+    m_oldOrigin = std::move(before);
+    m_newOrigin = std::move(after);
+}
+
+void ReplaceHeadCommand::undo()
+{
+    m_document->applyHeadOrigin(m_oldOrigin.source, m_oldOrigin.placement);
+    m_document->applyHead(m_oldHead, m_oldRegions);
+}
+
+void ReplaceHeadCommand::redo()
+{
+    m_document->applyHeadOrigin(m_newOrigin.source, m_newOrigin.placement);
+    m_document->applyHead(m_newHead, m_newRegions);
+}
+
+ApplyLookCommand::ApplyLookCommand(Document* document, ParameterValues parametersBefore,
+                                   std::vector<GrowthRegion> regionsBefore, ParameterValues parametersAfter,
+                                   std::vector<GrowthRegion> regionsAfter, const QString& text)
+    : m_document(document), m_parametersBefore(std::move(parametersBefore)), m_parametersAfter(std::move(parametersAfter)),
+      m_regionsBefore(std::move(regionsBefore)), m_regionsAfter(std::move(regionsAfter))
+{
+    setText(text);
+}
+
+void ApplyLookCommand::undo() { m_document->applyLook(m_parametersBefore, m_regionsBefore); }
+void ApplyLookCommand::redo() { m_document->applyLook(m_parametersAfter, m_regionsAfter); }
 
 }  // namespace wisp

@@ -2,6 +2,7 @@
 // One small QUndoCommand per kind of edit (as Tiled does), merged while a slider is dragged.
 // Commands name regions by id, not index, so they stay right after reordering.
 
+#include "io/HeadPlacement.h"
 #include "sim/GrowthRegion.h"
 #include "sim/Parameters.h"
 #include "sim/TriangleMesh.h"
@@ -92,6 +93,11 @@ class ReplaceHeadCommand : public QUndoCommand {
 public:
     ReplaceHeadCommand(Document* document, TriangleMesh oldHead, std::vector<GrowthRegion> oldRegions,
                        TriangleMesh newHead, std::vector<GrowthRegion> newRegions, const QString& name);
+    struct Origin {
+        QString source;
+        io::HeadPlacement placement;
+    };
+    void setOrigins(Origin before, Origin after);
     void undo() override;
     void redo() override;
 
@@ -99,6 +105,21 @@ private:
     Document* m_document;
     TriangleMesh m_oldHead, m_newHead;
     std::vector<GrowthRegion> m_oldRegions, m_newRegions;
+    Origin m_oldOrigin, m_newOrigin;
+};
+
+// A preset applied: every global parameter and every region's look, before and after.
+class ApplyLookCommand : public QUndoCommand {
+public:
+    ApplyLookCommand(Document* document, ParameterValues parametersBefore, std::vector<GrowthRegion> regionsBefore,
+                     ParameterValues parametersAfter, std::vector<GrowthRegion> regionsAfter, const QString& text);
+    void undo() override;
+    void redo() override;
+
+private:
+    Document* m_document;
+    ParameterValues m_parametersBefore, m_parametersAfter;
+    std::vector<GrowthRegion> m_regionsBefore, m_regionsAfter;
 };
 
 }  // namespace wisp

@@ -2,6 +2,8 @@
 
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
+#include "app/editor/FileMenu.h"
+#include "app/editor/ProjectController.h"
 #include "app/editor/PaintTool.h"
 #include "app/editor/RegionPanel.h"
 #include "app/editor/SimulationHost.h"
@@ -24,6 +26,8 @@
 #include <QSettings>
 #include <QStatusBar>
 #include <QToolBar>
+#include <QTimer>
+#include <QUndoStack>
 #include <QUndoView>
 
 namespace wisp {
@@ -75,20 +79,11 @@ MainWindow::~MainWindow() = default;
 
 void MainWindow::createActions()
 {
-    QMenu* file = menuBar()->addMenu(tr("&File"));
-    QAction* openHeadAction = file->addAction(tr("Open &Head…"), this, [this] {
-        QStringList patterns;
-        for (const std::string& ext : io::supportedMeshExtensions())
-            patterns << QStringLiteral("*.%1").arg(QString::fromStdString(ext));
-        const QString path = QFileDialog::getOpenFileName(this, tr("Open Head"), QString(),
-                                                          tr("Meshes (%1)").arg(patterns.join(' ')));
-        if (!path.isEmpty())
-            openHead(path);
-    });
-    openHeadAction->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
-    file->addSeparator();
-    QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
-    quit->setShortcut(QKeySequence::Quit);
+    m_fileMenu = new FileMenu(this, m_document, m_simulation, m_viewport);
+    connect(m_fileMenu, &FileMenu::message, this, [this](const QString& text) { statusBar()->showMessage(text, 8000); });
+    connect(m_fileMenu->projects(), &ProjectController::currentPathChanged, this, &MainWindow::updateTitle);
+    connect(m_document->undoStack(), &QUndoStack::cleanChanged, this, [this] { updateTitle(); });
+    updateTitle();
 
     QMenu* edit = menuBar()->addMenu(tr("&Edit"));
     m_editMenu = edit;
@@ -204,11 +199,13 @@ void MainWindow::createDocks()
         });
     }
     // Undo, redo and edits all come back through the document.
-    connect(m_document, &Document::parameterChanged, this, [this](Param) {
+    const auto parametersEdited = [this] {
         m_forcePanel->setValues(m_document->parameters());
         m_groomPanel->setValues(m_document->parameters());
         m_simulation->setParameters(m_document->parameters());
-    });
+    };
+    connect(m_document, &Document::parameterChanged, this, parametersEdited);
+    connect(m_document, &Document::parametersReplaced, this, parametersEdited);
     connect(m_document, &Document::headChanged, this, [this] {
         m_viewport->setHead(m_document->head());
         m_viewport->frameHead();
@@ -253,17 +250,21 @@ void MainWindow::updatePlayAction(bool playing)
     m_reset->setIcon(style()->standardIcon(QStyle::SP_BrowserReload));
 }
 
-bool MainWindow::openHead(const QString& path)
+void MainWindow::updateTitle()
 {
-    io::Result<io::MeshReadResult> mesh = io::readMesh(path.toStdString());
-    if (!mesh) {
-        QMessageBox::warning(this, tr("Cannot open head"), QString::fromStdString(mesh.error().toString()));
-        return false;
+    const QString path = m_fileMenu->projects()->currentPath();
+    setWindowFilePath(path);
+    setWindowTitle(QStringLiteral("%1[*] — Wisp").arg(path.isEmpty() ? tr("Untitled") : QFileInfo(path).fileName()));
+    setWindowModified(!m_document->undoStack()->isClean());
+}
+
+void MainWindow::showEvent(QShowEvent* event)
+{
+    QMainWindow::showEvent(event);
+    if (!m_recoveryOffered) {
+        m_recoveryOffered = true;
+        QTimer::singleShot(0, m_fileMenu, &FileMenu::offerRecovery);
     }
-    TriangleMesh head = std::move(mesh).value().mesh;
-    std::vector<float> weights = upperHeadGrowth(head);
-    m_document->replaceHead(std::move(head), std::move(weights), QFileInfo(path).fileName());
-    return true;
 }
 
 void MainWindow::restoreSettings()
@@ -283,6 +284,10 @@ void MainWindow::saveSettings() const
 
 void MainWindow::closeEvent(QCloseEvent* event)
 {
+    if (!m_fileMenu->projects()->maybeSave()) {
+        event->ignore();
+        return;
+    }
     saveSettings();
     m_simulation->pause();
     event->accept();

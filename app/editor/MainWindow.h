@@ -14,6 +14,7 @@ namespace wisp {
 
 class BrushPanel;
 class Document;
+class FileMenu;
 class PaintTool;
 class ParameterPanel;
 class RegionPanel;
@@ -42,11 +43,11 @@ public:
     WispPanel* wispPanel() const { return m_wispPanel; }
     BrushPanel* brushPanel() const { return m_brushPanel; }
 
-    // Loads a head mesh file (OBJ, PLY, OFF, STL) as an undoable edit; reports problems in a dialog.
-    bool openHead(const QString& path);
+    FileMenu* fileMenu() const { return m_fileMenu; }
 
 protected:
     void closeEvent(QCloseEvent* event) override;
+    void showEvent(QShowEvent* event) override;
 
 private:
     void createActions();
@@ -56,6 +57,7 @@ private:
     void saveSettings() const;
     void updatePlayAction(bool playing);
     void showGrowthOverlay();  // the current region's weights on the head
+    void updateTitle();        // the project's name, and * while it has unsaved changes
     QDockWidget* addPanelDock(const QString& title, const QString& objectName, QWidget* panel, Qt::DockWidgetArea area);
 
     Document* m_document = nullptr;
@@ -75,6 +77,8 @@ private:
     QAction* m_reset = nullptr;
     QMenu* m_viewMenu = nullptr;
     QMenu* m_editMenu = nullptr;
+    FileMenu* m_fileMenu = nullptr;
+    bool m_recoveryOffered = false;
 };
 
 }  // namespace wisp

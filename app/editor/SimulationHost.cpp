@@ -199,6 +199,14 @@ private:
         m_groomedWith = values;
         m_refusedGroom.reset();
         ++m_groomVersion;
+        auto shape = std::make_shared<GroomShape>();
+        shape->rest = m_sim->groom().rest;
+        shape->keyStrands = m_sim->simulatesAllStrands() ? std::vector<std::uint32_t>{} : m_sim->groom().keyStrand;
+        if (m_sim->simulatesAllStrands())
+            for (std::uint32_t i = 0; i < m_sim->groom().strandCount(); ++i)
+                shape->keyStrands.push_back(i);
+        std::sort(shape->keyStrands.begin(), shape->keyStrands.end());
+        m_groomShape = std::move(shape);
         m_pacer.setRequestedSubsteps(values.getInt(Param::Substeps));
         m_sim->applyForces(withSubsteps(values, m_pacer.substeps()));
         m_host.m_effectiveSubsteps.store(m_pacer.substeps());
@@ -254,6 +262,7 @@ private:
         frame->groomVersion = m_groomVersion;
         frame->simulatedSeconds = m_simulatedSeconds;
         m_sim->buildFrame(frame->strands);
+        frame->groomShape = m_groomShape;
         frame->looks = m_sim->looks();
         if (!frame->looks.empty())
             frame->lookOfStrand = m_sim->groom().regionOfStrand;
@@ -275,6 +284,7 @@ private:
     const Clock::time_point m_epoch;
     std::unique_ptr<HairSimulation> m_sim;  // null until the first groom succeeds
     Regions m_regions;                      // m_sim's regions, for regrooms
+    std::shared_ptr<const GroomShape> m_groomShape;  // of m_sim's groom, shared by its frames
     ParameterValues m_values;               // what the running solver was given (as requested)
     ParameterValues m_groomedWith;          // what m_sim's groom was built from
     std::optional<ParameterValues> m_refusedGroom;

@@ -610,10 +610,10 @@ TEST(GltfReader, PointsAndLinesAreSkippedWithAWarning)
     GltfBuilder b;
     const int positions = b.floats(squareCorners);
     const int triangles = b.indices<std::uint16_t>({0, 1, 2, 0, 2, 3});
-    const Json points = {{"attributes", {{"POSITION", positions}}}, {"mode", 0}};
-    const Json lines = {{"attributes", {{"POSITION", positions}}}, {"mode", 1}};
-    const Json surface = {{"attributes", {{"POSITION", positions}}}, {"indices", triangles}};
-    const Json mesh = {{"primitives", Json::array({points, lines, surface})}};
+    const Json pointPrimitive = {{"attributes", {{"POSITION", positions}}}, {"mode", 0}};
+    const Json linePrimitive = {{"attributes", {{"POSITION", positions}}}, {"mode", 1}};
+    const Json trianglePrimitive = {{"attributes", {{"POSITION", positions}}}, {"indices", triangles}};
+    const Json mesh = {{"primitives", Json::array({pointPrimitive, linePrimitive, trianglePrimitive})}};
     b.root["meshes"].push_back(mesh);
     b.node({{"mesh", 0}});
     b.scene({0});

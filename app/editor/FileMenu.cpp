@@ -1,0 +1,200 @@
+#include "app/editor/FileMenu.h"
+
+#include "app/editor/Document.h"
+#include "app/editor/ExportHairDialog.h"
+#include "app/editor/HeadImporter.h"
+#include "app/editor/ProjectController.h"
+#include "app/editor/SimulationHost.h"
+#include "io/HairFiles.h"
+#include "io/MeshReader.h"
+#include "sim/GrowthMap.h"
+#include "widgets/Viewport.h"
+
+#include <QAction>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QInputDialog>
+#include <QMainWindow>
+#include <QMenu>
+#include <QMenuBar>
+#include <QMessageBox>
+
+namespace wisp {
+
+namespace {
+
+QString patternsOf(const std::vector<std::string>& extensions)
+{
+    QStringList patterns;
+    for (const std::string& ext : extensions)
+        patterns << QStringLiteral("*.%1").arg(QString::fromStdString(ext));
+    return patterns.join(' ');
+}
+
+}  // namespace
+
+FileMenu::FileMenu(QMainWindow* window, Document* document, SimulationHost* simulation, Viewport* viewport)
+    : QObject(window), m_window(window), m_document(document), m_simulation(simulation), m_viewport(viewport),
+      m_projects(new ProjectController(document, viewport, window)), m_importer(new HeadImporter(window))
+{
+    buildMenu();
+    connect(m_projects, &ProjectController::message, this, &FileMenu::message);
+    connect(m_projects, &ProjectController::recentFilesChanged, this, &FileMenu::rebuildRecentMenu);
+    connect(m_importer, &HeadImporter::imported, this, &FileMenu::takeHead);
+    connect(m_importer, &HeadImporter::failed, this, [this](const QString& why) {
+        QMessageBox::warning(m_window, tr("Cannot open head"), why);
+        emit message(why);
+    });
+}
+
+FileMenu::~FileMenu() = default;
+
+void FileMenu::buildMenu()
+{
+    m_menu = m_window->menuBar()->addMenu(tr("&File"));
+    m_menu->addAction(tr("&New Project"), QKeySequence::New, this, [this] { m_projects->newProject(); });
+    m_menu->addAction(tr("&Open Project…"), QKeySequence::Open, this, [this] { m_projects->open(); });
+    m_recentMenu = m_menu->addMenu(tr("Open &Recent"));
+    rebuildRecentMenu();
+    m_menu->addAction(tr("&Save"), QKeySequence::Save, this, [this] { m_projects->save(); });
+    m_menu->addAction(tr("Save &As…"), QKeySequence::SaveAs, this, [this] { m_projects->saveAs(); });
+    m_menu->addSeparator();
+
+    m_menu->addAction(tr("Open &Head…"), QKeySequence(tr("Ctrl+Shift+O")), this, [this] {
+        const QString path = QFileDialog::getOpenFileName(
+            m_window, tr("Open Head"), QString(), tr("Meshes (%1)").arg(patternsOf(io::supportedMeshExtensions())));
+        if (!path.isEmpty())
+            openHead(path);
+    });
+    QAction* scale = m_menu->addAction(tr("Head &Scale…"), this, &FileMenu::changeHeadScale);
+    scale->setToolTip(tr("The imported head's metres per file unit"));
+    m_menu->addSeparator();
+    m_menu->addAction(tr("&Import Hair…"), this, [this] {
+        const QString path = QFileDialog::getOpenFileName(m_window, tr("Import Hair"), QString(),
+                                                          tr("Hair (%1)").arg(patternsOf(io::hairReadExtensions())));
+        if (!path.isEmpty())
+            importHair(path);
+    });
+    m_menu->addAction(tr("&Export Hair…"), QKeySequence(tr("Ctrl+E")), this, [this] {
+        ExportHairDialog dialog(m_window);
+        if (dialog.exec() != QDialog::Accepted)
+            return;
+        const HairExportChoice choice = dialog.choice();
+        if (const QString error = exportHair(dialog.path(), choice.restPose, choice.keysOnly); !error.isEmpty())
+            QMessageBox::warning(m_window, tr("Cannot export hair"), error);
+    });
+    m_menu->addSeparator();
+    m_menu->addAction(tr("&Quit"), QKeySequence::Quit, m_window, &QWidget::close);
+}
+
+void FileMenu::rebuildRecentMenu()
+{
+    m_recentMenu->clear();
+    const QStringList recent = m_projects->recentFiles();
+    for (const QString& path : recent)
+        m_recentMenu->addAction(QFileInfo(path).fileName(), this, [this, path] { m_projects->open(path); })
+            ->setToolTip(path);
+    m_recentMenu->setEnabled(!recent.isEmpty());
+}
+
+bool FileMenu::openAny(const QString& path)
+{
+    const QString suffix = QFileInfo(path).suffix().toLower();
+    if (suffix == QLatin1String("wisp"))
+        return m_projects->open(path);
+    return openHead(path);
+}
+
+bool FileMenu::openHead(const QString& path) { return m_importer->start(path); }
+
+void FileMenu::takeHead(const std::shared_ptr<const ImportedHead>& head)
+{
+    m_lastHead = head;
+    TriangleMesh mesh = head->mesh;
+    std::vector<float> weights = upperHeadGrowth(mesh);
+    m_document->replaceHead(std::move(mesh), std::move(weights), QFileInfo(head->path).fileName(), head->path,
+                            head->placement);
+    QString text = QFileInfo(head->path).fileName() + QStringLiteral(": ") +
+                   QString::fromStdString(io::describePlacement(head->placement));
+    if (!head->warnings.isEmpty())
+        text += QStringLiteral(" · ") + head->warnings.join(QStringLiteral(" · "));
+    emit message(text);
+}
+
+void FileMenu::changeHeadScale()
+{
+    if (!m_lastHead) {
+        QMessageBox::information(m_window, tr("Head Scale"),
+                                 tr("The scale applies to a head opened from a file (File ▸ Open Head)."));
+        return;
+    }
+    bool ok = false;
+    const double scale = QInputDialog::getDouble(
+        m_window, tr("Head Scale"),
+        tr("%1\nMetres per file unit (0.001 millimetres, 0.01 centimetres, 1 metres):")
+            .arg(QString::fromStdString(io::describePlacement(m_lastHead->placement))),
+        m_lastHead->placement.scale, 1e-6, 1e3, 6, &ok);
+    if (!ok)
+        return;
+    auto head = std::make_shared<ImportedHead>(*m_lastHead);
+    head->mesh = head->asRead;
+    io::HeadPlacementSettings settings;
+    settings.explicitScale = static_cast<float>(scale);
+    settings.zUp = m_lastHead->placement.rotatedUpright;
+    head->placement = io::placeHead(head->mesh, settings);
+    takeHead(head);
+}
+
+QString FileMenu::importHair(const QString& path)
+{
+    io::Result<io::HairReadResult> read = io::readHair(path.toStdString());
+    if (!read) {
+        const QString error = QString::fromStdString(read.error().toString());
+        QMessageBox::warning(m_window, tr("Cannot import hair"), error);
+        return error;
+    }
+    io::HairReadResult result = std::move(read).value();
+    // Strands come in the units and axes of the file they were made with, like the head that came
+    // with them: the head's placement brings both to Wisp's metres, +Y up (one formula for both).
+    TriangleMesh points;
+    points.positions = std::move(result.strands.positions);
+    io::applyPlacement(points, m_document->headPlacement());
+    result.strands.positions = std::move(points.positions);
+    auto strands = std::make_shared<const HairCurves>(std::move(result.strands));
+    m_document->addImportedHair(strands, QFileInfo(path).fileName());
+    QString text = tr("Imported %1 strands from %2").arg(strands->strandCount()).arg(QFileInfo(path).fileName());
+    for (const std::string& w : result.warnings)
+        text += QStringLiteral(" · ") + QString::fromStdString(w);
+    emit message(text);
+    return {};
+}
+
+QString FileMenu::exportHair(const QString& path, bool restPose, bool keysOnly)
+{
+    const FramePtr frame = m_simulation->latestFrame();
+    if (!frame)
+        return tr("there is no hair to export yet");
+    const HairCurves strands = strandsForExport(*frame, {restPose, keysOnly});
+    io::HairExportOptions options;
+    options.head = &m_document->head();
+    if (const auto error = io::writeHair(path.toStdString(), strands, options))
+        return QString::fromStdString(error->toString());
+    emit message(tr("Exported %1 strands to %2").arg(strands.strandCount()).arg(QDir::toNativeSeparators(path)));
+    return {};
+}
+
+void FileMenu::offerRecovery()
+{
+    if (!m_projects->recoveryAvailable())
+        return;
+    const auto answer = QMessageBox::question(
+        m_window, tr("Recover work"),
+        tr("Wisp did not close properly last time. Recover the work it saved automatically?"),
+        QMessageBox::Yes | QMessageBox::Discard, QMessageBox::Yes);
+    if (answer == QMessageBox::Yes)
+        m_projects->recover();
+    else
+        m_projects->discardRecovery();
+}
+
+}  // namespace wisp

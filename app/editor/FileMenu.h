@@ -1,0 +1,68 @@
+#pragma once
+// The File menu and what it does: projects (new, open, recent, save, save as, autosave and
+// recovery through ProjectController), heads (open on a worker thread with HeadImporter, change
+// the import scale), hair (import cyHair / USC .data as a region of strands, export the frame or
+// the rest pose), and quit.
+//
+// Thread: GUI.
+
+#include <QObject>
+#include <QString>
+
+#include <memory>
+
+class QAction;
+class QMainWindow;
+class QMenu;
+
+namespace wisp {
+
+class Document;
+class HeadImporter;
+class ProjectController;
+class SimulationHost;
+class Viewport;
+struct ImportedHead;
+
+class FileMenu : public QObject {
+    Q_OBJECT
+public:
+    FileMenu(QMainWindow* window, Document* document, SimulationHost* simulation, Viewport* viewport);
+    ~FileMenu() override;
+
+    QMenu* menu() const { return m_menu; }
+    ProjectController* projects() const { return m_projects; }
+    HeadImporter* headImporter() const { return m_importer; }
+
+    // Opens whatever `path` is: a project (.wisp), else a head mesh. For `wisp FILE` and drops.
+    bool openAny(const QString& path);
+    // Starts reading a head; the document takes it when the read is done (see HeadImporter).
+    bool openHead(const QString& path);
+    // Reads cyHair / USC .data strands into a new region; errors in a dialog (and the result).
+    QString importHair(const QString& path);
+    // Writes the newest frame's hair; returns the error, empty on success.
+    QString exportHair(const QString& path, bool restPose, bool keysOnly);
+    // After the window shows: offers the last session's unsaved work if it ended without closing.
+    void offerRecovery();
+
+signals:
+    void message(const QString& text);
+
+private:
+    void buildMenu();
+    void rebuildRecentMenu();
+    void takeHead(const std::shared_ptr<const ImportedHead>& head);
+    void changeHeadScale();
+
+    QMainWindow* m_window;
+    Document* m_document;
+    SimulationHost* m_simulation;
+    Viewport* m_viewport;
+    ProjectController* m_projects;
+    HeadImporter* m_importer;
+    QMenu* m_menu = nullptr;
+    QMenu* m_recentMenu = nullptr;
+    std::shared_ptr<const ImportedHead> m_lastHead;  // as read, to place again at another scale
+};
+
+}  // namespace wisp

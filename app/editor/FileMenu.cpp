@@ -41,10 +41,7 @@ FileMenu::FileMenu(QMainWindow* window, Document* document, SimulationHost* simu
     connect(m_projects, &ProjectController::message, this, &FileMenu::message);
     connect(m_projects, &ProjectController::recentFilesChanged, this, &FileMenu::rebuildRecentMenu);
     connect(m_importer, &HeadImporter::imported, this, &FileMenu::takeHead);
-    connect(m_importer, &HeadImporter::failed, this, [this](const QString& why) {
-        QMessageBox::warning(m_window, tr("Cannot open head"), why);
-        emit message(why);
-    });
+    connect(m_importer, &HeadImporter::failed, this, [this](const QString& why) { warn(tr("Cannot open head"), why); });
 }
 
 FileMenu::~FileMenu() = default;
@@ -150,7 +147,7 @@ QString FileMenu::importHair(const QString& path)
     io::Result<io::HairReadResult> read = io::readHair(path.toStdString());
     if (!read) {
         const QString error = QString::fromStdString(read.error().toString());
-        QMessageBox::warning(m_window, tr("Cannot import hair"), error);
+        warn(tr("Cannot import hair"), error);
         return error;
     }
     io::HairReadResult result = std::move(read).value();
@@ -183,9 +180,22 @@ QString FileMenu::exportHair(const QString& path, bool restPose, bool keysOnly)
     return {};
 }
 
+void FileMenu::setInteractive(bool interactive)
+{
+    m_interactive = interactive;
+    m_projects->setInteractive(interactive);
+}
+
+void FileMenu::warn(const QString& title, const QString& text)
+{
+    if (m_interactive)
+        QMessageBox::warning(m_window, title, text);
+    emit message(text);
+}
+
 void FileMenu::offerRecovery()
 {
-    if (!m_projects->recoveryAvailable())
+    if (!m_projects->recoveryAvailable() || !m_interactive)
         return;
     const auto answer = QMessageBox::question(
         m_window, tr("Recover work"),

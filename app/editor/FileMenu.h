@@ -44,6 +44,8 @@ public:
     QString exportHair(const QString& path, bool restPose, bool keysOnly);
     // After the window shows: offers the last session's unsaved work if it ended without closing.
     void offerRecovery();
+    // Without dialogs (tests): problems go only to message(); questions take their default.
+    void setInteractive(bool interactive);
 
 signals:
     void message(const QString& text);
@@ -53,6 +55,7 @@ private:
     void rebuildRecentMenu();
     void takeHead(const std::shared_ptr<const ImportedHead>& head);
     void changeHeadScale();
+    void warn(const QString& title, const QString& text);
 
     QMainWindow* m_window;
     Document* m_document;
@@ -63,6 +66,7 @@ private:
     QMenu* m_menu = nullptr;
     QMenu* m_recentMenu = nullptr;
     std::shared_ptr<const ImportedHead> m_lastHead;  // as read, to place again at another scale
+    bool m_interactive = true;
 };
 
 }  // namespace wisp

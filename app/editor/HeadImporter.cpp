@@ -87,11 +87,12 @@ void HeadImporter::deliver(std::shared_ptr<Job> job)
 {
     if (job != m_job)
         return;
+    const bool wanted = !job->cancelled;
     if (m_progress) {
+        m_progress->disconnect(this);  // closing a progress dialog emits canceled(): not the artist's
         m_progress->close();
         m_progress = nullptr;
     }
-    const bool wanted = !job->cancelled;
     m_finished = true;
     if (!wanted)
         return;

@@ -5,6 +5,7 @@
 #include "app/editor/FileMenu.h"
 #include "app/editor/ProjectController.h"
 #include "app/editor/PaintTool.h"
+#include "app/editor/PresetBrowser.h"
 #include "app/editor/RegionPanel.h"
 #include "app/editor/SimulationHost.h"
 #include "app/editor/WispPanel.h"
@@ -168,6 +169,7 @@ void MainWindow::createDocks()
     m_regionPanel = new RegionPanel(m_document);
     m_wispPanel = new WispPanel(m_document);
     m_brushPanel = new BrushPanel(m_paintTool);
+    m_presetBrowser = new PresetBrowser(m_document);
     QDockWidget* forces = addPanelDock(tr("Forces"), QStringLiteral("forcesDock"), m_forcePanel, Qt::RightDockWidgetArea);
     QDockWidget* groom = addPanelDock(tr("Groom"), QStringLiteral("groomDock"), m_groomPanel, Qt::RightDockWidgetArea);
     tabifyDockWidget(forces, groom);
@@ -175,6 +177,10 @@ void MainWindow::createDocks()
     QDockWidget* regions = addPanelDock(tr("Regions"), QStringLiteral("regionsDock"), m_regionPanel, Qt::LeftDockWidgetArea);
     QDockWidget* wisp = addPanelDock(tr("Wisp"), QStringLiteral("wispDock"), m_wispPanel, Qt::LeftDockWidgetArea);
     QDockWidget* brush = addPanelDock(tr("Brush"), QStringLiteral("brushDock"), m_brushPanel, Qt::LeftDockWidgetArea);
+    QDockWidget* presets = addPanelDock(tr("Presets"), QStringLiteral("presetsDock"), m_presetBrowser, Qt::RightDockWidgetArea);
+    tabifyDockWidget(groom, presets);
+    forces->raise();
+    connect(m_presetBrowser, &PresetBrowser::message, this, [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     splitDockWidget(regions, wisp, Qt::Vertical);
     tabifyDockWidget(wisp, brush);
     wisp->raise();

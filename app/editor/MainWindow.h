@@ -17,6 +17,7 @@ class Document;
 class FileMenu;
 class PaintTool;
 class ParameterPanel;
+class PresetBrowser;
 class RegionPanel;
 class WispPanel;
 class SimulationHost;
@@ -42,6 +43,7 @@ public:
     RegionPanel* regionPanel() const { return m_regionPanel; }
     WispPanel* wispPanel() const { return m_wispPanel; }
     BrushPanel* brushPanel() const { return m_brushPanel; }
+    PresetBrowser* presetBrowser() const { return m_presetBrowser; }
 
     FileMenu* fileMenu() const { return m_fileMenu; }
 
@@ -70,6 +72,7 @@ private:
     RegionPanel* m_regionPanel = nullptr;
     WispPanel* m_wispPanel = nullptr;
     BrushPanel* m_brushPanel = nullptr;
+    PresetBrowser* m_presetBrowser = nullptr;
     QAction* m_paintAction = nullptr;
     QAction* m_overlayAction = nullptr;
     QAction* m_play = nullptr;

@@ -65,6 +65,13 @@ void FileMenu::buildMenu()
     });
     QAction* scale = m_menu->addAction(tr("Head &Scale…"), this, &FileMenu::changeHeadScale);
     scale->setToolTip(tr("The imported head's metres per file unit"));
+    m_zUp = m_menu->addAction(tr("Head File Is &Z-Up"));
+    m_zUp->setCheckable(true);
+    m_zUp->setToolTip(tr("The head file was made with +Z up (some scanners and CAD tools): turn it upright"));
+    connect(m_zUp, &QAction::triggered, this, [this](bool zUp) {
+        if (m_lastHead)
+            placeAgain(m_lastHead->placement.scale, zUp);
+    });
     m_menu->addSeparator();
     m_menu->addAction(tr("&Import Hair…"), this, [this] {
         const QString path = QFileDialog::getOpenFileName(m_window, tr("Import Hair"), QString(),
@@ -107,6 +114,8 @@ bool FileMenu::openHead(const QString& path) { return m_importer->start(path); }
 void FileMenu::takeHead(const std::shared_ptr<const ImportedHead>& head)
 {
     m_lastHead = head;
+    m_zUp->setChecked(head->placement.rotatedUpright);
+    m_zUp->setEnabled(!io::formatFixesUpAxis(head->path.toStdString()));
     TriangleMesh mesh = head->mesh;
     std::vector<float> weights = upperHeadGrowth(mesh);
     m_document->replaceHead(std::move(mesh), std::move(weights), QFileInfo(head->path).fileName(), head->path,
@@ -133,13 +142,21 @@ void FileMenu::changeHeadScale()
         m_lastHead->placement.scale, 1e-6, 1e3, 6, &ok);
     if (!ok)
         return;
+    placeAgain(static_cast<float>(scale), m_lastHead->placement.rotatedUpright);
+}
+
+bool FileMenu::placeAgain(float scale, bool zUp)
+{
+    if (!m_lastHead || !(scale > 0.0f))
+        return false;
     auto head = std::make_shared<ImportedHead>(*m_lastHead);
     head->mesh = head->asRead;
     io::HeadPlacementSettings settings;
-    settings.explicitScale = static_cast<float>(scale);
-    settings.zUp = m_lastHead->placement.rotatedUpright;
+    settings.explicitScale = scale;
+    settings.zUp = zUp && !io::formatFixesUpAxis(head->path.toStdString());
     head->placement = io::placeHead(head->mesh, settings);
     takeHead(head);
+    return true;
 }
 
 QString FileMenu::importHair(const QString& path)

@@ -42,6 +42,9 @@ public:
     QString importHair(const QString& path);
     // Writes the newest frame's hair; returns the error, empty on success.
     QString exportHair(const QString& path, bool restPose, bool keysOnly);
+    // Places the last head read anew at `metresPerUnit`, turned from Z-up or not (one undo step;
+    // Head Scale and Head File Is Z-Up). False when no head came from a file.
+    bool placeAgain(float metresPerUnit, bool zUp);
     // After the window shows: offers the last session's unsaved work if it ended without closing.
     void offerRecovery();
     // Without dialogs (tests): problems go only to message(); questions take their default.
@@ -65,6 +68,7 @@ private:
     HeadImporter* m_importer;
     QMenu* m_menu = nullptr;
     QMenu* m_recentMenu = nullptr;
+    QAction* m_zUp = nullptr;
     std::shared_ptr<const ImportedHead> m_lastHead;  // as read, to place again at another scale
     bool m_interactive = true;
 };

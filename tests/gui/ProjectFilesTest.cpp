@@ -192,6 +192,16 @@ TEST_F(ProjectFilesTest, AHeadOpensOnAWorkerThreadAtItsUnitAndTheWindowKeepsDraw
     settle();
     EXPECT_GT(window->simulation()->latestFrame()->strands.strandCount(), 100u) << "the new head has hair";
 
+    // Head Scale: the same file at twice the metres per unit is twice the size; undo returns.
+    const float height = box.size().y;
+    ASSERT_TRUE(window->fileMenu()->placeAgain(0.002f, false));
+    EXPECT_NEAR(boundsOf(doc()->head()).size().y, 2.0f * height, 1e-4f);
+    ASSERT_TRUE(window->fileMenu()->placeAgain(0.001f, true));  // Z-up: the file's z becomes height
+    EXPECT_TRUE(doc()->headPlacement().rotatedUpright);
+    doc()->undoStack()->undo();
+    doc()->undoStack()->undo();
+    EXPECT_NEAR(boundsOf(doc()->head()).size().y, height, 1e-5f);
+
     // A file that is not a head says so, naming it, and the head stays.
     QSignalSpy said(window->fileMenu(), &FileMenu::message);
     EXPECT_TRUE(window->fileMenu()->openAny(dir.filePath(QStringLiteral("missing.obj"))));

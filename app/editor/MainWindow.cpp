@@ -76,7 +76,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent)
     m_simulation->play();
 }
 
-MainWindow::~MainWindow() = default;
+MainWindow::~MainWindow()
+{
+    // The children go after this body: the document's undo stack, clearing, must not call back
+    // into a window that is half gone.
+    m_document->undoStack()->disconnect(this);
+    m_document->disconnect(this);
+    m_fileMenu->projects()->disconnect(this);
+}
 
 void MainWindow::createActions()
 {

@@ -1,3 +1,4 @@
+#include "IoTestSupport.h"
 #include "io/GltfReader.h"
 #include "io/MeshReader.h"
 
@@ -26,29 +27,11 @@
 using namespace wisp;
 using namespace wisp::io;
 namespace fs = std::filesystem;
+using wisp::test::assetPath;
+using wisp::test::slurp;
 using Json = nlohmann::json;
 
 namespace {
-
-// ---- shared assets ----------------------------------------------------------------------------
-
-fs::path assetPath(const std::string& relative)
-{
-    return fs::path(WISP_SHARED_ASSETS) / relative;
-}
-
-#define REQUIRE_ASSET(path)                                                                                            \
-    do {                                                                                                               \
-        if (!fs::exists(path))                                                                                         \
-            GTEST_SKIP() << "shared test asset " << (path) << " is absent (expected beside the project in "            \
-                         << WISP_SHARED_ASSETS << ")";                                                                 \
-    } while (false)
-
-std::string slurp(const fs::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // The enclosed volume, positive when triangles wind counter-clockwise seen from outside.
 double signedVolume(const TriangleMesh& mesh)

@@ -1,5 +1,6 @@
 // Hair files: cyHair .hair and USC .data in and out, OBJ and glTF export, and refusals of broken files.
 
+#include "IoTestSupport.h"
 #include "io/HairFiles.h"
 
 #include <glm/common.hpp>
@@ -24,28 +25,13 @@
 using namespace wisp;
 using namespace wisp::io;
 namespace fs = std::filesystem;
+using wisp::test::assetPath;
+using wisp::test::slurp;
 
 namespace {
 
-// ---- shared assets ----------------------------------------------------------------------------
-
-fs::path assetPath(const std::string& relative) { return fs::path(WISP_SHARED_ASSETS) / relative; }
-
-#define REQUIRE_ASSET(path)                                                                                  \
-    do {                                                                                                     \
-        if (!fs::exists(path))                                                                               \
-            GTEST_SKIP() << "shared test asset " << (path) << " is absent (expected beside the project in " \
-                         << WISP_SHARED_ASSETS << ")";                                                       \
-    } while (false)
-
 const fs::path kBangsHair = assetPath("hair/ct2hair_bangs100.hair");
 const fs::path kBangsData = assetPath("hair/ct2hair_bangs100.data");
-
-std::string slurp(const fs::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 void spit(const fs::path& path, const std::string& bytes)
 {

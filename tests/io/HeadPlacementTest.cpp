@@ -1,3 +1,4 @@
+#include "IoTestSupport.h"
 #include "io/HeadPlacement.h"
 #include "io/MeshReader.h"
 
@@ -12,20 +13,10 @@
 using namespace wisp;
 using namespace wisp::io;
 namespace fs = std::filesystem;
+using wisp::test::assetPath;
+using wisp::test::slurp;
 
 namespace {
-
-fs::path assetPath(const std::string& relative)
-{
-    return fs::path(WISP_SHARED_ASSETS) / relative;
-}
-
-#define REQUIRE_ASSET(path)                                                                                            \
-    do {                                                                                                               \
-        if (!fs::exists(path))                                                                                         \
-            GTEST_SKIP() << "shared test asset " << (path) << " is absent (expected beside the project in "            \
-                         << WISP_SHARED_ASSETS << ")";                                                                 \
-    } while (false)
 
 // A closed box of the given size with its lower corner at `corner`, wound outward.
 TriangleMesh box(const glm::vec3& size, const glm::vec3& corner = glm::vec3(0.0f))

@@ -1,3 +1,4 @@
+#include "IoTestSupport.h"
 #include "io/MeshReader.h"
 
 #include <glm/geometric.hpp>
@@ -19,25 +20,10 @@
 using namespace wisp;
 using namespace wisp::io;
 namespace fs = std::filesystem;
+using wisp::test::assetPath;
+using wisp::test::slurp;
 
 namespace {
-
-// ---- shared assets ----------------------------------------------------------------------------
-
-fs::path assetPath(const std::string& relative) { return fs::path(WISP_SHARED_ASSETS) / relative; }
-
-#define REQUIRE_ASSET(path)                                                                                  \
-    do {                                                                                                     \
-        if (!fs::exists(path))                                                                               \
-            GTEST_SKIP() << "shared test asset " << (path) << " is absent (expected beside the project in " \
-                         << WISP_SHARED_ASSETS << ")";                                                       \
-    } while (false)
-
-std::string slurp(const fs::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // Reads vertex `i` straight from a little-endian binary PLY whose vertex element comes first
 // and starts with float x, y, z: an independent check of what readMesh returned.

@@ -128,7 +128,7 @@ void GuideRenderer::drawGrid(const RenderView& view)
     if (m_gridMesh.count == 0)
         return;
     // Tested against the depth of what is drawn, but writing none: the grid is a translucent
-    // overlay, and hair hanging below the floor still shows through it, dimmed.
+    // overlay, which hides nothing drawn after it (the viewport draws the hair after it).
     m_gl->glEnable(GL_DEPTH_TEST);
     m_gl->glDepthMask(GL_FALSE);
     m_gl->glEnable(GL_BLEND);

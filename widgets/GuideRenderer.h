@@ -1,7 +1,7 @@
 #pragma once
-// Draws the scene guides built by GuideGeometry: the ground grid (thin blended lines, drawn last so
-// the head and hair hide it), the wind arrow (a shaded solid) and the paint brush's rings (flat
-// bands on the scalp, drawn over everything else).
+// Draws the scene guides built by GuideGeometry: the ground grid (thin blended lines, depth-tested
+// so the head hides it), the wind arrow (a shaded solid) and the paint brush's rings (flat bands on
+// the scalp, drawn over everything else).
 //
 // set*() keep the geometry on the CPU and mark it for upload on the next draw.
 // Thread: GUI; initialize(), release() and draw*() need the viewport's context current.

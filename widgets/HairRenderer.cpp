@@ -258,9 +258,12 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     // radius and a half in front of the head's centre.
     const float nearestDepth = std::max(-view.headCentreView.z - 1.5f * view.headRadiusMetres, 1e-3f);
     const float pixelsPerMetre = view.projection[1][1] * 0.5f * view.viewportPixels.y / nearestDepth;
-    // A preview (coarse) takes lines up to a few pixels: speed is what it is for.
+    // A preview (coarse) takes lines up to a few pixels: speed is what it is for. On a software
+    // rasteriser with 4x MSAA a ribbon segment costs about twice a line segment, and the widening
+    // above pushed the editor's default view over 3 pixels at the fewest strands a preview draws,
+    // so those previews cost twice what they would as lines (measured: 33 vs 19 ms of CPU).
     const float rootPixels = style.rootWidthMetres * widthScale * pixelsPerMetre;
-    const bool lines = rootPixels <= style.minWidthPixels + (coarse ? 2.0f : 0.5f);
+    const bool lines = rootPixels <= style.minWidthPixels + (coarse ? 4.0f : 0.5f);
     // Samples per segment: enough to keep chords about pixelsPerSample long at the head's depth.
     const float centreDepth = std::max(-view.headCentreView.z, 1e-3f);
     const float segmentPixels = m_segmentMetres * view.projection[1][1] * 0.5f * view.viewportPixels.y / centreDepth;
@@ -273,16 +276,13 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     gl->glEnable(GL_DEPTH_TEST);
     gl->glDepthMask(GL_TRUE);
     gl->glDisable(GL_CULL_FACE); // the ribbon's winding flips with the strand's screen direction
-    // Thin strands carry their coverage in alpha. With MSAA, alpha-to-coverage turns it into
-    // sample coverage, which needs no sorting of the 70k segments; without it, plain blending.
-    const bool alphaToCoverage = view.samples > 1;
-    if (alphaToCoverage) {
-        gl->glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-        gl->glDisable(GL_BLEND);
-    } else {
-        gl->glEnable(GL_BLEND);
-        gl->glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    }
+    // Thin strands carry their coverage in alpha, which blending turns into thickness (with MSAA,
+    // in each sample a strand covers). Not alpha-to-coverage: it gives every fragment of a pixel
+    // the same samples for the same alpha, so overlapping thin strands do not add up, and on Mesa's
+    // llvmpipe strands under a quarter of a pixel vanish (locks of hair tips went missing once the
+    // viewport's MSAA really was on).
+    gl->glEnable(GL_BLEND);
+    gl->glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
 
     QOpenGLShaderProgram& program = *m_program;
     program.bind();
@@ -319,7 +319,6 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     gl->glActiveTexture(GL_TEXTURE0);
     program.release();
 
-    gl->glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     gl->glDisable(GL_BLEND);
     m_lastDrawnStrands = drawn;
     m_lastDrewLines = lines;

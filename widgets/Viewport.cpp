@@ -2,6 +2,7 @@
 
 #include "widgets/GuideGeometry.h"
 #include "widgets/ViewportOverlay.h"
+#include "widgets/ViewportWindow.h"
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -13,8 +14,11 @@
 #include <QOpenGLContext>
 #include <QOpenGLDebugLogger>
 #include <QOpenGLVersionFunctionsFactory>
+#include <QPaintEvent>
 #include <QPainter>
+#include <QResizeEvent>
 #include <QSurfaceFormat>
+#include <QVBoxLayout>
 #include <QWheelEvent>
 
 #include <algorithm>
@@ -57,34 +61,59 @@ bool finiteBounds(const Aabb& b)
     return true;
 }
 
+// The context's and the window's: the window only receives finished frames, so it needs neither
+// depth nor samples (the frame's own framebuffer has them, see GlCanvas).
 QSurfaceFormat viewportFormat()
 {
     QSurfaceFormat format;
     format.setRenderableType(QSurfaceFormat::OpenGL);
     format.setVersion(3, 3);
     format.setProfile(QSurfaceFormat::CoreProfile);
-    format.setDepthBufferSize(24);
-    // 4x MSAA. WISP_VIEWPORT_SAMPLES overrides it: on a software rasteriser MSAA costs about half
-    // the frame rate, and alpha already smooths the hair.
-    bool overridden = false;
-    const int samples = qEnvironmentVariableIntValue("WISP_VIEWPORT_SAMPLES", &overridden);
-    format.setSamples(overridden ? std::clamp(samples, 0, 16) : 4);
+    format.setDepthBufferSize(0);
+    format.setStencilBufferSize(0);
+    format.setSamples(0);
+    format.setSwapBehavior(QSurfaceFormat::DoubleBuffer);
 #ifndef NDEBUG
     format.setOption(QSurfaceFormat::DebugContext);
 #endif
     return format;
 }
 
+// 4x MSAA. WISP_VIEWPORT_SAMPLES overrides it (0: none): on a software rasteriser 4x MSAA about
+// doubles the cost of the hair and of resolving the frame.
+int viewportSamples()
+{
+    bool overridden = false;
+    const int samples = qEnvironmentVariableIntValue("WISP_VIEWPORT_SAMPLES", &overridden);
+    return overridden ? std::clamp(samples, 0, 16) : 4;
+}
+
 } // namespace
 
 Viewport::Viewport(QWidget* parent)
-    : QOpenGLWidget(parent)
+    : QWidget(parent)
     , m_headBounds(kFallbackHeadBounds)
+    , m_requestedSamples(viewportSamples())
 {
     initialiseWidgetResources();
-    setFormat(viewportFormat());
     setFocusPolicy(Qt::StrongFocus); // F must reach us after a click in the view
     setMinimumSize(160, 120);
+    m_window = new ViewportWindow(this);
+    m_window->setFormat(viewportFormat());
+    m_container = QWidget::createWindowContainer(m_window, this);
+    m_container->setFocusPolicy(Qt::NoFocus);
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->addWidget(m_container);
+    connect(m_window, &ViewportWindow::exposed, this, &Viewport::presentFrame);
+    connect(m_window, &ViewportWindow::surfaceAboutToBeDestroyed, this, [this] {
+        // Off this surface before it goes; the next frame makes the context current again.
+        if (m_canvas.context() && QOpenGLContext::currentContext() == m_canvas.context())
+            m_canvas.doneCurrent();
+    });
+    m_frameTimer.setSingleShot(true);
+    m_frameTimer.setInterval(0);
+    connect(&m_frameTimer, &QTimer::timeout, this, &Viewport::presentFrame);
     m_camera.reset(m_headBounds, 4.0f / 3.0f);
     rebuildGuides();
     m_frameClock.invalidate();
@@ -93,37 +122,33 @@ Viewport::Viewport(QWidget* parent)
     m_refineTimer.setInterval(300);
     connect(&m_refineTimer, &QTimer::timeout, this, [this] {
         m_refining = true;
-        update();
+        scheduleFrame();
     });
 }
 
 Viewport::~Viewport()
 {
-    // GL objects belong to the context: free them while it is current. QOpenGLWidget's own
-    // destructor destroys the context afterwards, whose aboutToBeDestroyed must not reach this
-    // half-destroyed object.
+    // GL objects belong to the context (m_canvas's): free them while it is current. Then the
+    // window goes, while the canvas its signals would reach still exists: no signals from it.
     releaseGl();
-    if (QOpenGLContext* glContext = context())
-        disconnect(glContext, nullptr, this, nullptr);
+    disconnect(m_window, nullptr, this, nullptr);
+    delete m_container;
 }
 
 void Viewport::releaseGl()
 {
     if (!m_gl)
         return;
-    const bool current = isValid();
-    if (current)
-        makeCurrent();
-    if (current) {
+    if (makeCurrent()) {
+        m_compositor.release();
         m_guides.release();
         m_hair.release();
         m_head.release();
         m_background.release();
+        m_canvas.releaseFramebuffers();
+        m_canvas.doneCurrent();
     }
     m_gl = nullptr;
-    m_glReady = false;
-    if (current)
-        doneCurrent();
 }
 
 // --- Scene --------------------------------------------------------------------------------------
@@ -131,6 +156,7 @@ void Viewport::releaseGl()
 void Viewport::setHead(const TriangleMesh& head)
 {
     m_head.setMesh(head);
+    ++m_backdropRevision;
     const bool usable = validateMesh(head).empty();
     const Aabb bounds = usable ? boundsOf(head) : kFallbackHeadBounds;
     m_hasHead = usable;
@@ -138,7 +164,7 @@ void Viewport::setHead(const TriangleMesh& head)
     if (!m_cameraTouched)
         m_camera.reset(m_headBounds, aspect());
     rebuildGuides();
-    update();
+    scheduleFrame();
 }
 
 void Viewport::setFrame(FramePtr frame)
@@ -148,8 +174,9 @@ void Viewport::setFrame(FramePtr frame)
     if (m_frame && m_frame->wind != m_wind) {
         m_wind = m_frame->wind;
         m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
+        ++m_backdropRevision;
     }
-    update();
+    scheduleFrame();
 }
 
 void Viewport::setWind(const glm::vec3& windMetresPerSecond)
@@ -158,7 +185,8 @@ void Viewport::setWind(const glm::vec3& windMetresPerSecond)
         return;
     m_wind = windMetresPerSecond;
     m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
-    update();
+    ++m_backdropRevision;
+    scheduleFrame();
 }
 
 void Viewport::setBrushCursor(std::optional<BrushCursor> cursor)
@@ -167,13 +195,14 @@ void Viewport::setBrushCursor(std::optional<BrushCursor> cursor)
         return;
     m_brushCursor = std::move(cursor);
     m_brushDirty = true;
-    update();
+    scheduleFrame();
 }
 
 void Viewport::setGrowthOverlay(std::vector<float> weights)
 {
     m_head.setGrowthWeights(std::move(weights));
-    update();
+    ++m_backdropRevision;
+    scheduleFrame();
 }
 
 void Viewport::setShowGrowthOverlay(bool show)
@@ -181,13 +210,15 @@ void Viewport::setShowGrowthOverlay(bool show)
     if (show == m_showGrowthOverlay)
         return;
     m_showGrowthOverlay = show;
-    update();
+    ++m_backdropRevision;
+    scheduleFrame();
 }
 
 void Viewport::rebuildGuides()
 {
     m_guides.setGrid(buildGroundGrid(m_headBounds));
     m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
+    ++m_backdropRevision;
 }
 
 void Viewport::setShowGrid(bool show)
@@ -195,14 +226,15 @@ void Viewport::setShowGrid(bool show)
     if (show == m_showGrid)
         return;
     m_showGrid = show;
-    update();
+    ++m_backdropRevision;
+    scheduleFrame();
 }
 
 void Viewport::setHairColours(const QColor& root, const QColor& tip)
 {
     m_hairStyle.rootColour = toVec(root);
     m_hairStyle.tipColour = toVec(tip);
-    update();
+    scheduleFrame();
 }
 
 QColor Viewport::hairRootColour() const
@@ -217,7 +249,7 @@ QColor Viewport::hairTipColour() const
 void Viewport::setHairStyle(const HairStyle& style)
 {
     m_hairStyle = style;
-    update();
+    scheduleFrame();
 }
 
 QColor Viewport::backgroundColour(double heightFraction)
@@ -235,7 +267,7 @@ void Viewport::setLevelOfDetail(bool enabled)
 {
     m_levelOfDetail = enabled;
     m_detail.reset();
-    update();
+    scheduleFrame();
 }
 
 // --- Camera -------------------------------------------------------------------------------------
@@ -269,13 +301,13 @@ ViewRay Viewport::rayAt(QPointF logicalPixel) const
 void Viewport::frameHead()
 {
     m_camera.frame(m_headBounds, aspect());
-    update();
+    scheduleFrame();
 }
 
 void Viewport::cameraMovedByUser()
 {
     m_cameraTouched = true;
-    update();
+    scheduleFrame();
 }
 
 void Viewport::mousePressEvent(QMouseEvent* event)
@@ -362,23 +394,136 @@ void Viewport::keyPressEvent(QKeyEvent* event)
         event->accept();
         return;
     }
-    QOpenGLWidget::keyPressEvent(event);
+    QWidget::keyPressEvent(event);
+}
+
+// --- Frames -------------------------------------------------------------------------------------
+
+bool Viewport::event(QEvent* event)
+{
+    // The child window shows its own cursor: give it ours (the paint tool's cross).
+    if (event->type() == QEvent::CursorChange && m_window)
+        m_window->setCursor(cursor());
+    return QWidget::event(event);
+}
+
+void Viewport::paintEvent(QPaintEvent*)
+{
+    if (m_glFailed) {
+        paintUnavailable();
+        return;
+    }
+    presentFrame();
+}
+
+void Viewport::resizeEvent(QResizeEvent* event)
+{
+    QWidget::resizeEvent(event);
+    // Until the artist takes the camera, keep the head framed as the window takes its size.
+    if (!m_cameraTouched)
+        m_camera.reset(m_headBounds, aspect());
+    scheduleFrame();
+}
+
+void Viewport::scheduleFrame()
+{
+    // A zero timer rather than QWindow::requestUpdate, which waits 5 ms on X11 before every frame.
+    if (!m_glFailed && !m_frameTimer.isActive())
+        m_frameTimer.start();
+}
+
+void Viewport::presentFrame()
+{
+    m_frameTimer.stop();
+    // Hidden or covered: the window's next expose draws the frame.
+    if (m_glFailed || !m_window->isExposed())
+        return;
+    if (!drawFrame())
+        return;
+    m_canvas.bindWindow();
+    m_compositor.draw(m_canvas.frameColourTexture(), m_canvas.samples(), m_canvas.size());
+    m_canvas.swap(m_window);
+}
+
+QImage Viewport::grabFramebuffer()
+{
+    if (!drawFrame())
+        return {};
+    m_canvas.bindGrab();
+    m_compositor.draw(m_canvas.frameColourTexture(), m_canvas.samples(), m_canvas.size());
+    QImage image = m_canvas.readGrab();
+    image.setDevicePixelRatio(frameRatio());
+    return image;
+}
+
+QSize Viewport::framePixels() const
+{
+    // The window's size once it has one (the frame is copied into it unscaled), else this widget's.
+    const QSize logical = m_window->handle() && !m_window->size().isEmpty() ? m_window->size() : size();
+    return (QSizeF(logical) * frameRatio()).toSize().expandedTo(QSize(1, 1));
+}
+
+double Viewport::frameRatio() const
+{
+    return m_window->handle() ? m_window->devicePixelRatio() : devicePixelRatioF();
+}
+
+bool Viewport::makeCurrent()
+{
+    return m_canvas.makeCurrent(m_window);
+}
+
+bool Viewport::drawFrame()
+{
+    if (m_glFailed)
+        return false;
+    if (!m_canvas.context()) {
+        if (!m_canvas.create(viewportFormat())) {
+            glUnavailable(tr("The 3D view needs OpenGL 3.3 core; this system has no OpenGL."));
+            return false;
+        }
+    }
+    if (!makeCurrent()) {
+        qWarning("Viewport: cannot make the OpenGL context current");
+        return false;
+    }
+    if (!m_gl) {
+        initializeGL();
+        if (!m_gl) {
+            glUnavailable(m_glStatus);
+            return false;
+        }
+    }
+    bool remade = false;
+    if (!m_canvas.prepare(m_gl, framePixels(), m_requestedSamples, &remade)) {
+        qWarning("Viewport: cannot make a %dx%d framebuffer", framePixels().width(), framePixels().height());
+        return false;
+    }
+    paintGL(remade);
+    return true;
+}
+
+void Viewport::glUnavailable(const QString& why)
+{
+    // Drawn by this widget (paintUnavailable), where the child window was.
+    m_glFailed = true;
+    m_glStatus = why;
+    m_frameTimer.stop();
+    m_container->hide();
+    update();
 }
 
 // --- GL -----------------------------------------------------------------------------------------
 
 void Viewport::initializeGL()
 {
-    // A reparented widget gets a new context: free our objects with the old one, while it is
-    // still alive, and build them anew here.
-    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &Viewport::releaseGl, Qt::UniqueConnection);
     m_gl = nullptr;
-    m_glReady = false;
     m_frameDirty = true;
 
-    const QSurfaceFormat actual = context()->format();
-    const bool versionOk = actual.version() >= qMakePair(3, 3) && !context()->isOpenGLES();
-    auto* functions = versionOk ? QOpenGLVersionFunctionsFactory::get<GlFunctions>(context()) : nullptr;
+    QOpenGLContext* context = m_canvas.context();
+    const QSurfaceFormat actual = context->format();
+    const bool versionOk = actual.version() >= qMakePair(3, 3) && !context->isOpenGLES();
+    auto* functions = versionOk ? QOpenGLVersionFunctionsFactory::get<GlFunctions>(context) : nullptr;
     if (!functions || !functions->initializeOpenGLFunctions()) {
         m_glStatus = tr("The 3D view needs OpenGL 3.3 core; this system offers %1.%2.")
                          .arg(actual.majorVersion())
@@ -412,25 +557,24 @@ void Viewport::initializeGL()
         errors << m_hair.error();
     if (!m_guides.initialize(m_gl))
         errors << m_guides.error();
+    if (!m_compositor.initialize(m_gl))
+        errors << m_compositor.error();
     m_glStatus = errors.join(QLatin1Char('\n'));
     if (!m_glStatus.isEmpty())
         qWarning("Viewport: %s", qPrintable(m_glStatus));
-    m_glReady = true; // a renderer whose shader failed draws nothing; the others still work
+    // Nothing drawn or uploaded with an earlier context is left.
+    ++m_backdropRevision;
+    m_hudShown.clear();
+    m_gizmoShown.reset();
+    // A renderer whose shader failed draws nothing; the others still work.
     checkGlErrors(m_gl, "Viewport::initializeGL");
-}
-
-void Viewport::resizeGL(int, int)
-{
-    // Until the artist takes the camera, keep the head framed as the window takes its size.
-    if (!m_cameraTouched)
-        m_camera.reset(m_headBounds, aspect());
 }
 
 RenderView Viewport::renderView() const
 {
     RenderView view;
-    const float ratio = static_cast<float>(devicePixelRatio());
-    view.viewportPixels = glm::vec2(std::max(1.0f, width() * ratio), std::max(1.0f, height() * ratio));
+    const QSize pixels = m_canvas.size().expandedTo(QSize(1, 1));
+    view.viewportPixels = glm::vec2(static_cast<float>(pixels.width()), static_cast<float>(pixels.height()));
     view.view = m_camera.view();
     view.projection = m_camera.projection(aspect());
     view.viewProjection = view.projection * view.view;
@@ -500,13 +644,28 @@ void Viewport::updateBrushRings(const RenderView& view)
     m_guides.setBrushRings(buildBrushRings(cursor, band, mirrorBand));
 }
 
-void Viewport::paintGL()
+void Viewport::drawBackdrop(const RenderView& view)
+{
+    GlFunctions* gl = m_gl;
+    gl->glViewport(0, 0, static_cast<GLsizei>(view.viewportPixels.x), static_cast<GLsizei>(view.viewportPixels.y));
+    gl->glDisable(GL_SCISSOR_TEST);
+    gl->glDisable(GL_STENCIL_TEST);
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl->glDepthMask(GL_TRUE);
+    gl->glDepthFunc(GL_LESS);
+    gl->glClearColor(kBackgroundBottom.x, kBackgroundBottom.y, kBackgroundBottom.z, 1.0f);
+    gl->glClearDepth(1.0);
+    gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    m_background.draw(kBackgroundTop, kBackgroundBottom);
+    m_head.draw(view, m_showGrowthOverlay);
+    m_guides.drawWindArrow(view);
+    if (m_showGrid)
+        m_guides.drawGrid(view); // translucent and writing no depth: the hair is drawn over it
+}
+
+void Viewport::paintGL(bool framebuffersRemade)
 {
     measureFrameRate();
-    if (!m_glReady || !m_gl) {
-        paintUnavailable();
-        return;
-    }
     GlFunctions* gl = m_gl;
     QElapsedTimer paintClock;
     paintClock.start();
@@ -521,29 +680,40 @@ void Viewport::paintGL()
         }
     }
 
-    gl->glGetIntegerv(GL_SAMPLES, &m_samples);
+    m_samples = m_canvas.samples() > 1 ? m_canvas.samples() : 0;
     const RenderView view = renderView();
-    gl->glViewport(0, 0, static_cast<GLsizei>(view.viewportPixels.x), static_cast<GLsizei>(view.viewportPixels.y));
-    // QPainter leaves its state behind from the previous paint: set everything relied on.
-    gl->glDisable(GL_SCISSOR_TEST);
-    gl->glDisable(GL_STENCIL_TEST);
-    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    gl->glDepthMask(GL_TRUE);
-    gl->glDepthFunc(GL_LESS);
-    gl->glClearColor(kBackgroundBottom.x, kBackgroundBottom.y, kBackgroundBottom.z, 1.0f);
-    gl->glClearDepth(1.0);
-    gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
-    m_background.draw(kBackgroundTop, kBackgroundBottom);
-    m_head.draw(view, m_showGrowthOverlay);
+    // The background, the head, the wind arrow and the grid change only with the camera, the head
+    // and its overlay, the wind and the grid's switch, but cost a good part of a software
+    // rasteriser's frame: they are drawn into the backdrop once, and every frame starts from a copy
+    // of it (colour and depth). While they change every frame (the camera orbits, a brush paints
+    // the overlay), they are drawn straight into the frame; the backdrop is made once they hold.
+    const BackdropKey key{ view.view, view.projection, m_canvas.size(), m_backdropRevision };
+    if (framebuffersRemade)
+        m_backdropKey.reset();
+    const bool settled = m_lastBackdropKey == key;
+    m_lastBackdropKey = key;
+    if (m_backdropKey != key) {
+        m_backdropKey.reset();
+        if (settled) {
+            m_canvas.bindBackdrop();
+            drawBackdrop(view);
+            m_backdropKey = key;
+        }
+    }
+    if (m_backdropKey) {
+        m_canvas.copyBackdropToFrame();
+    } else {
+        m_canvas.bindFrame();
+        drawBackdrop(view);
+    }
+    gl->glViewport(0, 0, static_cast<GLsizei>(view.viewportPixels.x), static_cast<GLsizei>(view.viewportPixels.y));
+
     const bool refining = m_refining;
     m_refining = false;
     const bool preview = m_levelOfDetail && !refining && m_detail.previewing();
     const float fraction = preview ? m_detail.fraction(m_hair.strandCount()) : 1.0f;
     m_hair.draw(view, m_hairStyle, fraction, preview);
-    m_guides.drawWindArrow(view);
-    if (m_showGrid)
-        m_guides.drawGrid(view);
     // Last: its hidden parts are drawn over everything.
     updateBrushRings(view);
     if (m_brushCursor)
@@ -552,7 +722,7 @@ void Viewport::paintGL()
     checkGlErrors(gl, "Viewport::paintGL");
 
     // A software rasteriser works when flushed: finish here so the time is the paint's real cost
-    // (the compositor would wait for it anyway). On a graphics card this would only stall the
+    // (presenting would wait for it anyway). On a graphics card this would only stall the
     // pipeline, and there the detail never needs to drop.
     if (m_softwareGl)
         gl->glFinish();
@@ -565,10 +735,27 @@ void Viewport::paintGL()
     if (preview)
         m_refineTimer.start();
 
-    QPainter painter(this);
-    const double gizmoSize = 76.0;
-    drawAxisGizmo(painter, QRectF(8.0, height() - gizmoSize - 8.0, gizmoSize, gizmoSize), view.view);
-    drawHud(painter, hudText());
+    updateOverlays(view);
+}
+
+void Viewport::updateOverlays(const RenderView& view)
+{
+    // Painted again only when what they show changes: the text, the camera's turn, the size.
+    const QSize pixels = m_canvas.size();
+    const double ratio = frameRatio();
+    const QString hud = hudText();
+    if (hud != m_hudShown || ratio != m_overlayRatio) {
+        m_hudShown = hud;
+        m_compositor.setOverlay(FrameCompositor::Slot::Hud, paintHudImage(hud, ratio), QPoint(0, 0));
+    }
+    const glm::mat3 turn(view.view);
+    if (!m_gizmoShown || *m_gizmoShown != turn || ratio != m_overlayRatio || pixels.height() != m_gizmoTargetHeight) {
+        m_gizmoShown = turn;
+        m_gizmoTargetHeight = pixels.height();
+        const QImage gizmo = paintGizmoImage(view.view, ratio);
+        m_compositor.setOverlay(FrameCompositor::Slot::Gizmo, gizmo, QPoint(0, pixels.height() - gizmo.height()));
+    }
+    m_overlayRatio = ratio;
 }
 
 } // namespace wisp

@@ -15,11 +15,19 @@
 // OpenGL 3.3 core with 4x MSAA, asked of this widget only (the application's default format is
 // left alone). Without such a context the viewport paints an explanation instead of crashing.
 //
+// It draws into a native child window (ViewportWindow, in a window container that fills this
+// widget), not as a QOpenGLWidget: Qt composes a QOpenGLWidget's window with OpenGL for every frame,
+// which on a software rasteriser cost as much as a third of each frame in the editor's window. The
+// API is a widget's all the same: input reaching the child window is sent on to this widget (its
+// event filters see it), update() and repaint() draw a frame, grabFramebuffer() reads one.
+//
 // Thread: GUI, every member function.
 
 #include "sim/Frame.h"
 #include "sim/TriangleMesh.h"
 #include "widgets/BackgroundRenderer.h"
+#include "widgets/FrameCompositor.h"
+#include "widgets/GlCanvas.h"
 #include "widgets/GlSupport.h"
 #include "widgets/GuideRenderer.h"
 #include "widgets/HairDetail.h"
@@ -27,20 +35,26 @@
 #include "widgets/HeadRenderer.h"
 #include "widgets/OrbitCamera.h"
 
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <QColor>
 #include <QElapsedTimer>
-#include <QOpenGLWidget>
+#include <QImage>
 #include <QPointF>
 #include <QTimer>
+#include <QWidget>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 namespace wisp {
+
+class ViewportWindow;
 
 // A ray in world space, metres: from the camera's eye through a point of the view.
 struct ViewRay {
@@ -48,11 +62,15 @@ struct ViewRay {
     glm::vec3 direction{ 0.0f, 0.0f, -1.0f }; // unit
 };
 
-class Viewport : public QOpenGLWidget {
+class Viewport : public QWidget {
     Q_OBJECT
 public:
     explicit Viewport(QWidget* parent = nullptr);
     ~Viewport() override; // makes the context current and frees the GL objects
+
+    // Draws a frame of the current state (without showing it) and returns its pixels, device
+    // pixels, opaque; null when there is no usable GL.
+    QImage grabFramebuffer();
 
     // Copies the head; uploads it on the next paint. Until the artist moves the camera, the view
     // follows the head (start-up 3/4 view, framed).
@@ -123,9 +141,9 @@ signals:
     void fpsChanged(double framesPerSecond);
 
 protected:
-    void initializeGL() override;
-    void resizeGL(int width, int height) override;
-    void paintGL() override;
+    bool event(QEvent* event) override;
+    void paintEvent(QPaintEvent* event) override; // update(), repaint(): a frame, drawn now
+    void resizeEvent(QResizeEvent* event) override;
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
@@ -134,7 +152,28 @@ protected:
 
 private:
     enum class Drag { None, Orbit, Pan, Dolly };
+    // What the backdrop (background, head, wind arrow and grid; see paintGL) was drawn for.
+    struct BackdropKey {
+        glm::mat4 view{ 1.0f };
+        glm::mat4 projection{ 1.0f };
+        QSize pixels;
+        std::uint64_t revision = 0; // m_backdropRevision
+        bool operator==(const BackdropKey&) const = default;
+    };
 
+    // Frames: scheduleFrame() asks for one at the next turn of the event loop (many asks, one
+    // frame); presentFrame() draws one and shows it in the window; drawFrame() only draws it.
+    void scheduleFrame();
+    void presentFrame();
+    bool drawFrame();
+    bool makeCurrent();
+    QSize framePixels() const;
+    double frameRatio() const; // device pixels per logical pixel, of the frame
+    void initializeGL();
+    void paintGL(bool framebuffersRemade);
+    void drawBackdrop(const RenderView& view);
+    void updateOverlays(const RenderView& view);
+    void glUnavailable(const QString& why);
     void releaseGl();
     RenderView renderView() const;
     float aspect() const;
@@ -161,8 +200,22 @@ private:
     float m_mirrorBandMetres = 0.0f;
     bool m_showGrowthOverlay = true;
 
+    ViewportWindow* m_window = nullptr; // owned by m_container
+    QWidget* m_container = nullptr;
+    GlCanvas m_canvas;
+    FrameCompositor m_compositor;
+    // Counts changes of the head, its overlay, the wind, the grid's switch and the context.
+    std::uint64_t m_backdropRevision = 0;
+    std::optional<BackdropKey> m_backdropKey; // what the backdrop holds; none: nothing usable
+    std::optional<BackdropKey> m_lastBackdropKey; // what the last frame's backdrop was to show
+    QString m_hudShown; // what the compositor's overlays show
+    std::optional<glm::mat3> m_gizmoShown;
+    int m_gizmoTargetHeight = 0;
+    double m_overlayRatio = 0.0;
+    QTimer m_frameTimer; // a frame at the next turn of the event loop
+    int m_requestedSamples = 4;
     GlFunctions* m_gl = nullptr;
-    bool m_glReady = false;
+    bool m_glFailed = false; // no usable context: the widget paints m_glStatus instead
     QString m_glStatus;
     int m_samples = 0;
     BackgroundRenderer m_background;

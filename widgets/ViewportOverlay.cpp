@@ -34,15 +34,38 @@ QString composeHudText(const Frame* frame, double framesPerSecond, double drawnF
     return text;
 }
 
+namespace {
+
+QFont hudFont()
+{
+    QFont font = QFontDatabase::systemFont(QFontDatabase::FixedFont);
+    font.setPointSizeF(std::max(font.pointSizeF(), 9.0));
+    return font;
+}
+
+QRectF hudPanel(const QFont& font, const QString& text)
+{
+    const QFontMetricsF metrics(font);
+    const QPointF origin(10.0, 8.0);
+    return QRectF(origin, QSizeF(metrics.horizontalAdvance(text) + 12.0, metrics.height() + 6.0));
+}
+
+QImage transparentImage(QSizeF logical, double ratio)
+{
+    QImage image((logical * ratio).toSize().expandedTo(QSize(1, 1)), QImage::Format_RGBA8888_Premultiplied);
+    image.setDevicePixelRatio(ratio);
+    image.fill(Qt::transparent);
+    return image;
+}
+
+} // namespace
+
 void drawHud(QPainter& painter, const QString& text)
 {
     painter.save();
-    QFont font = QFontDatabase::systemFont(QFontDatabase::FixedFont);
-    font.setPointSizeF(std::max(font.pointSizeF(), 9.0));
+    const QFont font = hudFont();
     painter.setFont(font);
-    const QFontMetricsF metrics(font);
-    const QPointF origin(10.0, 8.0);
-    const QRectF panel(origin, QSizeF(metrics.horizontalAdvance(text) + 12.0, metrics.height() + 6.0));
+    const QRectF panel = hudPanel(font, text);
     painter.setRenderHint(QPainter::Antialiasing, true);
     painter.setPen(Qt::NoPen);
     painter.setBrush(QColor(0, 0, 0, 110));
@@ -95,6 +118,25 @@ void drawAxisGizmo(QPainter& painter, const QRectF& area, const glm::mat4& view)
         painter.drawText(QRectF(end.x() - 7.0, end.y() - 7.0, 14.0, 14.0), Qt::AlignCenter, QString(axis.label));
     }
     painter.restore();
+}
+
+QImage paintHudImage(const QString& text, double ratio)
+{
+    const QRectF panel = hudPanel(hudFont(), text);
+    QImage image = transparentImage(QSizeF(std::ceil(panel.right()) + 1.0, std::ceil(panel.bottom()) + 1.0), ratio);
+    QPainter painter(&image);
+    drawHud(painter, text);
+    return image;
+}
+
+QImage paintGizmoImage(const glm::mat4& view, double ratio)
+{
+    const double size = kGizmoImageSize;
+    QImage image = transparentImage(QSizeF(size, size), ratio);
+    QPainter painter(&image);
+    const double margin = 8.0;
+    drawAxisGizmo(painter, QRectF(margin, margin, size - 2.0 * margin, size - 2.0 * margin), view);
+    return image;
 }
 
 } // namespace wisp

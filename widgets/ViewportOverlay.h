@@ -1,5 +1,6 @@
 #pragma once
-// What the viewport paints over its GL content with QPainter: the heads-up line and the axis gizmo.
+// What the viewport shows over its 3D content: the heads-up line and the axis gizmo, painted with
+// QPainter (into images, which FrameCompositor draws over each frame).
 //
 // Thread: GUI.
 
@@ -7,6 +8,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <QImage>
 #include <QRectF>
 #include <QString>
 
@@ -26,5 +28,12 @@ void drawHud(QPainter& painter, const QString& text);
 // World X (red), Y (green) and Z (blue) as the camera sees them, in `area` (logical pixels).
 // Axes pointing away from the viewer are drawn first and dimmer.
 void drawAxisGizmo(QPainter& painter, const QRectF& area, const glm::mat4& view);
+
+// The same as images, transparent around what they show, `ratio` device pixels per logical pixel.
+// The heads-up line's image belongs at the view's top-left corner; the gizmo's (kGizmoImageSize
+// logical pixels square) at its bottom-left corner.
+QImage paintHudImage(const QString& text, double ratio);
+QImage paintGizmoImage(const glm::mat4& view, double ratio);
+constexpr int kGizmoImageSize = 92;
 
 } // namespace wisp

@@ -1,0 +1,137 @@
+#include "widgets/FrameCompositor.h"
+
+#include <algorithm>
+
+namespace wisp {
+
+FrameCompositor::~FrameCompositor() = default;
+
+bool FrameCompositor::initialize(GlFunctions* gl)
+{
+    m_gl = gl;
+    m_composite = loadShaderProgram(QStringLiteral("composite"), &m_error);
+    m_overlay = m_composite ? loadShaderProgram(QStringLiteral("overlay"), &m_error) : nullptr;
+    if (!m_composite || !m_overlay) {
+        m_composite.reset();
+        return false;
+    }
+    gl->glGenVertexArrays(1, &m_vao);
+    m_composite->bind();
+    m_composite->setUniformValue("u_frame", 0);
+    m_composite->setUniformValue("u_frameSingle", 1);
+    m_overlay->bind();
+    m_overlay->setUniformValue("u_image", 0);
+    m_overlay->release();
+    for (Overlay& overlay : m_overlays) {
+        gl->glGenTextures(1, &overlay.texture);
+        gl->glBindTexture(GL_TEXTURE_2D, overlay.texture);
+        // Drawn pixel for pixel: nearest keeps the text as QPainter antialiased it.
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        overlay.size = QSize();
+    }
+    gl->glBindTexture(GL_TEXTURE_2D, 0);
+    checkGlErrors(gl, "FrameCompositor::initialize");
+    return true;
+}
+
+void FrameCompositor::release()
+{
+    if (!m_gl)
+        return;
+    for (Overlay& overlay : m_overlays) {
+        m_gl->glDeleteTextures(1, &overlay.texture);
+        overlay = Overlay{};
+    }
+    m_gl->glDeleteVertexArrays(1, &m_vao);
+    m_vao = 0;
+    m_composite.reset();
+    m_overlay.reset();
+    m_gl = nullptr;
+}
+
+void FrameCompositor::setOverlay(Slot slot, const QImage& image, QPoint topLeftPixels)
+{
+    if (!m_composite)
+        return;
+    Overlay& overlay = m_overlays[static_cast<std::size_t>(slot)];
+    overlay.topLeft = topLeftPixels;
+    if (image.isNull()) {
+        overlay.size = QSize();
+        return;
+    }
+    const QImage pixels = image.convertToFormat(QImage::Format_RGBA8888_Premultiplied);
+    GlFunctions* gl = m_gl;
+    gl->glBindTexture(GL_TEXTURE_2D, overlay.texture);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4); // RGBA rows are whole 32-bit words
+    if (pixels.size() == overlay.size) {
+        gl->glTexSubImage2D(
+            GL_TEXTURE_2D, 0, 0, 0, pixels.width(), pixels.height(), GL_RGBA, GL_UNSIGNED_BYTE, pixels.constBits());
+    } else {
+        gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, pixels.width(), pixels.height(), 0, GL_RGBA, GL_UNSIGNED_BYTE,
+            pixels.constBits());
+        overlay.size = pixels.size();
+    }
+    gl->glBindTexture(GL_TEXTURE_2D, 0);
+    checkGlErrors(gl, "FrameCompositor::setOverlay");
+}
+
+void FrameCompositor::drawRect(QRect rect, QSize pixels, QOpenGLShaderProgram& program)
+{
+    // Not clipped here (GL clips): an overlay's image keeps its scale where it overhangs.
+    if ((rect & QRect(QPoint(0, 0), pixels)).isEmpty())
+        return;
+    const float w = static_cast<float>(pixels.width());
+    const float h = static_cast<float>(pixels.height());
+    const glm::vec4 clip{ 2.0f * static_cast<float>(rect.x()) / w - 1.0f,
+        2.0f * static_cast<float>(rect.y()) / h - 1.0f, 2.0f * static_cast<float>(rect.x() + rect.width()) / w - 1.0f,
+        2.0f * static_cast<float>(rect.y() + rect.height()) / h - 1.0f };
+    setUniform(program, "u_rect", clip);
+    m_gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+}
+
+void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels)
+{
+    if (!m_composite || pixels.isEmpty())
+        return;
+    GlFunctions* gl = m_gl;
+    gl->glViewport(0, 0, pixels.width(), pixels.height());
+    gl->glDisable(GL_DEPTH_TEST);
+    gl->glDisable(GL_CULL_FACE);
+    gl->glDisable(GL_BLEND);
+    gl->glDisable(GL_SCISSOR_TEST);
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl->glBindVertexArray(m_vao);
+
+    // The frame, resolved: every pixel of the target.
+    m_composite->bind();
+    setUniform(*m_composite, "u_samples", std::max(samples, 0));
+    const GLenum kind = samples > 0 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    gl->glActiveTexture(samples > 0 ? GL_TEXTURE0 : GL_TEXTURE1);
+    gl->glBindTexture(kind, frameTexture);
+    drawRect(QRect(QPoint(0, 0), pixels), pixels, *m_composite);
+    gl->glBindTexture(kind, 0);
+    gl->glActiveTexture(GL_TEXTURE0);
+
+    // The overlays over it, placed from the top left as QPainter painted them.
+    gl->glEnable(GL_BLEND);
+    gl->glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA); // premultiplied
+    m_overlay->bind();
+    for (const Overlay& overlay : m_overlays) {
+        if (overlay.size.isEmpty())
+            continue;
+        const QRect rect(
+            QPoint(overlay.topLeft.x(), pixels.height() - overlay.topLeft.y() - overlay.size.height()), overlay.size);
+        gl->glBindTexture(GL_TEXTURE_2D, overlay.texture);
+        drawRect(rect, pixels, *m_overlay);
+    }
+    gl->glBindTexture(GL_TEXTURE_2D, 0);
+    m_overlay->release();
+    gl->glDisable(GL_BLEND);
+    gl->glBindVertexArray(0);
+    checkGlErrors(gl, "FrameCompositor::draw");
+}
+
+} // namespace wisp

@@ -1,0 +1,67 @@
+#pragma once
+// Finishes a frame in the bound target (the window's back buffer, or GlCanvas's grab framebuffer):
+// resolves the multisampled scene into it, then draws the overlay images over it (the heads-up
+// line and the axis gizmo, painted by ViewportOverlay with QPainter's raster engine).
+//
+// Why not QPainter's OpenGL engine over the frame, as before: it tessellated and drew the text and
+// the gizmo anew every frame (and left GL_MULTISAMPLE off behind it, so every frame after the
+// first was drawn without anti-aliasing), and glBlitFramebuffer's resolve on a software rasteriser
+// costs several times this one pass. The overlay images are uploaded only when they change.
+//
+// Thread: GUI, with the viewport's context current (every member function).
+
+#include "widgets/GlSupport.h"
+
+#include <QImage>
+#include <QOpenGLShaderProgram>
+#include <QPoint>
+#include <QRect>
+#include <QSize>
+#include <QString>
+
+#include <array>
+#include <memory>
+
+namespace wisp {
+
+class FrameCompositor {
+public:
+    enum class Slot { Hud, Gizmo };
+
+    FrameCompositor() = default;
+    ~FrameCompositor(); // GL objects must already be released
+    FrameCompositor(const FrameCompositor&) = delete;
+    FrameCompositor& operator=(const FrameCompositor&) = delete;
+
+    // False (and why, in error()) when the shaders do not build; draw() then does nothing.
+    bool initialize(GlFunctions* gl);
+    void release();
+    QString error() const { return m_error; }
+
+    // What `slot` shows from now on: `image` (premultiplied alpha, device pixels) with its top-left
+    // corner at `topLeftPixels` from the target's top-left. A null image hides the slot.
+    void setOverlay(Slot slot, const QImage& image, QPoint topLeftPixels);
+    // Resolves `frameTexture` (GL_TEXTURE_2D_MULTISAMPLE with `samples` samples, or GL_TEXTURE_2D
+    // when `samples` is 0; `pixels` big) into the bound framebuffer, which must be as big, then
+    // draws the overlays over it.
+    void draw(GLuint frameTexture, int samples, QSize pixels);
+
+private:
+    // A rectangle of the target (pixels, origin at the bottom left as GL counts them).
+    void drawRect(QRect rect, QSize pixels, QOpenGLShaderProgram& program);
+
+    struct Overlay {
+        GLuint texture = 0;
+        QSize size; // device pixels; empty: hidden
+        QPoint topLeft;
+    };
+
+    GlFunctions* m_gl = nullptr;
+    std::unique_ptr<QOpenGLShaderProgram> m_composite;
+    std::unique_ptr<QOpenGLShaderProgram> m_overlay;
+    GLuint m_vao = 0; // none of the passes reads vertex attributes, but core profile needs one bound
+    std::array<Overlay, 2> m_overlays{};
+    QString m_error;
+};
+
+} // namespace wisp

@@ -489,21 +489,13 @@ public:
         return 0.0;
     }
 
-    // Only called for integer types (the header check guarantees it).
+    // Only called for integer types (the header check guarantees it); every PLY integer type fits a
+    // double exactly, so one reader serves both.
     std::int64_t integer(PlyType type)
     {
-        const char* p = take(plyTypeSize(type));
-        switch (type) {
-        case PlyType::Int8: return loadScalar<std::int8_t>(p, m_swap);
-        case PlyType::UInt8: return loadScalar<std::uint8_t>(p, m_swap);
-        case PlyType::Int16: return loadScalar<std::int16_t>(p, m_swap);
-        case PlyType::UInt16: return loadScalar<std::uint16_t>(p, m_swap);
-        case PlyType::Int32: return loadScalar<std::int32_t>(p, m_swap);
-        case PlyType::UInt32: return loadScalar<std::uint32_t>(p, m_swap);
-        case PlyType::Float32:
-        case PlyType::Float64: break;
-        }
-        fail(location(), "internal error: integer read from a floating-point property");
+        if (type == PlyType::Float32 || type == PlyType::Float64)
+            fail(location(), "internal error: integer read from a floating-point property");
+        return static_cast<std::int64_t>(number(type));
     }
 
     void skip(PlyType type) { take(plyTypeSize(type)); }

@@ -112,10 +112,7 @@ class HairFiles : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir = fs::temp_directory_path() / ("wisp-hairfiles-" + std::to_string(::getpid()) + "-" + info->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
+        dir = wisp::test::freshTestFolder("wisp-hairfiles");
     }
     void TearDown() override { fs::remove_all(dir); }
 

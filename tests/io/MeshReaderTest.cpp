@@ -218,10 +218,7 @@ class MeshReaderFiles : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        m_dir = fs::temp_directory_path() / ("wisp_mesh_reader_" + std::to_string(::getpid()) + "_" + info->name());
-        fs::remove_all(m_dir);
-        fs::create_directories(m_dir);
+        m_dir = wisp::test::freshTestFolder("wisp_mesh_reader");
     }
     void TearDown() override { fs::remove_all(m_dir); }
 

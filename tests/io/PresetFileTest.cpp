@@ -2,6 +2,7 @@
 // older version loads, a newer one is refused; every kind of bad value is refused with its key path
 // and the value as written; hostile files are refused quickly instead of hanging the editor.
 
+#include "IoTestSupport.h"
 #include "io/PresetFile.h"
 
 #include <gtest/gtest.h>
@@ -29,11 +30,7 @@ class PresetFileTest : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-        m_dir = fs::temp_directory_path() /
-                ("wisp-preset-" + std::to_string(::getpid()) + "-" + std::string(test->name()));
-        fs::remove_all(m_dir);
-        fs::create_directories(m_dir);
+        m_dir = wisp::test::freshTestFolder("wisp-preset");
     }
     void TearDown() override { fs::remove_all(m_dir); }
 

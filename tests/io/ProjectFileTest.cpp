@@ -2,6 +2,7 @@
 // project file; saving keeps the previous file as .bak and never leaves half a file; damaged and
 // inconsistent files are refused with the key path, never a crash.
 
+#include "IoTestSupport.h"
 #include "io/Base64.h"
 #include "io/MeshReader.h"
 #include "io/ProjectFile.h"
@@ -169,11 +170,7 @@ class ProjectFileTest : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-        m_dir = fs::temp_directory_path() /
-                ("wisp-project-" + std::to_string(::getpid()) + "-" + std::string(test->name()));
-        fs::remove_all(m_dir);
-        fs::create_directories(m_dir);
+        m_dir = wisp::test::freshTestFolder("wisp-project");
     }
     void TearDown() override { fs::remove_all(m_dir); }
 

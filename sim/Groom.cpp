@@ -253,7 +253,8 @@ std::vector<std::vector<std::uint32_t>> membersOfWisps(const Groom& groom)
 }
 
 void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::uint32_t> members,
-                      std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out);
+                      std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out,
+                      float wetClump = 0.0f);
 
 // Everything of a groom the layout of its pores cannot tell: what the head looks like there and
 // the rest shapes. Rest shapes of wisps equal to one of `previous` (same region, site, members and
@@ -265,7 +266,13 @@ struct RestContext {
     const SignedDistanceField* collider;
     // Rest shapes that are given, not built (imported strands), by strand index.
     const std::unordered_map<std::uint32_t, std::vector<glm::vec3>>* givenRest = nullptr;
+    const StyleEdits* style = nullptr;  // salon edits by strand identity
 };
+
+std::uint64_t styleHashOf(const Groom& groom, std::size_t strand)
+{
+    return strand < groom.styleHash.size() ? groom.styleHash[strand] : 0;
+}
 
 std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* previous)
 {
@@ -311,6 +318,7 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
             return -1;
         for (std::size_t m = 0; m < now.size(); ++m)
             if (groom.rootIds[now[m]] != previous->rootIds[before[m]] ||
+                styleHashOf(groom, now[m]) != styleHashOf(*previous, before[m]) ||
                 (groom.keyStrand[w] == now[m]) != (previous->keyStrand[pw] == before[m]))
                 return -1;
         return pw;
@@ -328,9 +336,28 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
             continue;
         }
         const std::uint32_t k = groom.keyStrand[w];
+        const StrandStyle* style = nullptr;
+        if (context.style && styleHashOf(groom, k) != 0)
+            if (const auto found = context.style->find(groom.strandIdentity(k)); found != context.style->end())
+                style = &found->second;
+        if (style && style->shape.size() >= 2) {  // combed: the comb's shape is the rest shape
+            const std::vector<glm::vec3> shape = resampleByArcLength(style->shape, points);
+            if (!shape.empty()) {
+                std::span<glm::vec3> key = groom.rest.strandForWrite(k);
+                std::copy(shape.begin(), shape.end(), key.begin());
+                key[0] = groom.rootPositions[k];
+                buildWispMembers(groom, w, members[w], key, glm::mat3(1.0f), groom.rest);
+                continue;
+            }
+        }
         if (context.givenRest) {
             if (const auto given = context.givenRest->find(k); given != context.givenRest->end()) {
-                std::copy(given->second.begin(), given->second.end(), groom.rest.strandForWrite(k).begin());
+                std::vector<glm::vec3> rest = given->second;
+                if (style && style->lengthMetres > 0.0f)  // an imported strand cut or grown
+                    rest = resampleByArcLength(shapeWithLength(rest, style->lengthMetres), points);
+                if (rest.size() != points)
+                    rest = given->second;
+                std::copy(rest.begin(), rest.end(), groom.rest.strandForWrite(k).begin());
                 continue;  // an imported strand is a wisp of its own
             }
         }
@@ -338,8 +365,11 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
         const glm::vec3 n = normalAt(context.head, context.normals, groom.roots[k]);
         const float phase = glm::two_pi<float>() * randomUnit(s.seed, CurlPhase, groom.rootIds[k]);
         std::span<glm::vec3> key = groom.rest.strandForWrite(k);
-        buildKeyRest(groom.rootPositions[k], n, context.partX, groom.lengths[k], s.segments, s.curlRadiusMetres,
-                     s.curlTurnsPerMetre, phase, s.hairOffsetMetres, context.collider, key);
+        // A perm gives the key hair (and so its wisp) its own curl.
+        const float curlRadius = style && style->curlRadiusMetres >= 0.0f ? style->curlRadiusMetres : s.curlRadiusMetres;
+        const float curlTurns = style && style->curlTurnsPerMetre >= 0.0f ? style->curlTurnsPerMetre : s.curlTurnsPerMetre;
+        buildKeyRest(groom.rootPositions[k], n, context.partX, groom.lengths[k], s.segments, curlRadius, curlTurns, phase,
+                     s.hairOffsetMetres, context.collider, key);
         buildWispMembers(groom, w, members[w], key, glm::mat3(1.0f), groom.rest);
     }
     return reused;
@@ -463,6 +493,26 @@ void growImported(Groom& groom, const MeshBvh& bvh, const HairCurves& strands, c
     }
 }
 
+// Salon edits that change a strand's length (cut, grow, shrink, comb) and the hash by which a
+// rebuild tells an edited strand's rest shape from the one it had.
+void applyStyleLengths(Groom& groom, const StyleEdits* style)
+{
+    groom.styleHash.assign(groom.strandCount(), 0);
+    if (!style || style->empty())
+        return;
+    for (std::size_t i = 0; i < groom.strandCount(); ++i) {
+        const auto found = style->find(groom.strandIdentity(i));
+        if (found == style->end())
+            continue;
+        const StrandStyle& s = found->second;
+        groom.styleHash[i] = restShapeHash(s);
+        if (s.shape.size() >= 2)
+            groom.lengths[i] = strandLength(s.shape);
+        else if (s.lengthMetres > 0.0f)
+            groom.lengths[i] = s.lengthMetres;
+    }
+}
+
 // A region's seed: the shared seed, mixed with the region's identity so regions do not repeat
 // each other's pores (region 0 keeps the shared seed).
 std::uint32_t regionSeed(std::uint32_t seed, std::uint32_t regionId)
@@ -537,7 +587,7 @@ void GroomBuilder::forgetHead() { *m_cache = Cache{}; }
 
 GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomRegionInput> regions,
                                 const GroomSettings& shared, const SignedDistanceField* collider, const Groom* previous,
-                                const MeshBvh* bvh)
+                                const MeshBvh* bvh, const StyleEdits* style)
 {
     m_reused = m_built = 0;
     Cache& cache = *m_cache;
@@ -610,7 +660,8 @@ GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomR
     cache.layouts = std::move(used);  // keep the layouts in use, drop the rest
     if (regions.size() == 1)
         groom.settings = groom.regionSettings.front();
-    m_reused = buildRest(groom, {head, cache.normals, cache.partX, collider, &givenRest}, previous);
+    applyStyleLengths(groom, style);
+    m_reused = buildRest(groom, {head, cache.normals, cache.partX, collider, &givenRest, style}, previous);
     m_built = groom.wispCount() - m_reused;
     return result;
 }
@@ -736,12 +787,13 @@ HairCurves keyRestCurves(const Groom& groom)
 }
 
 void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, const glm::mat3& headRotation,
-                  HairCurves& out)
+                  HairCurves& out, std::span<const float> wetClumpOfWisp)
 {
     const std::size_t points = static_cast<std::size_t>(groom.settings.segments) + 1;
     const std::vector<std::vector<std::uint32_t>> members = membersOfWisps(groom);
     for (std::size_t w = 0; w < groom.wispCount(); ++w)
-        buildWispMembers(groom, w, members[w], keyPositions.subspan(w * points, points), headRotation, out);
+        buildWispMembers(groom, w, members[w], keyPositions.subspan(w * points, points), headRotation, out,
+                         w < wetClumpOfWisp.size() ? wetClumpOfWisp[w] : 0.0f);
 }
 
 namespace {
@@ -749,9 +801,12 @@ namespace {
 // Writes wisp w's key (from `key`) and its members into `out` (Lee et al.: members follow their key
 // hair, clumping toward it by clump-degree from clump-rate on).
 void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::uint32_t> members,
-                      std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out)
+                      std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out, float wetClump)
 {
     const GroomSettings& s = groom.settingsOfWisp(w);
+    // Wet hair clumps: the clump degree moves toward 1 and clumping starts nearer the root.
+    const float clumpDegree = s.clumpDegree + (1.0f - s.clumpDegree) * wetClump;
+    const float clumpRate = s.clumpRate * (1.0f - wetClump);
     const std::size_t points = key.size();
     const std::uint32_t k = groom.keyStrand[w];
     std::span<glm::vec3> keyOut = out.strandForWrite(k);
@@ -797,7 +852,7 @@ void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::ui
                 onKey = glm::mix(key[j0], key[j0 + 1], t);
                 frame = t < 0.5f ? transport[j0] : transport[j0 + 1];
             }
-            dst[j] = onKey + (1.0f - clumpAt(u, s.clumpDegree, s.clumpRate)) * (frame * rootOffset);
+            dst[j] = onKey + (1.0f - clumpAt(u, clumpDegree, clumpRate)) * (frame * rootOffset);
         }
     }
 }

@@ -6,6 +6,7 @@
 
 #include "sim/HairCurves.h"
 #include "sim/Parameters.h"
+#include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
 
 #include <glm/mat3x3.hpp>
@@ -60,6 +61,7 @@ struct Groom {
     std::vector<float> lengths;          // metres
     std::vector<std::uint32_t> wispOf;
     std::vector<std::uint16_t> regionOfStrand;  // index into the per-region vectors below
+    std::vector<std::uint64_t> styleHash;       // restShapeHash of the strand's salon edit (0: none)
     HairCurves rest;  // rest shape of every strand, head space (members built from their key hair)
     // Per wisp:
     std::vector<std::uint32_t> keyStrand;  // the strand that is the wisp's key hair
@@ -108,9 +110,11 @@ public:
     GroomBuilder& operator=(GroomBuilder&&) noexcept;
 
     // `bvh` (of `head`) is needed only by regions of imported strands, to root them on the head.
+    // `style` (salon edits by strand identity) overrides lengths and curl and gives rest shapes
+    // (comb): a combed strand's rest shape is its edit's shape, resampled.
     GroomResult build(const TriangleMesh& head, std::span<const GroomRegionInput> regions, const GroomSettings& shared,
                       const SignedDistanceField* collider, const Groom* previous = nullptr,
-                      const MeshBvh* bvh = nullptr);
+                      const MeshBvh* bvh = nullptr, const StyleEdits* style = nullptr);
     // Drops everything kept for the head (call when the head changes).
     void forgetHead();
     // Wisps whose rest shapes the last build copied from `previous`, and built anew.
@@ -138,8 +142,10 @@ GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int wid
 // members follow). `keyPositions` holds the key strands' points, wisp after wisp, each with the same
 // point count as in groom.rest; `headRotation` turns head-space root offsets into world space.
 // `out` must have the layout of groom.rest; keys are copied, members written.
+// `wetClumpOfWisp` (per wisp, 0..1, empty for none) pulls each wisp's clump degree toward 1 by
+// that share: wet hair sticks together.
 void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, const glm::mat3& headRotation,
-                  HairCurves& out);
+                  HairCurves& out, std::span<const float> wetClumpOfWisp = {});
 
 // The key strands' rest shapes, wisp after wisp (the layout buildMembers reads).
 HairCurves keyRestCurves(const Groom& groom);

@@ -1,11 +1,15 @@
 #include "sim/HairSimulation.h"
 
 #include "sim/MeshBvh.h"
+#include "sim/RestShapeSolve.h"
 #include "sim/SignedDistanceField.h"
 #include "sim/SolverSettings.h"
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
+#include <algorithm>
+#include <cstring>
 #include <unordered_map>
 
 namespace wisp {
@@ -37,27 +41,241 @@ std::string HairSimulation::start(Groom groom, const ParameterValues& values)
     SolverSettings settings = solverSettingsFrom(values);
     if (std::string error = validateSolverSettings(settings); !error.empty())
         return error;
-    m_allStrands = values.get(Param::SimulateAllStrands) != 0.0;
-    const HairCurves simulated = m_allStrands ? groom.rest : keyRestCurves(groom);
+    const bool allStrands = values.get(Param::SimulateAllStrands) != 0.0;
+    HairCurves simulated = allStrands ? groom.rest : keyRestCurves(groom);
+    saveWetness();
+    m_allStrands = allStrands;
+    solveCombedRest(groom, values, simulated);
     if (std::string error = m_solver.setStrands(simulated); !error.empty())
         return error;
     m_solver.setSettings(settings);
     m_solver.setCollider(m_sdf);
     m_groom = std::move(groom);
+    m_dryingHalfLife = values.getFloat(Param::DryingTime);
+    m_simulatedOf.clear();
+    const std::size_t count = m_solver.strandCount();
+    for (std::size_t i = 0; i < count; ++i)
+        m_simulatedOf.emplace(m_groom.strandIdentity(m_allStrands ? i : m_groom.keyStrand[i]), static_cast<std::uint32_t>(i));
+    restoreWetness();
+    m_airInSolver = false;
     return setStrandStiffness(m_groom);
+}
+
+const StrandStyle* HairSimulation::styleOf(std::size_t strand) const
+{
+    if (!m_style || m_style->empty())
+        return nullptr;
+    const auto found = m_style->find(m_groom.strandIdentity(strand));
+    return found == m_style->end() ? nullptr : &found->second;
 }
 
 std::string HairSimulation::setStrandStiffness(const Groom& groom)
 {
+    m_baseStiffness.clear();
+    m_baseStiffness.reserve(m_solver.strandCount());
+    const std::size_t count = m_allStrands ? groom.strandCount() : groom.wispCount();
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t strand = m_allStrands ? i : groom.keyStrand[i];
+        const StrandStyle* style = styleOf(strand);
+        m_baseStiffness.push_back(groom.regionStiffnessScale[groom.regionOfStrand[strand]] *
+                                  (style ? style->stiffnessScale : 1.0f));
+    }
+    if (std::string error = m_solver.setStiffnessScales(m_baseStiffness); !error.empty())
+        return error;
+    m_wetnessInSolver.assign(count, 0.0f);
+    updateMaterial(true);
+    return {};
+}
+
+// The combed strands' rest shapes, solved so that they sag onto the comb (RestShapeSolve.h).
+// Solutions are kept by identity and reused while the comb, the stiffness and gravity stay.
+void HairSimulation::solveCombedRest(const Groom& groom, const ParameterValues& values, HairCurves& simulated)
+{
+    m_worstRestGap = 0.0f;
+    if (!m_style || m_style->empty())
+        return;
+    const SolverSettings settings = solverSettingsFrom(values);
+    HairCurves targets;
     std::vector<float> scales;
-    scales.reserve(m_solver.strandCount());
-    if (m_allStrands)
-        for (std::size_t i = 0; i < groom.strandCount(); ++i)
-            scales.push_back(groom.regionStiffnessScale[groom.regionOfStrand[i]]);
-    else
-        for (std::uint32_t k : groom.keyStrand)
-            scales.push_back(groom.regionStiffnessScale[groom.regionOfStrand[k]]);
-    return m_solver.setStiffnessScales(scales);
+    std::vector<std::pair<std::size_t, std::uint64_t>> solving;  // simulated strand, cache key
+    std::unordered_map<std::uint64_t, SolvedRest> used;
+    for (std::size_t i = 0; i < simulated.strandCount(); ++i) {
+        const std::size_t strand = m_allStrands ? i : groom.keyStrand[i];
+        const auto found = m_style->find(groom.strandIdentity(strand));
+        if (found == m_style->end() || found->second.shape.size() < 2)
+            continue;
+        const std::uint64_t identity = found->first;
+        const std::span<const glm::vec3> target = simulated.strand(i);
+        const float scale = groom.regionStiffnessScale[groom.regionOfStrand[strand]] * found->second.stiffnessScale;
+        std::uint64_t key = 1469598103934665603ull;
+        auto mix = [&key](const void* data, std::size_t size) {
+            const auto* b = static_cast<const unsigned char*>(data);
+            for (std::size_t k = 0; k < size; ++k)
+                key = (key ^ b[k]) * 1099511628211ull;
+        };
+        mix(target.data(), target.size_bytes());
+        mix(&scale, sizeof scale);
+        mix(&settings.stiffness, sizeof settings.stiffness);
+        mix(&settings.gravity, sizeof settings.gravity);
+        mix(&settings.substeps, sizeof settings.substeps);
+        mix(&settings.timeStepSeconds, sizeof settings.timeStepSeconds);
+        if (const auto cached = m_restCache.find(identity);
+            cached != m_restCache.end() && cached->second.key == key && cached->second.rest.size() == target.size()) {
+            std::copy(cached->second.rest.begin(), cached->second.rest.end(), simulated.strandForWrite(i).begin());
+            used.emplace(identity, std::move(cached->second));
+            continue;
+        }
+        const std::size_t t = targets.addStrand(static_cast<std::uint32_t>(target.size()));
+        std::copy(target.begin(), target.end(), targets.strandForWrite(t).begin());
+        scales.push_back(scale);
+        solving.emplace_back(i, key);
+    }
+    if (!solving.empty()) {
+        const RestShapeSolution solution = solveRestShapes(targets, scales, settings, m_sdf);
+        m_worstRestGap = solution.worstGapMetres;
+        for (std::size_t t = 0; t < solving.size(); ++t) {
+            const auto [i, key] = solving[t];
+            const std::span<const glm::vec3> rest = solution.rest.strand(t);
+            std::copy(rest.begin(), rest.end(), simulated.strandForWrite(i).begin());
+            const std::size_t strand = m_allStrands ? i : groom.keyStrand[i];
+            used[groom.strandIdentity(strand)] = SolvedRest{key, {rest.begin(), rest.end()}};
+        }
+    }
+    m_restCache = std::move(used);
+}
+
+void HairSimulation::setStyle(StyleEditsPtr style)
+{
+    saveWetness();
+    auto applied = [](const StyleEditsPtr& edits, std::uint64_t id) {
+        if (!edits)
+            return 0.0f;
+        const auto found = edits->find(id);
+        return found == edits->end() ? 0.0f : found->second.wetness;
+    };
+    auto setLive = [this](std::uint64_t id, float wetness) {
+        if (wetness > 0.0f)
+            m_liveWetness[id] = wetness;
+        else
+            m_liveWetness.erase(id);
+    };
+    if (style)
+        for (const auto& [id, s] : *style)
+            if (s.wetness != applied(m_style, id))
+                setLive(id, s.wetness);
+    if (m_style)
+        for (const auto& [id, s] : *m_style)
+            if (s.wetness != applied(style, id))
+                setLive(id, applied(style, id));
+    m_style = std::move(style);
+    restoreWetness();
+    if (m_wetnessInSolver.size() == m_solver.strandCount())
+        updateMaterial(false);
+}
+
+void HairSimulation::saveWetness()
+{
+    if (m_wetness.size() != m_groom.wispCount())
+        return;
+    for (std::size_t w = 0; w < m_wetness.size(); ++w) {
+        const std::uint64_t id = m_groom.strandIdentity(m_groom.keyStrand[w]);
+        if (m_wetness[w] > 0.0f)
+            m_liveWetness[id] = m_wetness[w];
+        else
+            m_liveWetness.erase(id);
+    }
+}
+
+void HairSimulation::restoreWetness()
+{
+    m_wetness.assign(m_groom.wispCount(), 0.0f);
+    if (m_liveWetness.empty())
+        return;
+    for (std::size_t w = 0; w < m_wetness.size(); ++w)
+        if (const auto found = m_liveWetness.find(m_groom.strandIdentity(m_groom.keyStrand[w]));
+            found != m_liveWetness.end())
+            m_wetness[w] = found->second;
+}
+
+bool HairSimulation::anyWet() const
+{
+    return std::any_of(m_wetness.begin(), m_wetness.end(), [](float w) { return w > 0.0f; });
+}
+
+void HairSimulation::strandWetness(std::vector<float>& out) const
+{
+    out.resize(m_groom.strandCount());
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = m_wetness.empty() ? 0.0f : m_wetness[m_groom.wispOf[i]];
+}
+
+// Wet hair's material in the solver: softer (stiffness) where its wetness moved by more than a
+// little since the solver was last told, so a slow drying costs a few updates a second, not one
+// per step.
+void HairSimulation::updateMaterial(bool force)
+{
+    const std::size_t count = m_solver.strandCount();
+    if (m_baseStiffness.size() != count || m_wetnessInSolver.size() != count)
+        return;
+    bool changed = force;
+    for (std::size_t s = 0; s < count && !changed; ++s) {
+        const float w = m_wetness.empty() ? 0.0f : m_wetness[wispOfSimulated(s)];
+        changed = std::abs(w - m_wetnessInSolver[s]) > 0.02f || (w == 0.0f) != (m_wetnessInSolver[s] == 0.0f);
+    }
+    if (!changed)
+        return;
+    std::vector<float> scales(count);
+    for (std::size_t s = 0; s < count; ++s) {
+        const float w = m_wetness.empty() ? 0.0f : m_wetness[wispOfSimulated(s)];
+        m_wetnessInSolver[s] = w;
+        scales[s] = m_baseStiffness[s] * wetStiffnessFactor(w);
+    }
+    m_solver.setStiffnessScales(scales);
+}
+
+bool HairSimulation::holdStrand(std::uint64_t identity, std::span<const glm::vec3> positions)
+{
+    const auto found = m_simulatedOf.find(identity);
+    return found != m_simulatedOf.end() && m_solver.setStrandState(found->second, positions, positions);
+}
+
+void HairSimulation::step()
+{
+    const bool wet = anyWet();
+    if (m_dryer || wet || m_airInSolver) {
+        const std::size_t count = m_solver.strandCount();
+        const float dt = m_solver.settings().timeStepSeconds;
+        std::vector<glm::vec3> air;
+        if (m_dryer) {
+            // The air a strand feels: the mean over three points along it (a third, two thirds, the tip).
+            std::vector<glm::vec3> positions;
+            m_solver.copyPositions(positions);
+            const std::size_t points = count > 0 ? positions.size() / count : 0;
+            air.resize(count);
+            for (std::size_t s = 0; s < count && points >= 2; ++s) {
+                const glm::vec3* p = positions.data() + s * points;
+                air[s] = (dryerAirAt(*m_dryer, p[points / 3]) + dryerAirAt(*m_dryer, p[2 * points / 3]) +
+                          dryerAirAt(*m_dryer, p[points - 1])) / 3.0f;
+            }
+        }
+        for (std::size_t w = 0; w < m_wetness.size(); ++w) {
+            if (m_wetness[w] <= 0.0f)
+                continue;
+            const std::size_t key = m_allStrands ? m_groom.keyStrand[w] : w;
+            const float speed = air.empty() ? 0.0f : glm::length(air[key]);
+            m_wetness[w] = std::max(0.0f, m_wetness[w] + dryingRate(m_wetness[w], speed, m_dryingHalfLife) * dt);
+        }
+        std::vector<float> drag;
+        if (wet) {
+            drag.resize(count);
+            for (std::size_t s = 0; s < count; ++s)
+                drag[s] = wetDragFactor(m_wetness[wispOfSimulated(s)]);
+        }
+        m_solver.setStrandAir(drag, air);
+        m_airInSolver = m_dryer.has_value() || wet;
+        updateMaterial(false);
+    }
+    m_solver.step();
 }
 
 std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
@@ -73,7 +291,8 @@ std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& region
                           r->importedStrands.get()});
         looks.push_back({r->rootColour, r->tipColour});
     }
-    GroomResult result = m_builder.build(m_head, inputs, groomSettingsFrom(values), m_sdf.get(), previous, m_bvh.get());
+    GroomResult result =
+        m_builder.build(m_head, inputs, groomSettingsFrom(values), m_sdf.get(), previous, m_bvh.get(), m_style.get());
     if (!result.ok())
         return result.error;
     out = std::move(result.groom);
@@ -177,7 +396,10 @@ std::string HairSimulation::setupGrid(const TriangleMesh& head, int width, int h
 
 std::string HairSimulation::applyForces(const ParameterValues& values)
 {
-    return m_solver.setSettings(solverSettingsFrom(values));
+    if (std::string error = m_solver.setSettings(solverSettingsFrom(values)); !error.empty())
+        return error;
+    m_dryingHalfLife = values.getFloat(Param::DryingTime);
+    return {};
 }
 
 void HairSimulation::buildFrame(HairCurves& out) const
@@ -190,7 +412,13 @@ void HairSimulation::buildFrame(HairCurves& out) const
     std::vector<glm::vec3> keys;
     m_solver.copyPositions(keys);
     out.positions.resize(m_groom.rest.positions.size());
-    buildMembers(m_groom, keys, glm::mat3(1.0f), out);
+    std::vector<float> wetClump;
+    if (anyWet()) {
+        wetClump.resize(m_wetness.size());
+        for (std::size_t w = 0; w < m_wetness.size(); ++w)
+            wetClump[w] = wetClumping(m_wetness[w]);
+    }
+    buildMembers(m_groom, keys, glm::mat3(1.0f), out, wetClump);
 }
 
 }  // namespace wisp

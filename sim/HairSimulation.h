@@ -8,12 +8,16 @@
 #include "sim/Frame.h"
 #include "sim/Groom.h"
 #include "sim/GrowthRegion.h"
+#include "sim/HairDryer.h"
 #include "sim/Parameters.h"
 #include "sim/Solver.h"
+#include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
 
 #include <memory>
+#include <optional>
 #include <span>
+#include <unordered_map>
 #include <string>
 #include <vector>
 
@@ -51,10 +55,31 @@ public:
     // Forces and solver parameters only; takes effect at the next step.
     std::string applyForces(const ParameterValues& values);
 
-    void step() { m_solver.step(); }
+    // --- Salon edits (StyleEdits.h) --------------------------------------------------------------
+    // The artist's edits by strand identity; used by the next setup or regroom (call one after).
+    // Strands whose applied wetness differs from the edits before become that wet now; the others
+    // keep drying where they are.
+    void setStyle(StyleEditsPtr style);
+    const StyleEditsPtr& style() const { return m_style; }
+    // The blow-dryer while the artist holds it; nullopt when put down. Applies from the next step.
+    void setDryer(std::optional<HairDryer> dryer) { m_dryer = dryer; }
+    // Still-air drying half-life, seconds (the drying_time parameter; applyForces sets it).
+    float dryingHalfLifeSeconds() const { return m_dryingHalfLife; }
+    // Live wetness 0..1 of each wisp (groom order), and of each drawn strand (its wisp's).
+    const std::vector<float>& wispWetness() const { return m_wetness; }
+    bool anyWet() const;
+    void strandWetness(std::vector<float>& out) const;
+    // Holds a simulated strand (by identity) at `positions` (world), at rest: the comb while it
+    // drags. False when no simulated strand has that identity or the point count differs.
+    bool holdStrand(std::uint64_t identity, std::span<const glm::vec3> positions);
+    // Combed strands whose solved rest shape still misses the comb, and by how much (metres).
+    float worstRestGapMetres() const { return m_worstRestGap; }
+
+    // Dries, blows (the dryer) and updates what wetness changes, then advances one step.
+    void step();
     void resetToRest() { m_solver.resetToRest(); }
 
-    // Every drawn strand in world space, in the groom's strand order.
+    // Every drawn strand in world space, in the groom's strand order (wet wisps clumped).
     void buildFrame(HairCurves& out) const;
     // Only the simulated strands (keys, or all), world space.
     void copySimulated(std::vector<glm::vec3>& out) const { m_solver.copyPositions(out); }
@@ -76,6 +101,12 @@ private:
     std::string groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values,
                              const Groom* previous, Groom& out, std::vector<StrandLook>& looks);
     std::string setStrandStiffness(const Groom& groom);
+    void solveCombedRest(const Groom& groom, const ParameterValues& values, HairCurves& simulated);
+    const StrandStyle* styleOf(std::size_t strand) const;
+    std::size_t wispOfSimulated(std::size_t s) const { return m_allStrands ? m_groom.wispOf[s] : s; }
+    void saveWetness();      // live per-wisp wetness into m_liveWetness (before the groom changes)
+    void restoreWetness();   // and back, for the new groom's wisps
+    void updateMaterial(bool force);
 
     Solver m_solver;
     TriangleMesh m_head;
@@ -87,6 +118,22 @@ private:
     bool m_allStrands = false;
     std::size_t m_carried = 0;
     std::size_t m_started = 0;
+
+    StyleEditsPtr m_style;
+    std::unordered_map<std::uint64_t, float> m_liveWetness;  // by key-hair identity, nonzero only
+    std::vector<float> m_wetness;                             // per wisp of m_groom
+    std::vector<float> m_baseStiffness;                       // per simulated strand: region x hairspray
+    std::vector<float> m_wetnessInSolver;                     // per simulated strand: as last given to the solver
+    bool m_airInSolver = false;                               // the solver has per-strand air set
+    std::optional<HairDryer> m_dryer;
+    float m_dryingHalfLife = 120.0f;
+    std::unordered_map<std::uint64_t, std::uint32_t> m_simulatedOf;  // identity -> solver strand
+    struct SolvedRest {
+        std::uint64_t key = 0;  // hash of the target and the physics it was solved for
+        std::vector<glm::vec3> rest;
+    };
+    std::unordered_map<std::uint64_t, SolvedRest> m_restCache;  // by identity
+    float m_worstRestGap = 0.0f;
 };
 
 }  // namespace wisp

@@ -50,6 +50,8 @@ constexpr std::array<ParameterInfo, kParamCount> kParameters{{
      "Air drag k of F = -k(v - wind) per unit mass; higher follows the wind more closely"},
     {Damping, "damping", "Damping", "1/s", G::Forces, K::Real, 0.0, 50.0, 1.0,
      "Velocity lost per second to internal friction, v *= exp(-damping dt)"},
+    {DryingTime, "drying_time", "Drying half-life", "s", G::Forces, K::Real, 1.0, 3600.0, 120.0,
+     "Wet hair (wet brush) loses half its water in this time in still air; the blow-dryer dries faster"},
 
     {Stiffness, "stiffness", "Stiffness", "", G::Solver, K::Real, 0.0, 1.0, 0.25,
      "How strongly each segment returns to its rest bend (keeps curls and styles); 0 is limp"},

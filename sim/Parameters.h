@@ -36,6 +36,7 @@ enum class Param : int {
     Turbulence,
     Drag,
     Damping,
+    DryingTime,
     // Hair material and solver
     Stiffness,
     Friction,

@@ -117,6 +117,8 @@ struct Solver::Block {
     std::array<std::int64_t, kLanes> strand{};  // index into the caller's curves, -1 for padding
     Lane strandLength{};                         // rest arc length per lane, metres
     Lane stiffnessScale{};                       // per lane: multiplies the settings' stiffness
+    Lane dragScale{};                            // per lane: multiplies the drag toward the wind (wet hair)
+    Lane windX{}, windY{}, windZ{};              // per lane: wind of its own, m/s world (a hair dryer)
     // Views into the solver's two row arrays: every block's rows follow the previous block's, so
     // a thread streams through memory in one sequential run that the prefetcher can follow.
     std::span<ParticleRow> state;
@@ -283,7 +285,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
         Transformed ? transform(c.previousRotation, rootHead) + splat(c.previousTranslation) : rootHead;
 
     // Wind per strand, with gusts (eq. 1 and 2 of the force-driven hair paper; turbulence is ours).
-    V3 wind = splat(c.wind);
+    V3 wind = splat(c.wind) + V3{block.windX, block.windY, block.windZ};
     const float windSpeed = glm::length(c.wind);
     if (c.turbulence > 0.0f && windSpeed > 0.0f)
         wind = wind + gust(rootEnd, c.time) * splat(c.turbulence * windSpeed);
@@ -292,7 +294,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
     const Lane invWindSpeed2 = splat(1.0f) / select(calm, splat(1.0f), windSpeed2);
 
     const V3 gravityStep = splat(c.gravity * (c.dt * c.dt));
-    const Lane dt2 = splat(c.dt * c.dt), invDt = splat(c.invDt), keep = splat(c.keep), drag = splat(c.drag);
+    const Lane dt2 = splat(c.dt * c.dt), invDt = splat(c.invDt), keep = splat(c.keep);
+    const Lane drag = splat(c.drag) * block.dragScale;
     const Lane velocityCorrection = splat(c.velocityCorrection);
 
     for (int s = 0; s < c.substeps; ++s) {
@@ -506,6 +509,7 @@ std::string Solver::setStrands(const HairCurves& rest)
                 }
                 b.strandLength[l] = total;
                 b.stiffnessScale[l] = 1.0f;
+                b.dragScale[l] = 1.0f;
             }
             particles += count * std::min<std::size_t>(kLanes, strands.size() - first);
             blocks.push_back(std::move(b));
@@ -664,6 +668,31 @@ std::string Solver::setStiffnessScales(std::span<const float> perStrand)
             if (b.strand[l] < 0)
                 b.stiffnessScale[l] = b.stiffnessScale[0];
     m_bendAlphaStale = true;
+    return {};
+}
+
+std::string Solver::setStrandAir(std::span<const float> dragScale, std::span<const glm::vec3> extraWind)
+{
+    if (!dragScale.empty() && dragScale.size() != m_strandCount)
+        return "drag scales: " + std::to_string(dragScale.size()) + " for " + std::to_string(m_strandCount) + " strands";
+    if (!extraWind.empty() && extraWind.size() != m_strandCount)
+        return "strand winds: " + std::to_string(extraWind.size()) + " for " + std::to_string(m_strandCount) + " strands";
+    for (std::size_t i = 0; i < dragScale.size(); ++i)
+        if (!(dragScale[i] >= 0.0f && dragScale[i] <= 1e3f))
+            return "drag scale of strand " + std::to_string(i) + ": " + std::to_string(dragScale[i]) +
+                   " is not a finite number of at least 0";
+    for (std::size_t i = 0; i < extraWind.size(); ++i)
+        if (!(std::abs(extraWind[i].x) <= 1e3f && std::abs(extraWind[i].y) <= 1e3f && std::abs(extraWind[i].z) <= 1e3f))
+            return "wind of strand " + std::to_string(i) + " is not a finite speed below 1000 m/s";
+    for (std::size_t i = 0; i < m_strandCount; ++i) {
+        const Slot slot = m_slotOfStrand[i];
+        Block& b = m_blocks[slot.block];
+        b.dragScale[slot.lane] = dragScale.empty() ? 1.0f : dragScale[i];
+        const glm::vec3 w = extraWind.empty() ? glm::vec3(0.0f) : extraWind[i];
+        b.windX[slot.lane] = w.x;
+        b.windY[slot.lane] = w.y;
+        b.windZ[slot.lane] = w.z;
+    }
     return {};
 }
 

@@ -69,6 +69,11 @@ public:
     // 1 (a region's stiffness scale, hairspray). All 1 after setStrands.
     std::string setStiffnessScales(std::span<const float> perStrand);
 
+    // Per strand: scales the drag toward the wind (wet hair is heavier, so the same air moves it
+    // less) and adds a wind of its own, m/s world space (a hair dryer's cone). An empty span means
+    // 1 and no wind of its own. Both 1 and none after setStrands.
+    std::string setStrandAir(std::span<const float> dragScale, std::span<const glm::vec3> extraWind);
+
     // World-space positions in the layout of the rest curves given to setStrands.
     void copyPositions(std::vector<glm::vec3>& out) const;
     // Positions and previous positions (Verlet's velocity), world space, in that layout.

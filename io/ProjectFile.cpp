@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <bit>
+#include <charconv>
 #include <cmath>
 #include <memory>
 #include <filesystem>
@@ -41,6 +43,7 @@ fs::path resolveAgainst(const fs::path& folder, const std::string& source)
 }
 
 std::string regionPath(std::size_t index) { return "regions[" + std::to_string(index) + "]"; }
+std::string stylePath(std::size_t index) { return "style[" + std::to_string(index) + "]"; }
 
 bool isUnitColour(const glm::vec3& c)
 {
@@ -112,6 +115,16 @@ void checkProject(const Project& project)
         throw Refusal{"camera.distance_metres", "the distance must be a positive number"};
     if (!(camera.fovYDegrees > 0.0f && camera.fovYDegrees < 180.0f))
         throw Refusal{"camera.fov_y_degrees", "the field of view must be between 0 and 180 degrees"};
+
+    // Indexed as the file writes them: entries with nothing changed are left out.
+    std::size_t styleIndex = 0;
+    for (const auto& [identity, style] : project.style) {
+        if (style.isDefault())
+            continue;
+        if (std::string error = validateStrandStyle(identity, style); !error.empty())
+            throw Refusal{stylePath(styleIndex), error};
+        ++styleIndex;
+    }
 }
 
 // ---- reading ----------------------------------------------------------------------------------
@@ -329,6 +342,72 @@ GrowthRegion readRegion(const json& value, std::size_t index, Warnings& warnings
     return region;
 }
 
+std::uint64_t readStrandIdentity(const json& value, const std::string& path)
+{
+    if (!value.is_string())
+        throw Refusal{path, describe(value) + " is not a strand identity (a decimal number in double quotes, such as \"4294967298\")"};
+    const std::string& text = value.get_ref<const std::string&>();
+    std::uint64_t identity = 0;
+    const char* end = text.data() + text.size();
+    const bool digitsOnly = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const auto [stop, error] = std::from_chars(text.data(), end, identity);
+    if (digitsOnly && error == std::errc::result_out_of_range)
+        throw Refusal{path, describe(value) + " is too large for a strand identity (at most 18446744073709551615)"};
+    if (!digitsOnly || error != std::errc() || stop != end)
+        throw Refusal{path, describe(value) + " is not a strand identity (a decimal number)"};
+    return identity;
+}
+
+// One entry of "style"; a missing field keeps StrandStyle's default.
+std::pair<std::uint64_t, StrandStyle> readStyleEntry(const json& value, const std::string& path, Warnings& warnings)
+{
+    requireObject(value, path);
+    warnUnknownKeys(value, path, {"strand", "length", "curl_radius", "curl_turns", "stiffness_scale", "wetness", "shape"},
+                    warnings);
+    const std::uint64_t identity = readStrandIdentity(require(value, path, "strand"), path + ".strand");
+    StrandStyle style;
+    if (const json* length = find(value, "length"))
+        style.lengthMetres = readFloat(*length, path + ".length");
+    if (const json* radius = find(value, "curl_radius"))
+        style.curlRadiusMetres = readFloat(*radius, path + ".curl_radius");
+    if (const json* turns = find(value, "curl_turns"))
+        style.curlTurnsPerMetre = readFloat(*turns, path + ".curl_turns");
+    if (const json* stiffness = find(value, "stiffness_scale"))
+        style.stiffnessScale = readFloat(*stiffness, path + ".stiffness_scale");
+    if (const json* wetness = find(value, "wetness"))
+        style.wetness = readFloat(*wetness, path + ".wetness");
+    if (const json* shape = find(value, "shape")) {
+        const std::string shapePath = path + ".shape";
+        const std::vector<float> xyz = readFloatArray(*shape, shapePath);
+        if (xyz.size() % 3 != 0)
+            throw Refusal{shapePath, std::to_string(xyz.size()) + " numbers are not whole points"};
+        style.shape.resize(xyz.size() / 3);
+        for (std::size_t i = 0; i < style.shape.size(); ++i) {
+            style.shape[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+            if (!std::isfinite(xyz[3 * i]) || !std::isfinite(xyz[3 * i + 1]) || !std::isfinite(xyz[3 * i + 2]))
+                throw Refusal{shapePath, "point " + std::to_string(i) + " is not finite"};
+        }
+    }
+    if (std::string error = validateStrandStyle(identity, style); !error.empty())
+        throw Refusal{path, error};
+    return {identity, std::move(style)};
+}
+
+void readStyle(const json& value, StyleEdits& edits, Warnings& warnings)
+{
+    if (!value.is_array())
+        throw Refusal{"style", "expected a list [ ... ] of strand edits, found " + describe(value)};
+    std::map<std::uint64_t, std::size_t> indexOfIdentity;
+    for (std::size_t i = 0; i < value.size(); ++i) {
+        const std::string path = stylePath(i);
+        auto [identity, style] = readStyleEntry(value[i], path, warnings);
+        if (const auto [it, added] = indexOfIdentity.emplace(identity, i); !added)
+            throw Refusal{path + ".strand", std::to_string(identity) + " is already the strand of " + stylePath(it->second)};
+        if (!style.isDefault())  // nothing changed: not an edit
+            edits.emplace(identity, std::move(style));
+    }
+}
+
 void readCamera(const json& value, CameraState& camera, Warnings& warnings)
 {
     requireObject(value, "camera");
@@ -350,7 +429,7 @@ Project readProjectJson(const json& root, const std::string& projectPath, const 
                         Warnings& warnings)
 {
     checkFormatAndVersion(root, "wisp-project", "project", kProjectVersion, "wisp-preset", "a Wisp preset");
-    warnUnknownKeys(root, "", {"format", "version", "head", "parameters", "regions", "solo_region", "camera"},
+    warnUnknownKeys(root, "", {"format", "version", "head", "parameters", "regions", "solo_region", "camera", "style"},
                     warnings);
     Project project;
     readHead(root, projectPath, projectFolder(projectPath), loadHead, project, warnings);
@@ -376,6 +455,8 @@ Project readProjectJson(const json& root, const std::string& projectPath, const 
         project.soloRegion = static_cast<std::uint32_t>(readWhole(*solo, "solo_region", 0xffffffffu));
     if (const json* camera = find(root, "camera"))
         readCamera(*camera, project.camera, warnings);
+    if (const json* style = find(root, "style"))
+        readStyle(*style, project.style, warnings);
     checkProject(project);
     return project;
 }
@@ -483,6 +564,38 @@ std::string projectToJson(const Project& project, const std::string& projectPath
     camera["distance_metres"] = shortestDoubleForFloat(project.camera.distanceMetres);
     camera["fov_y_degrees"] = shortestDoubleForFloat(project.camera.fovYDegrees);
     root["camera"] = std::move(camera);
+
+    // Only what the artist changed: default entries, and default fields of an entry, are left out.
+    // Compared by bits, so that -0 travels as -0.
+    const StrandStyle unchanged;
+    const auto differs = [](float a, float b) { return std::bit_cast<std::uint32_t>(a) != std::bit_cast<std::uint32_t>(b); };
+    ordered_json style = ordered_json::array();
+    for (const auto& [identity, edit] : project.style) {
+        if (edit.isDefault())
+            continue;
+        ordered_json entry;
+        entry["strand"] = std::to_string(identity);
+        if (differs(edit.lengthMetres, unchanged.lengthMetres))
+            entry["length"] = shortestDoubleForFloat(edit.lengthMetres);
+        if (differs(edit.curlRadiusMetres, unchanged.curlRadiusMetres))
+            entry["curl_radius"] = shortestDoubleForFloat(edit.curlRadiusMetres);
+        if (differs(edit.curlTurnsPerMetre, unchanged.curlTurnsPerMetre))
+            entry["curl_turns"] = shortestDoubleForFloat(edit.curlTurnsPerMetre);
+        if (differs(edit.stiffnessScale, unchanged.stiffnessScale))
+            entry["stiffness_scale"] = shortestDoubleForFloat(edit.stiffnessScale);
+        if (differs(edit.wetness, unchanged.wetness))
+            entry["wetness"] = shortestDoubleForFloat(edit.wetness);
+        if (!edit.shape.empty()) {
+            std::vector<float> xyz;
+            xyz.reserve(edit.shape.size() * 3);
+            for (const glm::vec3& p : edit.shape)
+                xyz.insert(xyz.end(), {p.x, p.y, p.z});
+            entry["shape"] = encodeFloat32Array(xyz);
+        }
+        style.push_back(std::move(entry));
+    }
+    if (!style.empty())
+        root["style"] = std::move(style);
     return dumpPretty(root);
 }
 

@@ -17,7 +17,20 @@
 //                    "tip_colour": [0.45, 0.3, 0.17] } ],
 //     "solo_region": null,                                   // or a region's id
 //     "camera": { "pivot": [0, 1.6, 0], "yaw_radians": 0.5, "pitch_radians": -0.2,
-//                 "distance_metres": 0.8, "fov_y_degrees": 35 } }
+//                 "distance_metres": 0.8, "fov_y_degrees": 35 },
+//     "style": [ { "strand": "4294967298", "length": 0.2, "curl_radius": 0.01, "curl_turns": 6,
+//                  "stiffness_scale": 3, "wetness": 0.5, "shape": "<base64>" } ] }
+//
+// "style" holds the artist's salon edits (sim/StyleEdits.h), one entry per edited strand in
+// identity order; it is left out when there are none, and a missing "style" means no edits (older
+// projects). "strand" is the strand identity (Groom::strandIdentity) as a decimal string, since a
+// 64-bit identity does not fit a JSON number exactly. An entry holds only the fields that differ
+// from StrandStyle's defaults (a missing field reads as the default): "length" (metres; 0 = the
+// region's), "curl_radius" (metres) and "curl_turns" (per metre; negative = the region's),
+// "stiffness_scale" (1..50), "wetness" (0..1) and "shape" (the rest shape under gravity, head space,
+// metres, root first: base64 float32 x y z per point, at least 2 points). Each entry must pass
+// validateStrandStyle; an identity given twice is refused. Entries with nothing changed are not
+// written, and are dropped when read.
 //
 // Binary arrays are base64 (io/Base64.h) of little-endian float32 (positions x y z per vertex,
 // one weight per vertex) or uint32 (three vertex indices per triangle). Floats are written as the
@@ -25,7 +38,7 @@
 // the same double, so a write followed by a read gives bit-identical numbers.
 //
 // Reading validates everything and refuses with the key path, as presets do ("regions[0].weights:
-// 641 weights for a head of 642 vertices"); unknown keys are ignored with a warning. A region's
+// 641 weights for a head of 642 vertices", "style[3]: strand 4294967298: wetness 3 is outside 0..1"); unknown keys are ignored with a warning. A region's
 // `values` holds only its Wisp-group parameters (GrowthRegion.h): the others read as defaults.
 // Writing refuses a project that reading would refuse, so every saved file opens again.
 //
@@ -34,6 +47,7 @@
 #include "io/IoError.h"
 #include "sim/GrowthRegion.h"
 #include "sim/Parameters.h"
+#include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
 
 #include <glm/vec3.hpp>
@@ -82,6 +96,9 @@ struct Project {
     std::vector<GrowthRegion> regions;
     std::uint32_t soloRegion = kNoSolo;  // a region's id, or kNoSolo
     CameraState camera;
+    // The salon edits (cut, comb, perm, hairspray, wet brush) per strand identity; entries must pass
+    // validateStrandStyle. Default entries (isDefault) are not saved.
+    StyleEdits style;
 };
 
 struct ProjectReadResult {

@@ -264,6 +264,8 @@ void HairSimulation::step()
             const std::size_t key = m_allStrands ? m_groom.keyStrand[w] : w;
             const float speed = air.empty() ? 0.0f : glm::length(air[key]);
             m_wetness[w] = std::max(0.0f, m_wetness[w] + dryingRate(m_wetness[w], speed, m_dryingHalfLife) * dt);
+            if (m_wetness[w] < kDryBelow)
+                m_wetness[w] = 0.0f;  // still-air drying never ends on its own
         }
         std::vector<float> drag;
         if (wet) {

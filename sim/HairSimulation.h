@@ -92,6 +92,8 @@ public:
     const Solver& solver() const { return m_solver; }
     bool simulatesAllStrands() const { return m_allStrands; }
 
+    // Hair this little wet is dry (drying in still air is exponential and would never end).
+    static constexpr float kDryBelow = 0.01f;
     // Collider resolution: about this many cells across the head's largest extent.
     static constexpr float kColliderCellsAcross = 96.0f;
 

@@ -3,14 +3,16 @@
 // should stay there rather than sag away once released. So the combed shape is not taken as the
 // rest shape; we solve for the rest shape that, under gravity and the solver's bending, comes to
 // rest at the combed shape (an inverse statics problem, as in Derouet-Jourdan et al., "Inverse
-// Dynamic Hair Modeling with Frictional Contact", 2013, here by fixed-point iteration):
+// Dynamic Hair Modeling with Frictional Contact", 2013).
 //
-//   R_0 = T;  repeat: E_k = where strands of rest shape R_k settle under gravity (the real solver,
-//   damped, no wind);  d(R_{k+1})_j = normalize(d(R_k)_j + d(T)_j - d(E_k)_j)  per segment
-//   direction, lengths kept;  until max |E_k - T| is small.
+// The solver's static equilibrium is solved in closed form, segment by segment (tips first for the
+// DFTL correction forces, then rest directions from the root; see exactRest in the .cpp). Contact
+// with the head is not in that model, so the result is checked by letting the strands settle in a
+// real solver, and refined by fixed-point steps (turn each rest segment by 0.7 of the angle by
+// which the settled segment missed the target); each strand keeps its best rest shape.
 //
 // Hair too soft to hold a shape (a horizontal strand at stiffness 0.05) cannot be held by any rest
-// shape; the iteration then stops at its best and says how far off it is (spray it stiffer).
+// shape; the solve then gives its best and says how far off it is (spray it stiffer).
 
 #include "sim/HairCurves.h"
 #include "sim/SolverSettings.h"
@@ -33,6 +35,6 @@ struct RestShapeSolution {
 // step. Thread: the caller's (single-threaded solver).
 RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const float> stiffnessScales,
                                   const SolverSettings& settings, std::shared_ptr<const SignedDistanceField> collider,
-                                  int maxIterations = 12, float toleranceMetres = 5e-4f);
+                                  int maxIterations = 8, float toleranceMetres = 5e-4f);
 
 }  // namespace wisp

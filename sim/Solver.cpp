@@ -571,6 +571,18 @@ void Solver::resetToRest()
 // removes 1 - (1 - s)^(60 dt (2 cm / h)^2) on a segment of length h: shorter substeps and longer
 // segments get proportionally less, so the look does not change with the time step, the substeps
 // or how finely strands are divided (a segment's sag under its own weight scales with h^2).
+float Solver::bendAlpha(float stiffness, float substepSeconds, float segmentMetres)
+{
+    constexpr float kReferenceSegment = 0.02f;  // metres
+    stiffness = std::min(1.0f, stiffness);
+    if (stiffness <= 0.0f)
+        return 0.0f;
+    if (stiffness >= 1.0f)
+        return 1.0f;
+    const float ratio = kReferenceSegment / segmentMetres;
+    return 1.0f - std::exp(std::log1p(-stiffness) * 60.0f * substepSeconds * ratio * ratio);
+}
+
 void Solver::updateBendAlpha(float substepSeconds)
 {
     const float globalStiffness = m_settings.stiffness;
@@ -578,18 +590,14 @@ void Solver::updateBendAlpha(float substepSeconds)
         return;
     m_bendAlphaFor = {globalStiffness, substepSeconds};
     m_bendAlphaStale = false;
-    constexpr float kReferenceSegment = 0.02f;  // metres
     m_pool->parallelFor(m_blocks.size(), 16, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
             const Block& b = m_blocks[i];
             for (int l = 0; l < kLanes; ++l) {
-                const float stiffness = std::min(1.0f, globalStiffness * b.stiffnessScale[l]);
-                const float logRemaining =
-                    stiffness >= 1.0f ? -INFINITY : std::log1p(-stiffness) * 60.0f * substepSeconds;
+                const float stiffness = globalStiffness * b.stiffnessScale[l];
                 for (std::uint32_t j = 1; j < b.points; ++j) {
                     RestRow& r = b.rest[j];
-                    const float ratio = kReferenceSegment / r.length[l];
-                    r.bendAlpha[l] = stiffness <= 0.0f ? 0.0f : 1.0f - std::exp(logRemaining * ratio * ratio);
+                    r.bendAlpha[l] = bendAlpha(stiffness, substepSeconds, r.length[l]);
                 }
             }
         }

@@ -73,6 +73,9 @@ public:
     // less) and adds a wind of its own, m/s world space (a hair dryer's cone). An empty span means
     // 1 and no wind of its own. Both 1 and none after setStrands.
     std::string setStrandAir(std::span<const float> dragScale, std::span<const glm::vec3> extraWind);
+    // The share of a segment's bend error the solver removes per substep, for stiffness (times the
+    // strand's scale; capped at 1) on a segment `segmentMetres` long (see updateBendAlpha).
+    static float bendAlpha(float stiffness, float substepSeconds, float segmentMetres);
 
     // World-space positions in the layout of the rest curves given to setStrands.
     void copyPositions(std::vector<glm::vec3>& out) const;
@@ -99,6 +102,7 @@ public:
 
 private:
     void updateBendAlpha(float substepSeconds);
+
 
     std::unique_ptr<ThreadPool> m_pool;
     SolverSettings m_settings;

@@ -21,10 +21,13 @@ struct StrandLook {
 
 // The groom behind a frame, shared by every frame of one groom: the rest pose of every drawn
 // strand (head space) and which strands are the simulated key hairs, for exports of the rest pose
-// or of the keys only.
+// or of the keys only, and what the styling brushes need to name strands (StyleEdits.h).
 struct GroomShape {
     HairCurves rest;
-    std::vector<std::uint32_t> keyStrands;  // ascending
+    std::vector<std::uint32_t> keyStrands;  // the simulated strands, ascending
+    std::vector<std::uint64_t> identities;  // per drawn strand: Groom::strandIdentity
+    std::vector<std::uint32_t> wispOf;      // per drawn strand
+    std::vector<std::uint32_t> keyOfWisp;   // per wisp: its key hair
 };
 
 struct Frame {
@@ -40,6 +43,7 @@ struct Frame {
     double timeScale = 1.0;          // simulated seconds per wall-clock second (below 1: slow motion)
     bool fallingBehind = false;      // the solver could not keep real time
     glm::vec3 wind{0.0f};            // m/s, world space (for the viewport's arrow)
+    std::vector<float> wetness;      // per drawn strand, 0..1; empty when all the hair is dry
     std::shared_ptr<const GroomShape> groomShape;
 };
 

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstring>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace wisp {
 
@@ -231,6 +232,18 @@ void HairSimulation::updateMaterial(bool force)
         scales[s] = m_baseStiffness[s] * wetStiffnessFactor(w);
     }
     m_solver.setStiffnessScales(scales);
+}
+
+void HairSimulation::wet(std::span<const std::uint64_t> keyIdentities, float wetness)
+{
+    if (!(wetness > 0.0f) || keyIdentities.empty())
+        return;
+    wetness = std::min(wetness, 1.0f);
+    const std::unordered_set<std::uint64_t> wanted(keyIdentities.begin(), keyIdentities.end());
+    for (std::size_t w = 0; w < m_wetness.size(); ++w)
+        if (wanted.count(m_groom.strandIdentity(m_groom.keyStrand[w])))
+            m_wetness[w] = std::max(m_wetness[w], wetness);
+    updateMaterial(false);
 }
 
 bool HairSimulation::holdStrand(std::uint64_t identity, std::span<const glm::vec3> positions)

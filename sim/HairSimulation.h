@@ -69,6 +69,9 @@ public:
     const std::vector<float>& wispWetness() const { return m_wetness; }
     bool anyWet() const;
     void strandWetness(std::vector<float>& out) const;
+    // The wet brush, live: the wisps whose key hairs have these identities become at least this
+    // wet (0..1) now.
+    void wet(std::span<const std::uint64_t> keyIdentities, float wetness);
     // Holds a simulated strand (by identity) at `positions` (world), at rest: the comb while it
     // drags. False when no simulated strand has that identity or the point count differs.
     bool holdStrand(std::uint64_t identity, std::span<const glm::vec3> positions);

@@ -227,7 +227,21 @@ void Document::replaceHead(TriangleMesh head, std::vector<float> growthWeights, 
     std::vector<GrowthRegion> regions{firstRegion(std::move(growthWeights))};
     auto* command = new ReplaceHeadCommand(this, m_head, m_regions, std::move(head), std::move(regions), name);
     command->setOrigins({m_headSource, m_headPlacement}, {source, placement});
+    if (m_style->empty()) {
+        m_undoStack.push(command);
+        return;
+    }
+    // The salon edits name strands of this head's groom: a new head starts without them (and undo
+    // brings them back with the old head).
+    m_undoStack.beginMacro(command->text());
+    StyleChanges before, after;
+    for (const auto& [id, style] : *m_style) {
+        before[id] = style;
+        after[id] = std::nullopt;
+    }
+    m_undoStack.push(new StyleStrokeCommand(this, std::move(before), std::move(after), command->text(), false));
     m_undoStack.push(command);
+    m_undoStack.endMacro();
 }
 
 void Document::applyPreset(const io::Preset& preset)
@@ -286,6 +300,7 @@ io::Project Document::toProject() const
     p.parameters = m_parameters;
     p.regions = m_regions;
     p.soloRegion = m_soloId;
+    p.style = *m_style;
     return p;
 }
 
@@ -299,11 +314,15 @@ void Document::loadProject(io::Project project)
     m_headPlacement.rotatedUpright = project.headImportZUp;
     m_parameters = project.parameters;
     m_soloId = kNoSolo;
+    m_styleStroke.reset();
+    m_styleBefore.reset();
+    m_style = std::make_shared<const StyleEdits>(std::move(project.style));
     applyHead(std::move(project.head), std::move(project.regions));
     if (project.soloRegion != kNoSolo && indexOfRegion(project.soloRegion) >= 0)
         m_soloId = project.soloRegion;
     emit parametersReplaced();
     emit regionsChanged();
+    emit styleChanged();
     m_undoStack.setClean();
 }
 
@@ -316,7 +335,77 @@ void Document::reset()
     loadProject(std::move(fresh));
 }
 
+// --- Salon edits ---------------------------------------------------------------------------------
+
+void Document::beginStyleStroke()
+{
+    if (m_styleStroke)
+        endStyleStroke(tr("Style"));
+    m_styleBefore = m_style;
+    m_styleStroke = *m_style;
+}
+
+StyleEdits& Document::strokeStyle()
+{
+    if (!m_styleStroke)
+        beginStyleStroke();
+    return *m_styleStroke;
+}
+
+void Document::styleStrokeUpdated()
+{
+    if (!m_styleStroke)
+        return;
+    m_style = std::make_shared<const StyleEdits>(*m_styleStroke);
+    emit styleChanged();
+}
+
+void Document::endStyleStroke(const QString& text)
+{
+    if (!m_styleStroke)
+        return;
+    // Edits that change nothing are dropped, so "no edit" has one form.
+    std::erase_if(*m_styleStroke, [](const auto& entry) { return entry.second.isDefault(); });
+    m_style = std::make_shared<const StyleEdits>(std::move(*m_styleStroke));
+    m_styleStroke.reset();
+    const StyleEdits& before = *m_styleBefore;
+    const StyleEdits& after = *m_style;
+    StyleChanges undo, redo;
+    auto note = [&](std::uint64_t id) {
+        const auto b = before.find(id);
+        const auto a = after.find(id);
+        const std::optional<StrandStyle> was = b == before.end() ? std::nullopt : std::optional(b->second);
+        const std::optional<StrandStyle> now = a == after.end() ? std::nullopt : std::optional(a->second);
+        if (was != now) {
+            undo[id] = was;
+            redo[id] = now;
+        }
+    };
+    for (const auto& entry : before)
+        note(entry.first);
+    for (const auto& entry : after)
+        if (!before.count(entry.first))
+            note(entry.first);
+    m_styleBefore.reset();
+    emit styleChanged();
+    if (!undo.empty())
+        m_undoStack.push(new StyleStrokeCommand(this, std::move(undo), std::move(redo), text, true));
+}
+
 // --- For commands -----------------------------------------------------------------------------
+
+void Document::applyStyleChanges(const StyleChanges& changes)
+{
+    StyleEdits edits = *m_style;
+    for (const auto& [id, style] : changes) {
+        if (style && !style->isDefault())
+            edits[id] = *style;
+        else
+            edits.erase(id);
+    }
+    m_style = std::make_shared<const StyleEdits>(std::move(edits));
+    emit styleChanged();
+}
 
 void Document::applyParameter(Param id, double value)
 {

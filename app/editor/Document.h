@@ -10,6 +10,7 @@
 #include "io/ProjectFile.h"
 #include "sim/GrowthRegion.h"
 #include "sim/Parameters.h"
+#include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
 
 #include <QObject>
@@ -17,6 +18,8 @@
 #include <QUndoStack>
 
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <vector>
 
 namespace wisp {
@@ -70,6 +73,18 @@ public:
     void endStroke(const QString& text);
     bool inStroke() const { return m_strokeRegion >= 0; }
 
+    // --- Salon edits (styling on live hair; sim/StyleEdits.h) -----------------------------------
+    // Per strand: cut length, perm, hairspray, wetness, combed shape. Presets never touch them.
+    const StyleEditsPtr& style() const { return m_style; }
+    // A styling stroke, like a paint stroke: begin, change strokeStyle() and call
+    // styleStrokeUpdated() after each change (the hair follows), end. The whole stroke is one undo
+    // step holding only the strands it changed; a stroke that changed nothing leaves none.
+    void beginStyleStroke();
+    StyleEdits& strokeStyle();
+    void styleStrokeUpdated();  // emits styleChanged
+    void endStyleStroke(const QString& text);
+    bool inStyleStroke() const { return m_styleStroke.has_value(); }
+
     // Replaces the head as one undo step; its regions start over as one region grown where
     // `growthWeights` say. `source` is the file it came from (empty: built in) and `placement`
     // how it was brought to metres, +Y up and centred (io/HeadPlacement.h).
@@ -105,6 +120,9 @@ public:
     void applyHead(TriangleMesh head, std::vector<GrowthRegion> regions);
     void applyHeadOrigin(const QString& source, const io::HeadPlacement& placement);
     void applyLook(const ParameterValues& parameters, std::vector<GrowthRegion> regions);  // presets
+    // Per strand identity, the style it gets (nullopt: no edit).
+    using StyleChanges = std::map<std::uint64_t, std::optional<StrandStyle>>;
+    void applyStyleChanges(const StyleChanges& changes);
     std::uint32_t nextRegionId() const;
 
 signals:
@@ -115,6 +133,7 @@ signals:
     void regionParameterChanged(int index, wisp::Param id);
     void regionWeightsChanged(std::uint32_t regionId);
     void currentRegionChanged(int index);
+    void styleChanged();                         // the salon edits changed
 
 private:
     TriangleMesh m_head;
@@ -126,6 +145,9 @@ private:
     int m_current = -1;
     int m_strokeRegion = -1;
     std::vector<float> m_strokeBefore;
+    StyleEditsPtr m_style = std::make_shared<const StyleEdits>();
+    std::optional<StyleEdits> m_styleStroke;  // the edits being changed by a styling stroke
+    StyleEditsPtr m_styleBefore;              // and as they were when it began
     QUndoStack m_undoStack;
 };
 

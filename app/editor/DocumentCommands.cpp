@@ -105,6 +105,28 @@ void PaintStrokeCommand::redo()
     m_applied = true;
 }
 
+StyleStrokeCommand::StyleStrokeCommand(Document* document, std::map<std::uint64_t, std::optional<StrandStyle>> before,
+                                       std::map<std::uint64_t, std::optional<StrandStyle>> after, const QString& text,
+                                       bool applied)
+    : m_document(document), m_before(std::move(before)), m_after(std::move(after)), m_applied(applied)
+{
+    setText(text);
+}
+
+void StyleStrokeCommand::undo()
+{
+    m_document->applyStyleChanges(m_before);
+    m_applied = false;
+}
+
+void StyleStrokeCommand::redo()
+{
+    if (m_applied)
+        return;
+    m_document->applyStyleChanges(m_after);
+    m_applied = true;
+}
+
 ReplaceHeadCommand::ReplaceHeadCommand(Document* document, TriangleMesh oldHead, std::vector<GrowthRegion> oldRegions,
                                        TriangleMesh newHead, std::vector<GrowthRegion> newRegions, const QString& name)
     : m_document(document), m_oldHead(std::move(oldHead)), m_newHead(std::move(newHead)),

@@ -5,11 +5,14 @@
 #include "io/HeadPlacement.h"
 #include "sim/GrowthRegion.h"
 #include "sim/Parameters.h"
+#include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
 
 #include <QUndoCommand>
 
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <vector>
 
 namespace wisp {
@@ -87,6 +90,21 @@ private:
     std::vector<std::uint32_t> m_vertices;
     std::vector<float> m_before, m_after;
     bool m_applied = true;
+};
+
+// One styling stroke (comb, cut, perm, ...): the strands it changed, before and after. Its first
+// redo is a no-op: the stroke was applied live.
+class StyleStrokeCommand : public QUndoCommand {
+public:
+    StyleStrokeCommand(Document* document, std::map<std::uint64_t, std::optional<StrandStyle>> before,
+                       std::map<std::uint64_t, std::optional<StrandStyle>> after, const QString& text, bool applied);
+    void undo() override;
+    void redo() override;
+
+private:
+    Document* m_document;
+    std::map<std::uint64_t, std::optional<StrandStyle>> m_before, m_after;
+    bool m_applied;
 };
 
 class ReplaceHeadCommand : public QUndoCommand {

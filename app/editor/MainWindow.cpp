@@ -8,6 +8,8 @@
 #include "app/editor/PresetBrowser.h"
 #include "app/editor/RegionPanel.h"
 #include "app/editor/SimulationHost.h"
+#include "app/editor/StylePanel.h"
+#include "app/editor/StyleTool.h"
 #include "app/editor/WispPanel.h"
 #include "io/MeshReader.h"
 #include "sim/GrowthMap.h"
@@ -15,6 +17,7 @@
 #include "widgets/Viewport.h"
 
 #include <QAction>
+#include <QActionGroup>
 #include <QCheckBox>
 #include <QApplication>
 #include <QCloseEvent>
@@ -64,13 +67,15 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent)
     m_viewport->setHead(m_document->head());
     setCentralWidget(m_viewport);
     m_paintTool = new PaintTool(m_document, m_viewport, this);
+    m_styleTool = new StyleTool(m_document, m_viewport, m_simulation, m_paintTool, this);
+    m_stylePanel = new StylePanel(m_styleTool);
 
     createActions();
     createDocks();
     connectSimulation();
     restoreSettings();
     statusBar()->showMessage(tr("Space plays or pauses · Alt+drag or middle-drag orbits · Shift+middle-drag pans · "
-                                "wheel zooms · F frames the head · B paints where hair grows"));
+                                "wheel zooms · F frames the head · B paints where hair grows · C X G P W S D style the hair"));
     showGrowthOverlay();
     m_simulation->setScene(m_document->head(), m_document->regions(), m_document->soloRegion(), m_document->parameters());
     m_simulation->play();
@@ -118,6 +123,15 @@ void MainWindow::createActions()
     m_paintAction->setToolTip(tr("Paint where the current region's hair grows (B)"));
     connect(m_paintAction, &QAction::toggled, m_paintTool, &PaintTool::setActive);
     connect(m_paintTool, &PaintTool::activeChanged, m_paintAction, &QAction::setChecked);
+    // One tool at a time: painting growth or one of the salon brushes (or none: the camera only).
+    auto* toolGroup = new QActionGroup(this);
+    toolGroup->setExclusionPolicy(QActionGroup::ExclusionPolicy::ExclusiveOptional);
+    toolGroup->addAction(m_paintAction);
+    toolsMenu->addSeparator();
+    for (const auto& [brush, action] : m_stylePanel->brushActions()) {
+        toolGroup->addAction(action);
+        toolsMenu->addAction(action);
+    }
     m_overlayAction = m_viewMenu->addAction(tr("Show Growth &Weights"));
     m_overlayAction->setCheckable(true);
     m_overlayAction->setChecked(true);
@@ -153,6 +167,11 @@ void MainWindow::createActions()
     tools->addAction(frame);
     tools->addAction(m_paintAction);
     m_viewMenu->addAction(tools->toggleViewAction());
+    QToolBar* styling = addToolBar(tr("Styling"));
+    styling->setObjectName(QStringLiteral("stylingToolBar"));
+    for (const auto& [brush, action] : m_stylePanel->brushActions())
+        styling->addAction(action);
+    m_viewMenu->addAction(styling->toggleViewAction());
 }
 
 QDockWidget* MainWindow::addPanelDock(const QString& title, const QString& objectName, QWidget* panel,
@@ -184,13 +203,21 @@ void MainWindow::createDocks()
     QDockWidget* regions = addPanelDock(tr("Regions"), QStringLiteral("regionsDock"), m_regionPanel, Qt::LeftDockWidgetArea);
     QDockWidget* wisp = addPanelDock(tr("Wisp"), QStringLiteral("wispDock"), m_wispPanel, Qt::LeftDockWidgetArea);
     QDockWidget* brush = addPanelDock(tr("Brush"), QStringLiteral("brushDock"), m_brushPanel, Qt::LeftDockWidgetArea);
+    QDockWidget* styling = addPanelDock(tr("Styling"), QStringLiteral("stylingDock"), m_stylePanel, Qt::LeftDockWidgetArea);
     QDockWidget* presets = addPanelDock(tr("Presets"), QStringLiteral("presetsDock"), m_presetBrowser, Qt::RightDockWidgetArea);
     tabifyDockWidget(groom, presets);
     forces->raise();
     connect(m_presetBrowser, &PresetBrowser::message, this, [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     splitDockWidget(regions, wisp, Qt::Vertical);
     tabifyDockWidget(wisp, brush);
+    tabifyDockWidget(brush, styling);
     wisp->raise();
+    connect(m_styleTool, &StyleTool::message, this, [this](const QString& text) { statusBar()->showMessage(text, 5000); });
+    // A styling tool picked: its panel and the brush settings it shares come forward.
+    connect(m_styleTool, &StyleTool::brushChanged, this, [styling](std::optional<StyleBrush> b) {
+        if (b)
+            styling->raise();
+    });
     connect(m_brushPanel, &BrushPanel::showOverlayToggled, m_overlayAction, &QAction::setChecked);
     connect(m_overlayAction, &QAction::toggled, m_brushPanel->overlayBox(), &QCheckBox::setChecked);
 
@@ -235,6 +262,8 @@ void MainWindow::createDocks()
     connect(m_document, &Document::regionParameterChanged, this, regionsEdited);
     connect(m_document, &Document::regionWeightsChanged, this, regionsEdited);
     connect(m_document, &Document::currentRegionChanged, this, &MainWindow::showGrowthOverlay);
+    // Salon edits (and their undo) restyle the running hair.
+    connect(m_document, &Document::styleChanged, this, [this] { m_simulation->setStyle(m_document->style()); });
 }
 
 void MainWindow::showGrowthOverlay()

@@ -21,6 +21,8 @@ class PresetBrowser;
 class RegionPanel;
 class WispPanel;
 class SimulationHost;
+class StylePanel;
+class StyleTool;
 class Viewport;
 
 class MainWindow : public QMainWindow {
@@ -40,6 +42,8 @@ public:
     QAction* paintAction() const { return m_paintAction; }
     QAction* overlayAction() const { return m_overlayAction; }
     PaintTool* paintTool() const { return m_paintTool; }
+    StyleTool* styleTool() const { return m_styleTool; }
+    StylePanel* stylePanel() const { return m_stylePanel; }
     RegionPanel* regionPanel() const { return m_regionPanel; }
     WispPanel* wispPanel() const { return m_wispPanel; }
     BrushPanel* brushPanel() const { return m_brushPanel; }
@@ -69,6 +73,8 @@ private:
     ParameterPanel* m_groomPanel = nullptr;
     QUndoView* m_history = nullptr;
     PaintTool* m_paintTool = nullptr;
+    StyleTool* m_styleTool = nullptr;
+    StylePanel* m_stylePanel = nullptr;
     RegionPanel* m_regionPanel = nullptr;
     WispPanel* m_wispPanel = nullptr;
     BrushPanel* m_brushPanel = nullptr;

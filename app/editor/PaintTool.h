@@ -39,6 +39,14 @@ public:
     const BrushSettings& settings() const { return m_settings; }
     float mirrorPlaneX() const { return m_brush ? m_brush->mirrorPlaneX() : 0.0f; }
 
+    // Where the cursor's ray meets the head (the styling tools use it too).
+    struct Hit {
+        glm::vec3 point;
+        glm::vec3 normal;  // unit, facing the camera
+    };
+    std::optional<Hit> hitAt(QPointF widgetPosition) const;
+    const MeshBvh& headBvh() const { return *m_bvh; }
+
     // Brush limits, metres.
     static constexpr float kMinRadius = 0.001f;
     static constexpr float kMaxRadius = 0.2f;
@@ -59,12 +67,7 @@ protected:
     bool eventFilter(QObject* watched, QEvent* event) override;
 
 private:
-    struct Hit {
-        glm::vec3 point;
-        glm::vec3 normal;
-    };
     void rebuildForHead();
-    std::optional<Hit> hitAt(QPointF widgetPosition) const;
     BrushMode modeFor(Qt::KeyboardModifiers modifiers) const;
     void updateCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifiers);
     void dabAlong(const Hit& to, Qt::KeyboardModifiers modifiers);

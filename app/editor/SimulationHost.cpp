@@ -50,6 +50,21 @@ public:
         Inbox taken;
         while (takeRequests(taken)) {
             // A groom takes a while: a host being destroyed meanwhile should not wait for one more.
+            // A new style is kept for every later scene; the running hair regrooms with it unless a
+            // new scene or new regions are about to regroom anyway.
+            if (taken.style) {
+                m_style = std::move(*taken.style);
+                if (m_sim) {
+                    m_sim->setStyle(m_style);
+                    if (!taken.scene && !taken.regions && !stopRequested())
+                        restyle();
+                }
+            }
+            if (taken.dryer) {
+                m_dryer = *taken.dryer;
+                if (m_sim)
+                    m_sim->setDryer(m_dryer);
+            }
             if (taken.scene && !stopRequested())
                 adoptScene(std::move(*taken.scene));
             if (taken.regions && !stopRequested())
@@ -60,6 +75,17 @@ public:
                 m_playing = taken.playing;
                 if (m_playing)
                     m_pacer.restart(now());
+            }
+            if (m_sim && !taken.wettings.empty()) {
+                for (const Wetting& wetting : taken.wettings)
+                    m_sim->wet(wetting.keyIdentities, wetting.wetness);
+                if (!m_playing)
+                    m_host.publish(makeFrame());
+            }
+            if (taken.held) {
+                m_held = std::move(*taken.held);
+                if (m_sim && applyHeld() && !m_playing)
+                    m_host.publish(makeFrame());
             }
             for (Action action : taken.actions) {
                 if (action == Action::Step)
@@ -84,11 +110,15 @@ private:
         taken.parameters.reset();
         taken.regions.reset();
         taken.actions.clear();
+        taken.style.reset();
+        taken.dryer.reset();
+        taken.held.reset();
+        taken.wettings.clear();
         std::unique_lock lock(m_host.m_mutex);
         Inbox& inbox = m_host.m_inbox;
         const auto ready = [&] {
             return inbox.stopping || inbox.scene || inbox.parameters || inbox.regions || !inbox.actions.empty() ||
-                   inbox.playing != m_playing;
+                   inbox.style || inbox.dryer || inbox.held || !inbox.wettings.empty() || inbox.playing != m_playing;
         };
         if (m_playing && m_sim) {
             const auto due = m_epoch + std::chrono::duration_cast<Clock::duration>(
@@ -103,6 +133,10 @@ private:
         taken.parameters = std::exchange(inbox.parameters, std::nullopt);
         taken.regions = std::exchange(inbox.regions, std::nullopt);
         taken.actions.swap(inbox.actions);
+        taken.style = std::exchange(inbox.style, std::nullopt);
+        taken.dryer = std::exchange(inbox.dryer, std::nullopt);
+        taken.held = std::exchange(inbox.held, std::nullopt);
+        taken.wettings.swap(inbox.wettings);
         taken.playing = inbox.playing;
         return true;
     }
@@ -118,6 +152,8 @@ private:
     void adoptScene(Scene scene)
     {
         auto next = std::make_unique<HairSimulation>(m_host.m_solverThreads);
+        next->setStyle(m_style);
+        next->setDryer(m_dryer);
         const Regions& r = scene.regions;
         std::string error;
         try {
@@ -147,6 +183,22 @@ private:
             return;
         }
         m_regions = std::move(regions);
+    }
+
+    // Thread: simulation. The running hair with new salon edits (already given to m_sim).
+    void restyle()
+    {
+        if (std::string error = regroom(m_regions, m_values); !error.empty())
+            m_host.postError(error);
+    }
+
+    // Thread: simulation. Puts the comb's strands where it holds them; true if any is held.
+    bool applyHeld()
+    {
+        bool any = false;
+        for (const HeldStrand& h : m_held)
+            any = m_sim->holdStrand(h.identity, h.positions) || any;
+        return any;
     }
 
     // Thread: simulation. New parameters: regroom if the groom's own parameters changed, otherwise
@@ -206,6 +258,12 @@ private:
             for (std::uint32_t i = 0; i < m_sim->groom().strandCount(); ++i)
                 shape->keyStrands.push_back(i);
         std::sort(shape->keyStrands.begin(), shape->keyStrands.end());
+        const Groom& groom = m_sim->groom();
+        shape->identities.resize(groom.strandCount());
+        for (std::size_t i = 0; i < groom.strandCount(); ++i)
+            shape->identities[i] = groom.strandIdentity(i);
+        shape->wispOf = groom.wispOf;
+        shape->keyOfWisp = groom.keyStrand;
         m_groomShape = std::move(shape);
         m_pacer.setRequestedSubsteps(values.getInt(Param::Substeps));
         m_sim->applyForces(withSubsteps(values, m_pacer.substeps()));
@@ -224,6 +282,7 @@ private:
             return;
         const double start = now();
         m_sim->step();
+        applyHeld();
         const double solverSeconds = now() - start;
         const double timeStep = m_sim->solver().settings().timeStepSeconds;
         ++m_step;
@@ -269,6 +328,8 @@ private:
         frame->simulatedStrands = m_sim->solver().strandCount();
         frame->simulatedParticles = m_sim->solver().particleCount();
         frame->wind = solverSettingsFrom(m_values).wind;
+        if (m_sim->anyWet())
+            m_sim->strandWetness(frame->wetness);
         frame->fallingBehind = m_pacer.substeps() < m_pacer.requestedSubsteps();
         return frame;
     }
@@ -288,6 +349,9 @@ private:
     ParameterValues m_values;               // what the running solver was given (as requested)
     ParameterValues m_groomedWith;          // what m_sim's groom was built from
     std::optional<ParameterValues> m_refusedGroom;
+    StyleEditsPtr m_style;                  // the artist's salon edits, for every groom
+    std::optional<HairDryer> m_dryer;
+    std::vector<HeldStrand> m_held;         // the comb's strands while it drags
     SimulationHostPacer m_pacer;
     bool m_playing = false;
     std::uint64_t m_step = 0;
@@ -418,6 +482,44 @@ void SimulationHost::resetToRest()
     {
         std::lock_guard lock(m_mutex);
         m_inbox.actions.push_back(Action::Reset);
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::setStyle(StyleEditsPtr style)
+{
+    std::optional<StyleEditsPtr> superseded;
+    {
+        std::lock_guard lock(m_mutex);
+        superseded = std::exchange(m_inbox.style, std::move(style));
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::setDryer(std::optional<HairDryer> dryer)
+{
+    {
+        std::lock_guard lock(m_mutex);
+        m_inbox.dryer = dryer;
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::holdStrands(std::vector<HeldStrand> held)
+{
+    std::optional<std::vector<HeldStrand>> superseded;
+    {
+        std::lock_guard lock(m_mutex);
+        superseded = std::exchange(m_inbox.held, std::move(held));
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::wetStrands(std::vector<std::uint64_t> keyIdentities, float wetness)
+{
+    {
+        std::lock_guard lock(m_mutex);
+        m_inbox.wettings.push_back({std::move(keyIdentities), wetness});
     }
     m_wake.notify_one();
 }

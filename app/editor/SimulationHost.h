@@ -22,7 +22,9 @@
 
 #include "sim/Frame.h"
 #include "sim/GrowthRegion.h"
+#include "sim/HairDryer.h"
 #include "sim/Parameters.h"
+#include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
 
 #include <QObject>
@@ -64,6 +66,27 @@ public:
     // (the previous frame stays visible meanwhile). A groom refused once is not retried until its
     // groom parameters change again.
     void setParameters(const ParameterValues& values);
+    // --- Styling on live hair (StyleEdits.h) -------------------------------------------------------
+    // Thread: GUI; returns at once. The artist's salon edits: the running hair is regroomed with
+    // them (combed strands get a solved rest shape, so this can take a little longer), and every
+    // later scene is groomed with them. Only the newest matters.
+    void setStyle(StyleEditsPtr style);
+    // Thread: GUI; returns at once. The blow-dryer while the artist holds it; nullopt puts it down.
+    void setDryer(std::optional<HairDryer> dryer);
+    // A simulated strand held where the comb drags it: identity (Groom::strandIdentity) and
+    // positions, world space, root first, as many as the strand has.
+    struct HeldStrand {
+        std::uint64_t identity = 0;
+        std::vector<glm::vec3> positions;
+    };
+    // Thread: GUI; returns at once. Holds these strands at rest where given after every step until
+    // the next call (an empty list lets go). While paused, a frame shows them at once.
+    void holdStrands(std::vector<HeldStrand> held);
+    // Thread: GUI; returns at once. The wet brush: the wisps whose key hairs have these identities
+    // become at least this wet (0..1) now, and dry from there. Live only: the document keeps what
+    // the brush applied.
+    void wetStrands(std::vector<std::uint64_t> keyIdentities, float wetness);
+
     // Thread: GUI. Start and stop stepping in real time; playingChanged follows a change at once.
     // A step already running when pause() is called still publishes its frame; none after it.
     void play();
@@ -116,12 +139,20 @@ private:
         ParameterValues values;
     };
     enum class Action { Step, Reset };
+    struct Wetting {
+        std::vector<std::uint64_t> keyIdentities;
+        float wetness = 0.0f;
+    };
     // Requests from the GUI thread not yet taken by the simulation thread (guarded by m_mutex).
     struct Inbox {
         std::optional<Scene> scene;
         std::optional<ParameterValues> parameters;
         std::optional<Regions> regions;
         std::vector<Action> actions;  // in the order asked
+        std::optional<StyleEditsPtr> style;
+        std::optional<std::optional<HairDryer>> dryer;  // set: a change (to a dryer or to none)
+        std::optional<std::vector<HeldStrand>> held;
+        std::vector<Wetting> wettings;
         bool playing = false;
         bool stopping = false;
     };

@@ -1,0 +1,136 @@
+#include "app/editor/StylePanel.h"
+
+#include <QAction>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QLabel>
+#include <QToolButton>
+
+namespace wisp {
+
+namespace {
+
+constexpr StyleBrush kBrushes[] = {StyleBrush::Comb, StyleBrush::Cut, StyleBrush::Length, StyleBrush::Curl,
+                                   StyleBrush::Wet, StyleBrush::Hairspray, StyleBrush::BlowDry};
+
+QKeySequence shortcutFor(StyleBrush brush)
+{
+    switch (brush) {
+    case StyleBrush::Comb: return QKeySequence(Qt::Key_C);
+    case StyleBrush::Cut: return QKeySequence(Qt::Key_X);
+    case StyleBrush::Length: return QKeySequence(Qt::Key_G);
+    case StyleBrush::Curl: return QKeySequence(Qt::Key_P);
+    case StyleBrush::Wet: return QKeySequence(Qt::Key_W);
+    case StyleBrush::Hairspray: return QKeySequence(Qt::Key_S);
+    case StyleBrush::BlowDry: return QKeySequence(Qt::Key_D);
+    }
+    return {};
+}
+
+}  // namespace
+
+QString styleBrushName(StyleBrush brush)
+{
+    switch (brush) {
+    case StyleBrush::Comb: return StylePanel::tr("Comb");
+    case StyleBrush::Cut: return StylePanel::tr("Cut");
+    case StyleBrush::Length: return StylePanel::tr("Grow / Shrink");
+    case StyleBrush::Curl: return StylePanel::tr("Curl (Perm)");
+    case StyleBrush::Wet: return StylePanel::tr("Wet");
+    case StyleBrush::Hairspray: return StylePanel::tr("Hairspray");
+    case StyleBrush::BlowDry: return StylePanel::tr("Blow-dry");
+    }
+    return {};
+}
+
+QString styleBrushHelp(StyleBrush brush)
+{
+    switch (brush) {
+    case StyleBrush::Comb:
+        return StylePanel::tr("Drag through the hair: it follows the comb and rests where you leave it");
+    case StyleBrush::Cut:
+        return StylePanel::tr("Drag across the hanging hair: every strand the stroke crosses is cut there");
+    case StyleBrush::Length:
+        return StylePanel::tr("Drag over the hair to grow it; hold Ctrl to shrink it");
+    case StyleBrush::Curl:
+        return StylePanel::tr("Drag over the hair to perm the touched wisps with the curl below; Ctrl takes the perm out");
+    case StyleBrush::Wet:
+        return StylePanel::tr("Drag over the hair to wet it (heavier, clumped, curls relaxed); it dries over the "
+                              "drying time; Ctrl towel-dries");
+    case StyleBrush::Hairspray:
+        return StylePanel::tr("Drag over the hair to fix its current shape against gravity and wind; Ctrl washes "
+                              "the spray out");
+    case StyleBrush::BlowDry:
+        return StylePanel::tr("Hold the button: air from the cursor along the view pushes and dries the hair");
+    }
+    return {};
+}
+
+StylePanel::StylePanel(StyleTool* tool, QWidget* parent) : QWidget(parent), m_tool(tool)
+{
+    auto* form = new QFormLayout(this);
+    auto* grid = new QGridLayout;
+    int cell = 0;
+    for (StyleBrush brush : kBrushes) {
+        auto* action = new QAction(styleBrushName(brush), this);
+        action->setCheckable(true);
+        action->setShortcut(shortcutFor(brush));
+        action->setToolTip(QStringLiteral("%1 (%2): %3")
+                               .arg(styleBrushName(brush), shortcutFor(brush).toString(QKeySequence::NativeText),
+                                    styleBrushHelp(brush)));
+        connect(action, &QAction::toggled, this, [this, brush](bool on) {
+            if (on)
+                m_tool->setBrush(brush);
+            else if (m_tool->brush() == brush)
+                m_tool->setBrush(std::nullopt);
+        });
+        m_actions[brush] = action;
+        auto* button = new QToolButton;
+        button->setDefaultAction(action);
+        button->setToolButtonStyle(Qt::ToolButtonTextOnly);
+        button->setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Fixed);
+        grid->addWidget(button, cell / 2, cell % 2);
+        ++cell;
+    }
+    form->addRow(grid);
+
+    m_curlRadius = new QDoubleSpinBox;
+    m_curlRadius->setRange(0.0, kStyleMaxCurlRadiusMetres * 1000.0);
+    m_curlRadius->setDecimals(1);
+    m_curlRadius->setSingleStep(0.5);
+    m_curlRadius->setSuffix(tr(" mm"));
+    m_curlRadius->setToolTip(tr("Curl radius the perm gives, in millimetres (0: straight)"));
+    m_curlRadius->setKeyboardTracking(false);
+    m_curlRadius->setValue(m_tool->curlRadiusMetres() * 1000.0);
+    form->addRow(tr("Perm radius"), m_curlRadius);
+    m_curlTurns = new QDoubleSpinBox;
+    m_curlTurns->setRange(0.0, kStyleMaxCurlTurnsPerMetre);
+    m_curlTurns->setDecimals(1);
+    m_curlTurns->setSuffix(tr(" turns/m"));
+    m_curlTurns->setToolTip(tr("Curl turns per metre of hair the perm gives (period = 1 / turns)"));
+    m_curlTurns->setKeyboardTracking(false);
+    m_curlTurns->setValue(m_tool->curlTurnsPerMetre());
+    form->addRow(tr("Perm turns"), m_curlTurns);
+    connect(m_curlRadius, &QDoubleSpinBox::valueChanged, m_tool, [this](double mm) { m_tool->setCurlRadiusMetres(mm / 1000.0); });
+    connect(m_curlTurns, &QDoubleSpinBox::valueChanged, m_tool, &StyleTool::setCurlTurnsPerMetre);
+
+    m_hint = new QLabel;
+    m_hint->setWordWrap(true);
+    form->addRow(m_hint);
+    auto* shared = new QLabel(tr("Radius, strength, falloff and mirror are set in the Brush panel."));
+    shared->setWordWrap(true);
+    shared->setEnabled(false);
+    form->addRow(shared);
+    connect(m_tool, &StyleTool::brushChanged, this, &StylePanel::showBrush);
+    showBrush(m_tool->brush());
+}
+
+void StylePanel::showBrush(std::optional<StyleBrush> brush)
+{
+    for (const auto& [b, action] : m_actions)
+        action->setChecked(brush == b);  // re-entry is harmless: setBrush ignores the brush it has
+    m_hint->setText(brush ? styleBrushHelp(*brush) : tr("Pick a styling tool to work on the moving hair."));
+}
+
+}  // namespace wisp

@@ -1,0 +1,46 @@
+#pragma once
+// The salon brushes' panel: one button per styling tool (the same actions as the Tools menu and
+// the Styling toolbar, with their shortcuts), the perm's curl, and a line on how the chosen tool
+// is used. Radius, strength, falloff and mirror are the Brush panel's, shared with painting.
+//
+// Thread: GUI.
+
+#include "app/editor/StyleTool.h"
+
+#include <QWidget>
+
+#include <map>
+
+class QAction;
+class QActionGroup;
+class QDoubleSpinBox;
+class QLabel;
+
+namespace wisp {
+
+class StylePanel : public QWidget {
+    Q_OBJECT
+public:
+    explicit StylePanel(StyleTool* tool, QWidget* parent = nullptr);
+
+    // Checkable, one per brush, in StyleBrush order; checking one selects it, unchecking it ends styling.
+    const std::map<StyleBrush, QAction*>& brushActions() const { return m_actions; }
+    QAction* actionFor(StyleBrush brush) const { return m_actions.at(brush); }
+    QDoubleSpinBox* curlRadiusBox() const { return m_curlRadius; }
+    QDoubleSpinBox* curlTurnsBox() const { return m_curlTurns; }
+
+private:
+    void showBrush(std::optional<StyleBrush> brush);
+
+    StyleTool* m_tool;
+    std::map<StyleBrush, QAction*> m_actions;
+    QDoubleSpinBox* m_curlRadius = nullptr;
+    QDoubleSpinBox* m_curlTurns = nullptr;
+    QLabel* m_hint = nullptr;
+};
+
+// How each brush is used, one line (the panel's hint and the actions' tooltips).
+QString styleBrushName(StyleBrush brush);
+QString styleBrushHelp(StyleBrush brush);
+
+}  // namespace wisp

@@ -1,0 +1,499 @@
+#include "app/editor/StyleTool.h"
+
+#include "app/editor/Document.h"
+#include "app/editor/PaintTool.h"
+#include "app/editor/SimulationHost.h"
+#include "sim/HairDryer.h"
+#include "sim/MeshBvh.h"
+#include "sim/StrandPicking.h"
+#include "widgets/Viewport.h"
+
+#include <glm/geometric.hpp>
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+
+#include <algorithm>
+#include <cmath>
+
+namespace wisp {
+
+namespace {
+
+constexpr float kFar = 1.0e4f;             // metres: a ray that meets no head
+constexpr double kDabSpacingPixels = 6.0;  // the dab brushes (length, curl, wet, spray) dab this often
+constexpr float kRadiusStep = 1.15f;       // [ and ] scale the radius by this
+
+bool isBrushButton(const QMouseEvent* e) { return e->button() == Qt::LeftButton && !(e->modifiers() & Qt::AltModifier); }
+
+// The newest frame, if its groom names its strands (a frame from before the first groom does not).
+FramePtr styledFrame(const SimulationHost& host)
+{
+    FramePtr frame = host.latestFrame();
+    if (!frame || !frame->groomShape || frame->groomShape->identities.size() != frame->strands.strandCount())
+        return nullptr;
+    return frame;
+}
+
+}  // namespace
+
+StyleTool::StyleTool(Document* document, Viewport* viewport, SimulationHost* simulation, PaintTool* brushSettings,
+                     QObject* parent)
+    : QObject(parent), m_document(document), m_viewport(viewport), m_simulation(simulation),
+      m_brushSettings(brushSettings)
+{
+    m_viewport->installEventFilter(this);
+    connect(m_document, &Document::headChanged, this, &StyleTool::cancel);
+}
+
+void StyleTool::setBrush(std::optional<StyleBrush> brush)
+{
+    if (brush == m_brush)
+        return;
+    end();
+    m_brush = brush;
+    if (!brush)
+        m_viewport->setBrushCursor(std::nullopt);
+    else
+        m_viewport->setMouseTracking(true);
+    m_viewport->setCursor(brush ? Qt::CrossCursor : Qt::ArrowCursor);
+    emit brushChanged(brush);
+}
+
+void StyleTool::setCurlRadiusMetres(double metres)
+{
+    if (!std::isfinite(metres))
+        return;
+    m_curlRadius = std::clamp(static_cast<float>(metres), 0.0f, kStyleMaxCurlRadiusMetres);
+    emit curlChanged();
+}
+
+void StyleTool::setCurlTurnsPerMetre(double turns)
+{
+    if (!std::isfinite(turns))
+        return;
+    m_curlTurns = std::clamp(static_cast<float>(turns), 0.0f, kStyleMaxCurlTurnsPerMetre);
+    emit curlChanged();
+}
+
+std::vector<StyleTool::Ray> StyleTool::raysAt(QPointF widgetPosition) const
+{
+    const ViewRay view = m_viewport->rayAt(widgetPosition);
+    const float radius = m_brushSettings->settings().radiusMetres;
+    float maxDepth = kFar;
+    if (const auto hit = m_brushSettings->hitAt(widgetPosition))
+        maxDepth = glm::dot(hit->point - view.origin, view.direction) + radius;
+    std::vector<Ray> rays{{view.origin, view.direction, maxDepth}};
+    if (m_brushSettings->settings().mirrorX) {
+        const float plane = m_brushSettings->mirrorPlaneX();
+        rays.push_back({mirroredPoint(view.origin, plane), mirroredDirection(view.direction), maxDepth});
+    }
+    return rays;
+}
+
+void StyleTool::updateCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifiers)
+{
+    m_lastCursor = widgetPosition;
+    const BrushSettings& s = m_brushSettings->settings();
+    BrushCursor cursor;
+    cursor.radiusMetres = s.radiusMetres;
+    cursor.erase = (modifiers & Qt::ControlModifier) != 0;
+    cursor.mirrored = s.mirrorX;
+    if (const auto hit = m_brushSettings->hitAt(widgetPosition)) {
+        cursor.centre = hit->point;
+        cursor.normal = hit->normal;
+    } else if (m_brush == StyleBrush::Comb && !m_grabbed.empty()) {  // the comb off the head: at the hair
+        const ViewRay ray = m_viewport->rayAt(widgetPosition);
+        cursor.centre = ray.origin + ray.direction * m_grabbed.front().depth;
+        cursor.normal = -ray.direction;
+    } else {
+        m_viewport->setBrushCursor(std::nullopt);
+        return;
+    }
+    const float plane = m_brushSettings->mirrorPlaneX();
+    cursor.mirrorCentre = mirroredPoint(cursor.centre, plane);
+    cursor.mirrorNormal = mirroredDirection(cursor.normal);
+    m_viewport->setBrushCursor(cursor);
+}
+
+QString StyleTool::strokeName() const
+{
+    switch (m_brush.value_or(StyleBrush::Comb)) {
+    case StyleBrush::Comb: return tr("Comb");
+    case StyleBrush::Cut: return tr("Cut");
+    case StyleBrush::Length: return tr("Grow or shrink");
+    case StyleBrush::Curl: return tr("Perm");
+    case StyleBrush::Wet: return tr("Wet");
+    case StyleBrush::Hairspray: return tr("Hairspray");
+    case StyleBrush::BlowDry: return tr("Blow-dry");
+    }
+    return {};
+}
+
+void StyleTool::begin(QPointF position, Qt::KeyboardModifiers modifiers)
+{
+    if (!styledFrame(*m_simulation)) {
+        emit message(tr("The hair is still being groomed; try again in a moment"));
+        return;
+    }
+    m_stroking = true;
+    m_lastPosition = position;
+    m_touched.clear();
+    switch (*m_brush) {
+    case StyleBrush::Comb:
+        m_document->beginStyleStroke();
+        grabForComb(position);
+        break;
+    case StyleBrush::Cut:
+        m_document->beginStyleStroke();
+        break;
+    case StyleBrush::BlowDry:
+        m_wetBefore.clear();
+        for (const auto& [id, style] : *m_document->style())
+            if (style.wetness > 0.0f)
+                m_wetBefore[id] = style.wetness;
+        placeDryer(position);
+        break;
+    default:
+        m_document->beginStyleStroke();
+        dab(position, modifiers);
+        break;
+    }
+}
+
+void StyleTool::drag(QPointF position, Qt::KeyboardModifiers modifiers)
+{
+    switch (*m_brush) {
+    case StyleBrush::Comb:
+        combTo(position);
+        m_lastPosition = position;
+        break;
+    case StyleBrush::Cut:
+        cutBetween(m_lastPosition, position);
+        m_lastPosition = position;
+        break;
+    case StyleBrush::BlowDry:
+        placeDryer(position);
+        m_lastPosition = position;
+        break;
+    default: {
+        const QPointF moved = position - m_lastPosition;
+        if (std::hypot(moved.x(), moved.y()) >= kDabSpacingPixels) {
+            dab(position, modifiers);
+            m_lastPosition = position;
+        }
+        break;
+    }
+    }
+}
+
+void StyleTool::end()
+{
+    if (!m_stroking)
+        return;
+    m_stroking = false;
+    if (m_brush == StyleBrush::Comb) {
+        // The combed shape becomes where the strands rest; the host solves the rest shape that sags
+        // onto it, then lets go of them.
+        StyleEdits& edits = m_document->strokeStyle();
+        for (const Grabbed& g : m_grabbed)
+            edits[g.identity].shape = g.positions;
+        m_document->styleStrokeUpdated();
+        m_document->endStyleStroke(strokeName());
+        m_simulation->holdStrands({});
+        m_grabbed.clear();
+        return;
+    }
+    if (m_brush == StyleBrush::BlowDry) {
+        m_simulation->setDryer(std::nullopt);
+        keepDriedWetness();
+        return;
+    }
+    m_document->endStyleStroke(strokeName());
+}
+
+// A stroke cut short (the head replaced): nothing of it stays.
+void StyleTool::cancel()
+{
+    if (!m_stroking)
+        return;
+    m_stroking = false;
+    m_grabbed.clear();
+    m_simulation->holdStrands({});
+    m_simulation->setDryer(std::nullopt);
+    if (m_document->inStyleStroke())
+        m_document->endStyleStroke(strokeName());
+}
+
+void StyleTool::grabForComb(QPointF position)
+{
+    m_grabbed.clear();
+    const FramePtr frame = styledFrame(*m_simulation);
+    if (!frame)
+        return;
+    const BrushSettings& s = m_brushSettings->settings();
+    const std::vector<Ray> rays = raysAt(position);
+    std::set<std::uint32_t> taken;
+    for (std::size_t r = 0; r < rays.size(); ++r) {
+        const Ray& ray = rays[r];
+        for (const StrandPick& pick : strandsNearRay(frame->strands, frame->groomShape->keyStrands, ray.origin,
+                                                     ray.direction, s.radiusMetres, s.falloff, ray.maxDepth)) {
+            if (!taken.insert(pick.strand).second)
+                continue;  // under both rings: the nearer one's
+            Grabbed g;
+            g.identity = frame->groomShape->identities[pick.strand];
+            g.weight = pick.weight * (0.5f + 0.5f * s.strength);
+            g.depth = pick.depth;
+            g.mirrored = r == 1;
+            const auto points = frame->strands.strand(pick.strand);
+            g.positions.assign(points.begin(), points.end());
+            for (std::size_t j = 1; j < points.size(); ++j)
+                g.segmentLengths.push_back(glm::distance(points[j], points[j - 1]));
+            m_grabbed.push_back(std::move(g));
+        }
+    }
+    if (m_grabbed.empty())
+        return;
+    std::vector<SimulationHost::HeldStrand> held;
+    for (const Grabbed& g : m_grabbed)
+        held.push_back({g.identity, g.positions});
+    m_simulation->holdStrands(std::move(held));
+}
+
+void StyleTool::combTo(QPointF position)
+{
+    if (m_grabbed.empty())
+        return;
+    const std::vector<Ray> before = raysAt(m_lastPosition);
+    const std::vector<Ray> after = raysAt(position);
+    std::vector<SimulationHost::HeldStrand> held;
+    for (Grabbed& g : m_grabbed) {
+        const std::size_t r = g.mirrored && before.size() > 1 ? 1 : 0;
+        // The point of the strand under the comb follows the cursor at the depth it was caught.
+        const glm::vec3 delta = (after[r].origin + after[r].direction * g.depth) -
+                                (before[r].origin + before[r].direction * g.depth);
+        combStrand(g.positions, g.segmentLengths, delta, g.weight);
+        held.push_back({g.identity, g.positions});
+    }
+    m_simulation->holdStrands(std::move(held));
+}
+
+void StyleTool::cutBetween(QPointF from, QPointF to)
+{
+    const FramePtr frame = styledFrame(*m_simulation);
+    if (!frame)
+        return;
+    const std::vector<Ray> a = raysAt(from);
+    const std::vector<Ray> b = raysAt(to);
+    const MeshBvh& head = m_brushSettings->headBvh();
+    StyleEdits& edits = m_document->strokeStyle();
+    bool changed = false;
+    for (std::size_t r = 0; r < a.size() && r < b.size(); ++r) {
+        const glm::vec3 eye = a[r].origin;
+        // The artist cuts what they see: a crossing behind the head (from this eye) is not cut.
+        const auto visible = [&](const glm::vec3& x) {
+            const glm::vec3 toX = x - eye;
+            const float distance = glm::length(toX);
+            const auto hit = head.raycast(eye, toX / distance, distance - 0.002f);
+            return !hit.has_value();
+        };
+        for (const StrandCut& cut : strandsCutBy(frame->strands, eye, a[r].direction, b[r].direction, visible)) {
+            const std::uint64_t id = frame->groomShape->identities[cut.strand];
+            const float length = std::max(cut.lengthMetres, kStyleMinLengthMetres);
+            if (length >= lengthOf(id, cut.strand) - 1e-4f)
+                continue;
+            StrandStyle& e = edits[id];
+            e.lengthMetres = length;
+            if (!e.shape.empty())
+                e.shape = shapeWithLength(e.shape, length);
+            changed = true;
+        }
+    }
+    if (changed)
+        m_document->styleStrokeUpdated();
+}
+
+// The strand's length now: what an edit set, else what it is in the newest frame (segments keep
+// their rest lengths, so the frame's arc length is the groom's).
+float StyleTool::lengthOf(std::uint64_t identity, std::uint32_t strand) const
+{
+    const StyleEdits& edits = m_document->inStyleStroke() ? m_document->strokeStyle() : *m_document->style();
+    if (const auto found = edits.find(identity); found != edits.end()) {
+        if (!found->second.shape.empty())
+            return strandLength(found->second.shape);
+        if (found->second.lengthMetres > 0.0f)
+            return found->second.lengthMetres;
+    }
+    const FramePtr frame = styledFrame(*m_simulation);
+    return frame && strand < frame->strands.strandCount() ? strandLength(frame->strands.strand(strand)) : 0.0f;
+}
+
+// One dab of the length, curl, wet or hairspray brush at the cursor (and its mirror).
+void StyleTool::dab(QPointF position, Qt::KeyboardModifiers modifiers)
+{
+    const FramePtr frame = styledFrame(*m_simulation);
+    if (!frame)
+        return;
+    const GroomShape& shape = *frame->groomShape;
+    const BrushSettings& s = m_brushSettings->settings();
+    const bool inverted = (modifiers & Qt::ControlModifier) != 0;
+    StyleEdits& edits = m_document->strokeStyle();
+    std::vector<std::uint64_t> wetted;
+    bool changed = false;
+    for (const Ray& ray : raysAt(position)) {
+        const std::vector<StrandPick> picks =
+            strandsNearRay(frame->strands, {}, ray.origin, ray.direction, s.radiusMetres, s.falloff, ray.maxDepth);
+        for (const StrandPick& pick : picks) {
+            if (m_brush == StyleBrush::Length) {  // every touched strand, a step per dab
+                const std::uint64_t id = shape.identities[pick.strand];
+                const float now = lengthOf(id, pick.strand);
+                const float step = kLengthStepShare * s.strength * pick.weight;
+                const float length =
+                    std::clamp(now * (inverted ? 1.0f - step : 1.0f + step), kStyleMinLengthMetres, kStyleMaxLengthMetres);
+                if (std::abs(length - now) < 1e-5f)
+                    continue;
+                StrandStyle& e = edits[id];
+                e.lengthMetres = length;
+                if (!e.shape.empty())
+                    e.shape = shapeWithLength(e.shape, length);
+                changed = true;
+                continue;
+            }
+            // Curl, wet and hairspray act on wisps: on their key hair, once per stroke.
+            if (pick.strand >= shape.wispOf.size())
+                continue;
+            const std::uint32_t key = shape.keyOfWisp[shape.wispOf[pick.strand]];
+            const std::uint64_t id = shape.identities[key];
+            if (!m_touched.insert(id).second)
+                continue;
+            StrandStyle& e = edits[id];
+            switch (*m_brush) {
+            case StyleBrush::Curl:
+                e.curlRadiusMetres = inverted ? -1.0f : m_curlRadius;
+                e.curlTurnsPerMetre = inverted ? -1.0f : m_curlTurns;
+                e.shape.clear();  // a perm re-forms the hair: a combed shape gives way to the curl
+                break;
+            case StyleBrush::Wet:
+                e.wetness = inverted ? 0.0f : std::max(e.wetness, s.strength);
+                if (!inverted)
+                    wetted.push_back(id);
+                break;
+            case StyleBrush::Hairspray:
+                if (inverted) {
+                    e.stiffnessScale = 1.0f;
+                    e.shape.clear();
+                } else {
+                    e.stiffnessScale = std::clamp(e.stiffnessScale * (1.0f + kSprayStiffening * s.strength * pick.weight),
+                                                  1.0f, kStyleMaxStiffnessScale);
+                    const auto points = frame->strands.strand(key);  // the shape it has now is the one to hold
+                    e.shape.assign(points.begin(), points.end());
+                }
+                break;
+            default:
+                break;
+            }
+            changed = true;
+        }
+    }
+    if (!wetted.empty())
+        m_simulation->wetStrands(std::move(wetted), s.strength);  // at once, even where the edit was as wet
+    if (changed)
+        m_document->styleStrokeUpdated();
+}
+
+void StyleTool::placeDryer(QPointF position)
+{
+    const ViewRay ray = m_viewport->rayAt(position);
+    glm::vec3 aim;
+    if (const auto hit = m_brushSettings->hitAt(position))
+        aim = hit->point;
+    else  // past the head: aim at the depth of the camera's pivot
+        aim = ray.origin + ray.direction * glm::dot(m_viewport->camera().pivot() - ray.origin, ray.direction);
+    HairDryer dryer;
+    dryer.nozzle = aim - ray.direction * kDryerDistanceMetres;
+    dryer.direction = ray.direction;
+    m_simulation->setDryer(dryer);
+}
+
+// After blow-drying: the document keeps how wet the dried wisps are now, as one undo step.
+void StyleTool::keepDriedWetness()
+{
+    const FramePtr frame = styledFrame(*m_simulation);
+    if (!frame || m_wetBefore.empty())
+        return;
+    const GroomShape& shape = *frame->groomShape;
+    std::map<std::uint64_t, std::uint32_t> keyOf;
+    for (std::uint32_t key : shape.keyOfWisp)
+        keyOf.emplace(shape.identities[key], key);
+    m_document->beginStyleStroke();
+    StyleEdits& edits = m_document->strokeStyle();
+    bool changed = false;
+    for (const auto& [id, applied] : m_wetBefore) {
+        const auto key = keyOf.find(id);
+        if (key == keyOf.end())
+            continue;
+        const float now = frame->wetness.empty() ? 0.0f : frame->wetness[key->second];
+        if (now < applied - 0.005f) {
+            edits[id].wetness = std::round(now * 1000.0f) / 1000.0f;
+            changed = true;
+        }
+    }
+    if (changed)
+        m_document->styleStrokeUpdated();
+    m_document->endStyleStroke(strokeName());
+}
+
+bool StyleTool::eventFilter(QObject* watched, QEvent* event)
+{
+    if (watched != m_viewport || !m_brush)
+        return QObject::eventFilter(watched, event);
+    switch (event->type()) {
+    case QEvent::MouseButtonPress: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        if (!isBrushButton(e))
+            return false;
+        updateCursor(e->position(), e->modifiers());
+        begin(e->position(), e->modifiers());
+        return true;
+    }
+    case QEvent::MouseMove: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        updateCursor(e->position(), e->modifiers());
+        if (!m_stroking)
+            return false;  // camera drags pass through
+        drag(e->position(), e->modifiers());
+        return true;
+    }
+    case QEvent::MouseButtonRelease: {
+        auto* e = static_cast<QMouseEvent*>(event);
+        if (e->button() != Qt::LeftButton || !m_stroking)
+            return false;
+        drag(e->position(), e->modifiers());
+        end();
+        return true;
+    }
+    case QEvent::Leave:
+        m_viewport->setBrushCursor(std::nullopt);
+        return false;
+    case QEvent::KeyPress:
+    case QEvent::KeyRelease: {
+        auto* e = static_cast<QKeyEvent*>(event);
+        const float radius = m_brushSettings->settings().radiusMetres;
+        if (event->type() == QEvent::KeyPress && e->key() == Qt::Key_BracketLeft) {
+            m_brushSettings->setRadius(radius / kRadiusStep);
+            return true;
+        }
+        if (event->type() == QEvent::KeyPress && e->key() == Qt::Key_BracketRight) {
+            m_brushSettings->setRadius(radius * kRadiusStep);
+            return true;
+        }
+        if (e->key() == Qt::Key_Control && m_lastCursor.x() >= 0.0)
+            updateCursor(m_lastCursor, e->modifiers());
+        return false;
+    }
+    default:
+        return false;
+    }
+}
+
+}  // namespace wisp

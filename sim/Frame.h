@@ -28,6 +28,8 @@ struct GroomShape {
     std::vector<std::uint64_t> identities;  // per drawn strand: Groom::strandIdentity
     std::vector<std::uint32_t> wispOf;      // per drawn strand
     std::vector<std::uint32_t> keyOfWisp;   // per wisp: its key hair
+    std::vector<float> lengths;             // per drawn strand: its groomed length, metres (a member's
+                                            // rest arc length differs a little: it rides beside its key)
 };
 
 struct Frame {

@@ -368,8 +368,15 @@ std::string HairSimulation::regroom(const std::vector<GrowthRegion>& regions, st
         if (it != before.end() && offsetsBefore[it->second + 1] <= positions.size()) {
             const std::size_t first = offsetsBefore[it->second];
             const std::size_t count = offsetsBefore[it->second + 1] - first;
-            carried = m_solver.setStrandState(i, std::span(positions).subspan(first, count),
-                                              std::span(previous).subspan(first, count));
+            const std::span<const glm::vec3> was = std::span(positions).subspan(first, count);
+            const float length = m_groom.lengths[simulated(m_groom, m_allStrands, i)];
+            if (std::abs(strandLength(was) - length) > 1e-3f) {
+                // Cut, grown or shrunk: the strand keeps its place, at its new length, at rest.
+                const std::vector<glm::vec3> now = resampleByArcLength(shapeWithLength(was, length), count);
+                carried = now.size() == count && m_solver.setStrandState(i, now, now);
+            } else {
+                carried = m_solver.setStrandState(i, was, std::span(previous).subspan(first, count));
+            }
         }
         ++(carried ? m_carried : m_started);
     }

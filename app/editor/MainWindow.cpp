@@ -52,7 +52,7 @@ std::vector<Param> parametersIn(ParamGroup group)
 std::vector<Param> forceParameters()
 {
     return {Param::Gravity, Param::WindSpeed, Param::WindAzimuth, Param::WindElevation,
-            Param::Turbulence, Param::Drag, Param::Damping, Param::Stiffness,
+            Param::Turbulence, Param::Drag, Param::Damping, Param::DryingTime, Param::Stiffness,
             Param::Friction, Param::Substeps, Param::TimeStep, Param::SimulateAllStrands};
 }
 

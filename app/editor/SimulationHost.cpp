@@ -264,6 +264,7 @@ private:
             shape->identities[i] = groom.strandIdentity(i);
         shape->wispOf = groom.wispOf;
         shape->keyOfWisp = groom.keyStrand;
+        shape->lengths = groom.lengths;
         m_groomShape = std::move(shape);
         m_pacer.setRequestedSubsteps(values.getInt(Param::Substeps));
         m_sim->applyForces(withSubsteps(values, m_pacer.substeps()));

@@ -291,30 +291,52 @@ void StyleTool::cutBetween(QPointF from, QPointF to)
     for (std::size_t r = 0; r < a.size() && r < b.size(); ++r) {
         const glm::vec3 eye = a[r].origin;
         // The artist cuts what they see: a crossing behind the head (from this eye) is not cut.
+        // Hair lying on the skin may sit a little inside the mesh (the collider is a sampled
+        // field): a surface within kSkinTolerance before the crossing does not hide it.
+        constexpr float kSkinTolerance = 0.01f;
         const auto visible = [&](const glm::vec3& x) {
             const glm::vec3 toX = x - eye;
             const float distance = glm::length(toX);
-            const auto hit = head.raycast(eye, toX / distance, distance - 0.002f);
-            return !hit.has_value();
+            return !head.raycast(eye, toX / distance, distance - kSkinTolerance).has_value();
         };
-        for (const StrandCut& cut : strandsCutBy(frame->strands, eye, a[r].direction, b[r].direction, visible)) {
-            const std::uint64_t id = frame->groomShape->identities[cut.strand];
-            const float length = std::max(cut.lengthMetres, kStyleMinLengthMetres);
-            if (length >= lengthOf(id, cut.strand) - 1e-4f)
-                continue;
+        const GroomShape& shape = *frame->groomShape;
+        std::map<std::uint32_t, float> keyLength;  // wisp -> its cut key hair's new length
+        std::set<std::uint32_t> cutNow;
+        const auto cutTo = [&](std::uint32_t strand, float length) {
+            const std::uint64_t id = shape.identities[strand];
+            length = std::max(length, kStyleMinLengthMetres);
+            if (length >= lengthOf(id, strand) - 1e-4f)
+                return;
             StrandStyle& e = edits[id];
             e.lengthMetres = length;
             if (!e.shape.empty())
                 e.shape = shapeWithLength(e.shape, length);
             changed = true;
+        };
+        for (const StrandCut& cut : strandsCutBy(frame->strands, eye, a[r].direction, b[r].direction, visible)) {
+            // The cut's share of the strand as drawn, of its groomed length (a member's drawn length
+            // differs a little from it).
+            const float drawn = strandLength(frame->strands.strand(cut.strand));
+            const float share = drawn > 0.0f ? cut.lengthMetres / drawn : 1.0f;
+            const float before = lengthOf(shape.identities[cut.strand], cut.strand);
+            cutTo(cut.strand, share * before);
+            cutNow.insert(cut.strand);
+            const std::uint32_t wisp = shape.wispOf[cut.strand];
+            if (shape.keyOfWisp[wisp] == cut.strand)
+                keyLength[wisp] = std::max(share * before, kStyleMinLengthMetres);
         }
+        // A wisp's members ride beside its key hair, point for point along its length: where the
+        // key is cut, members the blade missed are cut too, or they would stick out past its tip.
+        if (!keyLength.empty())
+            for (std::uint32_t i = 0; i < shape.wispOf.size(); ++i)
+                if (const auto found = keyLength.find(shape.wispOf[i]); found != keyLength.end() && !cutNow.count(i))
+                    cutTo(i, found->second);
     }
     if (changed)
         m_document->styleStrokeUpdated();
 }
 
-// The strand's length now: what an edit set, else what it is in the newest frame (segments keep
-// their rest lengths, so the frame's arc length is the groom's).
+// The strand's length now: what an edit set, else its groomed length.
 float StyleTool::lengthOf(std::uint64_t identity, std::uint32_t strand) const
 {
     const StyleEdits& edits = m_document->inStyleStroke() ? m_document->strokeStyle() : *m_document->style();
@@ -325,7 +347,7 @@ float StyleTool::lengthOf(std::uint64_t identity, std::uint32_t strand) const
             return found->second.lengthMetres;
     }
     const FramePtr frame = styledFrame(*m_simulation);
-    return frame && strand < frame->strands.strandCount() ? strandLength(frame->strands.strand(strand)) : 0.0f;
+    return frame && strand < frame->groomShape->lengths.size() ? frame->groomShape->lengths[strand] : 0.0f;
 }
 
 // One dab of the length, curl, wet or hairspray brush at the cursor (and its mirror).

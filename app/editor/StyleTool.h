@@ -60,7 +60,7 @@ public:
     // The length brush changes a strand by this share of its length per dab at full strength.
     static constexpr float kLengthStepShare = 0.06f;
     // Hairspray at full strength multiplies the stiffness by 1 + this per stroke.
-    static constexpr float kSprayStiffening = 4.0f;
+    static constexpr float kSprayStiffening = 9.0f;
     // The dryer's nozzle is this far in front of the hair under the cursor.
     static constexpr float kDryerDistanceMetres = 0.12f;
 

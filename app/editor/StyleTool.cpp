@@ -318,12 +318,14 @@ void StyleTool::cutBetween(QPointF from, QPointF to)
             // differs a little from it).
             const float drawn = strandLength(frame->strands.strand(cut.strand));
             const float share = drawn > 0.0f ? cut.lengthMetres / drawn : 1.0f;
-            const float before = lengthOf(shape.identities[cut.strand], cut.strand);
-            cutTo(cut.strand, share * before);
+            // (Of the length in the frame's groom: both blades of a mirrored stroke may cross it.)
+            const float length = share * shape.lengths[cut.strand];
+            cutTo(cut.strand, length);
             cutNow.insert(cut.strand);
             const std::uint32_t wisp = shape.wispOf[cut.strand];
             if (shape.keyOfWisp[wisp] == cut.strand)
-                keyLength[wisp] = std::max(share * before, kStyleMinLengthMetres);
+                keyLength[wisp] = std::max(std::min(length, keyLength.count(wisp) ? keyLength[wisp] : length),
+                                           kStyleMinLengthMetres);
         }
         // A wisp's members ride beside its key hair, point for point along its length: where the
         // key is cut, members the blade missed are cut too, or they would stick out past its tip.
@@ -405,7 +407,9 @@ void StyleTool::dab(QPointF position, Qt::KeyboardModifiers modifiers)
                     e.stiffnessScale = 1.0f;
                     e.shape.clear();
                 } else {
-                    e.stiffnessScale = std::clamp(e.stiffnessScale * (1.0f + kSprayStiffening * s.strength * pick.weight),
+                    // A spray covers its cone about evenly: the falloff softens only the rim.
+                    const float cover = std::max(pick.weight, 0.5f);
+                    e.stiffnessScale = std::clamp(e.stiffnessScale * (1.0f + kSprayStiffening * s.strength * cover),
                                                   1.0f, kStyleMaxStiffnessScale);
                     const auto points = frame->strands.strand(key);  // the shape it has now is the one to hold
                     e.shape.assign(points.begin(), points.end());

@@ -115,6 +115,8 @@ void validateProject(const std::string& path)
     for (const GrowthRegion& r : p.regions)
         std::cout << (&r == &p.regions.front() ? ": " : ", ") << r.name
                   << (r.importedStrands ? " (" + std::to_string(r.importedStrands->strandCount()) + " imported strands)" : "");
+    if (!p.style.empty())
+        std::cout << "; " << p.style.size() << " styled strand(s)";
     std::cout << "\n";
     printWarnings(read.value().warnings);
 }

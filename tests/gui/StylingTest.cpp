@@ -2,6 +2,9 @@
 // shortcut and driven by mouse events on the viewport, the published frames measured.
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
+#include "app/editor/FileMenu.h"
+#include "app/editor/ProjectController.h"
+#include "io/PresetFile.h"
 #include "app/editor/MainWindow.h"
 #include "app/editor/PaintTool.h"
 #include "app/editor/SimulationHost.h"
@@ -16,6 +19,7 @@
 #include <QDoubleSpinBox>
 #include <QSignalSpy>
 #include <QStandardPaths>
+#include <QTemporaryDir>
 #include <QTest>
 #include <QUndoStack>
 
@@ -587,4 +591,47 @@ TEST_F(StylingTest, GrowAndShrinkChangeTheLengthUnderTheBrushAndToolsAreExclusiv
     undo();
     EXPECT_TRUE(document()->style()->empty());
     EXPECT_TRUE(byIdentity(frame(), true) == restBefore) << "undo did not give back the exact groom";
+}
+
+TEST_F(StylingTest, EditsComeBackWithTheProjectAndPresetsLeaveThem)
+{
+    look(90.0f, {box.center().x, box.center().y - 0.08f, box.center().z});
+    pick(Qt::Key_X, StyleBrush::Cut);
+    stroke({{box.max.x + 0.05f, box.center().y - 0.08f, box.max.z}, {box.max.x + 0.05f, box.center().y - 0.08f, box.min.z}},
+           Qt::NoModifier, 16);
+    pick(Qt::Key_P, StyleBrush::Curl);
+    stroke({rightSide(0.0f, 0.05f) + glm::vec3(0.03f, 0, 0), rightSide(0.0f, -0.05f) + glm::vec3(0.03f, 0, 0)});
+    const StyleEdits styled = *document()->style();
+    ASSERT_GT(styled.size(), 10u);
+    const Strands rest = byIdentity(frame(), true);
+
+    // A preset changes the look's parameters, never the salon edits.
+    io::Preset preset = document()->toPreset(QStringLiteral("Same"));
+    preset.parameters.set(Param::Gravity, 5.0);
+    document()->applyPreset(preset);
+    settle();
+    EXPECT_EQ(*document()->style(), styled);
+
+    // Saved, a new project (no edits), opened again: the edits and the groom they make are back.
+    window->fileMenu()->setInteractive(false);
+    ProjectController* projects = window->fileMenu()->projects();
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("styled.wisp"));
+    ASSERT_TRUE(projects->saveAs(path)) << projects->lastError().toStdString();
+    ASSERT_TRUE(projects->newProject());
+    settle();
+    EXPECT_TRUE(document()->style()->empty());
+    ASSERT_TRUE(projects->open(path)) << projects->lastError().toStdString();
+    settle();
+    EXPECT_EQ(*document()->style(), styled);
+    // The same density as the saved groom: compare the styled strands' rest shapes.
+    const Strands reopened = byIdentity(frame(), true);
+    int compared = 0;
+    for (const auto& [id, style] : styled)
+        if (reopened.count(id) && rest.count(id)) {
+            EXPECT_EQ(strandLength(reopened.at(id)), strandLength(rest.at(id))) << id;
+            ++compared;
+        }
+    EXPECT_EQ(compared, static_cast<int>(styled.size()));
+    document()->undoStack()->setClean();
 }

@@ -40,6 +40,8 @@ bool sameLooks(std::span<const StrandLook> a, std::span<const StrandLook> b)
 constexpr float kSkipTag = 0.0f;
 constexpr float kStyleTag = 1.0f;
 constexpr float kFirstLookTag = 2.0f;
+// Plus wetness (0..1) times this: a fraction below 0.5, so rounding still finds the tag.
+constexpr float kWetTagScale = 0.45f;
 
 } // namespace
 
@@ -162,7 +164,8 @@ void HairRenderer::uploadLooks()
     checkGlErrors(m_gl, "HairRenderer::uploadLooks");
 }
 
-void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand)
+void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand,
+                          std::span<const float> wetness)
 {
     if (!m_program)
         return;
@@ -214,7 +217,9 @@ void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16
             continue;
         }
         const bool hasLook = withLooks && lookOfStrand[s] < m_looks.size();
-        const float tag = hasLook ? kFirstLookTag + static_cast<float>(lookOfStrand[s]) : kStyleTag;
+        // Wet hair (sim/HairDryer.h) is drawn darker: its wetness rides in the tag's fraction.
+        const float wet = wetness.size() == strands.strandCount() ? std::clamp(wetness[s], 0.0f, 1.0f) : 0.0f;
+        const float tag = (hasLook ? kFirstLookTag + static_cast<float>(lookOfStrand[s]) : kStyleTag) + kWetTagScale * wet;
         for (std::uint32_t i = begin; i < end; ++i)
             out[i] = glm::vec4(points[i], tag);
     }

@@ -64,7 +64,8 @@ public:
     // Streams the strands in; `strands` need only live for this call. `lookOfStrand`: one look
     // index per strand, or empty (or of another count) for the style's colours everywhere; a
     // strand whose index has no look also takes the style's colours.
-    void upload(const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand = {});
+    void upload(const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand = {},
+                std::span<const float> wetness = {});
     void clear();
     // Draws `fraction` (0..1) of the strands, an even sample, each made wider to make up for the
     // rest; `coarse` draws one sample per segment (the points themselves) whatever the zoom.

@@ -674,7 +674,7 @@ void Viewport::paintGL(bool framebuffersRemade)
         m_frameDirty = false;
         if (m_frame) {
             m_hair.setLooks(m_frame->looks);
-            m_hair.upload(m_frame->strands, m_frame->lookOfStrand);
+            m_hair.upload(m_frame->strands, m_frame->lookOfStrand, m_frame->wetness);
         } else {
             m_hair.clear();
         }

@@ -7,7 +7,8 @@
 layout(location = 0) in uvec2 a_ref;
 
 // xyz: world position, metres; w: 0 to skip the strand (a non-finite point), 1 for the style's
-// colours (u_rootColour, u_tipColour), 2 + k for look k of u_looks.
+// colours (u_rootColour, u_tipColour), 2 + k for look k of u_looks; plus 0.45 times the strand's
+// wetness (wet hair is darker).
 uniform samplerBuffer u_points;
 uniform samplerBuffer u_looks;   // look k: texel 2k its root colour, 2k + 1 its tip colour (linear RGB)
 uniform mat4 u_view;
@@ -137,5 +138,10 @@ void main()
     int look = int(q1.w + 0.5) - 2;
     vec3 rootColour = look >= 0 ? texelFetch(u_looks, 2 * look).rgb : u_rootColour;
     vec3 tipColour = look >= 0 ? texelFetch(u_looks, 2 * look + 1).rgb : u_tipColour;
+    // Water fills the gaps between the cuticle scales: wet hair reflects less diffusely and looks
+    // darker (about half as bright soaked).
+    float wetness = clamp((q1.w - float(look + 2)) / 0.45, 0.0, 1.0);
+    rootColour *= 1.0 - 0.5 * wetness;
+    tipColour *= 1.0 - 0.5 * wetness;
     v_colour = vec4(shadeHair(positionView.xyz, tangentView, along, rootColour, tipColour), alpha);
 }

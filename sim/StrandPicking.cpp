@@ -102,6 +102,17 @@ void combStrand(std::span<glm::vec3> positions, std::span<const float> segmentLe
     }
 }
 
+float distanceToPolyline(const glm::vec3& p, std::span<const glm::vec3> line)
+{
+    float best = 1e30f;
+    for (std::size_t j = 1; j < line.size(); ++j) {
+        const glm::vec3 ab = line[j] - line[j - 1];
+        const float t = std::clamp(glm::dot(p - line[j - 1], ab) / std::max(glm::dot(ab, ab), 1e-12f), 0.0f, 1.0f);
+        best = std::min(best, glm::distance(p, line[j - 1] + t * ab));
+    }
+    return best;
+}
+
 glm::vec3 mirroredPoint(const glm::vec3& p, float planeX) { return {2.0f * planeX - p.x, p.y, p.z}; }
 glm::vec3 mirroredDirection(const glm::vec3& d) { return {-d.x, d.y, d.z}; }
 

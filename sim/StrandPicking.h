@@ -43,6 +43,9 @@ std::vector<StrandCut> strandsCutBy(const HairCurves& curves, const glm::vec3& e
 void combStrand(std::span<glm::vec3> positions, std::span<const float> segmentLengths, const glm::vec3& delta,
                 float weight);
 
+// The distance from p to the nearest point of the polyline (metres); huge for fewer than 2 points.
+float distanceToPolyline(const glm::vec3& p, std::span<const glm::vec3> line);
+
 // The ray mirrored across the plane x = planeX (the brushes' X symmetry).
 glm::vec3 mirroredPoint(const glm::vec3& p, float planeX);
 glm::vec3 mirroredDirection(const glm::vec3& d);

@@ -11,8 +11,10 @@
 #include "sim/HairSimulation.h"
 #include "sim/MeshBvh.h"
 #include "sim/ScalpBrush.h"
+#include "sim/StyleEdits.h"
 
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cstdio>
 #include <fstream>
@@ -202,6 +204,61 @@ BenchResult brushWorkload(const RunOptions& o)
     return r;
 }
 
+// Letting go of a comb stroke while the hair simulates, as the editor does it: the combed key hairs
+// (those rooted within 3 cm of a point walking around the scalp, about a 2 cm brush's catch) get
+// their current shape turned 20 degrees about the root as their new shape, then the regroom solves
+// the rest shapes that hold it (RestShapeSolve.h) and restarts those strands. ms per release.
+BenchResult combWorkload(const RunOptions& o)
+{
+    const TriangleMesh head = makeDefaultHead().mesh;
+    std::vector<GrowthRegion> regions(1);
+    regions[0].name = "Scalp";
+    regions[0].weights = upperHeadGrowth(head);
+    const ParameterValues v;
+    HairSimulation sim(o.threads);
+    if (std::string error = sim.setup(head, regions, kNoSolo, v); !error.empty())
+        throw CliError{kBadInput, "comb-release: " + error};
+    for (int i = 0; i < 120; ++i)
+        sim.step();
+    const Aabb box = boundsOf(head);
+    auto edits = std::make_shared<StyleEdits>();
+    std::size_t combed = 0;
+    int stroke = 0;
+    BenchResult r{"comb-release"};
+    r.threads = sim.solver().threadCount();
+    r.substeps = sim.solver().settings().substeps;
+    timeSteps(o, [&] {
+        const float a = glm::two_pi<float>() * static_cast<float>(stroke % 48) / 48.0f;
+        const glm::vec3 at = box.center() + glm::vec3(0.6f * box.size().x * std::cos(a), 0.15f * box.size().y,
+                                                      0.6f * box.size().z * std::sin(a));
+        const float turn = glm::radians(stroke % 2 == 0 ? 20.0f : -20.0f);
+        ++stroke;
+        HairCurves frame;
+        sim.buildFrame(frame);
+        const Groom& g = sim.groom();
+        const glm::vec3 point = sim.bvh().closestPoint(at).point;
+        const glm::mat3 rotation(glm::rotate(glm::mat4(1.0f), turn, glm::vec3(1.0f, 0.0f, 0.0f)));
+        for (std::size_t w = 0; w < g.wispCount(); ++w) {
+            const std::uint32_t k = g.keyStrand[w];
+            if (glm::distance(g.rootPositions[k], point) > 0.03f)
+                continue;
+            const auto strand = frame.strand(k);
+            std::vector<glm::vec3> shape;
+            for (const glm::vec3& p : strand)
+                shape.push_back(strand.front() + rotation * (p - strand.front()));
+            (*edits)[g.strandIdentity(k)].shape = std::move(shape);
+            ++combed;
+        }
+        sim.setStyle(std::make_shared<const StyleEdits>(*edits));
+        if (std::string error = sim.regroom(regions, kNoSolo, v); !error.empty())
+            throw CliError{kBadInput, "comb-release: " + error};
+    }, r);
+    r.particles = sim.solver().particleCount();
+    r.strands = combed / static_cast<std::size_t>(std::max(1, stroke));  // combed key hairs per release
+    r.solverBytesPerParticle = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(std::max<std::size_t>(1, r.particles));
+    return r;
+}
+
 struct Workload {
     std::string name;
     std::string description;
@@ -226,6 +283,9 @@ std::vector<Workload> workloads()
         {"brush-dab", "one 2 cm growth-brush dab plus the live regroom, on the default head or --head FILE "
                       "(ms per dab; particles and strands are the simulation's)",
          brushWorkload},
+        {"comb-release", "letting go of a comb stroke: the combed keys' rest shapes solved and the live regroom, "
+                         "default head (ms per release; strands: combed key hairs per release)",
+         combWorkload},
     };
 }
 

@@ -172,6 +172,14 @@ void PaintTool::dabAlong(const Hit& to, Qt::KeyboardModifiers modifiers)
         m_document->strokeUpdated();
 }
 
+bool PaintTool::resizeByKey(const QKeyEvent* e)
+{
+    if (e->type() != QEvent::KeyPress || (e->key() != Qt::Key_BracketLeft && e->key() != Qt::Key_BracketRight))
+        return false;
+    setRadius(e->key() == Qt::Key_BracketLeft ? m_settings.radiusMetres / kRadiusStep : m_settings.radiusMetres * kRadiusStep);
+    return true;
+}
+
 void PaintTool::endStroke()
 {
     if (!m_stroking)
@@ -221,14 +229,8 @@ bool PaintTool::eventFilter(QObject* watched, QEvent* event)
     case QEvent::KeyPress:
     case QEvent::KeyRelease: {
         auto* e = static_cast<QKeyEvent*>(event);
-        if (event->type() == QEvent::KeyPress && e->key() == Qt::Key_BracketLeft) {
-            setRadius(m_settings.radiusMetres / kRadiusStep);
+        if (resizeByKey(e))
             return true;
-        }
-        if (event->type() == QEvent::KeyPress && e->key() == Qt::Key_BracketRight) {
-            setRadius(m_settings.radiusMetres * kRadiusStep);
-            return true;
-        }
         if (e->key() == Qt::Key_Control || e->key() == Qt::Key_Shift) {  // the ring shows the held mode
             if (m_lastCursor.x() >= 0.0)
                 updateCursor(m_lastCursor, e->modifiers());

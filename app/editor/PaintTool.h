@@ -21,6 +21,8 @@
 #include <QObject>
 #include <QPointF>
 
+class QKeyEvent;
+
 #include <memory>
 #include <optional>
 
@@ -46,6 +48,9 @@ public:
     };
     std::optional<Hit> hitAt(QPointF widgetPosition) const;
     const MeshBvh& headBvh() const { return *m_bvh; }
+    // [ and ] make the brush smaller and larger, for every tool that shares these settings; true
+    // when `e` was one of them.
+    bool resizeByKey(const QKeyEvent* e);
 
     // Brush limits, metres.
     static constexpr float kMinRadius = 0.001f;

@@ -22,7 +22,6 @@ namespace {
 
 constexpr float kFar = 1.0e4f;             // metres: a ray that meets no head
 constexpr double kDabSpacingPixels = 6.0;  // the dab brushes (length, curl, wet, spray) dab this often
-constexpr float kRadiusStep = 1.15f;       // [ and ] scale the radius by this
 
 bool isBrushButton(const QMouseEvent* e) { return e->button() == Qt::LeftButton && !(e->modifiers() & Qt::AltModifier); }
 
@@ -504,15 +503,8 @@ bool StyleTool::eventFilter(QObject* watched, QEvent* event)
     case QEvent::KeyPress:
     case QEvent::KeyRelease: {
         auto* e = static_cast<QKeyEvent*>(event);
-        const float radius = m_brushSettings->settings().radiusMetres;
-        if (event->type() == QEvent::KeyPress && e->key() == Qt::Key_BracketLeft) {
-            m_brushSettings->setRadius(radius / kRadiusStep);
+        if (m_brushSettings->resizeByKey(e))
             return true;
-        }
-        if (event->type() == QEvent::KeyPress && e->key() == Qt::Key_BracketRight) {
-            m_brushSettings->setRadius(radius * kRadiusStep);
-            return true;
-        }
         if (e->key() == Qt::Key_Control && m_lastCursor.x() >= 0.0)
             updateCursor(m_lastCursor, e->modifiers());
         return false;

@@ -2,18 +2,21 @@
 // What several GUI tests need: waiting for the simulation host's frames, measuring where the hair
 // hangs, and typing into a parameter panel as an artist does.
 
+#include "app/editor/MainWindow.h"
 #include "app/editor/SimulationHost.h"
 #include "sim/Frame.h"
 #include "widgets/ParameterPanel.h"
 
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
+#include <QStandardPaths>
 #include <QTest>
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 
 namespace wisp::test {
 
@@ -43,6 +46,20 @@ inline bool waitForFramesSince(const SimulationHost& host, std::uint64_t since, 
 inline bool waitForFrames(const SimulationHost& host, std::uint64_t count, int timeoutMs = kWaitMs)
 {
     return waitForFramesSince(host, host.publishedFrames(), count, timeoutMs);
+}
+
+// The editor's main window as an artist starts it (settings and data in Qt's test locations), shown
+// at `width` x `height`, exposed and active, so key and mouse events reach it.
+inline std::unique_ptr<MainWindow> openEditor(int width = 1300, int height = 850)
+{
+    QStandardPaths::setTestModeEnabled(true);
+    auto window = std::make_unique<MainWindow>();
+    window->resize(width, height);
+    window->show();
+    EXPECT_TRUE(QTest::qWaitForWindowExposed(window.get()));
+    window->activateWindow();
+    EXPECT_TRUE(QTest::qWaitForWindowActive(window.get()));
+    return window;
 }
 
 // Mean root and tip of a frame's strands, metres.

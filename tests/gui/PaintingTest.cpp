@@ -8,6 +8,7 @@
 #include "app/editor/WispPanel.h"
 #include "GuiTestSupport.h"
 #include "sim/MeshBvh.h"
+#include "sim/StrandPicking.h"
 #include "widgets/ParameterPanel.h"
 #include "widgets/Viewport.h"
 
@@ -46,28 +47,12 @@ std::set<Root> rootsOf(const FramePtr& frame)
 
 glm::vec3 asVec(const Root& r) { return {std::get<0>(r), std::get<1>(r), std::get<2>(r)}; }
 
-float distanceToPolyline(const glm::vec3& p, const std::vector<glm::vec3>& line)
-{
-    float best = INFINITY;
-    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-        const glm::vec3 d = line[i + 1] - line[i];
-        const float t = std::clamp(glm::dot(p - line[i], d) / std::max(glm::dot(d, d), 1e-12f), 0.0f, 1.0f);
-        best = std::min(best, glm::distance(p, line[i] + t * d));
-    }
-    return best;
-}
-
 class PaintingTest : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        QStandardPaths::setTestModeEnabled(true);
-        window = std::make_unique<MainWindow>();
-        window->resize(1300, 850);
-        window->show();
-        ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
-        window->activateWindow();
-        ASSERT_TRUE(QTest::qWaitForWindowActive(window.get()));
+        window = wisp::test::openEditor();
+        ASSERT_FALSE(HasFailure()) << "the window did not open";
         Document* doc = window->document();
         // A light groom keeps regrooms and the real-time simulation quick on two cores.
         doc->editRegionParameter(0, Param::Density, 2.0, false);

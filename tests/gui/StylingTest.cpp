@@ -12,6 +12,7 @@
 #include "app/editor/StyleTool.h"
 #include "GuiTestSupport.h"
 #include "sim/HairDryer.h"
+#include "sim/StrandPicking.h"
 #include "widgets/Viewport.h"
 
 #include <QAction>
@@ -56,17 +57,6 @@ std::set<std::uint64_t> keyIdentities(const FramePtr& frame)
     return keys;
 }
 
-float distanceToPolyline(const glm::vec3& p, std::span<const glm::vec3> line)
-{
-    float best = 1e30f;
-    for (std::size_t j = 1; j < line.size(); ++j) {
-        const glm::vec3 ab = line[j] - line[j - 1];
-        const float t = std::clamp(glm::dot(p - line[j - 1], ab) / std::max(glm::dot(ab, ab), 1e-12f), 0.0f, 1.0f);
-        best = std::min(best, glm::distance(p, line[j - 1] + t * ab));
-    }
-    return best;
-}
-
 // How spread wisp w is: the mean distance of its members' outer halves from its key hair.
 float wispSpread(const FramePtr& frame, std::uint32_t w)
 {
@@ -88,13 +78,8 @@ class StylingTest : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        QStandardPaths::setTestModeEnabled(true);
-        window = std::make_unique<MainWindow>();
-        window->resize(1300, 850);
-        window->show();
-        ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
-        window->activateWindow();
-        ASSERT_TRUE(QTest::qWaitForWindowActive(window.get()));
+        window = wisp::test::openEditor();
+        ASSERT_FALSE(HasFailure()) << "the window did not open";
         Document* doc = window->document();
         // A light groom keeps regrooms and the real-time simulation quick on two cores; no wind.
         doc->editRegionParameter(0, Param::Density, 2.0, false);
@@ -251,9 +236,12 @@ TEST_F(StylingTest, CutShortensTheStrandsTheStrokeCrossesThereAndUndoRestoresThe
     // The cut hair hangs no lower than the cut (with a little sway).
     runSteps(30);
     const Strands now = byIdentity(frame());
-    for (const auto& [id, style] : *document()->style())
-        if (keyIdentities(frame()).count(id))
+    const std::set<std::uint64_t> keysNow = keyIdentities(frame());
+    for (const auto& [id, style] : *document()->style()) {
+        if (keysNow.count(id)) {
             EXPECT_GT(now.at(id).back().y, cutY - 0.03f) << "cut key " << id << " still hangs below the cut";
+        }
+    }
 
     undo();
     EXPECT_EQ(*document()->style(), styleBefore);

@@ -5,6 +5,7 @@
 #include "sim/Groom.h"
 #include "sim/GrowthRegion.h"
 #include "sim/HairDryer.h"
+#include "sim/StrandPicking.h"
 #include "sim/HairSimulation.h"
 #include "sim/SignedDistanceField.h"
 #include "sim/StyleEdits.h"
@@ -59,17 +60,6 @@ struct Styled {
             sim->step();
     }
 };
-
-float distanceToPolyline(const glm::vec3& p, std::span<const glm::vec3> line)
-{
-    float best = 1e30f;
-    for (std::size_t j = 1; j < line.size(); ++j) {
-        const glm::vec3 ab = line[j] - line[j - 1];
-        const float t = glm::clamp(glm::dot(p - line[j - 1], ab) / std::max(glm::dot(ab, ab), 1e-12f), 0.0f, 1.0f);
-        best = std::min(best, glm::distance(p, line[j - 1] + t * ab));
-    }
-    return best;
-}
 
 // Mean distance of a wisp's members from its key hair over the outer half of their length: how
 // spread the wisp is.

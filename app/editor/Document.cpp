@@ -360,10 +360,10 @@ void Document::styleStrokeUpdated()
     emit styleChanged();
 }
 
-void Document::endStyleStroke(const QString& text)
+int Document::endStyleStroke(const QString& text)
 {
     if (!m_styleStroke)
-        return;
+        return 0;
     // Edits that change nothing are dropped, so "no edit" has one form.
     std::erase_if(*m_styleStroke, [](const auto& entry) { return entry.second.isDefault(); });
     m_style = std::make_shared<const StyleEdits>(std::move(*m_styleStroke));
@@ -388,8 +388,10 @@ void Document::endStyleStroke(const QString& text)
             note(entry.first);
     m_styleBefore.reset();
     emit styleChanged();
+    const int changed = static_cast<int>(undo.size());
     if (!undo.empty())
         m_undoStack.push(new StyleStrokeCommand(this, std::move(undo), std::move(redo), text, true));
+    return changed;
 }
 
 // --- For commands -----------------------------------------------------------------------------

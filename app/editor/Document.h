@@ -82,7 +82,7 @@ public:
     void beginStyleStroke();
     StyleEdits& strokeStyle();
     void styleStrokeUpdated();  // emits styleChanged
-    void endStyleStroke(const QString& text);
+    int endStyleStroke(const QString& text);  // returns how many strands the stroke changed
     bool inStyleStroke() const { return m_styleStroke.has_value(); }
 
     // Replaces the head as one undo step; its regions start over as one region grown where

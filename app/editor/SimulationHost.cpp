@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <span>
 #include <string>
@@ -188,9 +189,17 @@ private:
     // Thread: simulation. The running hair with new salon edits (already given to m_sim).
     void restyle()
     {
-        if (std::string error = regroom(m_regions, m_values); !error.empty())
+        if (std::string error = regroom(m_regions, m_values); !error.empty()) {
             m_host.postError(error);
+            return;
+        }
+        // Combed hair too soft to hold its shape under gravity: no rest shape can keep it there.
+        if (const float gap = m_sim->worstRestGapMetres(); gap > kRestGapToReportMetres)
+            m_host.postError("Some combed hair is too soft to stay where it was combed (up to " +
+                             std::to_string(static_cast<int>(std::lround(gap * 100.0f))) +
+                             " cm off): spray it with hairspray to hold the shape");
     }
+    static constexpr float kRestGapToReportMetres = 0.03f;
 
     // Thread: simulation. Puts the comb's strands where it holds them; true if any is held.
     bool applyHeld()

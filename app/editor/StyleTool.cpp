@@ -198,7 +198,7 @@ void StyleTool::end()
         for (const Grabbed& g : m_grabbed)
             edits[g.identity].shape = g.positions;
         m_document->styleStrokeUpdated();
-        m_document->endStyleStroke(strokeName());
+        report(m_document->endStyleStroke(strokeName()));
         m_simulation->holdStrands({});
         m_grabbed.clear();
         return;
@@ -208,7 +208,16 @@ void StyleTool::end()
         keepDriedWetness();
         return;
     }
-    m_document->endStyleStroke(strokeName());
+    report(m_document->endStyleStroke(strokeName()));
+}
+
+// What a stroke did, on the status bar: an artist sees at once when a stroke caught nothing.
+void StyleTool::report(int changedStrands)
+{
+    if (changedStrands == 0)
+        emit message(tr("%1: no strand under the brush changed").arg(strokeName()));
+    else
+        emit message(tr("%1: %n strand(s) changed", nullptr, changedStrands).arg(strokeName()));
 }
 
 // A stroke cut short (the head replaced): nothing of it stays.
@@ -465,7 +474,7 @@ void StyleTool::keepDriedWetness()
     }
     if (changed)
         m_document->styleStrokeUpdated();
-    m_document->endStyleStroke(strokeName());
+    report(m_document->endStyleStroke(strokeName()));
 }
 
 bool StyleTool::eventFilter(QObject* watched, QEvent* event)

@@ -107,6 +107,7 @@ private:
     void keepDriedWetness();
     float lengthOf(std::uint64_t identity, std::uint32_t strand) const;
     QString strokeName() const;
+    void report(int changedStrands);
 
     Document* m_document;
     Viewport* m_viewport;

@@ -20,6 +20,7 @@
 #include <QDoubleSpinBox>
 #include <QSignalSpy>
 #include <QStandardPaths>
+#include <QStatusBar>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QUndoStack>
@@ -541,6 +542,8 @@ TEST_F(StylingTest, GrowAndShrinkChangeTheLengthUnderTheBrushAndToolsAreExclusiv
     stroke({rightSide(0.05f, 0.05f) + glm::vec3(0.03f, 0, 0), rightSide(0.05f, -0.05f) + glm::vec3(0.03f, 0, 0)});
     const StyleEdits grown = *document()->style();
     ASSERT_GT(grown.size(), 3u);
+    EXPECT_TRUE(window->statusBar()->currentMessage().contains(QStringLiteral("strand")))
+        << "the status bar does not say what the stroke did: " << window->statusBar()->currentMessage().toStdString();
     const Strands restGrown = byIdentity(frame(), true);
     const std::set<std::uint64_t> keys = keyIdentities(frame());
     double grownBy = 0.0;

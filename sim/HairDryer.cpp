@@ -1,5 +1,7 @@
 #include "sim/HairDryer.h"
 
+#include "sim/SignedDistanceField.h"
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
 
@@ -27,6 +29,28 @@ glm::vec3 dryerAirAt(const HairDryer& dryer, const glm::vec3& p)
     const float across = std::cos(angle / dryer.halfAngleRadians * glm::half_pi<float>());
     const float speed = dryer.speedMetresPerSecond * across * across / (1.0f + along / kJetCoreMetres);
     return dryer.direction * speed;
+}
+
+glm::vec3 dryerAirAt(const HairDryer& dryer, const glm::vec3& p, const SignedDistanceField* head)
+{
+    const glm::vec3 air = dryerAirAt(dryer, p);
+    if (!head || air == glm::vec3(0.0f))
+        return air;
+    constexpr float kSkinGap = 0.01f;     // metres left untraced before p
+    constexpr float kHit = 0.001f;        // closer than this to the skin: the head is in the way
+    constexpr float kMinStep = 0.003f;    // sphere tracing creeps no slower than this
+    constexpr int kMaxSteps = 64;         // a grazing ray that is still going counts as clear
+    const glm::vec3 offset = p - dryer.nozzle;
+    const float length = glm::length(offset);
+    const glm::vec3 direction = offset / length;
+    float t = 0.0f;
+    for (int i = 0; i < kMaxSteps && t < length - kSkinGap; ++i) {
+        const float d = head->distance(dryer.nozzle + direction * t);
+        if (d < kHit)
+            return glm::vec3(0.0f);
+        t += std::max(d, kMinStep);
+    }
+    return air;
 }
 
 float dryingRate(float wetness, float airSpeed, float halfLifeSeconds)

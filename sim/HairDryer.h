@@ -6,6 +6,8 @@
 
 namespace wisp {
 
+class SignedDistanceField;
+
 struct HairDryer {
     glm::vec3 nozzle{0.0f};                      // world, metres: where the air leaves the dryer
     glm::vec3 direction{0.0f, 0.0f, -1.0f};      // unit, world
@@ -19,6 +21,10 @@ struct HairDryer {
 // along it (a free jet slows about as 1 / (1 + d / 0.3 m)); zero outside the cone, behind the
 // nozzle or beyond its reach.
 glm::vec3 dryerAirAt(const HairDryer& dryer, const glm::vec3& p);
+// The same where the head does not stand between the nozzle and p (the jet does not pass through
+// the head): the segment from the nozzle to p (less its last centimetre: hair lies on the skin) is
+// sphere-traced through the head's distance field. `head` null: no occlusion.
+glm::vec3 dryerAirAt(const HairDryer& dryer, const glm::vec3& p, const SignedDistanceField* head);
 
 // Water lost per second at air speed `airSpeed` (m/s) by hair of wetness w: still air dries with
 // half-life `halfLifeSeconds`; moving air adds 0.25 per (m/s) per second, so a dryer at 4 m/s dries

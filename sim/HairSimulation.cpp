@@ -255,11 +255,11 @@ bool HairSimulation::holdStrand(std::uint64_t identity, std::span<const glm::vec
 void HairSimulation::step()
 {
     const bool wet = anyWet();
-    if (m_dryer || wet || m_airInSolver) {
+    if (!m_dryers.empty() || wet || m_airInSolver) {
         const std::size_t count = m_solver.strandCount();
         const float dt = m_solver.settings().timeStepSeconds;
         std::vector<glm::vec3> air;
-        if (m_dryer) {
+        if (!m_dryers.empty()) {
             // The air a strand feels: the mean over three points along it (a third, two thirds, the tip).
             std::vector<glm::vec3> positions;
             m_solver.copyPositions(positions);
@@ -267,8 +267,9 @@ void HairSimulation::step()
             air.resize(count);
             for (std::size_t s = 0; s < count && points >= 2; ++s) {
                 const glm::vec3* p = positions.data() + s * points;
-                air[s] = (dryerAirAt(*m_dryer, p[points / 3]) + dryerAirAt(*m_dryer, p[2 * points / 3]) +
-                          dryerAirAt(*m_dryer, p[points - 1])) / 3.0f;
+                for (const HairDryer& dryer : m_dryers)  // the head shadows the jet
+                    air[s] += (dryerAirAt(dryer, p[points / 3], m_sdf.get()) + dryerAirAt(dryer, p[2 * points / 3], m_sdf.get()) +
+                               dryerAirAt(dryer, p[points - 1], m_sdf.get())) / 3.0f;
             }
         }
         for (std::size_t w = 0; w < m_wetness.size(); ++w) {
@@ -287,7 +288,7 @@ void HairSimulation::step()
                 drag[s] = wetDragFactor(m_wetness[wispOfSimulated(s)]);
         }
         m_solver.setStrandAir(drag, air);
-        m_airInSolver = m_dryer.has_value() || wet;
+        m_airInSolver = !m_dryers.empty() || wet;
         updateMaterial(false);
     }
     m_solver.step();

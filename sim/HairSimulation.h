@@ -61,8 +61,9 @@ public:
     // keep drying where they are.
     void setStyle(StyleEditsPtr style);
     const StyleEditsPtr& style() const { return m_style; }
-    // The blow-dryer while the artist holds it; nullopt when put down. Applies from the next step.
-    void setDryer(std::optional<HairDryer> dryer) { m_dryer = dryer; }
+    // The blow-dryers while the artist holds one (two with X symmetry); none when put down. Their
+    // air adds up. Applies from the next step.
+    void setDryers(std::vector<HairDryer> dryers) { m_dryers = std::move(dryers); }
     // Still-air drying half-life, seconds (the drying_time parameter; applyForces sets it).
     float dryingHalfLifeSeconds() const { return m_dryingHalfLife; }
     // Live wetness 0..1 of each wisp (groom order), and of each drawn strand (its wisp's).
@@ -130,7 +131,7 @@ private:
     std::vector<float> m_baseStiffness;                       // per simulated strand: region x hairspray
     std::vector<float> m_wetnessInSolver;                     // per simulated strand: as last given to the solver
     bool m_airInSolver = false;                               // the solver has per-strand air set
-    std::optional<HairDryer> m_dryer;
+    std::vector<HairDryer> m_dryers;
     float m_dryingHalfLife = 120.0f;
     std::unordered_map<std::uint64_t, std::uint32_t> m_simulatedOf;  // identity -> solver strand
     struct SolvedRest {

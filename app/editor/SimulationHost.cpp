@@ -61,10 +61,10 @@ public:
                         restyle();
                 }
             }
-            if (taken.dryer) {
-                m_dryer = *taken.dryer;
+            if (taken.dryers) {
+                m_dryers = std::move(*taken.dryers);
                 if (m_sim)
-                    m_sim->setDryer(m_dryer);
+                    m_sim->setDryers(m_dryers);
             }
             if (taken.scene && !stopRequested())
                 adoptScene(std::move(*taken.scene));
@@ -112,14 +112,14 @@ private:
         taken.regions.reset();
         taken.actions.clear();
         taken.style.reset();
-        taken.dryer.reset();
+        taken.dryers.reset();
         taken.held.reset();
         taken.wettings.clear();
         std::unique_lock lock(m_host.m_mutex);
         Inbox& inbox = m_host.m_inbox;
         const auto ready = [&] {
             return inbox.stopping || inbox.scene || inbox.parameters || inbox.regions || !inbox.actions.empty() ||
-                   inbox.style || inbox.dryer || inbox.held || !inbox.wettings.empty() || inbox.playing != m_playing;
+                   inbox.style || inbox.dryers || inbox.held || !inbox.wettings.empty() || inbox.playing != m_playing;
         };
         if (m_playing && m_sim) {
             const auto due = m_epoch + std::chrono::duration_cast<Clock::duration>(
@@ -135,7 +135,7 @@ private:
         taken.regions = std::exchange(inbox.regions, std::nullopt);
         taken.actions.swap(inbox.actions);
         taken.style = std::exchange(inbox.style, std::nullopt);
-        taken.dryer = std::exchange(inbox.dryer, std::nullopt);
+        taken.dryers = std::exchange(inbox.dryers, std::nullopt);
         taken.held = std::exchange(inbox.held, std::nullopt);
         taken.wettings.swap(inbox.wettings);
         taken.playing = inbox.playing;
@@ -154,7 +154,7 @@ private:
     {
         auto next = std::make_unique<HairSimulation>(m_host.m_solverThreads);
         next->setStyle(m_style);
-        next->setDryer(m_dryer);
+        next->setDryers(m_dryers);
         const Regions& r = scene.regions;
         std::string error;
         try {
@@ -360,7 +360,7 @@ private:
     ParameterValues m_groomedWith;          // what m_sim's groom was built from
     std::optional<ParameterValues> m_refusedGroom;
     StyleEditsPtr m_style;                  // the artist's salon edits, for every groom
-    std::optional<HairDryer> m_dryer;
+    std::vector<HairDryer> m_dryers;
     std::vector<HeldStrand> m_held;         // the comb's strands while it drags
     SimulationHostPacer m_pacer;
     bool m_playing = false;
@@ -506,11 +506,12 @@ void SimulationHost::setStyle(StyleEditsPtr style)
     m_wake.notify_one();
 }
 
-void SimulationHost::setDryer(std::optional<HairDryer> dryer)
+void SimulationHost::setDryers(std::vector<HairDryer> dryers)
 {
+    std::optional<std::vector<HairDryer>> superseded;
     {
         std::lock_guard lock(m_mutex);
-        m_inbox.dryer = dryer;
+        superseded = std::exchange(m_inbox.dryers, std::move(dryers));
     }
     m_wake.notify_one();
 }

@@ -71,8 +71,9 @@ public:
     // them (combed strands get a solved rest shape, so this can take a little longer), and every
     // later scene is groomed with them. Only the newest matters.
     void setStyle(StyleEditsPtr style);
-    // Thread: GUI; returns at once. The blow-dryer while the artist holds it; nullopt puts it down.
-    void setDryer(std::optional<HairDryer> dryer);
+    // Thread: GUI; returns at once. The blow-dryers while the artist holds one (two with X
+    // symmetry); an empty list puts them down.
+    void setDryers(std::vector<HairDryer> dryers);
     // A simulated strand held where the comb drags it: identity (Groom::strandIdentity) and
     // positions, world space, root first, as many as the strand has.
     struct HeldStrand {
@@ -150,7 +151,7 @@ private:
         std::optional<Regions> regions;
         std::vector<Action> actions;  // in the order asked
         std::optional<StyleEditsPtr> style;
-        std::optional<std::optional<HairDryer>> dryer;  // set: a change (to a dryer or to none)
+        std::optional<std::vector<HairDryer>> dryers;  // set: a change (to dryers or to none)
         std::optional<std::vector<HeldStrand>> held;
         std::vector<Wetting> wettings;
         bool playing = false;

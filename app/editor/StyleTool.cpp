@@ -204,7 +204,7 @@ void StyleTool::end()
         return;
     }
     if (m_brush == StyleBrush::BlowDry) {
-        m_simulation->setDryer(std::nullopt);
+        m_simulation->setDryers({});
         keepDriedWetness();
         return;
     }
@@ -228,7 +228,7 @@ void StyleTool::cancel()
     m_stroking = false;
     m_grabbed.clear();
     m_simulation->holdStrands({});
-    m_simulation->setDryer(std::nullopt);
+    m_simulation->setDryers({});
     if (m_document->inStyleStroke())
         m_document->endStyleStroke(strokeName());
 }
@@ -446,7 +446,14 @@ void StyleTool::placeDryer(QPointF position)
     HairDryer dryer;
     dryer.nozzle = aim - ray.direction * kDryerDistanceMetres;
     dryer.direction = ray.direction;
-    m_simulation->setDryer(dryer);
+    std::vector<HairDryer> dryers{dryer};
+    if (m_brushSettings->settings().mirrorX) {  // symmetry: a second dryer, mirrored
+        const float plane = m_brushSettings->mirrorPlaneX();
+        dryer.nozzle = mirroredPoint(dryer.nozzle, plane);
+        dryer.direction = mirroredDirection(dryer.direction);
+        dryers.push_back(dryer);
+    }
+    m_simulation->setDryers(std::move(dryers));
 }
 
 // After blow-drying: the document keeps how wet the dried wisps are now, as one undo step.

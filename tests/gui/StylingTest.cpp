@@ -12,6 +12,7 @@
 #include "app/editor/StyleTool.h"
 #include "GuiTestSupport.h"
 #include "sim/HairDryer.h"
+#include "sim/SignedDistanceField.h"
 #include "sim/StrandPicking.h"
 #include "widgets/Viewport.h"
 
@@ -492,40 +493,55 @@ TEST_F(StylingTest, TheDryerBlowsTheHairInItsConeAwayFromTheCursorAndDriesIt)
     QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, at);
     settle();
 
-    // In the cone: keys whose outer half was in the air the dryer makes from there.
+    // In a cone: keys whose outer half was in the air of the dryer, or of its mirror (X symmetry is
+    // on, so a second dryer blows at the left side).
     HairDryer dryer;
     dryer.direction = axis;
     const auto hit = window->paintTool()->hitAt(at);
-    ASSERT_TRUE(hit.has_value()) << "the dryer was not aimed at the head: " << at.x() << "," << at.y() << " aim " << aim.x << " " << aim.y << " " << aim.z << " ray " << view->rayAt(at).origin.z << " dir " << axis.x << " " << axis.y << " " << axis.z << " view " << view->width() << "x" << view->height();
+    ASSERT_TRUE(hit.has_value()) << "the dryer was not aimed at the head";
     const float hitDepth = glm::dot(hit->point - view->rayAt(at).origin, axis);
     dryer.nozzle = view->rayAt(at).origin + axis * (hitDepth - StyleTool::kDryerDistanceMetres);
+    const TriangleMesh& head = document()->head();
+    const float extent = std::max({box.size().x, box.size().y, box.size().z});
+    const SignedDistanceField field = SignedDistanceField::bake(head, extent / 96.0f, 0.1f * extent + 0.01f);
+    HairDryer mirror = dryer;
+    mirror.nozzle = mirroredPoint(dryer.nozzle, window->paintTool()->mirrorPlaneX());
+    mirror.direction = mirroredDirection(dryer.direction);
     const Strands still = byIdentity(calm), moved = byIdentity(blown);
     const GroomShape& g = *calm->groomShape;
     double along[2] = {0, 0}, wetness[2] = {0, 0};
-    int count[2] = {0, 0};
+    int count[2] = {0, 0}, mirrored = 0;
     for (std::uint32_t w = 0; w < g.keyOfWisp.size(); ++w) {
         const std::uint32_t key = g.keyOfWisp[w];
         const std::uint64_t id = g.identities[key];
-        if (!wetStyle.count(id))
-            continue;  // compare wet hair with wet hair
         const auto& strand = still.at(id);
-        float air = 0.0f, anyAir = 0.0f;
-        for (std::size_t j = strand.size() / 2; j < strand.size(); ++j)
-            air += glm::length(dryerAirAt(dryer, strand[j])) / static_cast<float>(strand.size() - strand.size() / 2);
-        for (const glm::vec3& p : strand)
-            anyAir = std::max(anyAir, glm::length(dryerAirAt(dryer, p)));
-        if (air < 1.0f && anyAir > 0.0f)
-            continue;  // the cone's edge
-        const bool inCone = air >= 1.0f;
-        along[inCone] += glm::dot(moved.at(id).back() - strand.back(), axis);
-        wetness[inCone] += blown->wetness.empty() ? 0.0 : blown->wetness[key];
+        float air[2] = {0.0f, 0.0f}, anyAir = 0.0f;
+        for (int d = 0; d < 2; ++d) {
+            const HairDryer& one = d == 0 ? dryer : mirror;
+            for (std::size_t j = strand.size() / 2; j < strand.size(); ++j)
+                air[d] += glm::length(dryerAirAt(one, strand[j], &field)) / static_cast<float>(strand.size() - strand.size() / 2);
+            for (const glm::vec3& p : strand)
+                anyAir = std::max(anyAir, glm::length(dryerAirAt(one, p, &field)));
+        }
+        const int which = air[1] > air[0] ? 1 : 0;
+        if (air[which] < 1.0f && anyAir > 0.3f)
+            continue;  // a cone's edge (outside: no more than a breath of air anywhere on it)
+        const bool inCone = air[which] >= 1.0f;
+        mirrored += inCone && which == 1;
+        along[inCone] += glm::dot(moved.at(id).back() - strand.back(), (which == 0 ? dryer : mirror).direction);
         ++count[inCone];
+        if (inCone && wetStyle.count(id)) {  // how wet it is now, of how wet the brush made it
+            wetness[0] += wetStyle.at(id).wetness;
+            wetness[1] += blown->wetness.empty() ? 0.0 : blown->wetness[key];
+        }
     }
+    EXPECT_GT(mirrored, 0) << "the mirrored dryer blew on nothing";
     ASSERT_GT(count[1], 2) << "no wet strand in the cone";
     ASSERT_GT(count[0], 2);
     EXPECT_GT(along[1] / count[1], 0.01) << "the hair in the cone did not move away from the cursor";
     EXPECT_LT(along[0] / count[0], 0.3 * along[1] / count[1]);
-    EXPECT_LT(wetness[1] / count[1], 0.6 * wetness[0] / count[0]) << "the dryer did not dry the hair it blew on";
+    ASSERT_GT(wetness[0], 0.0) << "no wet hair in the cones";
+    EXPECT_LT(wetness[1], 0.6 * wetness[0]) << "the dryer did not dry the hair it blew on";
 
     // What it dried is one undo step, and undo brings the wetness back exactly.
     EXPECT_EQ(document()->undoStack()->count(), undoBefore + 1);

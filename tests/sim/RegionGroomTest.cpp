@@ -154,9 +154,11 @@ TEST(RegionGroom, ADabAddsRootsOnlyNearItAndReusesEveryOtherWisp)
     std::set<std::uint64_t> old;
     for (std::size_t i = 0; i < before.strandCount(); ++i)
         old.insert(before.strandIdentity(i));
-    for (std::size_t i = 0; i < after.strandCount(); ++i)
-        if (!old.count(after.strandIdentity(i)))
+    for (std::size_t i = 0; i < after.strandCount(); ++i) {
+        if (!old.count(after.strandIdentity(i))) {
             EXPECT_LT(glm::distance(after.rootPositions[i], cheek), brush.radiusMetres + 1e-3f);
+        }
+    }
     EXPECT_GT(sim.groomBuilder().reusedWisps(), 10 * sim.groomBuilder().builtWisps());
 }
 
@@ -195,10 +197,12 @@ TEST(RegionGroom, RegroomKeepsTheMotionOfStrandsThatStayAndStartsNewOnesAtRest)
     EXPECT_EQ(kept, before.size());
     // New strands start at their rest shape.
     const Groom& g = sim.groom();
-    for (std::size_t i = 0; i < g.strandCount(); ++i)
-        if (!before.count(g.strandIdentity(i)) && g.isKey(i))
+    for (std::size_t i = 0; i < g.strandCount(); ++i) {
+        if (!before.count(g.strandIdentity(i)) && g.isKey(i)) {
             for (std::size_t j = 0; j < g.rest.pointsIn(i); ++j)
                 ASSERT_LT(glm::distance(now.strand(i)[j], g.rest.strand(i)[j]), 1e-6f);
+        }
+    }
 }
 
 TEST(RegionGroom, StiffnessScaleMakesARegionHoldItsShapeAgainstGravity)

@@ -336,9 +336,9 @@ TEST(Style, TheDryerBlowsStrandsInItsConeAwayFromTheNozzleAndDriesThem)
     dryer.nozzle = glm::vec3(box.center().x + 0.45f * box.size().x, box.center().y - 0.1f, box.center().z + 0.2f);
     dryer.direction = {0.0f, 0.0f, -1.0f};
     dryer.halfAngleRadians = 0.3f;
-    s.sim->setDryer(dryer);
+    s.sim->setDryers({dryer});
     s.run(120);
-    s.sim->setDryer(std::nullopt);
+    s.sim->setDryers({});
     const HairCurves blown = s.frame();
     // In the cone: the strand's middle and tip were in the air; outside: none of it was.
     double along[2] = {0, 0}, wetness[2] = {0, 0};
@@ -400,4 +400,19 @@ TEST(Style, BadEditsAreNamed)
     bad.shape = {{0, 0, 0}, {0, std::numeric_limits<float>::infinity(), 0}};
     EXPECT_NE(validateStrandStyle(42, bad).find("shape"), std::string::npos);
     EXPECT_EQ(validateStrandStyle(42, StrandStyle{}), "");
+}
+
+TEST(Style, TheHeadShadowsTheDryersJet)
+{
+    ParameterValues v = testParameters();
+    Styled s(v);
+    const Aabb box = boundsOf(defaultHead().mesh);
+    HairDryer dryer;
+    dryer.nozzle = box.center() + glm::vec3(0.0f, 0.0f, box.size().z * 0.5f + 0.1f);  // in front of the face
+    dryer.direction = {0.0f, 0.0f, -1.0f};
+    const glm::vec3 behind = box.center() - glm::vec3(0.0f, 0.0f, box.size().z * 0.5f + 0.02f);  // behind the head
+    const glm::vec3 before = box.center() + glm::vec3(0.0f, 0.0f, box.size().z * 0.5f + 0.03f);  // at the face
+    EXPECT_GT(glm::length(dryerAirAt(dryer, behind)), 1.0f) << "without the head the jet reaches it";
+    EXPECT_EQ(glm::length(dryerAirAt(dryer, behind, s.sim->collider())), 0.0f) << "the jet went through the head";
+    EXPECT_EQ(dryerAirAt(dryer, before, s.sim->collider()), dryerAirAt(dryer, before));
 }

@@ -217,10 +217,12 @@ void StyleTool::report(int changedStrands)
     if (changedStrands == 0)
         emit message(tr("%1: no strand under the brush changed").arg(strokeName()));
     else
-        emit message(tr("%1: %n strand(s) changed", nullptr, changedStrands).arg(strokeName()));
+        emit message(changedStrands == 1 ? tr("%1: 1 strand changed").arg(strokeName())
+                                         : tr("%1: %2 strands changed").arg(strokeName()).arg(changedStrands));
 }
 
-// A stroke cut short (the head replaced): nothing of it stays.
+// A stroke cut short (the head replaced under it): the comb and the dryer let go, and what the
+// stroke changed so far is kept as its undo step (the new head then clears the edits, undoably).
 void StyleTool::cancel()
 {
     if (!m_stroking)

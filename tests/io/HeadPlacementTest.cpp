@@ -178,7 +178,7 @@ TEST(HeadPlacement, EmptyAndFlatMeshesAreHandled)
 
     TriangleMesh point;
     point.positions = {{3, 3, 3}, {3, 3, 3}, {3, 3, 3}};
-    point.triangles = {{0, 1, 2}};
+    point.triangles.assign(1, glm::uvec3(0, 1, 2));  // (not a braced list: GCC 12 warns about its temporary)
     const HeadPlacement degenerate = placeHead(point);
     EXPECT_FLOAT_EQ(degenerate.scale, 1.0f);
     EXPECT_NE(degenerate.note.find("no extent"), std::string::npos) << degenerate.note;

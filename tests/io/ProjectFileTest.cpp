@@ -587,11 +587,15 @@ StyleEdits sampleStyle()
     all.curlTurnsPerMetre = 6.0f;
     all.stiffnessScale = 3.0f;
     all.wetness = 0.5f;
-    all.shape = {{0.0f, 1.6f, 0.1f}, {0.01f, 1.5f, 1.0f / 3.0f}, {-0.0f, 1.4f, 1e-30f}};
+    // (push_back, not a braced list: GCC 12 warns about the list's temporaries)
+    all.shape.push_back(glm::vec3(0.0f, 1.6f, 0.1f));
+    all.shape.push_back(glm::vec3(0.01f, 1.5f, 1.0f / 3.0f));
+    all.shape.push_back(glm::vec3(-0.0f, 1.4f, 1e-30f));
     StrandStyle& combed = edits[5];
     combed.lengthMetres = 0.123456789f;
     combed.curlRadiusMetres = 0.0f;  // straightened: 0 differs from the default -1
-    combed.shape = {{0.1f, 1.7f, 0.0f}, {0.1f, 1.6f, 0.0f}, {0.11f, 1.5f, 0.01f}, {0.12f, 1.4f, 2.0f / 3.0f}};
+    combed.shape = {glm::vec3(0.1f, 1.7f, 0.0f), glm::vec3(0.1f, 1.6f, 0.0f), glm::vec3(0.11f, 1.5f, 0.01f),
+                    glm::vec3(0.12f, 1.4f, 2.0f / 3.0f)};
     edits[4294967298u].wetness = 1.0f / 3.0f;
     return edits;
 }

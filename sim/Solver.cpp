@@ -43,7 +43,8 @@ inline Lane lrsqrt(Lane a)
 {
 #if defined(__AVX512F__)
     static_assert(sizeof(Lane) == sizeof(__m512));
-    const Lane y = reinterpret_cast<Lane>(_mm512_rsqrt14_ps(reinterpret_cast<__m512>(a)));
+    // (the zero-masked form: the plain one starts from an undefined register GCC 12 warns about)
+    const Lane y = reinterpret_cast<Lane>(_mm512_maskz_rsqrt14_ps(0xFFFF, reinterpret_cast<__m512>(a)));
 #elif defined(__AVX__)
     Lane y;
     for (int i = 0; i < kLanes; i += 8) {

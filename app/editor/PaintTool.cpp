@@ -20,20 +20,13 @@ namespace {
 constexpr float kDabSpacing = 0.25f;
 constexpr float kRadiusStep = 1.15f;  // [ and ] scale the radius by this
 
-bool isPaintButton(const QMouseEvent* e)
-{
-    return !(e->modifiers() & Qt::AltModifier);  // Alt + drag belongs to the camera
-}
-
 }  // namespace
 
 PaintTool::PaintTool(Document* document, Viewport* viewport, QObject* parent)
-    : QObject(parent), m_document(document), m_viewport(viewport)
+    : ViewportBrush(viewport, parent), m_document(document)
 {
     rebuildForHead();
     connect(m_document, &Document::headChanged, this, &PaintTool::rebuildForHead);
-    m_viewport->installEventFilter(this);
-    m_viewport->setMouseTracking(true);  // the ring follows the cursor without a button held
 }
 
 PaintTool::~PaintTool() = default;
@@ -54,8 +47,8 @@ void PaintTool::setActive(bool active)
         endStroke();
     m_active = active;
     if (!active)
-        m_viewport->setBrushCursor(std::nullopt);
-    m_viewport->setCursor(active ? Qt::CrossCursor : Qt::ArrowCursor);
+        viewport()->setBrushCursor(std::nullopt);
+    viewport()->setCursor(active ? Qt::CrossCursor : Qt::ArrowCursor);
     emit activeChanged(active);
 }
 
@@ -65,8 +58,8 @@ void PaintTool::setRadius(double metres)
     if (!std::isfinite(metres) || r == m_settings.radiusMetres)
         return;
     m_settings.radiusMetres = r;
-    if (m_active && m_lastCursor.x() >= 0.0)
-        updateCursor(m_lastCursor, Qt::NoModifier);
+    if (m_active && hasCursor())
+        showCursor(lastCursor(), Qt::NoModifier);
     emit settingsChanged();
 }
 
@@ -95,14 +88,14 @@ void PaintTool::setMode(BrushMode mode)
 void PaintTool::setMirror(bool mirror)
 {
     m_settings.mirrorX = mirror;
-    if (m_active && m_lastCursor.x() >= 0.0)
-        updateCursor(m_lastCursor, Qt::NoModifier);
+    if (m_active && hasCursor())
+        showCursor(lastCursor(), Qt::NoModifier);
     emit settingsChanged();
 }
 
 std::optional<PaintTool::Hit> PaintTool::hitAt(QPointF widgetPosition) const
 {
-    const ViewRay ray = m_viewport->rayAt(widgetPosition);
+    const ViewRay ray = viewport()->rayAt(widgetPosition);
     const auto hit = m_bvh->raycast(ray.origin, ray.direction, 1e4f);
     if (!hit)
         return std::nullopt;
@@ -125,12 +118,11 @@ BrushMode PaintTool::modeFor(Qt::KeyboardModifiers modifiers) const
     return m_settings.mode;
 }
 
-void PaintTool::updateCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifiers)
+void PaintTool::showCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifiers)
 {
-    m_lastCursor = widgetPosition;
     const std::optional<Hit> hit = hitAt(widgetPosition);
     if (!hit) {
-        m_viewport->setBrushCursor(std::nullopt);
+        viewport()->setBrushCursor(std::nullopt);
         return;
     }
     BrushCursor cursor;
@@ -142,7 +134,7 @@ void PaintTool::updateCursor(QPointF widgetPosition, Qt::KeyboardModifiers modif
     const float plane = mirrorPlaneX();
     cursor.mirrorCentre = {2.0f * plane - hit->point.x, hit->point.y, hit->point.z};
     cursor.mirrorNormal = {-hit->normal.x, hit->normal.y, hit->normal.z};
-    m_viewport->setBrushCursor(cursor);
+    viewport()->setBrushCursor(cursor);
 }
 
 // Dabs from the stroke's last dab to `to`, kDabSpacing radii apart, then lets the hair follow.
@@ -180,66 +172,37 @@ bool PaintTool::resizeByKey(const QKeyEvent* e)
     return true;
 }
 
+// A stroke ended without the mouse (the tool put down, a new head).
 void PaintTool::endStroke()
 {
-    if (!m_stroking)
+    if (!isStroking())
         return;
-    m_stroking = false;
-    m_lastDab.reset();
-    m_document->endStroke(tr("Paint stroke"));
+    stopStroking();
+    finishStroke({}, Qt::NoModifier);
 }
 
-bool PaintTool::eventFilter(QObject* watched, QEvent* event)
+bool PaintTool::beginStroke(QPointF position, Qt::KeyboardModifiers modifiers)
 {
-    if (watched != m_viewport || !m_active)
-        return QObject::eventFilter(watched, event);
-    switch (event->type()) {
-    case QEvent::MouseButtonPress: {
-        auto* e = static_cast<QMouseEvent*>(event);
-        if (e->button() != Qt::LeftButton || !isPaintButton(e) || m_document->currentRegion() < 0)
-            return false;
-        updateCursor(e->position(), e->modifiers());
-        const std::optional<Hit> hit = hitAt(e->position());
-        if (!hit)
-            return false;  // off the head: nothing to paint, and nothing else wants a left click
-        m_document->beginStroke();
-        m_stroking = true;
-        dabAlong(*hit, e->modifiers());
-        return true;
-    }
-    case QEvent::MouseMove: {
-        auto* e = static_cast<QMouseEvent*>(event);
-        updateCursor(e->position(), e->modifiers());
-        if (!m_stroking)
-            return false;  // camera drags pass through
-        if (const std::optional<Hit> hit = hitAt(e->position()))
-            dabAlong(*hit, e->modifiers());
-        return true;
-    }
-    case QEvent::MouseButtonRelease: {
-        auto* e = static_cast<QMouseEvent*>(event);
-        if (e->button() != Qt::LeftButton || !m_stroking)
-            return false;
-        endStroke();
-        return true;
-    }
-    case QEvent::Leave:
-        m_viewport->setBrushCursor(std::nullopt);
+    if (m_document->currentRegion() < 0)
         return false;
-    case QEvent::KeyPress:
-    case QEvent::KeyRelease: {
-        auto* e = static_cast<QKeyEvent*>(event);
-        if (resizeByKey(e))
-            return true;
-        if (e->key() == Qt::Key_Control || e->key() == Qt::Key_Shift) {  // the ring shows the held mode
-            if (m_lastCursor.x() >= 0.0)
-                updateCursor(m_lastCursor, e->modifiers());
-        }
-        return false;
-    }
-    default:
-        return false;
-    }
+    const std::optional<Hit> hit = hitAt(position);
+    if (!hit)
+        return false;  // off the head: nothing to paint, and nothing else wants a left click
+    m_document->beginStroke();
+    dabAlong(*hit, modifiers);
+    return true;
+}
+
+void PaintTool::continueStroke(QPointF position, Qt::KeyboardModifiers modifiers)
+{
+    if (const std::optional<Hit> hit = hitAt(position))
+        dabAlong(*hit, modifiers);
+}
+
+void PaintTool::finishStroke(QPointF, Qt::KeyboardModifiers)
+{
+    m_lastDab.reset();
+    m_document->endStroke(tr("Paint stroke"));
 }
 
 }  // namespace wisp

@@ -13,6 +13,7 @@
 //
 // Thread: GUI.
 
+#include "app/editor/ViewportBrush.h"
 #include "sim/MeshBvh.h"
 #include "sim/ScalpBrush.h"
 
@@ -31,7 +32,7 @@ namespace wisp {
 class Document;
 class Viewport;
 
-class PaintTool : public QObject {
+class PaintTool : public ViewportBrush {
     Q_OBJECT
 public:
     PaintTool(Document* document, Viewport* viewport, QObject* parent = nullptr);
@@ -69,24 +70,25 @@ signals:
     void settingsChanged();
 
 protected:
-    bool eventFilter(QObject* watched, QEvent* event) override;
+    bool brushEnabled() const override { return m_active; }
+    bool beginStroke(QPointF position, Qt::KeyboardModifiers modifiers) override;
+    void continueStroke(QPointF position, Qt::KeyboardModifiers modifiers) override;
+    void finishStroke(QPointF position, Qt::KeyboardModifiers modifiers) override;
+    void showCursor(QPointF position, Qt::KeyboardModifiers modifiers) override;
+    bool keyPressed(const QKeyEvent* event) override { return resizeByKey(event); }
 
 private:
     void rebuildForHead();
     BrushMode modeFor(Qt::KeyboardModifiers modifiers) const;
-    void updateCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifiers);
     void dabAlong(const Hit& to, Qt::KeyboardModifiers modifiers);
     void endStroke();
 
     Document* m_document;
-    Viewport* m_viewport;
     std::unique_ptr<MeshBvh> m_bvh;
     std::unique_ptr<ScalpBrush> m_brush;
     BrushSettings m_settings;
     bool m_active = false;
-    bool m_stroking = false;
     std::optional<glm::vec3> m_lastDab;  // of the stroke going on
-    QPointF m_lastCursor{-1.0, -1.0};
 };
 
 }  // namespace wisp

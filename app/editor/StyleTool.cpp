@@ -10,8 +10,6 @@
 
 #include <glm/geometric.hpp>
 
-#include <QKeyEvent>
-#include <QMouseEvent>
 
 #include <algorithm>
 #include <cmath>
@@ -22,8 +20,6 @@ namespace {
 
 constexpr float kFar = 1.0e4f;             // metres: a ray that meets no head
 constexpr double kDabSpacingPixels = 6.0;  // the dab brushes (length, curl, wet, spray) dab this often
-
-bool isBrushButton(const QMouseEvent* e) { return e->button() == Qt::LeftButton && !(e->modifiers() & Qt::AltModifier); }
 
 // The newest frame, if its groom names its strands (a frame from before the first groom does not).
 FramePtr styledFrame(const SimulationHost& host)
@@ -38,10 +34,8 @@ FramePtr styledFrame(const SimulationHost& host)
 
 StyleTool::StyleTool(Document* document, Viewport* viewport, SimulationHost* simulation, PaintTool* brushSettings,
                      QObject* parent)
-    : QObject(parent), m_document(document), m_viewport(viewport), m_simulation(simulation),
-      m_brushSettings(brushSettings)
+    : ViewportBrush(viewport, parent), m_document(document), m_simulation(simulation), m_brushSettings(brushSettings)
 {
-    m_viewport->installEventFilter(this);
     connect(m_document, &Document::headChanged, this, &StyleTool::cancel);
 }
 
@@ -49,13 +43,14 @@ void StyleTool::setBrush(std::optional<StyleBrush> brush)
 {
     if (brush == m_brush)
         return;
-    end();
+    if (isStroking()) {  // put down mid-stroke: the stroke ends here
+        stopStroking();
+        end();
+    }
     m_brush = brush;
     if (!brush)
-        m_viewport->setBrushCursor(std::nullopt);
-    else
-        m_viewport->setMouseTracking(true);
-    m_viewport->setCursor(brush ? Qt::CrossCursor : Qt::ArrowCursor);
+        viewport()->setBrushCursor(std::nullopt);
+    viewport()->setCursor(brush ? Qt::CrossCursor : Qt::ArrowCursor);
     emit brushChanged(brush);
 }
 
@@ -77,7 +72,7 @@ void StyleTool::setCurlTurnsPerMetre(double turns)
 
 std::vector<StyleTool::Ray> StyleTool::raysAt(QPointF widgetPosition) const
 {
-    const ViewRay view = m_viewport->rayAt(widgetPosition);
+    const ViewRay view = viewport()->rayAt(widgetPosition);
     const float radius = m_brushSettings->settings().radiusMetres;
     float maxDepth = kFar;
     if (const auto hit = m_brushSettings->hitAt(widgetPosition))
@@ -90,9 +85,8 @@ std::vector<StyleTool::Ray> StyleTool::raysAt(QPointF widgetPosition) const
     return rays;
 }
 
-void StyleTool::updateCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifiers)
+void StyleTool::showCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifiers)
 {
-    m_lastCursor = widgetPosition;
     const BrushSettings& s = m_brushSettings->settings();
     BrushCursor cursor;
     cursor.radiusMetres = s.radiusMetres;
@@ -102,17 +96,17 @@ void StyleTool::updateCursor(QPointF widgetPosition, Qt::KeyboardModifiers modif
         cursor.centre = hit->point;
         cursor.normal = hit->normal;
     } else if (m_brush == StyleBrush::Comb && !m_grabbed.empty()) {  // the comb off the head: at the hair
-        const ViewRay ray = m_viewport->rayAt(widgetPosition);
+        const ViewRay ray = viewport()->rayAt(widgetPosition);
         cursor.centre = ray.origin + ray.direction * m_grabbed.front().depth;
         cursor.normal = -ray.direction;
     } else {
-        m_viewport->setBrushCursor(std::nullopt);
+        viewport()->setBrushCursor(std::nullopt);
         return;
     }
     const float plane = m_brushSettings->mirrorPlaneX();
     cursor.mirrorCentre = mirroredPoint(cursor.centre, plane);
     cursor.mirrorNormal = mirroredDirection(cursor.normal);
-    m_viewport->setBrushCursor(cursor);
+    viewport()->setBrushCursor(cursor);
 }
 
 QString StyleTool::strokeName() const
@@ -129,13 +123,12 @@ QString StyleTool::strokeName() const
     return {};
 }
 
-void StyleTool::begin(QPointF position, Qt::KeyboardModifiers modifiers)
+bool StyleTool::beginStroke(QPointF position, Qt::KeyboardModifiers modifiers)
 {
     if (!styledFrame(*m_simulation)) {
         emit message(tr("The hair is still being groomed; try again in a moment"));
-        return;
+        return false;
     }
-    m_stroking = true;
     m_lastPosition = position;
     m_touched.clear();
     switch (*m_brush) {
@@ -158,6 +151,7 @@ void StyleTool::begin(QPointF position, Qt::KeyboardModifiers modifiers)
         dab(position, modifiers);
         break;
     }
+    return true;
 }
 
 void StyleTool::drag(QPointF position, Qt::KeyboardModifiers modifiers)
@@ -186,11 +180,9 @@ void StyleTool::drag(QPointF position, Qt::KeyboardModifiers modifiers)
     }
 }
 
+// The stroke's end: the button released, or (through setBrush) the tool put down mid-stroke.
 void StyleTool::end()
 {
-    if (!m_stroking)
-        return;
-    m_stroking = false;
     if (m_brush == StyleBrush::Comb) {
         // The combed shape becomes where the strands rest; the host solves the rest shape that sags
         // onto it, then lets go of them.
@@ -225,9 +217,9 @@ void StyleTool::report(int changedStrands)
 // stroke changed so far is kept as its undo step (the new head then clears the edits, undoably).
 void StyleTool::cancel()
 {
-    if (!m_stroking)
+    if (!isStroking())
         return;
-    m_stroking = false;
+    stopStroking();
     m_grabbed.clear();
     m_simulation->holdStrands({});
     m_simulation->setDryers({});
@@ -439,12 +431,12 @@ void StyleTool::dab(QPointF position, Qt::KeyboardModifiers modifiers)
 
 void StyleTool::placeDryer(QPointF position)
 {
-    const ViewRay ray = m_viewport->rayAt(position);
+    const ViewRay ray = viewport()->rayAt(position);
     glm::vec3 aim;
     if (const auto hit = m_brushSettings->hitAt(position))
         aim = hit->point;
     else  // past the head: aim at the depth of the camera's pivot
-        aim = ray.origin + ray.direction * glm::dot(m_viewport->camera().pivot() - ray.origin, ray.direction);
+        aim = ray.origin + ray.direction * glm::dot(viewport()->camera().pivot() - ray.origin, ray.direction);
     HairDryer dryer;
     dryer.nozzle = aim - ray.direction * kDryerDistanceMetres;
     dryer.direction = ray.direction;
@@ -486,50 +478,14 @@ void StyleTool::keepDriedWetness()
     report(m_document->endStyleStroke(strokeName()));
 }
 
-bool StyleTool::eventFilter(QObject* watched, QEvent* event)
+void StyleTool::continueStroke(QPointF position, Qt::KeyboardModifiers modifiers) { drag(position, modifiers); }
+
+void StyleTool::finishStroke(QPointF position, Qt::KeyboardModifiers modifiers)
 {
-    if (watched != m_viewport || !m_brush)
-        return QObject::eventFilter(watched, event);
-    switch (event->type()) {
-    case QEvent::MouseButtonPress: {
-        auto* e = static_cast<QMouseEvent*>(event);
-        if (!isBrushButton(e))
-            return false;
-        updateCursor(e->position(), e->modifiers());
-        begin(e->position(), e->modifiers());
-        return true;
-    }
-    case QEvent::MouseMove: {
-        auto* e = static_cast<QMouseEvent*>(event);
-        updateCursor(e->position(), e->modifiers());
-        if (!m_stroking)
-            return false;  // camera drags pass through
-        drag(e->position(), e->modifiers());
-        return true;
-    }
-    case QEvent::MouseButtonRelease: {
-        auto* e = static_cast<QMouseEvent*>(event);
-        if (e->button() != Qt::LeftButton || !m_stroking)
-            return false;
-        drag(e->position(), e->modifiers());
-        end();
-        return true;
-    }
-    case QEvent::Leave:
-        m_viewport->setBrushCursor(std::nullopt);
-        return false;
-    case QEvent::KeyPress:
-    case QEvent::KeyRelease: {
-        auto* e = static_cast<QKeyEvent*>(event);
-        if (m_brushSettings->resizeByKey(e))
-            return true;
-        if (e->key() == Qt::Key_Control && m_lastCursor.x() >= 0.0)
-            updateCursor(m_lastCursor, e->modifiers());
-        return false;
-    }
-    default:
-        return false;
-    }
+    drag(position, modifiers);
+    end();
 }
+
+bool StyleTool::keyPressed(const QKeyEvent* event) { return m_brushSettings->resizeByKey(event); }
 
 }  // namespace wisp

@@ -22,6 +22,7 @@
 //
 // Thread: GUI.
 
+#include "app/editor/ViewportBrush.h"
 #include "sim/StyleEdits.h"
 
 #include <glm/vec3.hpp>
@@ -45,7 +46,7 @@ struct ViewRay;
 
 enum class StyleBrush { Comb, Cut, Length, Curl, Wet, Hairspray, BlowDry };
 
-class StyleTool : public QObject {
+class StyleTool : public ViewportBrush {
     Q_OBJECT
 public:
     // `brushSettings` lends its radius, strength, falloff, mirror and head picking.
@@ -75,7 +76,12 @@ signals:
     void message(const QString& text);
 
 protected:
-    bool eventFilter(QObject* watched, QEvent* event) override;
+    bool brushEnabled() const override { return m_brush.has_value(); }
+    bool beginStroke(QPointF position, Qt::KeyboardModifiers modifiers) override;
+    void continueStroke(QPointF position, Qt::KeyboardModifiers modifiers) override;
+    void finishStroke(QPointF position, Qt::KeyboardModifiers modifiers) override;
+    void showCursor(QPointF position, Qt::KeyboardModifiers modifiers) override;
+    bool keyPressed(const QKeyEvent* event) override;
 
 private:
     struct Grabbed {  // a strand the comb holds
@@ -93,8 +99,6 @@ private:
     };
 
     std::vector<Ray> raysAt(QPointF widgetPosition) const;  // the cursor's, and its mirror when on
-    void updateCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifiers);
-    void begin(QPointF position, Qt::KeyboardModifiers modifiers);
     void drag(QPointF position, Qt::KeyboardModifiers modifiers);
     void end();
     void cancel();
@@ -110,16 +114,13 @@ private:
     void report(int changedStrands);
 
     Document* m_document;
-    Viewport* m_viewport;
     SimulationHost* m_simulation;
     PaintTool* m_brushSettings;
     std::optional<StyleBrush> m_brush;
     float m_curlRadius = 0.01f;
     float m_curlTurns = 10.0f;
 
-    bool m_stroking = false;
     QPointF m_lastPosition;
-    QPointF m_lastCursor{-1.0, -1.0};
     std::vector<Grabbed> m_grabbed;
     std::set<std::uint64_t> m_touched;  // strands this stroke already changed (spray, perm: once)
     std::map<std::uint64_t, float> m_wetBefore;  // the blow-dry stroke: applied wetness as it began

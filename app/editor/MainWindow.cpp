@@ -214,9 +214,11 @@ void MainWindow::createDocks()
     wisp->raise();
     connect(m_styleTool, &StyleTool::message, this, [this](const QString& text) { statusBar()->showMessage(text, 5000); });
     // A styling tool picked: its panel and the brush settings it shares come forward.
-    connect(m_styleTool, &StyleTool::brushChanged, this, [styling](std::optional<StyleBrush> b) {
+    connect(m_styleTool, &StyleTool::brushChanged, this, [this, styling](std::optional<StyleBrush> b) {
         if (b)
             styling->raise();
+        // The growth weights' tint is for painting: styling shows the head as it is.
+        m_viewport->setShowGrowthOverlay(!b && m_overlayAction->isChecked());
     });
     connect(m_brushPanel, &BrushPanel::showOverlayToggled, m_overlayAction, &QAction::setChecked);
     connect(m_overlayAction, &QAction::toggled, m_brushPanel->overlayBox(), &QCheckBox::setChecked);

@@ -588,10 +588,12 @@ TEST_F(StylingTest, GrowAndShrinkChangeTheLengthUnderTheBrushAndToolsAreExclusiv
     EXPECT_GT(shorter, 2);
     EXPECT_EQ(document()->undoStack()->count(), 2);
 
-    // Painting growth and styling never run at once.
+    // Painting growth and styling never run at once; the growth weights' tint shows only for painting.
+    EXPECT_FALSE(window->viewport()->showGrowthOverlay());
     QTest::keyClick(window->viewport(), Qt::Key_B);
     EXPECT_TRUE(window->paintTool()->isActive());
     EXPECT_FALSE(window->styleTool()->isActive());
+    EXPECT_TRUE(window->viewport()->showGrowthOverlay());
     QTest::keyClick(window->viewport(), Qt::Key_C);
     EXPECT_FALSE(window->paintTool()->isActive());
     EXPECT_EQ(window->styleTool()->brush(), StyleBrush::Comb);

@@ -162,6 +162,15 @@ TriangleMesh benchHead(const std::string& path)
     return mesh;
 }
 
+// The scene the editor starts a head from a file with: one region, "Scalp", grown on its upper part.
+std::vector<GrowthRegion> scalpOf(const TriangleMesh& head)
+{
+    std::vector<GrowthRegion> regions(1);
+    regions[0].name = "Scalp";
+    regions[0].weights = upperHeadGrowth(head);
+    return regions;
+}
+
 // One brush dab while the hair simulates, as the editor does it: the dab on the growth weights,
 // then the regroom that brings new roots into the running solver (HairSimulation::regroom). Dabs
 // walk around the scalp, adding on one lap and erasing on the next, so the groom neither fills up
@@ -169,9 +178,7 @@ TriangleMesh benchHead(const std::string& path)
 BenchResult brushWorkload(const RunOptions& o)
 {
     const TriangleMesh head = benchHead(o.headPath);
-    std::vector<GrowthRegion> regions(1);
-    regions[0].name = "Scalp";
-    regions[0].weights = upperHeadGrowth(head);
+    std::vector<GrowthRegion> regions = scalpOf(head);
     const ParameterValues v;
     HairSimulation sim(o.threads);
     if (std::string error = sim.setup(head, regions, kNoSolo, v); !error.empty())
@@ -210,10 +217,8 @@ BenchResult brushWorkload(const RunOptions& o)
 // the rest shapes that hold it (RestShapeSolve.h) and restarts those strands. ms per release.
 BenchResult combWorkload(const RunOptions& o)
 {
-    const TriangleMesh head = makeDefaultHead().mesh;
-    std::vector<GrowthRegion> regions(1);
-    regions[0].name = "Scalp";
-    regions[0].weights = upperHeadGrowth(head);
+    const TriangleMesh head = benchHead(o.headPath);
+    const std::vector<GrowthRegion> regions = scalpOf(head);
     const ParameterValues v;
     HairSimulation sim(o.threads);
     if (std::string error = sim.setup(head, regions, kNoSolo, v); !error.empty())
@@ -224,7 +229,7 @@ BenchResult combWorkload(const RunOptions& o)
     auto edits = std::make_shared<StyleEdits>();
     std::size_t combed = 0;
     int stroke = 0;
-    BenchResult r{"comb-release"};
+    BenchResult r{o.headPath.empty() ? "comb-release" : "comb-release (" + o.headPath.substr(o.headPath.rfind('/') + 1) + ")"};
     r.threads = sim.solver().threadCount();
     r.substeps = sim.solver().settings().substeps;
     timeSteps(o, [&] {
@@ -284,7 +289,7 @@ std::vector<Workload> workloads()
                       "(ms per dab; particles and strands are the simulation's)",
          brushWorkload},
         {"comb-release", "letting go of a comb stroke: the combed keys' rest shapes solved and the live regroom, "
-                         "default head (ms per release; strands: combed key hairs per release)",
+                         "on the default head or --head FILE (ms per release; strands: combed key hairs per release)",
          combWorkload},
     };
 }
@@ -312,7 +317,7 @@ int runBench(int argc, char** argv)
         {"threads", "N", "solver threads (default: one per core)"},
         {"strands", "N", "strands of the sphere workload (default 10000)"},
         {"steps", "N", "measured steps per workload after 20 warm-up steps (default 100, at least 50)"},
-        {"head", "FILE", "head mesh for the brush-dab workload (OBJ, PLY, OFF, STL; default: the built-in head)"},
+        {"head", "FILE", "head mesh for the brush-dab and comb-release workloads (OBJ, PLY, OFF, STL; default: the built-in head)"},
     };
     const CommandLine args(argc, argv, 2, options);
     const std::vector<Workload> all = workloads();

@@ -93,9 +93,11 @@ std::vector<glm::vec3> shapeWithLength(std::span<const glm::vec3> shape, float l
         along += segment;
         out.push_back(shape[j]);
     }
-    // Longer than the shape: continue along the last segment.
-    const glm::vec3 direction = glm::normalize(shape.back() - shape[shape.size() - 2]);
-    out.push_back(shape.back() + direction * (lengthMetres - along));
+    // Longer than the shape: continue along the last segment (as long already: nothing to add).
+    if (lengthMetres - along > 1e-6f) {
+        const glm::vec3 direction = glm::normalize(shape.back() - shape[shape.size() - 2]);
+        out.push_back(shape.back() + direction * (lengthMetres - along));
+    }
     return out;
 }
 

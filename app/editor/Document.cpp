@@ -364,8 +364,20 @@ int Document::endStyleStroke(const QString& text)
 {
     if (!m_styleStroke)
         return 0;
-    // Edits that change nothing are dropped, so "no edit" has one form.
+    // Edits that change nothing are dropped, so "no edit" has one form; an edit the project file
+    // would refuse (a tool's bug) is not kept, so the work can always be saved.
     std::erase_if(*m_styleStroke, [](const auto& entry) { return entry.second.isDefault(); });
+    for (auto it = m_styleStroke->begin(); it != m_styleStroke->end();) {
+        if (validateStrandStyle(it->first, it->second).empty()) {
+            ++it;
+            continue;
+        }
+        const auto before = m_styleBefore->find(it->first);
+        if (before != m_styleBefore->end())
+            (it++)->second = before->second;
+        else
+            it = m_styleStroke->erase(it);
+    }
     m_style = std::make_shared<const StyleEdits>(std::move(*m_styleStroke));
     m_styleStroke.reset();
     const StyleEdits& before = *m_styleBefore;

@@ -648,3 +648,20 @@ TEST_F(StylingTest, EditsComeBackWithTheProjectAndPresetsLeaveThem)
     EXPECT_EQ(compared, static_cast<int>(styled.size()));
     document()->undoStack()->setClean();
 }
+
+TEST_F(StylingTest, AStrokeNeverLeavesAnEditTheProjectFileWouldRefuse)
+{
+    const std::uint64_t id = frame()->groomShape->identities[0];
+    document()->beginStyleStroke();
+    document()->strokeStyle()[id].wetness = 3.0f;  // what no tool should make
+    document()->strokeStyle()[id + 1].lengthMetres = 0.1f;
+    document()->styleStrokeUpdated();
+    EXPECT_EQ(document()->endStyleStroke(QStringLiteral("Test")), 1);
+    EXPECT_EQ(document()->style()->count(id), 0u);
+    ASSERT_EQ(document()->style()->count(id + 1), 1u);
+    EXPECT_EQ(document()->style()->at(id + 1).lengthMetres, 0.1f);
+    io::Project project = document()->toProject();
+    QTemporaryDir dir;
+    EXPECT_TRUE(io::writeProject(dir.filePath(QStringLiteral("ok.wisp")).toStdString(), project));
+    document()->undoStack()->setClean();
+}

@@ -118,6 +118,9 @@ TEST(Style, CutShortensTheEditedStrandsToTheCutLengthAndLeavesTheOthers)
 
 TEST(Style, ShapeWithLengthCutsAtTheArcLengthAndGrowsAlongTheTip)
 {
+    // As long as it is: unchanged, and no point repeated (a repeated point is an invalid edit).
+    const std::vector<glm::vec3> line{{0, 0, 0}, {0, -0.1f, 0}};
+    EXPECT_EQ(shapeWithLength(line, 0.1f), line);
     const std::vector<glm::vec3> shape{{0, 0, 0}, {0, -0.1f, 0}, {0.1f, -0.1f, 0}};
     const std::vector<glm::vec3> cut = shapeWithLength(shape, 0.15f);
     ASSERT_EQ(cut.size(), 3u);

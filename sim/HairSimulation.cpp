@@ -1,5 +1,6 @@
 #include "sim/HairSimulation.h"
 
+#include "sim/ByteHash.h"
 #include "sim/MeshBvh.h"
 #include "sim/RestShapeSolve.h"
 #include "sim/SignedDistanceField.h"
@@ -9,7 +10,6 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <cstring>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -108,18 +108,17 @@ void HairSimulation::solveCombedRest(const Groom& groom, const ParameterValues& 
         const std::uint64_t identity = found->first;
         const std::span<const glm::vec3> target = simulated.strand(i);
         const float scale = groom.regionStiffnessScale[groom.regionOfStrand[strand]] * found->second.stiffnessScale;
-        std::uint64_t key = 1469598103934665603ull;
-        auto mix = [&key](const void* data, std::size_t size) {
-            const auto* b = static_cast<const unsigned char*>(data);
-            for (std::size_t k = 0; k < size; ++k)
-                key = (key ^ b[k]) * 1099511628211ull;
-        };
-        mix(target.data(), target.size_bytes());
-        mix(&scale, sizeof scale);
-        mix(&settings.stiffness, sizeof settings.stiffness);
-        mix(&settings.gravity, sizeof settings.gravity);
-        mix(&settings.substeps, sizeof settings.substeps);
-        mix(&settings.timeStepSeconds, sizeof settings.timeStepSeconds);
+        ByteHash hash;  // the target and the physics it is solved for
+        hash.add(target.data(), target.size_bytes());
+        hash.add(scale);
+        hash.add(settings.stiffness);
+        hash.add(settings.gravity);
+        hash.add(settings.substeps);
+        hash.add(settings.timeStepSeconds);
+        hash.add(settings.dampingPerSecond);
+        hash.add(settings.dragPerSecond);
+        hash.add(settings.velocityCorrection);
+        const std::uint64_t key = hash.value;
         if (const auto cached = m_restCache.find(identity);
             cached != m_restCache.end() && cached->second.key == key && cached->second.rest.size() == target.size()) {
             std::copy(cached->second.rest.begin(), cached->second.rest.end(), simulated.strandForWrite(i).begin());

@@ -1,5 +1,7 @@
 #include "sim/StyleEdits.h"
 
+#include "sim/ByteHash.h"
+
 #include <glm/geometric.hpp>
 
 #include <cmath>
@@ -15,16 +17,6 @@ std::string describe(float v)
     std::ostringstream s;
     s << v;
     return s.str();
-}
-
-// FNV-1a over the bytes of a value.
-void mix(std::uint64_t& h, const void* data, std::size_t size)
-{
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) {
-        h ^= bytes[i];
-        h *= 1099511628211ull;
-    }
 }
 
 }  // namespace
@@ -64,13 +56,13 @@ std::uint64_t restShapeHash(const StrandStyle& s)
 {
     if (s.lengthMetres == 0.0f && s.curlRadiusMetres < 0.0f && s.curlTurnsPerMetre < 0.0f && s.shape.empty())
         return 0;
-    std::uint64_t h = 1469598103934665603ull;
-    mix(h, &s.lengthMetres, sizeof(float));
-    mix(h, &s.curlRadiusMetres, sizeof(float));
-    mix(h, &s.curlTurnsPerMetre, sizeof(float));
+    ByteHash h;
+    h.add(s.lengthMetres);
+    h.add(s.curlRadiusMetres);
+    h.add(s.curlTurnsPerMetre);
     if (!s.shape.empty())
-        mix(h, s.shape.data(), s.shape.size() * sizeof(glm::vec3));
-    return h == 0 ? 1 : h;
+        h.add(s.shape.data(), s.shape.size() * sizeof(glm::vec3));
+    return h.value == 0 ? 1 : h.value;
 }
 
 std::vector<glm::vec3> shapeWithLength(std::span<const glm::vec3> shape, float lengthMetres)

@@ -30,43 +30,6 @@ QKeySequence shortcutFor(StyleBrush brush)
 
 }  // namespace
 
-QString styleBrushName(StyleBrush brush)
-{
-    switch (brush) {
-    case StyleBrush::Comb: return StylePanel::tr("Comb");
-    case StyleBrush::Cut: return StylePanel::tr("Cut");
-    case StyleBrush::Length: return StylePanel::tr("Grow / Shrink");
-    case StyleBrush::Curl: return StylePanel::tr("Curl (Perm)");
-    case StyleBrush::Wet: return StylePanel::tr("Wet");
-    case StyleBrush::Hairspray: return StylePanel::tr("Hairspray");
-    case StyleBrush::BlowDry: return StylePanel::tr("Blow-dry");
-    }
-    return {};
-}
-
-QString styleBrushHelp(StyleBrush brush)
-{
-    switch (brush) {
-    case StyleBrush::Comb:
-        return StylePanel::tr("Drag through the hair: it follows the comb and rests where you leave it");
-    case StyleBrush::Cut:
-        return StylePanel::tr("Drag across the hanging hair: every strand the stroke crosses is cut there");
-    case StyleBrush::Length:
-        return StylePanel::tr("Drag over the hair to grow it; hold Ctrl to shrink it");
-    case StyleBrush::Curl:
-        return StylePanel::tr("Drag over the hair to perm the touched wisps with the curl below; Ctrl takes the perm out");
-    case StyleBrush::Wet:
-        return StylePanel::tr("Drag over the hair to wet it (heavier, clumped, curls relaxed); it dries over the "
-                              "drying time; Ctrl towel-dries");
-    case StyleBrush::Hairspray:
-        return StylePanel::tr("Drag over the hair to fix its current shape against gravity and wind; Ctrl washes "
-                              "the spray out");
-    case StyleBrush::BlowDry:
-        return StylePanel::tr("Hold the button: air from the cursor along the view pushes and dries the hair");
-    }
-    return {};
-}
-
 StylePanel::StylePanel(StyleTool* tool, QWidget* parent) : QWidget(parent), m_tool(tool)
 {
     auto* form = new QFormLayout(this);

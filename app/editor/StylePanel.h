@@ -39,8 +39,4 @@ private:
     QLabel* m_hint = nullptr;
 };
 
-// How each brush is used, one line (the panel's hint and the actions' tooltips).
-QString styleBrushName(StyleBrush brush);
-QString styleBrushHelp(StyleBrush brush);
-
 }  // namespace wisp

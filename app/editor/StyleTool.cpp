@@ -10,7 +10,6 @@
 
 #include <glm/geometric.hpp>
 
-
 #include <algorithm>
 #include <cmath>
 
@@ -31,6 +30,43 @@ FramePtr styledFrame(const SimulationHost& host)
 }
 
 }  // namespace
+
+QString styleBrushName(StyleBrush brush)
+{
+    switch (brush) {
+    case StyleBrush::Comb: return StyleTool::tr("Comb");
+    case StyleBrush::Cut: return StyleTool::tr("Cut");
+    case StyleBrush::Length: return StyleTool::tr("Grow / Shrink");
+    case StyleBrush::Curl: return StyleTool::tr("Curl (Perm)");
+    case StyleBrush::Wet: return StyleTool::tr("Wet");
+    case StyleBrush::Hairspray: return StyleTool::tr("Hairspray");
+    case StyleBrush::BlowDry: return StyleTool::tr("Blow-dry");
+    }
+    return {};
+}
+
+QString styleBrushHelp(StyleBrush brush)
+{
+    switch (brush) {
+    case StyleBrush::Comb:
+        return StyleTool::tr("Drag through the hair: it follows the comb and rests where you leave it");
+    case StyleBrush::Cut:
+        return StyleTool::tr("Drag across the hanging hair: every strand the stroke crosses is cut there");
+    case StyleBrush::Length:
+        return StyleTool::tr("Drag over the hair to grow it; hold Ctrl to shrink it");
+    case StyleBrush::Curl:
+        return StyleTool::tr("Drag over the hair to perm the touched wisps with the curl below; Ctrl takes the perm out");
+    case StyleBrush::Wet:
+        return StyleTool::tr("Drag over the hair to wet it (heavier, clumped, curls relaxed); it dries over the "
+                              "drying time; Ctrl towel-dries");
+    case StyleBrush::Hairspray:
+        return StyleTool::tr("Drag over the hair to fix its current shape against gravity and wind; Ctrl washes "
+                              "the spray out");
+    case StyleBrush::BlowDry:
+        return StyleTool::tr("Hold the button: air from the cursor along the view pushes and dries the hair");
+    }
+    return {};
+}
 
 StyleTool::StyleTool(Document* document, Viewport* viewport, SimulationHost* simulation, PaintTool* brushSettings,
                      QObject* parent)
@@ -109,20 +145,6 @@ void StyleTool::showCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifie
     viewport()->setBrushCursor(cursor);
 }
 
-QString StyleTool::strokeName() const
-{
-    switch (m_brush.value_or(StyleBrush::Comb)) {
-    case StyleBrush::Comb: return tr("Comb");
-    case StyleBrush::Cut: return tr("Cut");
-    case StyleBrush::Length: return tr("Grow or shrink");
-    case StyleBrush::Curl: return tr("Perm");
-    case StyleBrush::Wet: return tr("Wet");
-    case StyleBrush::Hairspray: return tr("Hairspray");
-    case StyleBrush::BlowDry: return tr("Blow-dry");
-    }
-    return {};
-}
-
 bool StyleTool::beginStroke(QPointF position, Qt::KeyboardModifiers modifiers)
 {
     if (!styledFrame(*m_simulation)) {
@@ -190,7 +212,7 @@ void StyleTool::end()
         for (const Grabbed& g : m_grabbed)
             edits[g.identity].shape = g.positions;
         m_document->styleStrokeUpdated();
-        report(m_document->endStyleStroke(strokeName()));
+        report(m_document->endStyleStroke(brushName()));
         m_simulation->holdStrands({});
         m_grabbed.clear();
         return;
@@ -200,17 +222,17 @@ void StyleTool::end()
         keepDriedWetness();
         return;
     }
-    report(m_document->endStyleStroke(strokeName()));
+    report(m_document->endStyleStroke(brushName()));
 }
 
 // What a stroke did, on the status bar: an artist sees at once when a stroke caught nothing.
 void StyleTool::report(int changedStrands)
 {
     if (changedStrands == 0)
-        emit message(tr("%1: no strand under the brush changed").arg(strokeName()));
+        emit message(tr("%1: no strand under the brush changed").arg(brushName()));
     else
-        emit message(changedStrands == 1 ? tr("%1: 1 strand changed").arg(strokeName())
-                                         : tr("%1: %2 strands changed").arg(strokeName()).arg(changedStrands));
+        emit message(changedStrands == 1 ? tr("%1: 1 strand changed").arg(brushName())
+                                         : tr("%1: %2 strands changed").arg(brushName()).arg(changedStrands));
 }
 
 // A stroke cut short (the head replaced under it): the comb and the dryer let go, and what the
@@ -224,7 +246,7 @@ void StyleTool::cancel()
     m_simulation->holdStrands({});
     m_simulation->setDryers({});
     if (m_document->inStyleStroke())
-        m_document->endStyleStroke(strokeName());
+        m_document->endStyleStroke(brushName());
 }
 
 void StyleTool::grabForComb(QPointF position)
@@ -475,7 +497,7 @@ void StyleTool::keepDriedWetness()
     }
     if (changed)
         m_document->styleStrokeUpdated();
-    report(m_document->endStyleStroke(strokeName()));
+    report(m_document->endStyleStroke(brushName()));
 }
 
 void StyleTool::continueStroke(QPointF position, Qt::KeyboardModifiers modifiers) { drag(position, modifiers); }

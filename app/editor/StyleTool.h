@@ -46,6 +46,11 @@ struct ViewRay;
 
 enum class StyleBrush { Comb, Cut, Length, Curl, Wet, Hairspray, BlowDry };
 
+// A brush's name (menus, the panel, its strokes' undo text) and how it is used, one line (the
+// panel's hint and the actions' tooltips).
+QString styleBrushName(StyleBrush brush);
+QString styleBrushHelp(StyleBrush brush);
+
 class StyleTool : public ViewportBrush {
     Q_OBJECT
 public:
@@ -110,8 +115,8 @@ private:
     void placeDryer(QPointF position);
     void keepDriedWetness();
     float lengthOf(std::uint64_t identity, std::uint32_t strand) const;
-    QString strokeName() const;
     void report(int changedStrands);
+    QString brushName() const { return styleBrushName(m_brush.value_or(StyleBrush::Comb)); }
 
     Document* m_document;
     SimulationHost* m_simulation;

@@ -1,11 +1,13 @@
 #include "sim/RestShapeSolve.h"
 
+#include "sim/BendingModel.h"
 #include "sim/Solver.h"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace wisp {
 
@@ -19,69 +21,112 @@ constexpr float kSettleDampingPerSecond = 8.0f;
 // response is stronger than one to one (soft segments bent away from the vertical sag more).
 constexpr float kRelaxation = 0.7f;
 
-// v turned about the axis a x b by `share` of the angle between unit a and unit b (Rodrigues).
-glm::vec3 turnedLike(const glm::vec3& a, const glm::vec3& b, const glm::vec3& v, float share)
+// Substeps of the fixed-point search at most, the share of the estimated turn it takes, and the
+// largest turn of one iteration (a large miss is not linear in the turn).
+constexpr int kFixedPointIterations = 80;
+constexpr float kFixedPointRelaxation = 0.8f;
+constexpr float kMaxTurnRadians = 0.3f;
+// Share of the last substep's velocity each iteration starts with: the resting strand keeps
+// trading small DFTL corrections between its particles, a strand not yet at rest must not
+// accelerate from iteration to iteration.
+constexpr float kVelocityKept = 0.5f;
+
+// v turned about the axis a x b by `share` of the angle between unit a and unit b (Rodrigues), by
+// at most maxRadians.
+glm::vec3 turnedLike(const glm::vec3& a, const glm::vec3& b, const glm::vec3& v, float share,
+                     float maxRadians = 3.2f)
 {
     const glm::vec3 axis = glm::cross(a, b);
     const float sine = glm::length(axis);
     if (sine < 1e-7f)
         return v;  // aligned, or opposite (no shortest rotation: left to the next iteration)
     const glm::vec3 k = axis / sine;
-    const float angle = share * std::atan2(sine, glm::dot(a, b));
+    const float angle = std::min(share * std::atan2(sine, glm::dot(a, b)), maxRadians);
     const float c = std::cos(angle), s = std::sin(angle);
     return v * c + glm::cross(k, v) * s + k * (glm::dot(k, v) * (1.0f - c));
 }
 
-// The rest shape whose static equilibrium in the solver (Solver.cpp's substep, no wind, no
-// contact) is exactly `target`. At rest a particle does not move between substeps, so for each
-// segment j with unit direction d and length h:
-//   predicted - x = P = g dt² + m (keep - drag dt),  m = -s c_{j+1}  (the DFTL correction of the
-//                    child moved this particle's previous position: Müller et al. 2012, eq. 9)
-//   bent - x = (1 - α) P + α (T - x)   must point along d, so the length projection puts it back
-// where T = parent + h t is the bending target. Solving |T - parent| = h for t gives the target
-// direction; the correction c_j = x - bent follows, and feeds the parent's P (tips first). The
-// rest direction r_j is t turned back by the parent's rotation from rest to now (the solver turns
-// r_j by the shortest rotation from r_{j-1} to d_{j-1}; r_1 = t_1).
-void exactRest(std::span<const glm::vec3> target, float stiffness, const SolverSettings& settings,
-               std::span<glm::vec3> rest)
+// The rest shapes whose static equilibrium in the solver is exactly `targets`, found with the
+// solver itself, so the answer is the solver's whatever its bending, length and contact do. At
+// rest nothing moves between substeps: the state (x = target, previous) must come back from one
+// substep unchanged. Each iteration runs one substep from the targets, then turns every rest
+// direction (root first) by the angle its segment missed, divided by the share of a bend error
+// that segment's constraint moves in one substep (the response of its direction to its rest
+// direction), times kFixedPointRelaxation. The previous positions carry over (they hold the DFTL
+// corrections a strand at rest keeps trading between its particles).
+void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessScales, const SolverSettings& settings,
+                    const std::shared_ptr<const SignedDistanceField>& collider, HairCurves& rest)
 {
-    const std::size_t n = target.size();
-    const float dt = settings.timeStepSeconds / static_cast<float>(std::max(settings.substeps, 1));
-    const float keep = std::exp(-settings.dampingPerSecond * dt);
-    const glm::vec3 gravityStep = settings.gravity * dt * dt;
-    std::vector<glm::vec3> t(n, glm::vec3(0.0f));
-    glm::vec3 childCorrection(0.0f);
-    for (std::size_t j = n - 1; j >= 1; --j) {
-        const glm::vec3 segment = target[j] - target[j - 1];
-        const float h = glm::length(segment);
-        const glm::vec3 d = segment / h;
-        const float alpha = Solver::bendAlpha(stiffness, dt, h);
-        const glm::vec3 move = j + 1 < n ? -settings.velocityCorrection * childCorrection : glm::vec3(0.0f);
-        const glm::vec3 u = (1.0f - alpha) * (gravityStep + move * (keep - settings.dragPerSecond * dt));
-        if (alpha <= 0.0f) {  // no bending at all: nothing holds a shape
-            t[j] = d;
-            childCorrection = -u;
-            continue;
+    const std::size_t count = targets.strandCount();
+    SolverSettings one = settings;
+    one.timeStepSeconds = settings.timeStepSeconds / static_cast<float>(std::max(settings.substeps, 1));
+    one.substeps = 1;
+    one.wind = glm::vec3(0.0f);
+    one.turbulence = 0.0f;
+    Solver solver(1);
+    solver.setCollider(collider);
+    if (!solver.setStrands(rest).empty() || !solver.setSettings(one).empty())
+        return;
+    if (!stiffnessScales.empty())
+        solver.setStiffnessScales(stiffnessScales);
+
+    // Per segment: the gain that turns a missed angle into a rest turn.
+    std::vector<float> gain(targets.positions.size(), 0.0f);
+    std::vector<float> lengths;
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::span<const glm::vec3> t = targets.strand(i);
+        const int n = static_cast<int>(t.size());
+        lengths.assign(t.size(), 0.0f);
+        for (int j = 1; j < n; ++j)
+            lengths[j] = glm::distance(t[j], t[j - 1]);
+        const float stiffness = std::min(1.0f, settings.stiffness * (stiffnessScales.empty() ? 1.0f : stiffnessScales[i]));
+        const float rigidity = bending::rigidity(stiffness);
+        for (int j = 1; j < n; ++j) {
+            // The share of a miss one substep's correction moves the child.
+            const float response = bending::constraint(rigidity, one.timeStepSeconds, lengths.data(), n, j).child;
+            gain[targets.offsets[i] + j] = response > 1e-4f ? kFixedPointRelaxation / response : 0.0f;
         }
-        const glm::vec3 w = u / alpha;
-        const float along = glm::dot(d, w);
-        const float across2 = glm::dot(w, w) - along * along;
-        // Too soft to hold this segment against its load: the closest direction (mu at the vertex).
-        const float mu = along + std::sqrt(std::max(h * h - across2, 0.0f));
-        const glm::vec3 direction = mu * d - w;
-        const float length = glm::length(direction);
-        t[j] = length > 1e-12f ? direction / length : d;
-        const float lambda = (mu - h) * alpha;
-        childCorrection = -lambda * d;
     }
-    rest[0] = target[0];
-    glm::vec3 restDirection = t[1];
-    rest[1] = rest[0] + restDirection * glm::distance(target[1], target[0]);
-    for (std::size_t j = 2; j < n; ++j) {
-        const glm::vec3 parentNow = glm::normalize(target[j - 1] - target[j - 2]);
-        const glm::vec3 parentRest = restDirection;
-        restDirection = glm::normalize(turnedLike(parentNow, parentRest, t[j], 1.0f));
-        rest[j] = rest[j - 1] + restDirection * glm::distance(target[j], target[j - 1]);
+
+    // The unknowns are the bend targets' directions τ_j in the frame of the combed strand (where
+    // the solver turns each rest direction once the parent lies as combed): a miss of segment j
+    // turns its own τ_j and nothing else. The rest directions follow from the root: r_1 = τ_1,
+    // r_j = τ_j turned back by the shortest rotation from the parent's combed direction to r_{j-1}.
+    std::vector<glm::vec3> previous = targets.positions, positions, tau(targets.positions.size(), glm::vec3(0.0f));
+    for (std::size_t p = 0; p < targets.positions.size(); ++p)
+        tau[p] = p > 0 ? targets.positions[p] - targets.positions[p - 1] : glm::vec3(0.0f);
+    for (std::size_t i = 0; i < count; ++i)
+        for (std::size_t p = targets.offsets[i] + 1; p < targets.offsets[i + 1]; ++p)
+            tau[p] = glm::normalize(tau[p]);
+    for (int k = 0; k < kFixedPointIterations; ++k) {
+        for (std::size_t i = 0; i < count; ++i) {
+            const std::size_t first = targets.offsets[i], points = targets.pointsIn(i);
+            solver.setStrandState(i, targets.strand(i), std::span<const glm::vec3>(previous.data() + first, points));
+        }
+        solver.step();
+        solver.copyState(positions, previous);
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < count; ++i) {
+            const std::span<const glm::vec3> t = targets.strand(i);
+            const std::size_t first = targets.offsets[i];
+            const std::span<glm::vec3> r = rest.strandForWrite(i);
+            glm::vec3 restDirection(0.0f), combedParent(0.0f);
+            for (std::size_t j = 1; j < t.size(); ++j) {
+                const std::size_t p = first + j;
+                worst = std::max(worst, glm::distance(positions[p], t[j]));
+                previous[p] = t[j] - kVelocityKept * (positions[p] - previous[p]);  // from the target
+                const float length = glm::distance(t[j], t[j - 1]);
+                const glm::vec3 want = (t[j] - t[j - 1]) / length;
+                const glm::vec3 got = glm::normalize(positions[p] - positions[p - 1]);
+                tau[p] = glm::normalize(turnedLike(got, want, tau[p], gain[p], kMaxTurnRadians));
+                restDirection = j == 1 ? tau[p] : glm::normalize(turnedLike(combedParent, restDirection, tau[p], 1.0f));
+                combedParent = want;
+                r[j] = r[j - 1] + restDirection * length;
+            }
+            solver.setStrandRestDirections(i, r);
+        }
+        if (worst < 1e-6f)
+            break;
     }
 }
 
@@ -101,16 +146,13 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
     settle.dragPerSecond = 0.0f;
     settle.dampingPerSecond = std::max(settings.dampingPerSecond, kSettleDampingPerSecond);
     Solver solver(1);
-    solver.setCollider(std::move(collider));
+    solver.setCollider(collider);
     std::vector<glm::vec3> settled;
     // Each strand keeps its best rest shape so far: one strand that cannot be held (pushed into the
     // head, too soft) does not stop the others converging.
     const std::size_t count = targets.strandCount();
     std::vector<float> bestGap(count, 1e30f);
-    for (std::size_t i = 0; i < count; ++i)
-        if (targets.pointsIn(i) >= 2)
-            exactRest(targets.strand(i), settings.stiffness * (stiffnessScales.empty() ? 1.0f : stiffnessScales[i]),
-                      settings, out.rest.strandForWrite(i));
+    fixedPointRest(targets, stiffnessScales, settings, collider, out.rest);
     HairCurves best = out.rest;
     for (int k = 0; k < maxIterations; ++k) {
         if (!solver.setStrands(out.rest).empty() || !solver.setSettings(settle).empty())

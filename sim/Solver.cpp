@@ -1,5 +1,6 @@
 #include "sim/Solver.h"
 
+#include "sim/BendingModel.h"
 #include "sim/SignedDistanceField.h"
 #include "sim/ThreadPool.h"
 
@@ -102,12 +103,20 @@ struct Solver::ParticleRow {
     Lane clearance;
 };
 // Rest shape, head space. Row 0: the root position. Row j > 0: unit direction from particle j-1
-// to j, the segment's rest length (metres) and the share of its bend error removed per substep.
+// to j, the segment's rest length (metres) and the shares of its bend error each end takes per substep.
 struct Solver::RestRow {
     Lane x, y, z;
     Lane length;
     Lane inverseLength;  // 1 / length, kept off the strand's serial chain
-    Lane bendAlpha;
+    // Bending (BendingModel.h): the shares of this segment's bend error t_j - x_j added to
+    // particle j, taken from its parent j-1 and added to j-2, for this substep (they sum to zero
+    // momentum).
+    Lane bendChild;        // share of the bend error moved onto particle j this substep
+    Lane bendDamping;      // share of its move relative to its parent taken away this substep
+    Lane bendParentRatio;  // m_j / m_{j-1}
+    // Row j > 0: the rest direction in the parent segment's rest frame (direction, normal,
+    // binormal; see advanceBlock). Row 0: the follicle frame's normal, head space.
+    Lane lx, ly, lz;
 };
 
 using ParticleRow = Solver::ParticleRow;
@@ -128,7 +137,6 @@ struct Solver::Block {
 
 struct StepConstants {
     float dt = 0.0f;  // substep, seconds
-    float invDt = 0.0f;
     float keep = 1.0f;     // exp(-damping dt): share of velocity kept
     float friction = 0;
     float offset = 0;
@@ -242,18 +250,78 @@ struct SdfSample {
     return s;
 }
 
-// Contact response: move the penetrating lanes out along the normal, then set the previous
-// position so that the implied velocity has no inward part and loses `friction` of its sliding part.
-inline void resolveContact(Mask inside, Lane depth, const V3& normal, float friction, const V3& oldPosition, V3& position,
-                           V3& previous)
+// Contact, as the last word of a substep: the penetrating lanes are turned about their (final)
+// parent onto the collider's tangent plane, so they leave it and keep their segment's length;
+// where no point at that length from the parent is outside (the parent itself is too deep), the
+// particle is pushed out along the normal and the length gives way. Then Coulomb friction
+// (velocity level, through the previous position): the contact's normal correction δ = depth
+// bounds the tangential slip it can stop, static while the slip is under μs δ, else the slip is
+// shortened by μk δ (Macklin et al. 2014, "Unified Particle Physics", eq. 24-25). Its effect per
+// second is μ × normal force / mass at any substep count. The normal part of the velocity is
+// kept only outward.
+// Static friction of hair on skin is a little above its kinetic friction (measured hair-on-hair
+// and hair-on-skin coefficients differ by about this much).
+constexpr float kStaticOverKineticFriction = 1.25f;
+
+struct ContactFriction {
+    Lane kinetic;  // μk
+    Lane statik;   // μs
+};
+
+inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
+                           Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous)
 {
+    const V3 u0 = (position - parent) * inverseLength;
+    const Lane along = dot(normal, u0);
+    const Lane needed = depth * inverseLength + along;  // n . u the particle needs to be on the plane
+    const V3 tangent = u0 - normal * along;
+    const Lane tangent2 = dot(tangent, tangent);
+    const Mask turnable = (needed <= splat(1.0f)) & (tangent2 > splat(1e-12f));
+    const V3 unitTangent = tangent * lrsqrt(lmax(tangent2, splat(1e-12f)));
+    const Lane sine2 = lmax(splat(1.0f) - needed * needed, splat(0.0f));
+    const Lane sine = sine2 * lrsqrt(lmax(sine2, splat(1e-20f)));
+    const V3 turned = parent + (normal * needed + unitTangent * sine) * length;
     const V3 pushed = position + normal * depth;
-    position = select(inside, pushed, position);
+    position = select(inside, select(turnable, turned, pushed), position);
+
     const V3 move = position - oldPosition;
     const Lane normalPart = dot(move, normal);
     const V3 sliding = move - normal * normalPart;
-    const V3 kept = sliding * splat(1.0f - friction) + normal * lmax(normalPart, splat(0.0f));
+    const Lane slide2 = dot(sliding, sliding);
+    const Lane invSlide = lrsqrt(lmax(slide2, splat(1e-24f)));
+    const Lane slide = slide2 * invSlide;
+    const Mask sticks = slide <= mu.statik * depth;
+    const Lane keptShare = select(sticks, splat(0.0f), lmax(splat(1.0f) - mu.kinetic * depth * invSlide, splat(0.0f)));
+    const V3 kept = sliding * keptShare + normal * lmax(normalPart, splat(0.0f));
     previous = select(inside, position - kept, previous);
+}
+
+// The rest shape's parallel-transported frames (advanceBlock): the follicle's normal (any unit
+// vector across the root segment, chosen the same way every time) into row 0, and each rest
+// direction's coordinates in its parent segment's frame into rows j > 0.
+void storeRestFrames(Solver::Block& block, int lane)
+{
+    RestRow* rest = block.rest.data();
+    auto dir = [&](std::uint32_t j) { return glm::vec3(rest[j].x[lane], rest[j].y[lane], rest[j].z[lane]); };
+    glm::vec3 d = dir(1);
+    const glm::vec3 helper = std::abs(d.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    glm::vec3 e = glm::normalize(glm::cross(d, helper));
+    rest[0].lx[lane] = e.x;
+    rest[0].ly[lane] = e.y;
+    rest[0].lz[lane] = e.z;
+    for (std::uint32_t j = 1; j < block.points; ++j) {
+        const glm::vec3 r = dir(j);
+        const glm::vec3 b = glm::cross(d, e);
+        rest[j].lx[lane] = glm::dot(r, d);
+        rest[j].ly[lane] = glm::dot(r, e);
+        rest[j].lz[lane] = glm::dot(r, b);
+        // Transport (d, e) onto r: the shortest rotation taking d to r.
+        const glm::vec3 axis = glm::cross(d, r);
+        const float cosine = glm::dot(d, r);
+        e = e * cosine + glm::cross(axis, e) + axis * (glm::dot(axis, e) / std::max(1.0f + cosine, 1e-2f));
+        e = glm::normalize(e - r * glm::dot(e, r));
+        d = r;
+    }
 }
 
 // Puts one lane's strand at its rest shape, at rest, in world space; its clearance becomes unknown.
@@ -285,132 +353,165 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
     const V3 rootStart =
         Transformed ? transform(c.previousRotation, rootHead) + splat(c.previousTranslation) : rootHead;
 
-    // Wind per strand, with gusts (eq. 1 and 2 of the force-driven hair paper; turbulence is ours).
-    V3 wind = splat(c.wind) + V3{block.windX, block.windY, block.windZ};
+    // Wind (eq. 1 and 2 of the force-driven hair paper) with gusts sampled at each particle, so
+    // they vary along a strand (turbulence is ours).
+    const V3 baseWind = splat(c.wind) + V3{block.windX, block.windY, block.windZ};
     const float windSpeed = glm::length(c.wind);
-    if (c.turbulence > 0.0f && windSpeed > 0.0f)
-        wind = wind + gust(rootEnd, c.time) * splat(c.turbulence * windSpeed);
-    const Lane windSpeed2 = dot(wind, wind);
-    const Mask calm = windSpeed2 < splat(1e-12f);
-    const Lane invWindSpeed2 = splat(1.0f) / select(calm, splat(1.0f), windSpeed2);
+    const bool gusty = c.turbulence > 0.0f && windSpeed > 0.0f;
+    const Lane gustAmplitude = splat(c.turbulence * windSpeed);
 
     const V3 gravityStep = splat(c.gravity * (c.dt * c.dt));
-    const Lane dt2 = splat(c.dt * c.dt), invDt = splat(c.invDt), keep = splat(c.keep);
+    const Lane dt = splat(c.dt), keep = splat(c.keep);
     const Lane drag = splat(c.drag) * block.dragScale;
     const Lane velocityCorrection = splat(c.velocityCorrection);
+    const ContactFriction mu{splat(c.friction), splat(c.friction * kStaticOverKineticFriction)};
+
+    // Verlet (eq. 3) with drag toward the wind taken implicitly: v' = (keep v + k dt w) / (1 + k dt)
+    // + g dt, which only ever moves v toward w, so any drag at any step is stable, and leaves
+    // gravity whole (hair at rest feels all its weight, whatever the drag and the step). k is the
+    // drag scaled by eq. 1's s = |w x t| / (|w||t|): wind across the strand pushes, along it not.
+    auto predict = [&](const V3& x, const V3& previous, const V3& parentBefore) {
+        V3 wind = baseWind;
+        if (gusty)
+            wind = wind + gust(x, c.time) * gustAmplitude;
+        const Lane windSpeed2 = dot(wind, wind);
+        const Mask calm = windSpeed2 < splat(1e-12f);
+        const V3 tangent = x - parentBefore;
+        const Lane wt = dot(wind, tangent);
+        const Lane invTangent = lrsqrt(lmax(dot(tangent, tangent), splat(1e-20f)));
+        const Lane across2 = splat(1.0f) - (wt * wt) * (invTangent * invTangent) / select(calm, splat(1.0f), windSpeed2);
+        const Lane across2Safe = lmax(across2, splat(1e-20f));
+        const Lane across = select(calm, splat(1.0f), across2Safe * lrsqrt(across2Safe));
+        const Lane kdt = drag * across * dt;
+        const V3 move = (x - previous) * keep + wind * (kdt * dt);
+        return x + move * (splat(1.0f) / (splat(1.0f) + kdt)) + gravityStep;
+    };
+
+    // Length, then contact, for particle i whose bent position is `bent` and whose parent is final
+    // at `parent`: follow the leader (Müller et al. 2012) puts it at rest length from its parent,
+    // then the head field and the capsules push it out (keeping that length where they can), and
+    // the DFTL velocity correction (eq. 9: v_{i-1} -= s d_i / dt, in Verlet form the parent's
+    // previous position moves by s d_i) damps what the length projection added. Returns its
+    // final position.
+    auto finish = [&](std::uint32_t i, const V3& bent, const V3& parent) {
+        ParticleRow& p = row[i];
+        const V3 before{p.px, p.py, p.pz};  // its position at the start of the substep
+        V3 previous = before;
+        const Lane length = rest[i].length, inverseLength = rest[i].inverseLength;
+        const V3 d = bent - parent;
+        V3 position = parent + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-24f))));
+        const V3 correction = position - bent;
+
+        // The field lookup is most of a step's cost (memory latency), so it is skipped while the
+        // clearance bound says no lane can touch: the bound shrinks by each move's L1 length,
+        // which is never less than its true length.
+        const V3 checked = position;
+        Lane clearance = p.clearance - l1Length(position - before);
+        if (c.field && (Transformed || anyOf(clearance < splat(0.0f)))) {
+            V3 local = position;
+            if (Transformed)
+                local = transform(glm::transpose(c.rotation), position - splat(c.translation));
+            SdfSample sample = sampleField(*c.field, local);
+            if (Transformed)
+                sample.normal = transform(c.rotation, sample.normal);
+            const Lane depth = splat(c.offset) - sample.distance;
+            const Mask inside = depth > splat(0.0f);
+            if (anyOf(inside))
+                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous);
+            // A moving head moves the field under the particles: no bound survives that.
+            clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));
+        }
+        for (const Capsule& capsule : c.capsulesWorld) {
+            const V3 a = splat(capsule.a);
+            const glm::vec3 abv = capsule.b - capsule.a;
+            const float ab2 = glm::dot(abv, abv);
+            const V3 ab = splat(abv);
+            const Lane u = ab2 > 0.0f ? lmin(lmax(dot(position - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f))
+                                      : splat(0.0f);
+            const V3 away = position - (a + ab * u);
+            const Lane dist = lsqrt(dot(away, away));
+            const Lane depth = splat(capsule.radiusMetres + c.offset) - dist;
+            const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
+            if (anyOf(inside)) {
+                const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
+                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous);
+            }
+        }
+        if (i > 1) {
+            ParticleRow& q = row[i - 1];
+            q.px += velocityCorrection * correction.x;
+            q.py += velocityCorrection * correction.y;
+            q.pz += velocityCorrection * correction.z;
+        }
+        p.clearance = clearance - l1Length(position - checked);
+        p.x = position.x;
+        p.y = position.y;
+        p.z = position.z;
+        p.px = previous.x;
+        p.py = previous.y;
+        p.pz = previous.z;
+        return position;
+    };
 
     for (int s = 0; s < c.substeps; ++s) {
         const Lane t = splat(static_cast<float>(s + 1) / static_cast<float>(c.substeps));
         const V3 root = rootStart + (rootEnd - rootStart) * t;
-        V3 oldParent{row[0].x, row[0].y, row[0].z};
+        V3 parentBefore{row[0].x, row[0].y, row[0].z};
         row[0].px = row[0].x;
         row[0].py = row[0].y;
         row[0].pz = row[0].z;
         row[0].x = root.x;
         row[0].y = root.y;
         row[0].z = root.z;
-        V3 parent = root;
-        // The root segment's reference direction is its own rest direction: follicles hold the
-        // angle at which hair leaves the scalp.
-        V3 parentRestDir{rest[1].x, rest[1].y, rest[1].z};
-        if (Transformed)
-            parentRestDir = transform(c.rotation, parentRestDir);
-        V3 parentDir = parentRestDir;
+
+        // One pass, root to tip, as follow-the-leader: each particle is predicted, bent toward
+        // its target in its parent's frame, then gets its length and contact; the parent, already
+        // placed, takes the bend's equal and opposite momentum as a velocity (BendingModel.h).
+        // The frames are carried down the strand as it is now by parallel transport (the
+        // shortest rotation from each segment's direction to the next, a Bishop frame), starting
+        // from the follicle's frame, which turns with the head. The rest shape is stored in the
+        // same frames of the rest strand, so turning a piece of strand rigidly turns its targets
+        // with it: only bending costs.
+        V3 parent = root;  // final position of particle j-1
+        V3 parentStart = parentBefore;  // particle j-1 at the start of the substep
+        V3 frameD{rest[1].x, rest[1].y, rest[1].z};   // the follicle's frame: the root segment's rest
+        V3 frameE{rest[0].lx, rest[0].ly, rest[0].lz}; // direction and a normal to it
+        if (Transformed) {
+            frameD = transform(c.rotation, frameD);
+            frameE = transform(c.rotation, frameE);
+        }
         for (std::uint32_t j = 1; j < n; ++j) {
             ParticleRow& p = row[j];
+            const RestRow& r = rest[j];
             const V3 x{p.x, p.y, p.z};
-            V3 previous{p.px, p.py, p.pz};
-            V3 restDir{rest[j].x, rest[j].y, rest[j].z};
-            if (Transformed)
-                restDir = transform(c.rotation, restDir);
-            const Lane length = rest[j].length;
+            const V3 predicted = predict(x, V3{p.px, p.py, p.pz}, parentBefore);
+            p.px = x.x;  // kept here until finish() reads it as the start of the substep
+            p.py = x.y;
+            p.pz = x.z;
+            parentBefore = x;
 
-            // Verlet (eq. 3): x' = x + keep (x - x_prev) + a dt², with a = g + k s (wind - v),
-            // s = |w x t| / (|w||t|) from eq. 1: wind across the strand pushes, along it does not.
-            const V3 move = x - previous;
-            const V3 tangent = x - oldParent;
-            const Lane wt = dot(wind, tangent);
-            const Lane tt = dot(tangent, tangent);
-            const Lane invTangent = lrsqrt(lmax(tt, splat(1e-20f)));
-            const Lane across2 = splat(1.0f) - (wt * wt) * invWindSpeed2 * (invTangent * invTangent);
-            const Lane across2Safe = lmax(across2, splat(1e-20f));
-            const Lane across = select(calm, splat(1.0f), across2Safe * lrsqrt(across2Safe));
-            const Lane k = drag * across * dt2;
-            const V3 predicted = x + move * keep + gravityStep + (wind - move * invDt) * k;
-
-            // Bending: the rest direction of this segment, carried by the rotation that takes the
-            // parent segment from its rest direction to its current one (shortest arc, Rodrigues).
-            const V3 axis = cross(parentRestDir, parentDir);
-            const Lane cosine = dot(parentRestDir, parentDir);
-            const V3 turned = restDir * cosine + cross(axis, restDir) +
-                              axis * (dot(axis, restDir) / lmax(splat(1.0f) + cosine, splat(1e-2f)));
-            const V3 target = parent + turned * length;
-            const V3 bent = predicted + (target - predicted) * rest[j].bendAlpha;
-
-            // Follow the leader (Müller et al. 2012): put the particle back at rest length from its parent.
-            V3 d = bent - parent;
-            V3 position = parent + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-24f))));
-            const V3 correction = position - bent;
-            previous = x;
-
-            // Collisions: head field, then capsules. The field lookup is most of a step's cost
-            // (memory latency), so it is skipped while the clearance bound says no lane can touch:
-            // the bound shrinks by each move's L1 length, which is never less than its true length.
-            const V3 checked = position;
-            Lane clearance = p.clearance - l1Length(position - x);
-            if (c.field && (Transformed || anyOf(clearance < splat(0.0f)))) {
-                V3 local = position;
-                if (Transformed)
-                    local = transform(glm::transpose(c.rotation), position - splat(c.translation));
-                SdfSample sample = sampleField(*c.field, local);
-                if (Transformed)
-                    sample.normal = transform(c.rotation, sample.normal);
-                const Lane depth = splat(c.offset) - sample.distance;
-                const Mask inside = depth > splat(0.0f);
-                if (anyOf(inside))
-                    resolveContact(inside, depth, sample.normal, c.friction, x, position, previous);
-                // A moving head moves the field under the particles: no bound survives that.
-                clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));
-            }
-            for (const Capsule& capsule : c.capsulesWorld) {
-                const V3 a = splat(capsule.a);
-                const glm::vec3 abv = capsule.b - capsule.a;
-                const float ab2 = glm::dot(abv, abv);
-                const V3 ab = splat(abv);
-                const Lane u = ab2 > 0.0f ? lmin(lmax(dot(position - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f))
-                                          : splat(0.0f);
-                const V3 away = position - (a + ab * u);
-                const Lane dist = lsqrt(dot(away, away));
-                const Lane depth = splat(capsule.radiusMetres + c.offset) - dist;
-                const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
-                if (anyOf(inside)) {
-                    const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
-                    resolveContact(inside, depth, normal, c.friction, x, position, previous);
-                }
-            }
-            // Contact moved the particle off its rest length: project back (one more FTL step).
-            d = position - parent;
-            position = parent + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-24f))));
-
-            // DFTL velocity correction (Müller et al. eq. 9): v_{j-1} -= s d_j / dt, which in
-            // Verlet form moves the parent's previous position by s d_j. The root stays pinned.
-            if (j > 1) {
+            // The target direction: the rest direction's coordinates in the parent's rest frame,
+            // laid on the parent's frame now.
+            const V3 turned = frameD * r.lx + frameE * r.ly + cross(frameD, frameE) * r.lz;
+            // Spring toward the target, and damper on the particle's motion relative to its parent.
+            const V3 relativeMove = (predicted - x) - (parent - parentStart);
+            const V3 move = (parent + turned * r.length - predicted) * r.bendChild - relativeMove * r.bendDamping;  // Δx_j
+            if (j > 1) {  // the parent's equal and opposite momentum, as a velocity (DFTL's way)
                 ParticleRow& q = row[j - 1];
-                q.px -= velocityCorrection * -correction.x;
-                q.py -= velocityCorrection * -correction.y;
-                q.pz -= velocityCorrection * -correction.z;
+                q.px += move.x * r.bendParentRatio;
+                q.py += move.y * r.bendParentRatio;
+                q.pz += move.z * r.bendParentRatio;
             }
-            p.clearance = clearance - l1Length(position - checked);
-            p.x = position.x;
-            p.y = position.y;
-            p.z = position.z;
-            p.px = previous.x;
-            p.py = previous.y;
-            p.pz = previous.z;
-
-            oldParent = x;
-            parentRestDir = restDir;
-            parentDir = (position - parent) * rest[j].inverseLength;
+            parentStart = x;
+            const V3 position = finish(j, predicted + move, parent);
+            // Transport the frame onto this segment's direction now.
+            const V3 d = (position - parent) * r.inverseLength;
+            const V3 axis = cross(frameD, d);
+            const Lane cosine = dot(frameD, d);
+            frameE = frameE * cosine + cross(axis, frameE) +
+                     axis * (dot(axis, frameE) / lmax(splat(1.0f) + cosine, splat(1e-2f)));
+            frameE = frameE * lrsqrt(lmax(dot(frameE, frameE), splat(1e-24f)));
+            frameD = d;
             parent = position;
         }
     }
@@ -509,6 +610,7 @@ std::string Solver::setStrands(const HairCurves& rest)
                     }
                 }
                 b.strandLength[l] = total;
+                storeRestFrames(b, l);
                 b.stiffnessScale[l] = 1.0f;
                 b.dragScale[l] = 1.0f;
             }
@@ -525,7 +627,7 @@ std::string Solver::setStrands(const HairCurves& rest)
             if (m_blocks[i].strand[l] >= 0)
                 m_slotOfStrand[static_cast<std::size_t>(m_blocks[i].strand[l])] = {i, l};
     m_restOffsets = rest.offsets;
-    m_bendAlphaStale = true;
+    m_bendSharesStale = true;
     m_strandCount = rest.strandCount();
     m_particleCount = particles;
     resetToRest();
@@ -568,37 +670,31 @@ void Solver::resetToRest()
             placeLaneAtRest(b, l, rotation, translation);
 }
 
-// Stiffness s is the share of a 2 cm segment's bend error removed per 1/60 s. A substep of dt
-// removes 1 - (1 - s)^(60 dt (2 cm / h)^2) on a segment of length h: shorter substeps and longer
-// segments get proportionally less, so the look does not change with the time step, the substeps
-// or how finely strands are divided (a segment's sag under its own weight scales with h^2).
-float Solver::bendAlpha(float stiffness, float substepSeconds, float segmentMetres)
-{
-    constexpr float kReferenceSegment = 0.02f;  // metres
-    stiffness = std::min(1.0f, stiffness);
-    if (stiffness <= 0.0f)
-        return 0.0f;
-    if (stiffness >= 1.0f)
-        return 1.0f;
-    const float ratio = kReferenceSegment / segmentMetres;
-    return 1.0f - std::exp(std::log1p(-stiffness) * 60.0f * substepSeconds * ratio * ratio);
-}
-
-void Solver::updateBendAlpha(float substepSeconds)
+// The bend shares of every segment for a substep of `substepSeconds` (BendingModel.h): from the
+// rigidity of each lane's stiffness (settings x the strand's scale) and the segment lengths.
+void Solver::updateBendShares(float substepSeconds)
 {
     const float globalStiffness = m_settings.stiffness;
-    if (m_bendAlphaFor == glm::vec2(globalStiffness, substepSeconds) && !m_bendAlphaStale)
+    if (m_bendSharesFor == glm::vec2(globalStiffness, substepSeconds) && !m_bendSharesStale)
         return;
-    m_bendAlphaFor = {globalStiffness, substepSeconds};
-    m_bendAlphaStale = false;
+    m_bendSharesFor = {globalStiffness, substepSeconds};
+    m_bendSharesStale = false;
     m_pool->parallelFor(m_blocks.size(), 16, [&](std::size_t begin, std::size_t end) {
+        std::vector<float> lengths;
         for (std::size_t i = begin; i < end; ++i) {
             const Block& b = m_blocks[i];
+            const int n = static_cast<int>(b.points);
+            lengths.resize(b.points);
             for (int l = 0; l < kLanes; ++l) {
-                const float stiffness = globalStiffness * b.stiffnessScale[l];
-                for (std::uint32_t j = 1; j < b.points; ++j) {
+                const float rigidity = bending::rigidity(std::min(1.0f, globalStiffness * b.stiffnessScale[l]));
+                for (int j = 0; j < n; ++j)
+                    lengths[j] = b.rest[j].length[l];
+                for (int j = 1; j < n; ++j) {
+                    const bending::Constraint k = bending::constraint(rigidity, substepSeconds, lengths.data(), n, j);
                     RestRow& r = b.rest[j];
-                    r.bendAlpha[l] = bendAlpha(stiffness, substepSeconds, r.length[l]);
+                    r.bendChild[l] = k.child;
+                    r.bendDamping[l] = k.damping;
+                    r.bendParentRatio[l] = k.parentRatio;
                 }
             }
         }
@@ -611,9 +707,8 @@ void Solver::step()
     const SolverSettings& s = m_settings;
     c.substeps = s.substeps;
     c.dt = s.timeStepSeconds / static_cast<float>(s.substeps);
-    c.invDt = 1.0f / c.dt;
     c.keep = std::exp(-s.dampingPerSecond * c.dt);
-    updateBendAlpha(c.dt);
+    updateBendShares(c.dt);
     c.friction = s.friction;
     c.offset = s.hairOffsetMetres;
     c.velocityCorrection = s.velocityCorrection;
@@ -676,7 +771,7 @@ std::string Solver::setStiffnessScales(std::span<const float> perStrand)
         for (int l = 0; l < kLanes; ++l)
             if (b.strand[l] < 0)
                 b.stiffnessScale[l] = b.stiffnessScale[0];
-    m_bendAlphaStale = true;
+    m_bendSharesStale = true;
     return {};
 }
 
@@ -740,6 +835,32 @@ bool Solver::setStrandState(std::size_t strand, std::span<const glm::vec3> posit
         row.pz[slot.lane] = previous[j].z;
         row.clearance[slot.lane] = -1.0f;
     }
+    return true;
+}
+
+bool Solver::setStrandRestDirections(std::size_t strand, std::span<const glm::vec3> restShape)
+{
+    if (strand >= m_strandCount)
+        return false;
+    const Slot slot = m_slotOfStrand[strand];
+    Block& b = m_blocks[slot.block];
+    if (restShape.size() != b.points)
+        return false;
+    const int l = static_cast<int>(slot.lane);
+    if (glm::distance(restShape[0], glm::vec3(b.rest[0].x[l], b.rest[0].y[l], b.rest[0].z[l])) > 1e-6f)
+        return false;
+    for (std::uint32_t j = 1; j < b.points; ++j) {
+        const float length = glm::distance(restShape[j], restShape[j - 1]);
+        if (!(std::abs(length - b.rest[j].length[l]) <= 1e-3f * b.rest[j].length[l]))
+            return false;
+    }
+    for (std::uint32_t j = 1; j < b.points; ++j) {
+        const glm::vec3 d = glm::normalize(restShape[j] - restShape[j - 1]);
+        b.rest[j].x[l] = d.x;
+        b.rest[j].y[l] = d.y;
+        b.rest[j].z[l] = d.z;
+    }
+    storeRestFrames(b, l);
     return true;
 }
 

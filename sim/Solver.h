@@ -73,9 +73,6 @@ public:
     // less) and adds a wind of its own, m/s world space (a hair dryer's cone). An empty span means
     // 1 and no wind of its own. Both 1 and none after setStrands.
     std::string setStrandAir(std::span<const float> dragScale, std::span<const glm::vec3> extraWind);
-    // The share of a segment's bend error the solver removes per substep, for stiffness (times the
-    // strand's scale; capped at 1) on a segment `segmentMetres` long (see updateBendAlpha).
-    static float bendAlpha(float stiffness, float substepSeconds, float segmentMetres);
 
     // World-space positions in the layout of the rest curves given to setStrands.
     void copyPositions(std::vector<glm::vec3>& out) const;
@@ -85,6 +82,11 @@ public:
     // points except the pinned root. False, changing nothing, when the point count differs or a
     // value is not finite.
     bool setStrandState(std::size_t strand, std::span<const glm::vec3> positions, std::span<const glm::vec3> previous);
+
+    // Turns one strand's rest shape (head space) without changing its segment lengths: the inverse
+    // statics of combed hair (RestShapeSolve) adjusts rest directions between substeps. False,
+    // changing nothing, when the point count, the root or a segment length (beyond 0.1%) differs.
+    bool setStrandRestDirections(std::size_t strand, std::span<const glm::vec3> rest);
 
     std::size_t strandCount() const { return m_strandCount; }
     std::size_t particleCount() const { return m_particleCount; }
@@ -101,7 +103,7 @@ public:
     struct Block;  // 16 strands of equal particle count, interleaved (defined in Solver.cpp)
 
 private:
-    void updateBendAlpha(float substepSeconds);
+    void updateBendShares(float substepSeconds);
 
 
     std::unique_ptr<ThreadPool> m_pool;
@@ -124,8 +126,8 @@ private:
     std::size_t m_particleCount = 0;
     double m_time = 0.0;
     std::uint64_t m_strandsReset = 0;
-    glm::vec2 m_bendAlphaFor{-1.0f};  // (stiffness, substep) the rest rows' bend shares were computed for
-    bool m_bendAlphaStale = true;
+    glm::vec2 m_bendSharesFor{-1.0f};  // (stiffness, substep) the rest rows' bend shares were computed for
+    bool m_bendSharesStale = true;
 };
 
 }  // namespace wisp

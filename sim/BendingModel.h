@@ -34,7 +34,7 @@ namespace wisp::bending {
 // the default 28 cm hair at 2 substeps of 1/120 s sags as it did under the bending this replaced.
 constexpr float kRigidityScale = 0.0016f;  // m³/s²
 constexpr float kRigidityRange = 9.21f;   // ln 10⁴: stiffness 0..1 spans four decades
-constexpr float kBendDampingRatio = 1.0f;
+constexpr float kBendDampingRatio = 2.0f;
 
 inline float rigidity(float stiffness)
 {
@@ -82,7 +82,10 @@ inline Constraint constraint(float rigidityB, float dt, const float* segmentLeng
         k.damping = damper / (1.0f + spring + damper);
     }
     (void)compliance;
-    k.parentRatio = parentMass > 0.0f ? mass / parentMass : 0.0f;
+    // The parent's equal and opposite momentum is an explicit kick; where the joint is stiff for
+    // the substep (the child share near 1) a full kick overshoots, so it fades with (1 - share),
+    // as DFTL's velocity correction is kept below 1 for the same reason.
+    k.parentRatio = parentMass > 0.0f ? (1.0f - k.child) * mass / parentMass : 0.0f;
     return k;
 }
 

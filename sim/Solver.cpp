@@ -276,13 +276,15 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
     const Lane needed = depth * inverseLength + along;  // n . u the particle needs to be on the plane
     const V3 tangent = u0 - normal * along;
     const Lane tangent2 = dot(tangent, tangent);
-    const Mask turnable = (needed <= splat(1.0f)) & (tangent2 > splat(1e-12f));
-    const V3 unitTangent = tangent * lrsqrt(lmax(tangent2, splat(1e-12f)));
-    const Lane sine2 = lmax(splat(1.0f) - needed * needed, splat(0.0f));
+    // Turned as far as the sphere allows (straight out along the normal when even that is not
+    // enough); whatever depth is left is pushed out, and only that much length gives way.
+    const Lane reach = lmin(needed, splat(1.0f));
+    const V3 unitTangent = tangent * select(tangent2 > splat(1e-12f), lrsqrt(lmax(tangent2, splat(1e-12f))), splat(0.0f));
+    const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
     const Lane sine = sine2 * lrsqrt(lmax(sine2, splat(1e-20f)));
-    const V3 turned = parent + (normal * needed + unitTangent * sine) * length;
-    const V3 pushed = position + normal * depth;
-    position = select(inside, select(turnable, turned, pushed), position);
+    const V3 turned = parent + (normal * reach + unitTangent * sine) * length;
+    const Lane left = lmax(depth - dot(turned - position, normal), splat(0.0f));
+    position = select(inside, turned + normal * left, position);
 
     const V3 move = position - oldPosition;
     const Lane normalPart = dot(move, normal);

@@ -56,7 +56,7 @@ SolverSettings calm()
     s.substeps = 4;
     s.gravity = {0.0f, -9.81f, 0.0f};
     s.dampingPerSecond = 1.0f;
-    s.stiffness = 0.5f;
+    s.stiffness = 0.8f;
     return s;
 }
 

@@ -9,6 +9,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <numeric>
 #include <map>
@@ -252,9 +253,10 @@ std::vector<std::vector<std::uint32_t>> membersOfWisps(const Groom& groom)
     return members;
 }
 
+using MemberFix = std::function<void(std::uint32_t strand, std::span<glm::vec3> points)>;
 void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::uint32_t> members,
                       std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out,
-                      float wetClump = 0.0f);
+                      float wetClump = 0.0f, const MemberFix& keepShape = {});
 
 // Everything of a groom the layout of its pores cannot tell: what the head looks like there and
 // the rest shapes. Rest shapes of wisps equal to one of `previous` (same region, site, members and
@@ -787,21 +789,58 @@ HairCurves keyRestCurves(const Groom& groom)
 }
 
 void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, const glm::mat3& headRotation,
-                  HairCurves& out, std::span<const float> wetClumpOfWisp)
+                  HairCurves& out, std::span<const float> wetClumpOfWisp, const MemberContact* contact)
 {
     const std::size_t points = static_cast<std::size_t>(groom.settings.segments) + 1;
     const std::vector<std::vector<std::uint32_t>> members = membersOfWisps(groom);
+    MemberFix fix;
+    if (contact)
+        fix = [&](std::uint32_t strand, std::span<glm::vec3> p) { keepMemberShape(groom.rest.strand(strand), *contact, p); };
     for (std::size_t w = 0; w < groom.wispCount(); ++w)
         buildWispMembers(groom, w, members[w], keyPositions.subspan(w * points, points), headRotation, out,
-                         w < wetClumpOfWisp.size() ? wetClumpOfWisp[w] : 0.0f);
+                         w < wetClumpOfWisp.size() ? wetClumpOfWisp[w] : 0.0f, fix);
 }
 
+void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& contact, std::span<glm::vec3> points)
+{
+    // Follow the leader along the member's own guide (Müller et al. 2012): each point at its rest
+    // length from the one before, toward where the key put it; then out of the head, turned about
+    // the point before so the length holds (as the solver's contact does), pushed only by what
+    // the segment cannot reach.
+    for (std::size_t j = 1; j < points.size() && j < rest.size(); ++j) {
+        const float length = glm::distance(rest[j], rest[j - 1]);
+        const glm::vec3 parent = points[j - 1];
+        glm::vec3 d = points[j] - parent;
+        const float dl = glm::length(d);
+        glm::vec3 u = dl > 1e-9f ? d / dl : glm::normalize(rest[j] - rest[j - 1]);
+        glm::vec3 p = parent + u * length;
+        if (contact.head) {
+            const glm::vec3 local = glm::transpose(contact.headRotation) * (p - contact.headTranslation);
+            const float depth = contact.offsetMetres - contact.head->distance(local);
+            if (depth > 0.0f) {
+                glm::vec3 n = contact.headRotation * contact.head->gradient(local);
+                const float nl = glm::length(n);
+                n = nl > 1e-9f ? n / nl : glm::vec3(0, 1, 0);
+                const float along = glm::dot(n, u);
+                const float reach = std::min(depth / length + along, 1.0f);
+                glm::vec3 t = u - n * along;
+                const float tl = glm::length(t);
+                t = tl > 1e-9f ? t / tl : glm::vec3(0.0f);
+                const glm::vec3 turned = parent + (n * reach + t * std::sqrt(std::max(1.0f - reach * reach, 0.0f))) * length;
+                const float left = std::max(depth - glm::dot(turned - p, n), 0.0f);
+                p = turned + n * left;
+            }
+        }
+        points[j] = p;
+    }
+}
 namespace {
 
 // Writes wisp w's key (from `key`) and its members into `out` (Lee et al.: members follow their key
 // hair, clumping toward it by clump-degree from clump-rate on).
 void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::uint32_t> members,
-                      std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out, float wetClump)
+                      std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out, float wetClump,
+                      const MemberFix& keepShape)
 {
     const GroomSettings& s = groom.settingsOfWisp(w);
     // Wet hair clumps: the clump degree moves toward 1 and clumping starts nearer the root.
@@ -854,6 +893,8 @@ void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::ui
             }
             dst[j] = onKey + (1.0f - clumpAt(u, clumpDegree, clumpRate)) * (frame * rootOffset);
         }
+        if (keepShape)
+            keepShape(m, dst);
     }
 }
 

@@ -144,8 +144,20 @@ GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int wid
 // `out` must have the layout of groom.rest; keys are copied, members written.
 // `wetClumpOfWisp` (per wisp, 0..1, empty for none) pulls each wisp's clump degree toward 1 by
 // that share: wet hair sticks together.
+// `contact` (optional): the head every drawn strand must stay out of, in the frame's space. With
+// it, each member is rebuilt with its own rest lengths (follow-the-leader along the guide its key
+// gives) and pushed out of the head keeping them (keepMemberShape), so what is drawn keeps the
+// solver's invariants: length, and outside the head.
+struct MemberContact {
+    const SignedDistanceField* head = nullptr;  // head space
+    glm::mat3 headRotation{1.0f};                // head to frame space
+    glm::vec3 headTranslation{0.0f};
+    float offsetMetres = 0.0f;                   // kept between hair and skin
+};
 void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, const glm::mat3& headRotation,
-                  HairCurves& out, std::span<const float> wetClumpOfWisp = {});
+                  HairCurves& out, std::span<const float> wetClumpOfWisp = {}, const MemberContact* contact = nullptr);
+// One member's points (root first, root kept) made `rest`'s segment lengths and put outside the head.
+void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& contact, std::span<glm::vec3> points);
 
 // The key strands' rest shapes, wisp after wisp (the layout buildMembers reads).
 HairCurves keyRestCurves(const Groom& groom);

@@ -440,7 +440,10 @@ void HairSimulation::buildFrame(HairCurves& out) const
         for (std::size_t w = 0; w < m_wetness.size(); ++w)
             wetClump[w] = wetClumping(m_wetness[w]);
     }
-    buildMembers(m_groom, keys, glm::mat3(1.0f), out, wetClump);
+    MemberContact contact;
+    contact.head = m_sdf.get();
+    contact.offsetMetres = m_solver.settings().hairOffsetMetres;
+    buildMembers(m_groom, keys, glm::mat3(1.0f), out, wetClump, &contact);
 }
 
 }  // namespace wisp

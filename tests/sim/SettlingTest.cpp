@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 
 using namespace wisp;
@@ -49,9 +50,30 @@ double shareStillMoving(HairSimulation& sim, float metres)
     return static_cast<double>(moving) / static_cast<double>(std::max<std::size_t>(before.size(), 1));
 }
 
+// Inside the mesh by ray parity, the majority of three rays across the head (an open mesh, such
+// as a bust cut at the neck, has no inside below its cut; rays across still see its walls).
+bool insideMesh(const MeshBvh& bvh, const glm::vec3& p)
+{
+    int votes = 0;
+    for (const glm::vec3 direction : {glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), glm::vec3(-0.6f, 0.0f, -0.8f)}) {
+        int crossings = 0;
+        glm::vec3 origin = p;
+        for (int guard = 0; guard < 64; ++guard) {
+            const std::optional<MeshBvh::RayHit> hit = bvh.raycast(origin, direction, 10.0f);
+            if (!hit)
+                break;
+            ++crossings;
+            origin = hit->point + direction * 1e-5f;
+        }
+        votes += crossings % 2;
+    }
+    return votes >= 2;
+}
+
 struct DrawnMeasure {
     double worstStretch = 0.0;   // largest |length / rest length - 1| of any drawn segment
     double deepestMetres = 0.0;  // deepest drawn particle inside the head mesh
+    bool worstIsKey = false;
     std::size_t strands = 0;
 };
 
@@ -66,14 +88,15 @@ DrawnMeasure measureDrawn(const HairSimulation& sim, const TriangleMesh& head, c
         for (std::uint32_t j = frame.offsets[s] + 1; j < frame.offsets[s + 1]; ++j) {
             const double restLength = glm::distance(rest.positions[j], rest.positions[j - 1]);
             const double now = glm::distance(frame.positions[j], frame.positions[j - 1]);
-            m.worstStretch = std::max(m.worstStretch, std::abs(now / restLength - 1.0));
+            const double stretch = std::abs(now / restLength - 1.0);
+            if (stretch > m.worstStretch) {
+                m.worstStretch = stretch;
+                m.worstIsKey = sim.groom().isKey(s);
+            }
         }
-    for (const glm::vec3& x : frame.positions) {
-        const MeshBvh::ClosestPoint c = bvh.closestPoint(x);
-        const glm::vec3 n = faceNormal(head, c.surface.triangle);
-        if (glm::dot(x - c.point, n) < 0.0f)
-            m.deepestMetres = std::max(m.deepestMetres, static_cast<double>(c.distance));
-    }
+    for (const glm::vec3& x : frame.positions)
+        if (insideMesh(bvh, x))
+            m.deepestMetres = std::max(m.deepestMetres, static_cast<double>(bvh.closestPoint(x).distance));
     return m;
 }
 
@@ -173,12 +196,15 @@ TEST_P(DrawnStrands, KeepTheirLengthAndStayOutOfTheHead)
     for (int k = 0; k < 4; ++k) {  // while it moves, not only once settled
         run(sim, 60);
         const DrawnMeasure m = measureDrawn(sim, head, bvh);
-        worst.worstStretch = std::max(worst.worstStretch, m.worstStretch);
+        if (m.worstStretch > worst.worstStretch) {
+            worst.worstStretch = m.worstStretch;
+            worst.worstIsKey = m.worstIsKey;
+        }
         worst.deepestMetres = std::max(worst.deepestMetres, m.deepestMetres);
         worst.strands = m.strands;
     }
     ASSERT_GT(worst.strands, sim.groom().wispCount());  // members are drawn, not only keys
-    EXPECT_LE(worst.worstStretch, 0.01);
+    EXPECT_LE(worst.worstStretch, 0.01) << (worst.worstIsKey ? "a key hair" : "a member");
     EXPECT_LE(worst.deepestMetres, 0.001);
 }
 

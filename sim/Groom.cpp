@@ -803,6 +803,7 @@ void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, c
 
 void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& contact, std::span<glm::vec3> points)
 {
+    constexpr int kMemberContactPasses = 4;
     // Follow the leader along the member's own guide (Müller et al. 2012): each point at its rest
     // length from the one before, toward where the key put it; then out of the head, turned about
     // the point before so the length holds (as the solver's contact does), pushed only by what
@@ -814,10 +815,15 @@ void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& conta
         const float dl = glm::length(d);
         glm::vec3 u = dl > 1e-9f ? d / dl : glm::normalize(rest[j] - rest[j - 1]);
         glm::vec3 p = parent + u * length;
-        if (contact.head) {
+        // A curved surface (a nose, an ear) is not its tangent plane: look again from where the
+        // turn put it, a few times.
+        for (int pass = 0; contact.head && pass < kMemberContactPasses; ++pass) {
             const glm::vec3 local = glm::transpose(contact.headRotation) * (p - contact.headTranslation);
             const float depth = contact.offsetMetres - contact.head->distance(local);
-            if (depth > 0.0f) {
+            if (depth <= 0.0f)
+                break;
+            u = (p - parent) / glm::max(glm::distance(p, parent), 1e-9f);
+            {
                 glm::vec3 n = contact.headRotation * contact.head->gradient(local);
                 const float nl = glm::length(n);
                 n = nl > 1e-9f ? n / nl : glm::vec3(0, 1, 0);
@@ -827,7 +833,8 @@ void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& conta
                 const float tl = glm::length(t);
                 t = tl > 1e-9f ? t / tl : glm::vec3(0.0f);
                 const glm::vec3 turned = parent + (n * reach + t * std::sqrt(std::max(1.0f - reach * reach, 0.0f))) * length;
-                const float left = std::max(depth - glm::dot(turned - p, n), 0.0f);
+                // Only the last pass pushes what the segment cannot reach.
+                const float left = pass + 1 == kMemberContactPasses ? std::max(depth - glm::dot(turned - p, n), 0.0f) : 0.0f;
                 p = turned + n * left;
             }
         }

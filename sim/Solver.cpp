@@ -269,7 +269,8 @@ struct ContactFriction {
 };
 
 inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
-                           Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous)
+                           Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous,
+                           bool pushWhatIsLeft)
 {
     const V3 u0 = (position - parent) * inverseLength;
     const Lane along = dot(normal, u0);
@@ -283,7 +284,7 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
     const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
     const Lane sine = sine2 * lrsqrt(lmax(sine2, splat(1e-20f)));
     const V3 turned = parent + (normal * reach + unitTangent * sine) * length;
-    const Lane left = lmax(depth - dot(turned - position, normal), splat(0.0f));
+    const Lane left = pushWhatIsLeft ? lmax(depth - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
 
     const V3 move = position - oldPosition;
@@ -418,8 +419,21 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 sample.normal = transform(c.rotation, sample.normal);
             const Lane depth = splat(c.offset) - sample.distance;
             const Mask inside = depth > splat(0.0f);
-            if (anyOf(inside))
-                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous);
+            if (anyOf(inside)) {
+                // A curved surface is not its tangent plane: turn onto the plane, look again from
+                // there, and only then push what the segment cannot reach.
+                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous, false);
+                V3 again = position;
+                if (Transformed)
+                    again = transform(glm::transpose(c.rotation), position - splat(c.translation));
+                SdfSample second = sampleField(*c.field, again);
+                if (Transformed)
+                    second.normal = transform(c.rotation, second.normal);
+                const Lane depth2 = splat(c.offset) - second.distance;
+                const Mask inside2 = depth2 > splat(0.0f);
+                if (anyOf(inside2))
+                    resolveContact(inside2, depth2, second.normal, mu, parent, length, inverseLength, before, position, previous, true);
+            }
             // A moving head moves the field under the particles: no bound survives that.
             clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));
         }
@@ -436,7 +450,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
             if (anyOf(inside)) {
                 const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
-                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous);
+                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous, true);
             }
         }
         if (i > 1) {

@@ -262,6 +262,9 @@ struct SdfSample {
 // Static friction of hair on skin is a little above its kinetic friction (measured hair-on-hair
 // and hair-on-skin coefficients differ by about this much).
 constexpr float kStaticOverKineticFriction = 1.25f;
+// Looks at the head per contact: turns onto the tangent plane, then looks again from there (a
+// nose or an ear is not its tangent plane); the last pushes what the segment cannot reach.
+constexpr int kHeadContactPasses = 3;
 
 struct ContactFriction {
     Lane kinetic;  // μk
@@ -423,16 +426,20 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 // A curved surface is not its tangent plane: turn onto the plane, look again from
                 // there, and only then push what the segment cannot reach.
                 resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous, false);
-                V3 again = position;
-                if (Transformed)
-                    again = transform(glm::transpose(c.rotation), position - splat(c.translation));
-                SdfSample second = sampleField(*c.field, again);
-                if (Transformed)
-                    second.normal = transform(c.rotation, second.normal);
-                const Lane depth2 = splat(c.offset) - second.distance;
-                const Mask inside2 = depth2 > splat(0.0f);
-                if (anyOf(inside2))
-                    resolveContact(inside2, depth2, second.normal, mu, parent, length, inverseLength, before, position, previous, true);
+                for (int pass = 1; pass < kHeadContactPasses; ++pass) {
+                    V3 again = position;
+                    if (Transformed)
+                        again = transform(glm::transpose(c.rotation), position - splat(c.translation));
+                    SdfSample next = sampleField(*c.field, again);
+                    if (Transformed)
+                        next.normal = transform(c.rotation, next.normal);
+                    const Lane nextDepth = splat(c.offset) - next.distance;
+                    const Mask stillInside = nextDepth > splat(0.0f);
+                    if (!anyOf(stillInside))
+                        break;
+                    resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before, position,
+                                   previous, pass + 1 == kHeadContactPasses);
+                }
             }
             // A moving head moves the field under the particles: no bound survives that.
             clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));

@@ -341,13 +341,18 @@ std::string HairSimulation::regroom(const std::vector<GrowthRegion>& regions, st
     if (std::string error = groomRegions(regions, soloId, values, &m_groom, groom, looks); !error.empty())
         return error;
 
-    // The simulated strands of the old groom, by identity, with their motion.
+    // The simulated strands of the old groom, by identity, with their motion and their roots. A
+    // pore's identity is its index in its region's pore layout, and a new density lays out other
+    // pores: the same identity is the same strand only where it grows from the same place.
     const bool allBefore = m_allStrands;
     std::unordered_map<std::uint64_t, std::uint32_t> before;
     const auto simulated = [](const Groom& g, bool all, std::size_t i) { return all ? i : g.keyStrand[i]; };
     const std::size_t countBefore = allBefore ? m_groom.strandCount() : m_groom.wispCount();
-    for (std::size_t i = 0; i < countBefore; ++i)
+    std::vector<glm::vec3> rootsBefore(countBefore);
+    for (std::size_t i = 0; i < countBefore; ++i) {
         before.emplace(m_groom.strandIdentity(simulated(m_groom, allBefore, i)), static_cast<std::uint32_t>(i));
+        rootsBefore[i] = m_groom.rootPositions[simulated(m_groom, allBefore, i)];
+    }
     std::vector<glm::vec3> positions, previous;
     m_solver.copyState(positions, previous);
     const std::vector<std::uint32_t> offsetsBefore = [&] {
@@ -365,7 +370,8 @@ std::string HairSimulation::regroom(const std::vector<GrowthRegion>& regions, st
     for (std::size_t i = 0; i < countNow; ++i) {
         const auto it = before.find(m_groom.strandIdentity(simulated(m_groom, m_allStrands, i)));
         bool carried = false;
-        if (it != before.end() && offsetsBefore[it->second + 1] <= positions.size()) {
+        if (it != before.end() && offsetsBefore[it->second + 1] <= positions.size() &&
+            glm::distance(rootsBefore[it->second], m_groom.rootPositions[simulated(m_groom, m_allStrands, i)]) < 1e-6f) {
             const std::size_t first = offsetsBefore[it->second];
             const std::size_t count = offsetsBefore[it->second + 1] - first;
             const std::span<const glm::vec3> was = std::span(positions).subspan(first, count);

@@ -293,6 +293,38 @@ void HairSimulation::step()
     m_solver.step();
 }
 
+int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::function<bool()>& cancelled)
+{
+    m_solver.resetToRest();
+    const SolverSettings settings = m_solver.settings();
+    SolverSettings still = settings;
+    still.wind = glm::vec3(0.0f);
+    still.turbulence = 0.0f;
+    constexpr float kDrapeDampingPerSecond = 8.0f;  // about critically damped for a 25 cm strand
+    still.dampingPerSecond = std::max(settings.dampingPerSecond, kDrapeDampingPerSecond);
+    if (!m_solver.setSettings(still).empty())
+        return 0;
+    m_solver.setStrandAir({}, {});  // no dryer; wet hair keeps its softness (the stiffness scales)
+    m_airInSolver = false;          // step() gives the air back where wetness or a dryer needs it
+    std::vector<glm::vec3> before, now;
+    m_solver.copyPositions(before);
+    int steps = 0;
+    while (steps < maxSteps && !(cancelled && cancelled())) {
+        m_solver.step();
+        if (++steps % 10 != 0)
+            continue;
+        m_solver.copyPositions(now);
+        float moved = 0.0f;
+        for (std::size_t i = 0; i < now.size(); ++i)
+            moved = std::max(moved, glm::distance(now[i], before[i]));
+        if (moved < stillMetres)
+            break;
+        before.swap(now);
+    }
+    m_solver.setSettings(settings);
+    return steps;
+}
+
 std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
                                          const ParameterValues& values, const Groom* previous, Groom& out,
                                          std::vector<StrandLook>& looks)

@@ -502,6 +502,7 @@ void applyStyleLengths(Groom& groom, const StyleEdits* style)
     groom.styleHash.assign(groom.strandCount(), 0);
     if (!style || style->empty())
         return;
+    const std::vector<float> groomed = groom.lengths;  // before the edits
     for (std::size_t i = 0; i < groom.strandCount(); ++i) {
         const auto found = style->find(groom.strandIdentity(i));
         if (found == style->end())
@@ -512,6 +513,19 @@ void applyStyleLengths(Groom& groom, const StyleEdits* style)
             groom.lengths[i] = strandLength(s.shape);
         else if (s.lengthMetres > 0.0f)
             groom.lengths[i] = s.lengthMetres;
+    }
+    // A member rides beside its key hair point for point (buildWispMembers); past the key's tip it
+    // can only go on straight along the tip's direction, which for a key cut near the scalp points
+    // straight out of it. So no member is longer than its key by more than their groomed lengths'
+    // ratio: where the key is shorter, its members are cut with it, as the cut tool does. Edits
+    // made on another groom reach this one with a key shorter than its members whenever the wisps
+    // were regrouped since (a preset or a slider changed the density or the wisp size).
+    for (std::size_t i = 0; i < groom.strandCount(); ++i) {
+        const std::uint32_t k = groom.keyStrand[groom.wispOf[i]];
+        if (k == i || !(groomed[k] > 0.0f))
+            continue;
+        const float longest = groom.lengths[k] * std::max(1.0f, groomed[i] / groomed[k]);
+        groom.lengths[i] = std::min(groom.lengths[i], longest);
     }
 }
 

@@ -293,6 +293,38 @@ void HairSimulation::step()
     m_solver.step();
 }
 
+int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::function<bool()>& cancelled)
+{
+    m_solver.resetToRest();
+    const SolverSettings settings = m_solver.settings();
+    SolverSettings still = settings;
+    still.wind = glm::vec3(0.0f);
+    still.turbulence = 0.0f;
+    constexpr float kDrapeDampingPerSecond = 8.0f;  // about critically damped for a 25 cm strand
+    still.dampingPerSecond = std::max(settings.dampingPerSecond, kDrapeDampingPerSecond);
+    if (!m_solver.setSettings(still).empty())
+        return 0;
+    m_solver.setStrandAir({}, {});  // no dryer; wet hair keeps its softness (the stiffness scales)
+    m_airInSolver = false;          // step() gives the air back where wetness or a dryer needs it
+    std::vector<glm::vec3> before, now;
+    m_solver.copyPositions(before);
+    int steps = 0;
+    while (steps < maxSteps && !(cancelled && cancelled())) {
+        m_solver.step();
+        if (++steps % 10 != 0)
+            continue;
+        m_solver.copyPositions(now);
+        float moved = 0.0f;
+        for (std::size_t i = 0; i < now.size(); ++i)
+            moved = std::max(moved, glm::distance(now[i], before[i]));
+        if (moved < stillMetres)
+            break;
+        before.swap(now);
+    }
+    m_solver.setSettings(settings);
+    return steps;
+}
+
 std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
                                          const ParameterValues& values, const Groom* previous, Groom& out,
                                          std::vector<StrandLook>& looks)
@@ -341,13 +373,18 @@ std::string HairSimulation::regroom(const std::vector<GrowthRegion>& regions, st
     if (std::string error = groomRegions(regions, soloId, values, &m_groom, groom, looks); !error.empty())
         return error;
 
-    // The simulated strands of the old groom, by identity, with their motion.
+    // The simulated strands of the old groom, by identity, with their motion and their roots. A
+    // pore's identity is its index in its region's pore layout, and a new density lays out other
+    // pores: the same identity is the same strand only where it grows from the same place.
     const bool allBefore = m_allStrands;
     std::unordered_map<std::uint64_t, std::uint32_t> before;
     const auto simulated = [](const Groom& g, bool all, std::size_t i) { return all ? i : g.keyStrand[i]; };
     const std::size_t countBefore = allBefore ? m_groom.strandCount() : m_groom.wispCount();
-    for (std::size_t i = 0; i < countBefore; ++i)
+    std::vector<glm::vec3> rootsBefore(countBefore);
+    for (std::size_t i = 0; i < countBefore; ++i) {
         before.emplace(m_groom.strandIdentity(simulated(m_groom, allBefore, i)), static_cast<std::uint32_t>(i));
+        rootsBefore[i] = m_groom.rootPositions[simulated(m_groom, allBefore, i)];
+    }
     std::vector<glm::vec3> positions, previous;
     m_solver.copyState(positions, previous);
     const std::vector<std::uint32_t> offsetsBefore = [&] {
@@ -365,7 +402,8 @@ std::string HairSimulation::regroom(const std::vector<GrowthRegion>& regions, st
     for (std::size_t i = 0; i < countNow; ++i) {
         const auto it = before.find(m_groom.strandIdentity(simulated(m_groom, m_allStrands, i)));
         bool carried = false;
-        if (it != before.end() && offsetsBefore[it->second + 1] <= positions.size()) {
+        if (it != before.end() && offsetsBefore[it->second + 1] <= positions.size() &&
+            glm::distance(rootsBefore[it->second], m_groom.rootPositions[simulated(m_groom, m_allStrands, i)]) < 1e-6f) {
             const std::size_t first = offsetsBefore[it->second];
             const std::size_t count = offsetsBefore[it->second + 1] - first;
             const std::span<const glm::vec3> was = std::span(positions).subspan(first, count);

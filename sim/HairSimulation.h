@@ -14,6 +14,7 @@
 #include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -82,6 +83,15 @@ public:
     // Dries, blows (the dryer) and updates what wetness changes, then advances one step.
     void step();
     void resetToRest() { m_solver.resetToRest(); }
+    // Back at the rest shape, then settled under gravity alone (no wind, gusts or dryer; damped
+    // harder than the hair is, which changes how fast it settles, not where) until no particle
+    // moves more than `stillMetres` over 10 steps, or `maxSteps` ran, or `cancelled` says so: the
+    // hair as it hangs at rest, which is what an artist expects "rest" to look like (the groom's
+    // rest shape is the shape without gravity). Forces and per-strand air are as before after it.
+    // Returns the steps run. Deterministic, like step().
+    int drapeAtRest(int maxSteps = kDrapeMaxSteps, float stillMetres = 2e-4f,
+                    const std::function<bool()>& cancelled = {});
+    static constexpr int kDrapeMaxSteps = 600;
 
     // Every drawn strand in world space, in the groom's strand order (wet wisps clumped).
     void buildFrame(HairCurves& out) const;

@@ -171,7 +171,7 @@ private:
         m_regions = std::move(scene.regions);
         m_step = 0;
         m_simulatedSeconds = 0.0;
-        groomed(scene.values);
+        groomed(scene.values, true);
     }
 
     // Thread: simulation. New regions for the running head: regroom in place, keeping the motion.
@@ -253,8 +253,9 @@ private:
         return error;
     }
 
-    // Thread: simulation. After a (re)groom: the new layout's first frame, and sceneReady.
-    void groomed(const ParameterValues& values)
+    // Thread: simulation. After a (re)groom: the new layout's first frame, and sceneReady. A new
+    // scene starts draped (hanging at rest under gravity); a regroom keeps the hair's motion.
+    void groomed(const ParameterValues& values, bool drape = false)
     {
         m_values = values;
         m_groomedWith = values;
@@ -278,6 +279,8 @@ private:
         m_pacer.setRequestedSubsteps(values.getInt(Param::Substeps));
         m_sim->applyForces(withSubsteps(values, m_pacer.substeps()));
         m_host.m_effectiveSubsteps.store(m_pacer.substeps());
+        if (drape)
+            m_sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); });
         if (m_playing)
             m_pacer.restart(now());  // the groom's duration is not the solver falling behind
         m_host.publish(makeFrame());
@@ -312,16 +315,20 @@ private:
         m_host.publish(std::move(frame));
     }
 
-    // Thread: simulation.
+    // Thread: simulation. Back to rest as the hair hangs there (draped under gravity), step 0.
     void resetToRest()
     {
         if (!m_sim)
             return;
-        m_sim->resetToRest();
+        m_sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); });
         m_step = 0;
         m_simulatedSeconds = 0.0;
+        if (m_playing)
+            m_pacer.restart(now());  // the drape's duration is not the solver falling behind
         m_host.publish(makeFrame());
     }
+    // A drape is done when no particle moves more than this over 10 steps (metres).
+    static constexpr float kDrapeStillMetres = 2e-4f;
 
     // Thread: simulation. A frame of the solver's current state; not yet shared with anyone.
     std::shared_ptr<Frame> makeFrame() const

@@ -52,8 +52,9 @@ public:
     ~SimulationHost() override;
 
     // Thread: GUI; returns at once. Grooms `head` where `growthWeights` allow (one weight per vertex)
-    // with `values`, on the simulation thread; sceneReady and a step-0 frame follow, or
-    // errorOccurred and the previous scene keeps running.
+    // with `values`, on the simulation thread; sceneReady and a step-0 frame of the hair hanging at
+    // rest (draped under gravity, playing or paused) follow, or errorOccurred and the previous
+    // scene keeps running.
     void setScene(TriangleMesh head, std::vector<float> growthWeights, ParameterValues values);
     // The editor's scene: `head` grown by its regions (see growingRegions for soloId).
     void setScene(TriangleMesh head, std::vector<GrowthRegion> regions, std::uint32_t soloId, ParameterValues values);
@@ -96,8 +97,10 @@ public:
     bool isPlaying() const;
     // Thread: GUI. One step while paused (ignored while playing), published as one frame.
     void stepOnce();
-    // Thread: GUI. Every particle back at its rest shape, step 0, published as one frame; playing
-    // continues from rest if it was playing.
+    // Thread: GUI. Every particle back at rest, step 0, published as one frame; playing continues
+    // from rest if it was playing. "Rest" is the hair as it hangs at rest: the groom's rest shape
+    // settled under gravity alone on the simulation thread (HairSimulation::drapeAtRest), as a new
+    // scene starts; the GUI does not wait for it.
     void resetToRest();
 
     // Thread: any. The newest published frame, null before the first groom; copies one pointer

@@ -1,6 +1,7 @@
 // The editor as an artist uses it: the real window, real widgets driven by mouse and key events,
 // and the published frames checked against the physics.
 #include "app/editor/Document.h"
+#include "app/editor/FileMenu.h"
 #include "app/editor/MainWindow.h"
 #include "app/editor/SimulationHost.h"
 #include "GuiTestSupport.h"
@@ -21,6 +22,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <string>
 
 using namespace wisp;
@@ -182,6 +184,77 @@ TEST_F(EditorTest, ResetReturnsToRest)
     ASSERT_EQ(again->strands.positions.size(), rest->strands.positions.size());
     for (std::size_t i = 0; i < rest->strands.positions.size(); ++i)
         ASSERT_LT(glm::distance(again->strands.positions[i], rest->strands.positions[i]), 1e-5f);
+}
+
+// How far below the groom's rest shape a frame's strands hang: the mean drop of the tips (metres)
+// and the share of strands whose tip is at least 5 mm lower than at rest.
+struct Drape {
+    double meanTipDrop = 0.0;
+    double loweredShare = 0.0;
+};
+
+Drape drapeOf(const FramePtr& frame)
+{
+    const HairCurves& rest = frame->groomShape->rest;
+    const HairCurves& drawn = frame->strands;
+    EXPECT_EQ(rest.offsets, drawn.offsets);
+    Drape d;
+    for (std::size_t i = 0; i < drawn.strandCount(); ++i) {
+        const float drop = rest.strand(i).back().y - drawn.strand(i).back().y;
+        d.meanTipDrop += drop / static_cast<double>(drawn.strandCount());
+        d.loweredShare += (drop > 0.005f ? 1.0 : 0.0) / static_cast<double>(drawn.strandCount());
+    }
+    return d;
+}
+
+// Issue 11: File ▸ New or Reset (Ctrl+R) while paused shows the hair as it hangs at rest under
+// gravity, not the groom's rest shape (which stands out from the head), without pressing Play,
+// and the simulation stays paused.
+TEST_F(EditorTest, NewAndResetWhilePausedShowTheHairHangingAtRest)
+{
+    window->fileMenu()->setInteractive(false);
+    SimulationHost* host = window->simulation();
+    QTest::keyClick(window->viewport(), Qt::Key_Space);  // pause
+    ASSERT_FALSE(host->isPlaying());
+    const std::uint64_t groomBefore = frame()->groomVersion;
+    QTest::keyClick(window->viewport(), Qt::Key_N, Qt::ControlModifier);  // File ▸ New
+    ASSERT_TRUE(waitUntil([&] { return frame()->groomVersion > groomBefore; }));
+    QTest::qWait(200);
+    EXPECT_FALSE(host->isPlaying());
+    EXPECT_FALSE(window->playAction()->isChecked());
+    const FramePtr fresh = frame();
+    EXPECT_EQ(fresh->step, 0u);
+    const Drape afterNew = drapeOf(fresh);
+    EXPECT_GT(afterNew.meanTipDrop, 0.01) << "the new groom is shown undraped";
+    EXPECT_GT(afterNew.loweredShare, 0.6);
+    // Paused: nothing more is published.
+    const std::uint64_t published = host->publishedFrames();
+    QTest::qWait(300);
+    EXPECT_EQ(host->publishedFrames(), published);
+
+    // Play a little (the wind moves the hair), pause, Ctrl+R: hanging at rest again, the same way.
+    QTest::keyClick(window->viewport(), Qt::Key_Space);
+    ASSERT_TRUE(waitForFrames(*host, 40));
+    QTest::keyClick(window->viewport(), Qt::Key_Space);
+    ASSERT_FALSE(host->isPlaying());
+    QTest::qWait(50);
+    const FramePtr played = frame();
+    ASSERT_GT(played->step, 0u);
+    window->resetAction()->trigger();
+    ASSERT_TRUE(waitUntil([&] { return frame()->step == 0; }));
+    QTest::qWait(200);
+    EXPECT_FALSE(host->isPlaying());
+    const FramePtr reset = frame();
+    const Drape afterReset = drapeOf(reset);
+    EXPECT_GT(afterReset.meanTipDrop, 0.01) << "the reset shows the undraped rest shape";
+    EXPECT_GT(afterReset.loweredShare, 0.6);
+    ASSERT_EQ(reset->strands.positions.size(), fresh->strands.positions.size());
+    float largest = 0.0f;
+    for (std::size_t i = 0; i < reset->strands.positions.size(); ++i)
+        largest = std::max(largest, glm::distance(reset->strands.positions[i], fresh->strands.positions[i]));
+    EXPECT_LT(largest, 1e-4f) << "a reset drapes the hair as a new groom does";
+    std::cout << "[ drape ] new: tips " << afterNew.meanTipDrop << " m lower, " << afterNew.loweredShare
+              << " of strands; reset: " << afterReset.meanTipDrop << " m, " << afterReset.loweredShare << std::endl;
 }
 
 TEST(Editor, ClosingWhileSimulatingExitsWithinASecondAndLeavesNoThread)

@@ -131,7 +131,9 @@ TEST(BundledPresets, EachLooksLikeItsName)
     const ParameterValues& curl = curly.regions.at(0).wisp;
     EXPECT_GT(curl.get(Param::CurlRadius), 0.0);
     EXPECT_LT(curl.get(Param::CurlRadius), wavy.regions.at(0).wisp.get(Param::CurlRadius));
-    EXPECT_GE(curl.get(Param::CurlTurns), 25.0);
+    // Ringlets: 15 or more turns per metre of hair, yet a coil its radius allows (2 pi r T < 0.95).
+    EXPECT_GE(curl.get(Param::CurlTurns), 15.0);
+    EXPECT_LT(2.0 * 3.14159265 * curl.get(Param::CurlRadius) * curl.get(Param::CurlTurns), 0.95);
     EXPECT_GE(curly.parameters.get(Param::Segments), 40.0);
     EXPECT_LT(curl.get(Param::Length), kDefaults.get(Param::Length));
     EXPECT_GT(curl.get(Param::ClumpDegree), kDefaults.get(Param::ClumpDegree));

@@ -261,11 +261,11 @@ void readParameter(ParameterValues& into, const ParameterInfo& info, const json&
             throw Refusal{path, describe(value) + " is not true or false"};
     } else {
         number = readFiniteNumber(value, path);
-        if (number < info.minimum || number > info.maximum)
-            throw Refusal{path, describe(value) + " is outside " + shortestText(info.minimum) + ".." +
-                                    shortestText(info.maximum)};
         if (info.kind == ParamKind::Integer && std::floor(number) != number)
             throw Refusal{path, describe(value) + " is not a whole number"};
+        if (!isWithinRange(info, number))  // as floats for real parameters: both ends as written are inside
+            throw Refusal{path, describe(value) + " is outside " + shortestText(info.minimum) + ".." +
+                                    shortestText(info.maximum)};
     }
     if (std::string error = into.set(info.id, number); !error.empty())
         throw Refusal{path, error};  // unreachable while the checks above match the registry's

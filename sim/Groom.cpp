@@ -163,15 +163,30 @@ glm::vec3 pushOut(const SignedDistanceField* collider, glm::vec3 p, float offset
 
 // Rest shape of one key hair: it leaves the scalp along the normal, turns toward "down" along the
 // head as a combed strand does, drapes over the head (pushed out where it would go inside) and,
-// with curl, winds as a helix around that centreline. Segment lengths follow the strand's arc length.
+// with curl, winds as a helix around that centreline (curlHelix: turns per metre of hair). Every
+// segment is length / segments long, so the polyline's arc length is the strand's length.
 void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float partX, float length, int segments, float curlRadius,
                   float curlTurnsPerMetre, float curlPhase, float offset, const SignedDistanceField* collider,
                   std::span<glm::vec3> out)
 {
-    // A helix of radius r and pitch 1/T covers arc length sqrt(1 + (2 pi r T)^2) per unit of axis.
-    const float helix = glm::two_pi<float>() * curlRadius * curlTurnsPerMetre;
-    const float axisLength = length / std::sqrt(1.0f + helix * helix);
-    const float step = axisLength / static_cast<float>(segments);
+    const bool curly = curlRadius > 0.0f && curlTurnsPerMetre > 0.0f;
+    const CurlHelix helix = curlHelix(length, segments, curlRadius, curlTurnsPerMetre);
+    const float segmentLength = length / static_cast<float>(segments);
+    // The curl's radius ramps up over the first 2 cm of hair so the root stays on the scalp.
+    constexpr float kRampMetres = 0.02f;
+    auto radiusAt = [&](std::size_t j) {
+        return curlRadius * std::min(1.0f, segmentLength * static_cast<float>(j) / kRampMetres);
+    };
+    // Centreline advance of each segment: what is left of the segment's length once the helix has
+    // gone around by its angle (exact for a straight centreline; the ramp makes the first ones longer).
+    std::vector<float> step(out.size(), segmentLength);
+    if (curly)
+        for (std::size_t j = 1; j < out.size(); ++j) {
+            const float r0 = radiusAt(j - 1), r1 = radiusAt(j);
+            const float across = r0 * r0 + r1 * r1 - 2.0f * r0 * r1 * std::cos(helix.anglePerSegment);
+            step[j] = std::sqrt(std::max(segmentLength * segmentLength - across, 0.01f * segmentLength * segmentLength));
+        }
+    const float axisLength = std::accumulate(step.begin() + 1, step.end(), 0.0f);
 
     // Centreline.
     std::vector<glm::vec3> centre(out.size());
@@ -188,41 +203,48 @@ void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float partX, f
     flow = glm::normalize(flow);
     glm::vec3 direction = normal;
     constexpr float kTurnDistance = 0.03f;  // metres over which the strand turns from the normal to the flow
+    float s = 0.0f;  // along the centreline
     for (std::size_t j = 1; j < out.size(); ++j) {
-        const float s = step * static_cast<float>(j);
+        s += step[j];
         const float blend = std::min(1.0f, s / kTurnDistance);
         glm::vec3 want = glm::normalize(glm::mix(normal, flow, blend));
         // Far from the head the strand hangs toward gravity.
         want = glm::normalize(glm::mix(want, down, std::min(1.0f, s / (4.0f * kTurnDistance + axisLength)) * 0.6f));
         direction = glm::normalize(glm::mix(direction, want, 0.7f));
-        glm::vec3 p = centre[j - 1] + step * direction;
+        glm::vec3 p = centre[j - 1] + step[j] * direction;
         if (j > 1) {
             p = pushOut(collider, p, offset + curlRadius);
-            p = centre[j - 1] + step * glm::normalize(p - centre[j - 1]);
+            p = centre[j - 1] + step[j] * glm::normalize(p - centre[j - 1]);
         }
         direction = glm::normalize(p - centre[j - 1]);
         centre[j] = p;
+    }
+    if (!curly) {
+        std::copy(centre.begin(), centre.end(), out.begin());
+        return;
     }
     for (std::size_t j = 0; j < out.size(); ++j) {
         const std::size_t a = j == 0 ? 0 : j - 1;
         const std::size_t b = std::min(j + 1, out.size() - 1);
         tangent[j] = glm::normalize(centre[b] - centre[a]);
     }
-    if (curlRadius <= 0.0f || curlTurnsPerMetre <= 0.0f) {
-        std::copy(centre.begin(), centre.end(), out.begin());
-        return;
-    }
-    // Helix around the centreline in a parallel-transported frame; the radius ramps up over the
-    // first 2 cm so the root stays on the scalp.
+    // Helix around the centreline in a parallel-transported frame.
     glm::vec3 u = anyPerpendicular(tangent[0]);
     for (std::size_t j = 0; j < out.size(); ++j) {
         if (j > 0)
             u = glm::normalize(rotateMinimal(tangent[j - 1], tangent[j], u));
         const glm::vec3 v = glm::cross(tangent[j], u);
-        const float s = step * static_cast<float>(j);
-        const float ramp = std::min(1.0f, s / 0.02f);
-        const float angle = glm::two_pi<float>() * curlTurnsPerMetre * s + curlPhase;
-        out[j] = centre[j] + curlRadius * ramp * (std::cos(angle) * u + std::sin(angle) * v);
+        const float angle = helix.anglePerSegment * static_cast<float>(j) + curlPhase;
+        out[j] = centre[j] + radiusAt(j) * (std::cos(angle) * u + std::sin(angle) * v);
+    }
+    // Where the centreline bends, a segment is a little longer or shorter than planned: keep each
+    // segment's direction and give it its length again, so the arc length is the strand's length.
+    glm::vec3 previous = out[0];
+    for (std::size_t j = 1; j < out.size(); ++j) {
+        const glm::vec3 d = out[j] - previous;
+        const float l = glm::length(d);
+        previous = out[j];
+        out[j] = out[j - 1] + (l > 1e-9f ? d * (segmentLength / l) : segmentLength * tangent[j]);
     }
 }
 
@@ -562,6 +584,24 @@ GroomSettings groomSettingsFrom(const ParameterValues& v)
     s.seed = static_cast<std::uint32_t>(v.get(Param::Seed));
     s.hairOffsetMetres = v.getFloat(Param::HairOffset);
     return s;
+}
+
+CurlHelix curlHelix(float lengthMetres, int segments, float radiusMetres, float turnsPerMetreOfHair)
+{
+    CurlHelix h;
+    if (!(radiusMetres > 0.0f) || !(turnsPerMetreOfHair > 0.0f) || !(lengthMetres > 0.0f) || segments < 1)
+        return h;
+    // Hair wound around a helix of radius r goes at most 1 / (2 pi r) times around per metre (a
+    // flat ring); kMaxCurlWrap keeps the coil from closing on itself.
+    const float tightest = kMaxCurlWrap / (glm::two_pi<float>() * radiusMetres);
+    h.radiusMetres = radiusMetres;
+    h.turnsPerMetre = std::min(turnsPerMetreOfHair, tightest);
+    h.clamped = turnsPerMetreOfHair > tightest;
+    h.anglePerSegment = glm::two_pi<float>() * h.turnsPerMetre * lengthMetres / static_cast<float>(segments);
+    // Along the smooth helix, the hair per turn is sqrt((2 pi r)^2 + p^2) = 1 / T.
+    const float perTurn = 1.0f / h.turnsPerMetre, around = glm::two_pi<float>() * radiusMetres;
+    h.pitchMetres = std::sqrt(std::max(perTurn * perTurn - around * around, 0.0f));
+    return h;
 }
 
 std::string validateGroomSettings(const GroomSettings& s)

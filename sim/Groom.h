@@ -41,6 +41,23 @@ GroomSettings groomSettingsFrom(const ParameterValues& values);
 // Empty when usable; otherwise names the setting and the problem ("segments: 1 is outside 2..127").
 std::string validateGroomSettings(const GroomSettings& settings);
 
+// The helix a curl winds along (the perm of Lee et al.), counted per metre of hair: the hair (arc
+// length along the helix) makes `turnsPerMetre` turns per metre. A turn takes 1 / T of hair, of
+// which 2 pi r goes around the axis, so the helix advances p = sqrt(1 / T^2 - (2 pi r)^2) along its
+// centreline per turn. Hair cannot wind tighter than a flat ring (2 pi r T = 1): turns are clamped
+// to kMaxCurlWrap / (2 pi r), the tightest curl of that radius (its pitch is then 31% of a turn's
+// hair); `clamped` says so. The groom places the strand's points a whole segment apart along the hair,
+// each anglePerSegment further around, so the polyline keeps both the strand's length and T.
+constexpr float kMaxCurlWrap = 0.95f;
+struct CurlHelix {
+    float radiusMetres = 0.0f;
+    float turnsPerMetre = 0.0f;    // per metre of hair, after the clamp; 0: straight
+    float pitchMetres = 0.0f;      // centreline advance per turn (the smooth helix)
+    float anglePerSegment = 0.0f;  // radians around the centreline per segment of the strand
+    bool clamped = false;          // asked for more turns than the radius allows
+};
+CurlHelix curlHelix(float lengthMetres, int segments, float radiusMetres, float turnsPerMetreOfHair);
+
 // One growth region's part of a groom (see GrowthRegion.h): where it grows and its wisp settings.
 struct GroomRegionInput {
     std::uint32_t id = 0;             // stable region identity; seeds its roots

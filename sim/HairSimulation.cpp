@@ -1,5 +1,6 @@
 #include "sim/HairSimulation.h"
 
+#include "sim/Body.h"
 #include "sim/ByteHash.h"
 #include "sim/MeshBvh.h"
 #include "sim/RestShapeSolve.h"
@@ -33,6 +34,7 @@ std::string HairSimulation::prepareHead(const TriangleMesh& head)
     m_head = head;
     m_sdf = std::move(sdf);
     m_bvh = std::make_unique<MeshBvh>(m_head);
+    m_body = defaultBody(m_head);
     m_builder.forgetHead();
     return {};
 }
@@ -51,6 +53,7 @@ std::string HairSimulation::start(Groom groom, const ParameterValues& values)
         return error;
     m_solver.setSettings(settings);
     m_solver.setCollider(m_sdf);
+    setBody(values);
     m_groom = std::move(groom);
     m_dryingHalfLife = values.getFloat(Param::DryingTime);
     m_simulatedOf.clear();
@@ -459,7 +462,13 @@ std::string HairSimulation::applyForces(const ParameterValues& values)
     if (std::string error = m_solver.setSettings(solverSettingsFrom(values)); !error.empty())
         return error;
     m_dryingHalfLife = values.getFloat(Param::DryingTime);
+    setBody(values);
     return {};
+}
+
+void HairSimulation::setBody(const ParameterValues& values)
+{
+    m_solver.setCapsules(values.get(Param::Body) != 0.0 ? m_body : std::vector<Capsule>{});
 }
 
 void HairSimulation::buildFrame(HairCurves& out) const

@@ -105,6 +105,8 @@ public:
     Solver& solver() { return m_solver; }
     const Solver& solver() const { return m_solver; }
     bool simulatesAllStrands() const { return m_allStrands; }
+    // The neck and shoulders under this head (Body.h), collided with while the `body` parameter is on.
+    const std::vector<Capsule>& body() const { return m_body; }
 
     // Hair this little wet is dry (drying in still air is exponential and would never end).
     static constexpr float kDryBelow = 0.01f;
@@ -123,11 +125,13 @@ private:
     void saveWetness();      // live per-wisp wetness into m_liveWetness (before the groom changes)
     void restoreWetness();   // and back, for the new groom's wisps
     void updateMaterial(bool force);
+    void setBody(const ParameterValues& values);  // the solver collides with m_body or not
 
     Solver m_solver;
     TriangleMesh m_head;
     std::shared_ptr<SignedDistanceField> m_sdf;
     std::unique_ptr<MeshBvh> m_bvh;
+    std::vector<Capsule> m_body;  // head space
     Groom m_groom;
     GroomBuilder m_builder;
     std::vector<StrandLook> m_looks;

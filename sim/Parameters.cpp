@@ -30,7 +30,7 @@ constexpr std::array<ParameterInfo, kParamCount> kParameters{{
     {CurlRadius, "curl_radius", "Curl radius", "m", G::Wisp, K::Real, 0.0, 0.05, 0.0,
      "Radius of the helix the hair curls around; 0 for straight hair"},
     {CurlTurns, "curl_turns", "Curl turns", "turns/m", G::Wisp, K::Real, 0.0, 200.0, 0.0,
-     "Turns of the curl per metre of hair; waves are a few, tight curls 30 or more"},
+     "Turns of the curl per metre of hair (along the hair, not its axis); waves are a few, ringlets 20 or more; at most 0.95 / (2π × Curl radius)"},
     {StiffnessScale, "stiffness_scale", "Stiffness scale", "×", G::Wisp, K::Real, 0.0, 4.0, 1.0,
      "Multiplies the solver's Stiffness for this region's hair (hairspray raises it); the product is capped at 1"},
     {Seed, "seed", "Seed", "", G::Groom, K::Integer, 0, 2147483647, 1,
@@ -65,6 +65,8 @@ constexpr std::array<ParameterInfo, kParamCount> kParameters{{
      "Solver iterations per step; more is stiffer and steadier, and slower"},
     {SimulateAllStrands, "simulate_all_strands", "Simulate all strands", "", G::Solver, K::Toggle, 0, 1, 0,
      "Simulate every strand instead of only the key hair of each wisp (slower, no clumping by wisp)"},
+    {Body, "body", "Neck and shoulders", "", G::Solver, K::Toggle, 0, 1, 1,
+     "Hair collides with a neck and shoulders under the head (capsules sized from the head), and rests on them"},
 }};
 
 constexpr bool tableIsInOrder()
@@ -97,12 +99,27 @@ const ParameterInfo* findParameter(std::string_view key)
     return nullptr;
 }
 
+bool isWithinRange(const ParameterInfo& p, double value)
+{
+    if (p.kind == ParamKind::Real) {
+        // The program holds real parameters as floats: compare as floats, so that a range end
+        // written in a file or on the command line (0.1, stored as the float just above the
+        // double 0.1) is inside, and a value that only differs beyond float precision is too.
+        const float v = static_cast<float>(value);
+        return v >= static_cast<float>(p.minimum) && v <= static_cast<float>(p.maximum);
+    }
+    return value >= p.minimum && value <= p.maximum;
+}
+
 std::string checkParameterValue(Param id, double value)
 {
     const ParameterInfo& p = parameterInfo(id);
     if (!std::isfinite(value))
         return std::string(p.key) + ": " + formatNumber(value) + " is not a finite number";
-    if (value < p.minimum || value > p.maximum)
+    if (p.kind != ParamKind::Real && std::floor(value) != value)
+        return std::string(p.key) + ": " + formatNumber(value) +
+               (p.kind == ParamKind::Toggle ? " is not 0 or 1" : " is not a whole number");
+    if (!isWithinRange(p, value))
         return std::string(p.key) + ": " + formatNumber(value) + " is outside " + formatNumber(p.minimum) + ".." +
                formatNumber(p.maximum);
     return {};
@@ -124,8 +141,6 @@ ParameterValues::ParameterValues()
 
 std::string ParameterValues::set(Param id, double value)
 {
-    if (parameterInfo(id).kind != ParamKind::Real && std::isfinite(value))
-        value = std::round(value);
     std::string error = checkParameterValue(id, value);
     if (error.empty())
         m_values[static_cast<std::size_t>(id)] = value;

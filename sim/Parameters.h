@@ -44,6 +44,7 @@ enum class Param : int {
     TimeStep,
     Substeps,
     SimulateAllStrands,
+    Body,
     Count
 };
 
@@ -71,8 +72,13 @@ std::span<const ParameterInfo> allParameters();
 const ParameterInfo& parameterInfo(Param id);
 const ParameterInfo* findParameter(std::string_view key);  // nullptr if no such key
 
+// Whether a finite value lies in the parameter's range. Real parameters are held as floats, so
+// they are compared as floats: both range ends, as written, are inside.
+bool isWithinRange(const ParameterInfo& info, double value);
+
 // Empty when value is acceptable for the parameter; otherwise a message such as
-// "clump_degree: 3 is outside -1..1" or "gravity: nan is not a finite number".
+// "clump_degree: 3 is outside -1..1", "gravity: nan is not a finite number", "substeps: 2.5 is not
+// a whole number" (integer parameters) or "simulate_all_strands: 0.5 is not 0 or 1" (toggles).
 std::string checkParameterValue(Param id, double value);
 
 // The first refusal among (parameter, value) pairs, or empty when every value is acceptable.
@@ -85,8 +91,8 @@ public:
     double get(Param id) const { return m_values[static_cast<std::size_t>(id)]; }
     float getFloat(Param id) const { return static_cast<float>(get(id)); }
     int getInt(Param id) const { return static_cast<int>(get(id)); }
-    // Refuses (returns the message, keeps the old value) a non-finite or out-of-range value;
-    // integer and toggle parameters are rounded to the nearest whole number first.
+    // Refuses (returns the message, keeps the old value) what checkParameterValue refuses: a
+    // non-finite or out-of-range value, or a fraction for an integer or toggle parameter.
     std::string set(Param id, double value);
     bool operator==(const ParameterValues&) const = default;
 

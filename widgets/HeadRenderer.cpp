@@ -137,7 +137,7 @@ void HeadRenderer::draw(const RenderView& view, bool showGrowthOverlay)
     program.bind();
     setUniform(program, "u_view", view.view);
     setUniform(program, "u_viewProjection", view.viewProjection);
-    setUniform(program, "u_skinColour", linearFromSrgb({ kSkinSrgb[0], kSkinSrgb[1], kSkinSrgb[2] }));
+    setUniform(program, "u_skinColour", linearFromSrgb(m_colourSrgb));
     setUniform(program, "u_keyLightView", view.keyLightView);
     setUniform(program, "u_fillLightView", view.fillLightView);
     setUniform(program, "u_growthOverlay", showGrowthOverlay && hasGrowthOverlay() ? 1.0f : 0.0f);

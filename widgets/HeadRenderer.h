@@ -41,6 +41,9 @@ public:
     // `showGrowthOverlay`: tint by the weights, if there are usable ones; else plain skin.
     void draw(const RenderView& view, bool showGrowthOverlay = false);
 
+    // The colour it is shaded in, sRGB 0..1 (the skin tone unless set).
+    void setColour(const glm::vec3& srgb) { m_colourSrgb = srgb; }
+
     QString error() const { return m_error; }
     static constexpr float kSkinSrgb[3] = { 0.87f, 0.68f, 0.58f };
 
@@ -63,6 +66,7 @@ private:
     std::vector<Vertex> m_vertices;
     std::vector<glm::uvec3> m_triangles;
     std::vector<float> m_weights;
+    glm::vec3 m_colourSrgb{ kSkinSrgb[0], kSkinSrgb[1], kSkinSrgb[2] };
     bool m_dirty = false;
     bool m_weightsDirty = false;
     QString m_error;

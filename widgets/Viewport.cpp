@@ -1,5 +1,7 @@
 #include "widgets/Viewport.h"
 
+#include "sim/Body.h"
+
 #include "widgets/GuideGeometry.h"
 #include "widgets/ViewportOverlay.h"
 #include "widgets/ViewportWindow.h"
@@ -144,6 +146,7 @@ void Viewport::releaseGl()
         m_guides.release();
         m_hair.release();
         m_head.release();
+        m_body.release();
         m_background.release();
         m_canvas.releaseFramebuffers();
         m_canvas.doneCurrent();
@@ -164,6 +167,20 @@ void Viewport::setHead(const TriangleMesh& head)
     if (!m_cameraTouched)
         m_camera.reset(m_headBounds, aspect());
     rebuildGuides();
+    scheduleFrame();
+}
+
+void Viewport::setBody(const std::vector<Capsule>& capsules)
+{
+    const bool same = capsules.size() == m_bodyCapsules.size() &&
+                      std::equal(capsules.begin(), capsules.end(), m_bodyCapsules.begin(), [](const Capsule& x, const Capsule& y) {
+                          return x.a == y.a && x.b == y.b && x.radiusMetres == y.radiusMetres;
+                      });
+    if (same)
+        return;
+    m_bodyCapsules = capsules;
+    m_body.setMesh(capsuleMesh(m_bodyCapsules));
+    ++m_backdropRevision;
     scheduleFrame();
 }
 
@@ -553,6 +570,9 @@ void Viewport::initializeGL()
         errors << m_background.error();
     if (!m_head.initialize(m_gl))
         errors << m_head.error();
+    if (!m_body.initialize(m_gl))
+        errors << m_body.error();
+    m_body.setColour({ 0.80f, 0.61f, 0.52f }); // the skin a little darker, so the head stands out
     if (!m_hair.initialize(m_gl))
         errors << m_hair.error();
     if (!m_guides.initialize(m_gl))
@@ -658,6 +678,7 @@ void Viewport::drawBackdrop(const RenderView& view)
     gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     m_background.draw(kBackgroundTop, kBackgroundBottom);
     m_head.draw(view, m_showGrowthOverlay);
+    m_body.draw(view);
     m_guides.drawWindArrow(view);
     if (m_showGrid)
         m_guides.drawGrid(view); // translucent and writing no depth: the hair is drawn over it

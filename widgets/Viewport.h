@@ -32,6 +32,7 @@
 #include "widgets/GuideRenderer.h"
 #include "widgets/HairDetail.h"
 #include "widgets/HairRenderer.h"
+#include "sim/Solver.h"
 #include "widgets/HeadRenderer.h"
 #include "widgets/OrbitCamera.h"
 
@@ -75,6 +76,9 @@ public:
     // Copies the head; uploads it on the next paint. Until the artist moves the camera, the view
     // follows the head (start-up 3/4 view, framed).
     void setHead(const TriangleMesh& head);
+    // The neck and shoulders under the head (sim/Body.h, head space), drawn as shaded capsules a
+    // little darker than the skin; none hides them.
+    void setBody(const std::vector<Capsule>& capsules);
     // The newest simulation frame (null: no hair). Keeps the shared_ptr (no copy of the points)
     // and schedules a repaint; the points are streamed to the GPU in that paint.
     void setFrame(FramePtr frame);
@@ -220,6 +224,8 @@ private:
     int m_samples = 0;
     BackgroundRenderer m_background;
     HeadRenderer m_head;
+    HeadRenderer m_body; // the body's capsules as one mesh
+    std::vector<Capsule> m_bodyCapsules;
     HairRenderer m_hair;
     GuideRenderer m_guides;
 

@@ -1,5 +1,7 @@
 #include "app/editor/MainWindow.h"
 
+#include "sim/Body.h"
+
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
 #include "app/editor/FileMenu.h"
@@ -48,12 +50,12 @@ std::vector<Param> parametersIn(ParamGroup group)
 }
 
 // The force panel: what an artist drags while the hair moves (issue: gravity, wind, turbulence,
-// drag, damping, stiffness, substeps), in that order.
+// drag, damping, stiffness, substeps), in that order, with what the hair collides with.
 std::vector<Param> forceParameters()
 {
     return {Param::Gravity, Param::WindSpeed, Param::WindAzimuth, Param::WindElevation,
             Param::Turbulence, Param::Drag, Param::Damping, Param::DryingTime, Param::Stiffness,
-            Param::Friction, Param::Substeps, Param::TimeStep, Param::SimulateAllStrands};
+            Param::Friction, Param::Body, Param::Substeps, Param::TimeStep, Param::SimulateAllStrands};
 }
 
 }  // namespace
@@ -65,6 +67,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent)
     m_simulation = new SimulationHost(this);
     m_viewport = new Viewport(this);
     m_viewport->setHead(m_document->head());
+    showBody();
     setCentralWidget(m_viewport);
     m_paintTool = new PaintTool(m_document, m_viewport, this);
     m_styleTool = new StyleTool(m_document, m_viewport, m_simulation, m_paintTool, this);
@@ -245,11 +248,13 @@ void MainWindow::createDocks()
         m_forcePanel->setValues(m_document->parameters());
         m_groomPanel->setValues(m_document->parameters());
         m_simulation->setParameters(m_document->parameters());
+        showBody();
     };
     connect(m_document, &Document::parameterChanged, this, parametersEdited);
     connect(m_document, &Document::parametersReplaced, this, parametersEdited);
     connect(m_document, &Document::headChanged, this, [this] {
         m_viewport->setHead(m_document->head());
+        showBody();
         m_viewport->frameHead();
         m_simulation->setScene(m_document->head(), m_document->regions(), m_document->soloRegion(),
                                m_document->parameters());
@@ -266,6 +271,13 @@ void MainWindow::createDocks()
     connect(m_document, &Document::currentRegionChanged, this, &MainWindow::showGrowthOverlay);
     // Salon edits (and their undo) restyle the running hair.
     connect(m_document, &Document::styleChanged, this, [this] { m_simulation->setStyle(m_document->style()); });
+}
+
+// The viewport shows the body the simulation collides with (the same defaultBody), while it is on.
+void MainWindow::showBody()
+{
+    m_viewport->setBody(m_document->parameters().get(Param::Body) != 0.0 ? defaultBody(m_document->head())
+                                                                          : std::vector<Capsule>{});
 }
 
 void MainWindow::showGrowthOverlay()

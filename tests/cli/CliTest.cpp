@@ -71,6 +71,32 @@ TEST(Cli, BadValuesAreExitOneNamingTheOption)
     EXPECT_EQ(cli("bench --workload nope").status, 1);
 }
 
+// Every documented range end is accepted (real parameters are floats: 0.1f is above the double 0.1).
+TEST(Cli, RangeEndsAreAccepted)
+{
+    for (const char* option : {"--time_step 0.1", "--time_step 0.001", "--curl_radius 0.05", "--length 0.005",
+                               "--length 2", "--hair_offset 0.02", "--substeps 32"}) {
+        const CliRun run = cli(std::string("simulate --steps 1 --density 0.5 ") + option);
+        EXPECT_EQ(run.status, 0) << option << ": " << run.output;
+        EXPECT_EQ(run.output.find("outside"), std::string::npos) << option << ": " << run.output;
+    }
+}
+
+TEST(Cli, WholeNumbersAndTogglesRefuseFractionsNamingThem)
+{
+    const CliRun substeps = cli("simulate --steps 1 --substeps 2.5");
+    EXPECT_EQ(substeps.status, 1);
+    EXPECT_NE(substeps.output.find("substeps: 2.5 is not a whole number"), std::string::npos) << substeps.output;
+    const CliRun body = cli("simulate --steps 1 --body 0.5");
+    EXPECT_EQ(body.status, 1);
+    EXPECT_NE(body.output.find("body: 0.5 is not 0 or 1"), std::string::npos) << body.output;
+    EXPECT_EQ(cli("simulate --steps 1 --body 2").status, 1);
+    EXPECT_EQ(cli("simulate --steps 2 --density 0.5 --body 0").status, 0);
+    EXPECT_EQ(cli("simulate --steps 2 --density 0.5 --body 1").status, 0);
+    const CliRun help = cli("simulate --help");
+    EXPECT_NE(help.output.find("--body 0|1"), std::string::npos);
+}
+
 TEST(Cli, BadFilesAreExitOneNamingTheFile)
 {
     const fs::path dir = tempDir();

@@ -131,7 +131,9 @@ TEST(BundledPresets, EachLooksLikeItsName)
     const ParameterValues& curl = curly.regions.at(0).wisp;
     EXPECT_GT(curl.get(Param::CurlRadius), 0.0);
     EXPECT_LT(curl.get(Param::CurlRadius), wavy.regions.at(0).wisp.get(Param::CurlRadius));
-    EXPECT_GE(curl.get(Param::CurlTurns), 25.0);
+    // Ringlets: 15 or more turns per metre of hair, yet a coil its radius allows (2 pi r T < 0.95).
+    EXPECT_GE(curl.get(Param::CurlTurns), 15.0);
+    EXPECT_LT(2.0 * 3.14159265 * curl.get(Param::CurlRadius) * curl.get(Param::CurlTurns), 0.95);
     EXPECT_GE(curly.parameters.get(Param::Segments), 40.0);
     EXPECT_LT(curl.get(Param::Length), kDefaults.get(Param::Length));
     EXPECT_GT(curl.get(Param::ClumpDegree), kDefaults.get(Param::ClumpDegree));
@@ -423,4 +425,41 @@ TEST_F(PresetFileTest, WritingIntoAMissingFolderFailsCleanly)
     EXPECT_EQ(result.error().message.find(path), std::string::npos);  // the path is said once, as the file
     EXPECT_FALSE(fs::exists(m_dir / "missing"));
     EXPECT_TRUE(fs::is_empty(m_dir));
+}
+
+// ---- range ends and the body toggle ------------------------------------------------------------
+
+TEST_F(PresetFileTest, RangeEndsAsWrittenAreAccepted)
+{
+    const Result<PresetReadResult> result = parse(v2(R"(, "parameters": {"time_step": 0.1, "hair_offset": 0.02},
+        "regions": [{"wisp": {"curl_radius": 0.05, "length": 0.005, "length_variation": 0.9}}])"));
+    ASSERT_TRUE(result) << result.error().toString();
+    EXPECT_FLOAT_EQ(static_cast<float>(result.value().preset.parameters.get(Param::TimeStep)), 0.1f);
+    EXPECT_FLOAT_EQ(static_cast<float>(result.value().preset.regions.at(0).wisp.get(Param::CurlRadius)), 0.05f);
+    const Result<PresetReadResult> substeps = parse(v2(R"(, "parameters": {"substeps": 2.5})"));
+    ASSERT_FALSE(substeps);
+    EXPECT_NE(substeps.error().toString().find("parameters.substeps: 2.5 is not a whole number"), std::string::npos)
+        << substeps.error().toString();
+}
+
+TEST_F(PresetFileTest, TheBodyToggleRoundTrips)
+{
+    for (bool on : {false, true}) {
+        Preset preset;
+        ASSERT_EQ(preset.parameters.set(Param::Body, on ? 1 : 0), "");
+        const std::string path = (m_dir / "body.json").string();
+        ASSERT_TRUE(writePreset(path, preset));
+        const Result<PresetReadResult> result = readPreset(path);
+        ASSERT_TRUE(result) << result.error().toString();
+        EXPECT_EQ(result.value().preset.parameters.get(Param::Body), on ? 1.0 : 0.0);
+        EXPECT_EQ(nlohmann::json::parse(presetToJson(preset))["parameters"]["body"], on);
+    }
+    // Absent (a preset from before the body): on, the default.
+    const Result<PresetReadResult> old = parse(v2(R"(, "parameters": {"gravity": 3})"));
+    ASSERT_TRUE(old);
+    EXPECT_EQ(old.value().preset.parameters.get(Param::Body), 1.0);
+    const Result<PresetReadResult> half = parse(v2(R"(, "parameters": {"body": 0.5})"));
+    ASSERT_FALSE(half);
+    EXPECT_NE(half.error().toString().find("parameters.body: 0.5 is not true or false"), std::string::npos)
+        << half.error().toString();
 }

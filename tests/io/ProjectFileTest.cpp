@@ -225,6 +225,20 @@ TEST_F(ProjectFileTest, RoundTripOfTheDefaultHeadIsBitIdentical)
     EXPECT_EQ(projectToJson(read.value().project, path), readText(path));
 }
 
+TEST_F(ProjectFileTest, TheBodyToggleRoundTrips)
+{
+    for (bool on : {false, true}) {
+        Project project = smallProject();
+        ASSERT_EQ(project.parameters.set(Param::Body, on ? 1 : 0), "");
+        const std::string path = (m_dir / "body.wisp").string();
+        ASSERT_TRUE(writeProject(path, project));
+        const Result<ProjectReadResult> read = readProject(path);
+        ASSERT_TRUE(read) << read.error().toString();
+        EXPECT_EQ(read.value().project.parameters.get(Param::Body), on ? 1.0 : 0.0);
+        EXPECT_EQ(nlohmann::json::parse(readText(path))["parameters"]["body"], on);
+    }
+}
+
 TEST_F(ProjectFileTest, ImportedStrandsComeBackBitIdentical)
 {
     Project project = defaultHeadProject();

@@ -1,4 +1,6 @@
+#include "sim/Groom.h"
 #include "sim/Parameters.h"
+#include "sim/SolverSettings.h"
 
 #include <gtest/gtest.h>
 
@@ -37,9 +39,61 @@ TEST(Parameters, RefusesOutOfRangeAndNonFiniteValuesNamingTheKey)
     EXPECT_DOUBLE_EQ(v.get(Param::Gravity), -2.8);
 }
 
-TEST(Parameters, IntegerParametersAreRounded)
+TEST(Parameters, IntegerAndToggleParametersRefuseFractionsNamingThem)
 {
     ParameterValues v;
-    EXPECT_TRUE(v.set(Param::WispSize, 7.6).empty());
+    EXPECT_EQ(v.set(Param::Substeps, 2.5), "substeps: 2.5 is not a whole number");
+    EXPECT_EQ(v.getInt(Param::Substeps), 2);  // kept
+    EXPECT_EQ(v.set(Param::WispSize, 7.6), "wisp_size: 7.6 is not a whole number");
+    EXPECT_EQ(v.set(Param::SimulateAllStrands, 0.5), "simulate_all_strands: 0.5 is not 0 or 1");
+    EXPECT_EQ(v.set(Param::Body, 2), "body: 2 is outside 0..1");
+    EXPECT_TRUE(v.set(Param::WispSize, 8.0).empty());
     EXPECT_EQ(v.getInt(Param::WispSize), 8);
+    EXPECT_TRUE(v.set(Param::Body, 0).empty());
+}
+
+// Real parameters are held as floats: each documented range end, as written and as the float the
+// program holds (0.1f is a little more than the double 0.1), is accepted; one float step beyond is not.
+TEST(Parameters, EveryRangeEndIsAcceptedAsWrittenAndAsAFloat)
+{
+    for (const ParameterInfo& p : allParameters()) {
+        for (double end : {p.minimum, p.maximum}) {
+            EXPECT_EQ(checkParameterValue(p.id, end), "") << p.key << " " << end;
+            if (p.kind == ParamKind::Real) {
+                EXPECT_EQ(checkParameterValue(p.id, static_cast<double>(static_cast<float>(end))), "") << p.key;
+            }
+        }
+        if (p.kind == ParamKind::Real) {
+            const float above = std::nextafter(static_cast<float>(p.maximum), INFINITY);
+            const float below = std::nextafter(static_cast<float>(p.minimum), -INFINITY);
+            EXPECT_NE(checkParameterValue(p.id, above), "") << p.key;
+            EXPECT_NE(checkParameterValue(p.id, below), "") << p.key;
+        }
+    }
+    EXPECT_GT(static_cast<double>(0.1f), 0.1);  // why: the time step's upper end
+    EXPECT_EQ(checkParameterValue(Param::TimeStep, static_cast<double>(0.1f)), "");
+    EXPECT_EQ(checkParameterValue(Param::CurlRadius, static_cast<double>(0.05f)), "");
+    EXPECT_EQ(checkParameterValue(Param::Length, static_cast<double>(0.005f)), "");
+}
+
+// The solver's and the groom's own checks take the floats they hold: the range ends pass there too.
+TEST(Parameters, SolverAndGroomSettingsAcceptTheRangeEnds)
+{
+    ParameterValues v;
+    for (Param id : {Param::TimeStep, Param::Drag, Param::Damping, Param::Stiffness, Param::Friction, Param::HairOffset,
+                     Param::Turbulence, Param::Substeps}) {
+        for (double end : {parameterInfo(id).minimum, parameterInfo(id).maximum}) {
+            ParameterValues w = v;
+            ASSERT_EQ(w.set(id, end), "");
+            EXPECT_EQ(validateSolverSettings(solverSettingsFrom(w)), "") << parameterInfo(id).key << " " << end;
+        }
+    }
+    for (Param id : {Param::Density, Param::WispSize, Param::ClumpDegree, Param::ClumpRate, Param::Length,
+                     Param::LengthVariation, Param::Segments, Param::CurlRadius, Param::CurlTurns, Param::HairOffset}) {
+        for (double end : {parameterInfo(id).minimum, parameterInfo(id).maximum}) {
+            ParameterValues w = v;
+            ASSERT_EQ(w.set(id, end), "");
+            EXPECT_EQ(validateGroomSettings(groomSettingsFrom(w)), "") << parameterInfo(id).key << " " << end;
+        }
+    }
 }

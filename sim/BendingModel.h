@@ -34,7 +34,7 @@ namespace wisp::bending {
 // the default 28 cm hair at 2 substeps of 1/120 s sags as it did under the bending this replaced.
 constexpr float kRigidityScale = 0.0016f;  // m³/s²
 constexpr float kRigidityRange = 9.21f;   // ln 10⁴: stiffness 0..1 spans four decades
-constexpr float kBendDampingRatio = 2.0f;
+constexpr float kBendDampingRatio = 6.0f;
 
 inline float rigidity(float stiffness)
 {

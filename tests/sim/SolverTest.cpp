@@ -56,7 +56,7 @@ SolverSettings calm()
     s.substeps = 4;
     s.gravity = {0.0f, -9.81f, 0.0f};
     s.dampingPerSecond = 1.0f;
-    s.stiffness = 0.8f;
+    s.stiffness = 0.5f;
     return s;
 }
 
@@ -82,8 +82,9 @@ TEST(Solver, CurlsKeepTheirPeriodAfterSettling)
     EXPECT_NEAR(curlPeriodInPoints(p), restPeriod, 0.05 * restPeriod);
     // It did move: gravity and wind displaced the tip, the curl held.
     EXPECT_GT(glm::distance(p.back(), rest.positions.back()), 0.005f);
-    // And it is still a curl: the strand's extent is far shorter than its arc length.
-    EXPECT_LT(glm::distance(p.front(), p.back()), 0.5f * strandLength(p));
+    // And it is still a curl: the helix hangs no longer than its rest extent (0.63 of its arc
+    // length here) plus a little; pulled straight it would be 1.
+    EXPECT_LT(glm::distance(p.front(), p.back()), 0.7f * strandLength(p));
 }
 
 TEST(Solver, GravityPullsAStraightStrandDownToItsFullLength)

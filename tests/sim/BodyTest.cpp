@@ -111,6 +111,8 @@ TEST(Body, LongHairRestsOnTheShouldersWithoutEnteringThemAndPassesThroughWithout
     EXPECT_GT(off.deepest, 0.05f);
     // With it, hair lies on the shoulders and hangs higher. (0.5 m hair does not stop there: about
     // half the strands lying on a shoulder drape over it, front or back, their tips below it.)
-    EXPECT_GT(on.onShoulders, on.strands / 5);
-    EXPECT_GT(on.meanTipY, off.meanTipY + 0.03f);
+    // (With the bending that carries a strand's weight to its root the hair hangs straighter:
+    // about a sixth of the strands lie on the shoulders, tips 2 cm higher on average.)
+    EXPECT_GT(on.onShoulders, on.strands / 8);
+    EXPECT_GT(on.meanTipY, off.meanTipY + 0.015f);
 }

@@ -4,34 +4,43 @@
 //
 // Model. Each segment j (particles j-1 and j) has a bending target in its parent segment's frame,
 // as AMD TressFX's local shape constraints (Han & Harada 2012, "Real-time hair simulation with
-// efficient hair style preservation"): the rotation R taking the parent's rest direction to its
-// current direction d (shortest arc) turns the rest direction r_j, t_j = x_{j-1} + L_j τ, τ = R r_j.
-// The constraint C_j = x_j - t_j is a spring of stiffness k_j, so the bending energy is
-// Σ ½ k_j |C_j|², the discrete form of an elastic rod's (EI/2) ∫ κ² ds with |C| ≈ L θ = L² κ and
-// k_j = B / L_j³ (Bergou et al. 2008). B is the bending rigidity over the linear density, m⁴/s².
+// efficient hair style preservation"): t_j = x_{j-1} + L_j τ, where τ is the rest direction r_j laid
+// on the parent's frame. The frames are parallel-transported down the strand (a Bishop frame:
+// each the shortest rotation of the one before), from the follicle's frame, which turns with the
+// head; r_j is stored in the same frames of the rest strand, so a piece of strand turned rigidly
+// has its targets turned with it (the earlier per-joint shortest arc from the parent's *rest*
+// direction did not, and pumped curls into a spin).
 //
-// C_j depends on three particles. Moving x_{j-1} moves the target with it and, across d, turns
-// the frame about x_{j-2}: with ρ = L_j / L_{j-1}, δd = P⊥(δx_{j-1} - δx_{j-2}) / L_{j-1}, and
-// δτ = (d × δd) × τ = (d·τ) δd - d (τ·δd). So the gradients are G_j = I, G_{j-1} = -(I + M),
-// G_{j-2} = M with M = ρ [(d·τ) P⊥ - d (P⊥τ)ᵀ]; they sum to zero, so a correction along them keeps
-// the momentum (and, being the gradient of an energy, adds none). It is solved as XPBD (Macklin,
-// Müller & Chentanez 2016, eq. 18, λ starting at 0 each substep):
-//   (Σ_i w_i G_i G_iᵀ + α̃) λ = C,   Δx_i = -w_i G_iᵀ λ,   α̃ = 1 / (k_j dt²),
-// w = 1/m with m the hair length a particle stands for (the root's w is 0: it is pinned). Written
-// in the basis (d, u, v) with τ = c d + s u, the 3x3 system is a 2x2 block for (d, u) and a scalar
-// for v. As dt → 0 this is Verlet integration of the spring force, so the static shape does not
-// depend on the substep; a joint's angle is set by the moment it carries, which does not depend
-// on the segment length, so neither does the shape on the segment count. The solver sweeps the
-// constraints root to tip (Gauss-Seidel).
+// The constraint C_j = t_j - x_j is a spring k_j with a damper c_j on the particle's motion
+// relative to its parent, taken implicitly on the child (XPBD, Macklin, Müller & Chentanez 2016,
+// eq. 18 and its damping, λ starting at 0 each substep; the parent held where follow-the-leader
+// put it, as FTL moves only the child, Müller et al. 2012):
+//   Δx_j = (w k dt² C - w c dt v_rel dt) / (1 + w k dt² + w c dt),   c = 2 ζ sqrt(k m),
+// and the parent takes the equal and opposite momentum as a velocity, the way DFTL's velocity
+// correction does: Δv_{j-1} = -(1 - a)(m_j / m_{j-1}) Δx_j / dt, a = w k dt² / (1 + w k dt² + w c dt).
+// The (1 - a) fades that explicit kick where the joint is stiff for the substep (a → 1), where a
+// full kick overshoots; where the joint is soft (a ≪ 1, the usual case) the momentum is kept.
+//
+// Why the shape does not depend on the substep or the segment count: as dt → 0 the child's
+// correction is Verlet integration of the force k C, so the static shape (k C = the load the
+// joint carries) is the same at any substep. The joint's angle is θ = |C| / L, and a joint
+// carries the weight of the hair below it whatever the segment length, so the curvature θ / L is
+// the same at any resolution when k = K / L² (K is the artist's stiffness as a rigidity over the
+// linear density, m³/s²; the continuum is a beam that bends under the shear it carries). Masses
+// m_j are the hair length a particle stands for (the root's w is 0). The damper (ζ = 6 times
+// critical for a joint's own spring) stops a joint's own quick shiver; the strand's swing, far
+// slower than a joint's, is hardly touched.
 
 #include <algorithm>
 #include <cmath>
 
 namespace wisp::bending {
 
-// Stiffness s maps to B = kRigidityScale s / (1 - s), so 1 (or more, with a region's scale) is as
-// stiff as the solver can hold (α̃ = 0). At 0.25, the default, B = 2.7e-4 m⁴/s²: a 2 cm segment of
-// the default 28 cm hair at 2 substeps of 1/120 s sags as it did under the bending this replaced.
+// Stiffness s maps to K = kRigidityScale (e^(kRigidityRange s) - 1): four decades between limp
+// and stiff, and 1 (or more, with a region's scale or hairspray) a rigid chain. At 0.25, the
+// default, K = 0.0144 m³/s²: a 2 cm segment of the default 28 cm hair sags as it did under the
+// bending this replaced; because the weight of the hair below now reaches the root, the default
+// hangs, a combed lock needs about 0.5 and a horizontal one about 0.6.
 constexpr float kRigidityScale = 0.0016f;  // m³/s²
 constexpr float kRigidityRange = 9.21f;   // ln 10⁴: stiffness 0..1 spans four decades
 constexpr float kBendDampingRatio = 6.0f;

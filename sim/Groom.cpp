@@ -892,6 +892,26 @@ void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& conta
                 p = turned + n * left;
             }
         }
+        // The body's capsules are exact: one look each, turned about the point before as above.
+        for (const Capsule& capsule : contact.body) {
+            const glm::vec3 ab = capsule.b - capsule.a;
+            const float ab2 = glm::dot(ab, ab);
+            const float t = ab2 > 0.0f ? std::clamp(glm::dot(p - capsule.a, ab) / ab2, 0.0f, 1.0f) : 0.0f;
+            const glm::vec3 away = p - (capsule.a + ab * t);
+            const float distance = glm::length(away);
+            const float depth = capsule.radiusMetres + contact.offsetMetres - distance;
+            if (depth <= 0.0f || distance < 1e-9f)
+                continue;
+            const glm::vec3 n = away / distance;
+            u = (p - parent) / glm::max(glm::distance(p, parent), 1e-9f);
+            const float along = glm::dot(n, u);
+            const float reach = std::min(depth / length + along, 1.0f);
+            glm::vec3 side = u - n * along;
+            const float sl = glm::length(side);
+            side = sl > 1e-9f ? side / sl : glm::vec3(0.0f);
+            const glm::vec3 turned = parent + (n * reach + side * std::sqrt(std::max(1.0f - reach * reach, 0.0f))) * length;
+            p = turned + n * std::max(depth - glm::dot(turned - p, n), 0.0f);
+        }
         points[j] = p;
     }
 }

@@ -5,6 +5,7 @@
 // wisp has a key hair, and members follow it by clump-degree and clump-rate.
 
 #include "sim/HairCurves.h"
+#include "sim/Solver.h"
 #include "sim/Parameters.h"
 #include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
@@ -170,6 +171,7 @@ struct MemberContact {
     glm::mat3 headRotation{1.0f};                // head to frame space
     glm::vec3 headTranslation{0.0f};
     float offsetMetres = 0.0f;                   // kept between hair and skin
+    std::span<const Capsule> body;               // neck and shoulders, frame space (none: empty)
 };
 void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, const glm::mat3& headRotation,
                   HairCurves& out, std::span<const float> wetClumpOfWisp = {}, const MemberContact* contact = nullptr);

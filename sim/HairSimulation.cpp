@@ -468,7 +468,8 @@ std::string HairSimulation::applyForces(const ParameterValues& values)
 
 void HairSimulation::setBody(const ParameterValues& values)
 {
-    m_solver.setCapsules(values.get(Param::Body) != 0.0 ? m_body : std::vector<Capsule>{});
+    m_bodyOn = values.get(Param::Body) != 0.0;
+    m_solver.setCapsules(m_bodyOn ? m_body : std::vector<Capsule>{});
 }
 
 void HairSimulation::buildFrame(HairCurves& out) const
@@ -490,6 +491,8 @@ void HairSimulation::buildFrame(HairCurves& out) const
     MemberContact contact;
     contact.head = m_sdf.get();
     contact.offsetMetres = m_solver.settings().hairOffsetMetres;
+    if (m_bodyOn)
+        contact.body = m_body;
     buildMembers(m_groom, keys, glm::mat3(1.0f), out, wetClump, &contact);
 }
 

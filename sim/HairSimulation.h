@@ -132,6 +132,7 @@ private:
     std::shared_ptr<SignedDistanceField> m_sdf;
     std::unique_ptr<MeshBvh> m_bvh;
     std::vector<Capsule> m_body;  // head space
+    bool m_bodyOn = false;        // the solver and the drawn members collide with m_body
     Groom m_groom;
     GroomBuilder m_builder;
     std::vector<StrandLook> m_looks;

@@ -5,13 +5,16 @@
 // rest at the combed shape (an inverse statics problem, as in Derouet-Jourdan et al., "Inverse
 // Dynamic Hair Modeling with Frictional Contact", 2013).
 //
-// The solver's static equilibrium is solved in closed form, segment by segment (tips first for the
-// DFTL correction forces, then rest directions from the root; see exactRest in the .cpp). Contact
-// with the head is not in that model, so the result is checked by letting the strands settle in a
-// real solver, and refined by fixed-point steps (turn each rest segment by 0.7 of the angle by
-// which the settled segment missed the target); each strand keeps its best rest shape.
+// The solver's static equilibrium is found with the solver itself, so the answer is whatever its
+// bending, length and contact do (BendingModel.h): from the combed shape, one substep at a time,
+// each segment's bend target is turned by the angle the segment missed (over the share of a miss
+// one substep moves), and the rest directions follow from the root. Then the result is checked by
+// letting the strands settle in a real solver, and refined by fixed-point steps (turn each rest
+// segment by 0.7 of the angle by which the settled segment missed the target); each strand keeps
+// its best rest shape.
 //
-// Hair too soft to hold a shape (a horizontal strand at stiffness 0.05) cannot be held by any rest
+// Hair too soft to hold a shape (with the weight of a lock carried to its root, default hair
+// cannot hold a lock combed sideways; stiffness 0.5 or hairspray can) cannot be held by any rest
 // shape; the solve then gives its best and says how far off it is (spray it stiffer).
 
 #include "sim/HairCurves.h"

@@ -1,11 +1,14 @@
 #pragma once
 // The hair solver: strands are chains of particles pinned at the root, advanced with Verlet
-// integration under gravity, wind drag and turbulence, kept inextensible by follow-the-leader with
-// velocity correction, bent back toward their rest shape, and pushed out of the head.
+// integration under gravity, implicit wind drag and per-particle gusts, bent toward their rest
+// shape (BendingModel.h), kept inextensible by follow-the-leader with velocity correction, and
+// put out of the head and the body last, keeping their segment length where the segment can reach
+// (Coulomb friction there).
 //
 // Papers: Verlet step and wind (eq. 1-3 of "Real Time Physical Force-Driven Hair Animation");
 // inextensibility by Dynamic Follow-The-Leader (Müller, Kim, Chentanez 2012, "Fast Simulation of
-// Inextensible Hair and Fur").
+// Inextensible Hair and Fur"); bending as XPBD (Macklin, Müller, Chentanez 2016) toward local shape
+// targets (Han & Harada 2012); friction as in Macklin et al. 2014, "Unified Particle Physics".
 //
 // Data-oriented: strands with the same particle count are packed 16 to a block, each block's
 // particles interleaved so that one instruction advances the same particle of 16 strands. A block is

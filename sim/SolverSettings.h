@@ -17,8 +17,8 @@ struct SolverSettings {
     float turbulence = 0.0f;                 // gust amplitude as a fraction of the wind speed
     float dragPerSecond = 0.0f;              // k of F = -k (v - wind), per unit mass
     float dampingPerSecond = 0.0f;           // v *= exp(-damping dt)
-    float stiffness = 0.0f;                  // 0..1: share of the bend toward rest recovered per 1/60 s
-    float friction = 0.0f;                   // 0..1: share of sliding speed lost in contact
+    float stiffness = 0.0f;                  // 0..1: bending rigidity, see bending::rigidity (BendingModel.h)
+    float friction = 0.0f;                   // Coulomb coefficient μ (kinetic; static 1.25 μ)
     float hairOffsetMetres = 0.0f;           // kept between hair and skin
     // s_damping of Müller et al. 2012, eq. 9. 1 would conserve momentum exactly (the parent takes
     // back what follow-the-leader gave the child); below about 0.9 the energy follow-the-leader

@@ -258,3 +258,28 @@ TEST(Stability, StrongDragAtTheLongestTimeStepDoesNotGainEnergy)
     EXPECT_LT(kinetic / static_cast<double>(p1.size()), 1e-4);  // at rest: below (1.4 cm/s)² / 2 a particle
     EXPECT_EQ(sim->solver().strandsReset(), 0u);
 }
+
+TEST(DrawnStrandsOnTheBody, NoDrawnParticleEndsInsideTheNeckOrShoulders)
+{
+    // Long hair reaches the shoulders: every drawn strand, members included, stays out of them.
+    ParameterValues v = still({{Param::Length, 0.5}, {Param::Density, 3.0}, {Param::Segments, 20}});
+    ASSERT_EQ(v.set(Param::Body, 1), "");
+    HairSimulation sim;
+    ASSERT_EQ(sim.setup(defaultHead().mesh, defaultHead().growthWeights, v), "");
+    ASSERT_FALSE(sim.body().empty());
+    run(sim, 300);
+    HairCurves frame;
+    sim.buildFrame(frame);
+    double deepest = 0.0;
+    std::size_t near = 0;
+    for (const glm::vec3& p : frame.positions)
+        for (const Capsule& c : sim.body()) {
+            const glm::vec3 ab = c.b - c.a;
+            const float t = std::clamp(glm::dot(p - c.a, ab) / std::max(glm::dot(ab, ab), 1e-12f), 0.0f, 1.0f);
+            const double depth = c.radiusMetres - glm::distance(p, c.a + ab * t);
+            deepest = std::max(deepest, depth);
+            near += depth > -0.01 ? 1 : 0;
+        }
+    EXPECT_GT(near, 50u) << "the hair did not reach the body: the test proves nothing";
+    EXPECT_LT(deepest, 0.001);
+}

@@ -73,6 +73,14 @@ const StrandStyle* HairSimulation::styleOf(std::size_t strand) const
     return found == m_style->end() ? nullptr : &found->second;
 }
 
+float HairSimulation::strandStiffnessScale(float regionScale, const StrandStyle* style)
+{
+    if (!style)
+        return regionScale;
+    const float scale = regionScale * style->stiffnessScale;
+    return style->shape.size() >= 2 ? std::max(scale, regionScale * kCombSetsStiffness) : scale;
+}
+
 std::string HairSimulation::setStrandStiffness(const Groom& groom)
 {
     m_baseStiffness.clear();
@@ -81,8 +89,7 @@ std::string HairSimulation::setStrandStiffness(const Groom& groom)
     for (std::size_t i = 0; i < count; ++i) {
         const std::size_t strand = m_allStrands ? i : groom.keyStrand[i];
         const StrandStyle* style = styleOf(strand);
-        m_baseStiffness.push_back(groom.regionStiffnessScale[groom.regionOfStrand[strand]] *
-                                  (style ? style->stiffnessScale : 1.0f));
+        m_baseStiffness.push_back(strandStiffnessScale(groom.regionStiffnessScale[groom.regionOfStrand[strand]], style));
     }
     if (std::string error = m_solver.setStiffnessScales(m_baseStiffness); !error.empty())
         return error;
@@ -110,7 +117,7 @@ void HairSimulation::solveCombedRest(const Groom& groom, const ParameterValues& 
             continue;
         const std::uint64_t identity = found->first;
         const std::span<const glm::vec3> target = simulated.strand(i);
-        const float scale = groom.regionStiffnessScale[groom.regionOfStrand[strand]] * found->second.stiffnessScale;
+        const float scale = strandStiffnessScale(groom.regionStiffnessScale[groom.regionOfStrand[strand]], &found->second);
         ByteHash hash;  // the target and the physics it is solved for
         hash.add(target.data(), target.size_bytes());
         hash.add(scale);

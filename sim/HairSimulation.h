@@ -108,6 +108,13 @@ public:
     // The neck and shoulders under this head (Body.h), collided with while the `body` parameter is on.
     const std::vector<Capsule>& body() const { return m_body; }
 
+    // A comb sets the hair, as combing with product does: a combed strand is at least this many
+    // times as stiff as its region (0.25, the default, becomes 0.5, which holds a lock combed
+    // sideways; the solver carries a lock's weight to its root, so default hair could not).
+    static constexpr float kCombSetsStiffness = 2.0f;
+    // A strand's stiffness scale: its region's, times its hairspray, at least the comb's set.
+    static float strandStiffnessScale(float regionScale, const StrandStyle* style);
+
     // Hair this little wet is dry (drying in still air is exponential and would never end).
     static constexpr float kDryBelow = 0.01f;
     // Collider resolution: about this many cells across the head's largest extent.

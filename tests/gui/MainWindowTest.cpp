@@ -82,6 +82,8 @@ TEST_F(EditorTest, StartsPlayingTheDefaultHeadAndHairstyle)
 TEST_F(EditorTest, GravitySliderLowersTheTipsAndNegativeGravityFloatsThem)
 {
     typeValue(window->forcePanel(), Param::WindSpeed, QStringLiteral("0"));
+    // Stiff hair, which holds some of its shape at low gravity (default hair hangs at any).
+    typeValue(window->forcePanel(), Param::Stiffness, QStringLiteral("0.6"));
     typeValue(window->forcePanel(), Param::Gravity, QStringLiteral("2"));
     settle();
     const float lightTip = meanEnds(frame()).tip.y;

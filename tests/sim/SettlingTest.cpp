@@ -55,7 +55,7 @@ double shareStillMoving(HairSimulation& sim, float metres)
 bool insideMesh(const MeshBvh& bvh, const glm::vec3& p)
 {
     int votes = 0;
-    for (const glm::vec3 direction : {glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), glm::vec3(-0.6f, 0.0f, -0.8f)}) {
+    for (const glm::vec3& direction : {glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), glm::vec3(-0.6f, 0.0f, -0.8f)}) {
         int crossings = 0;
         glm::vec3 origin = p;
         for (int guard = 0; guard < 64; ++guard) {
@@ -77,7 +77,7 @@ struct DrawnMeasure {
     std::size_t strands = 0;
 };
 
-DrawnMeasure measureDrawn(const HairSimulation& sim, const TriangleMesh& head, const MeshBvh& bvh)
+DrawnMeasure measureDrawn(const HairSimulation& sim, const MeshBvh& bvh)
 {
     HairCurves frame;
     sim.buildFrame(frame);
@@ -201,7 +201,7 @@ TEST_P(DrawnStrands, KeepTheirLengthAndStayOutOfTheHead)
     DrawnMeasure worst;
     for (int k = 0; k < 4; ++k) {  // while it moves, not only once settled
         run(sim, 60);
-        const DrawnMeasure m = measureDrawn(sim, head, bvh);
+        const DrawnMeasure m = measureDrawn(sim, bvh);
         if (m.worstStretch > worst.worstStretch) {
             worst.worstStretch = m.worstStretch;
             worst.worstIsKey = m.worstIsKey;

@@ -134,7 +134,6 @@ TEST(Style, CombedHairRestsWhereItWasCombedNotWhereGravityPullsIt)
 {
     ParameterValues v = testParameters();
     v.set(Param::Damping, 4.0);
-    v.set(Param::Stiffness, 0.5);  // default hair (0.25) is too limp to hold a lock combed sideways
     Styled s(v);
     s.run(300);  // settled under gravity
     const Groom& g = s.groom();

@@ -888,7 +888,10 @@ void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& conta
                 t = tl > 1e-9f ? t / tl : glm::vec3(0.0f);
                 const glm::vec3 turned = parent + (n * reach + t * std::sqrt(std::max(1.0f - reach * reach, 0.0f))) * length;
                 // Only the last pass pushes what the segment cannot reach.
-                const float left = pass + 1 == kMemberContactPasses ? std::max(depth - glm::dot(turned - p, n), 0.0f) : 0.0f;
+                // (a segment shorter than twice the offset only out of the head itself: see the
+                // solver's contact)
+                const float slack = length < 2.0f * contact.offsetMetres ? contact.offsetMetres : 0.0f;
+                const float left = pass + 1 == kMemberContactPasses ? std::max(depth - slack - glm::dot(turned - p, n), 0.0f) : 0.0f;
                 p = turned + n * left;
             }
         }
@@ -910,7 +913,8 @@ void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& conta
             const float sl = glm::length(side);
             side = sl > 1e-9f ? side / sl : glm::vec3(0.0f);
             const glm::vec3 turned = parent + (n * reach + side * std::sqrt(std::max(1.0f - reach * reach, 0.0f))) * length;
-            p = turned + n * std::max(depth - glm::dot(turned - p, n), 0.0f);
+            const float slack = length < 2.0f * contact.offsetMetres ? contact.offsetMetres : 0.0f;
+            p = turned + n * std::max(depth - slack - glm::dot(turned - p, n), 0.0f);
         }
         points[j] = p;
     }

@@ -273,7 +273,7 @@ struct ContactFriction {
 
 inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
                            Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous,
-                           bool pushWhatIsLeft)
+                           bool pushWhatIsLeft, Lane band)
 {
     const V3 u0 = (position - parent) * inverseLength;
     const Lane along = dot(normal, u0);
@@ -287,7 +287,11 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
     const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
     const Lane sine = sine2 * lrsqrt(lmax(sine2, splat(1e-20f)));
     const V3 turned = parent + (normal * reach + unitTangent * sine) * length;
-    const Lane left = pushWhatIsLeft ? lmax(depth - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
+    // A segment shorter than twice the hair offset only has to clear the surface itself, not the
+    // offset kept above it: starting on the skin it cannot reach out of the offset, and stretching
+    // it to would break its length for no contact.
+    const Lane slack = select(length < band * 2.0f, band, splat(0.0f));  // only for segments that short
+    const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
 
     const V3 move = position - oldPosition;
@@ -425,7 +429,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             if (anyOf(inside)) {
                 // A curved surface is not its tangent plane: turn onto the plane, look again from
                 // there, and only then push what the segment cannot reach.
-                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous, false);
+                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous, false,
+                               splat(c.offset));
                 for (int pass = 1; pass < kHeadContactPasses; ++pass) {
                     V3 again = position;
                     if (Transformed)
@@ -438,7 +443,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                     if (!anyOf(stillInside))
                         break;
                     resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before, position,
-                                   previous, pass + 1 == kHeadContactPasses);
+                                   previous, pass + 1 == kHeadContactPasses, splat(c.offset));
                 }
             }
             // A moving head moves the field under the particles: no bound survives that.
@@ -457,7 +462,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
             if (anyOf(inside)) {
                 const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
-                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous, true);
+                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous, true,
+                               splat(c.offset));
             }
         }
         if (i > 1) {

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
+#include <cstdio>
+#include <cstdlib>
 
 namespace wisp {
 
@@ -23,7 +25,10 @@ constexpr float kRelaxation = 0.7f;
 
 // Substeps of the fixed-point search at most, the share of the estimated turn it takes, and the
 // largest turn of one iteration (a large miss is not linear in the turn).
-constexpr int kFixedPointIterations = 80;
+constexpr int kFixedPointIterations = 40;
+// The settle check refines again only while each refinement cuts the worst gap below this share
+// of the one before.
+constexpr float kKeepRefiningBelow = 0.8f;
 constexpr float kFixedPointRelaxation = 0.8f;
 constexpr float kMaxTurnRadians = 0.3f;
 // Share of the last substep's velocity each iteration starts with: the resting strand keeps
@@ -55,7 +60,7 @@ glm::vec3 turnedLike(const glm::vec3& a, const glm::vec3& b, const glm::vec3& v,
 // direction), times kFixedPointRelaxation. The previous positions carry over (they hold the DFTL
 // corrections a strand at rest keeps trading between its particles).
 void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessScales, const SolverSettings& settings,
-                    const std::shared_ptr<const SignedDistanceField>& collider, HairCurves& rest)
+                    Solver& solver, HairCurves& rest)
 {
     const std::size_t count = targets.strandCount();
     SolverSettings one = settings;
@@ -63,8 +68,6 @@ void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessS
     one.substeps = 1;
     one.wind = glm::vec3(0.0f);
     one.turbulence = 0.0f;
-    Solver solver(1);
-    solver.setCollider(collider);
     if (!solver.setStrands(rest).empty() || !solver.setSettings(one).empty())
         return;
     if (!stiffnessScales.empty())
@@ -152,8 +155,10 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
     // head, too soft) does not stop the others converging.
     const std::size_t count = targets.strandCount();
     std::vector<float> bestGap(count, 1e30f);
-    fixedPointRest(targets, stiffnessScales, settings, collider, out.rest);
+    // One solver (its collision field is built once per solve: for the whole head).
+    fixedPointRest(targets, stiffnessScales, settings, solver, out.rest);
     HairCurves best = out.rest;
+    float previousWorst = 1e30f;
     for (int k = 0; k < maxIterations; ++k) {
         if (!solver.setStrands(out.rest).empty() || !solver.setSettings(settle).empty())
             break;
@@ -180,6 +185,11 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
         out.iterations = k + 1;
         if (worst < toleranceMetres)
             break;
+        // Refining helps only while it helps: a strand that cannot be held (too soft, pushed by
+        // the head) keeps its best, and the others have converged as far as they will.
+        if (worst > kKeepRefiningBelow * previousWorst)
+            break;
+        previousWorst = worst;
         // Turn each rest segment by how far the settled segment missed the target's direction.
         for (std::size_t i = 0; i < targets.strandCount(); ++i) {
             const std::span<const glm::vec3> t = targets.strand(i);
@@ -198,6 +208,7 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
             }
         }
     }
+    if (getenv("RSDEBUG")) fprintf(stderr, "rest solve: %zu strands, %d iterations, worst %g\n", count, out.iterations, *std::max_element(bestGap.begin(), bestGap.end()));
     out.rest = std::move(best);
     out.worstGapMetres = count == 0 ? 0.0f : *std::max_element(bestGap.begin(), bestGap.end());
     return out;

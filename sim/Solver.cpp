@@ -265,6 +265,9 @@ constexpr float kStaticOverKineticFriction = 1.25f;
 // Looks at the head per contact: turns onto the tangent plane, then looks again from there (a
 // nose or an ear is not its tangent plane); the last pushes what the segment cannot reach.
 constexpr int kHeadContactPasses = 3;
+// Gusts are sampled at every this many particles along a strand and interpolated between (their
+// shortest wavelength is 2π / 14 ≈ 0.45 m; a 28 cm strand of 15 segments samples every 7.5 cm).
+constexpr std::uint32_t kGustStride = 4;
 
 struct ContactFriction {
     Lane kinetic;  // μk
@@ -380,10 +383,10 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
     // + g dt, which only ever moves v toward w, so any drag at any step is stable, and leaves
     // gravity whole (hair at rest feels all its weight, whatever the drag and the step). k is the
     // drag scaled by eq. 1's s = |w x t| / (|w||t|): wind across the strand pushes, along it not.
-    auto predict = [&](const V3& x, const V3& previous, const V3& parentBefore) {
+    auto predict = [&](const V3& x, const V3& previous, const V3& parentBefore, const V3& gustHere) {
         V3 wind = baseWind;
         if (gusty)
-            wind = wind + gust(x, c.time) * gustAmplitude;
+            wind = wind + gustHere * gustAmplitude;
         const Lane windSpeed2 = dot(wind, wind);
         const Mask calm = windSpeed2 < splat(1e-12f);
         const V3 tangent = x - parentBefore;
@@ -503,6 +506,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
         // with it: only bending costs.
         V3 parent = root;  // final position of particle j-1
         V3 parentStart = parentBefore;  // particle j-1 at the start of the substep
+        V3 gustFrom{}, gustTo{};        // gusts at the samples either side of particle j
+        Lane gustSpan = splat(1.0f);
         V3 frameD{rest[1].x, rest[1].y, rest[1].z};   // the follicle's frame: the root segment's rest
         V3 frameE{rest[0].lx, rest[0].ly, rest[0].lz}; // direction and a normal to it
         if (Transformed) {
@@ -513,7 +518,20 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             ParticleRow& p = row[j];
             const RestRow& r = rest[j];
             const V3 x{p.x, p.y, p.z};
-            const V3 predicted = predict(x, V3{p.px, p.py, p.pz}, parentBefore);
+            // Gusts are smooth over tens of centimetres: sampled at every kGustStride-th particle
+            // (where the particles were at the start of the substep) and interpolated between.
+            V3 gustHere{};
+            if (gusty) {
+                const std::uint32_t k = (j - 1) % kGustStride;
+                if (k == 0) {
+                    const std::uint32_t ahead = std::min(j + kGustStride, n - 1);
+                    gustFrom = j == 1 ? gust(x, c.time) : gustTo;
+                    gustTo = ahead == j ? gustFrom : gust(V3{row[ahead].x, row[ahead].y, row[ahead].z}, c.time);
+                    gustSpan = splat(1.0f / static_cast<float>(std::max<std::uint32_t>(ahead - j, 1)));
+                }
+                gustHere = gustFrom + (gustTo - gustFrom) * (splat(static_cast<float>(k)) * gustSpan);
+            }
+            const V3 predicted = predict(x, V3{p.px, p.py, p.pz}, parentBefore, gustHere);
             p.px = x.x;  // kept here until finish() reads it as the start of the substep
             p.py = x.y;
             p.pz = x.z;

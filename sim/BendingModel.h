@@ -27,7 +27,7 @@
 // carries the weight of the hair below it whatever the segment length, so the curvature θ / L is
 // the same at any resolution when k = K / L² (K is the artist's stiffness as a rigidity over the
 // linear density, m³/s²; the continuum is a beam that bends under the shear it carries). Masses
-// m_j are the hair length a particle stands for (the root's w is 0). The damper (ζ = 6 times
+// m_j are the hair length a particle stands for (the root's w is 0). The damper (ζ = 8 times
 // critical for a joint's own spring) stops a joint's own quick shiver; the strand's swing, far
 // slower than a joint's, is hardly touched.
 
@@ -43,7 +43,7 @@ namespace wisp::bending {
 // hangs, a combed lock needs about 0.5 and a horizontal one about 0.6.
 constexpr float kRigidityScale = 0.0016f;  // m³/s²
 constexpr float kRigidityRange = 9.21f;   // ln 10⁴: stiffness 0..1 spans four decades
-constexpr float kBendDampingRatio = 6.0f;
+constexpr float kBendDampingRatio = 8.0f;
 
 inline float rigidity(float stiffness)
 {

@@ -109,9 +109,9 @@ public:
     const std::vector<Capsule>& body() const { return m_body; }
 
     // A comb sets the hair, as combing with product does: a combed strand is at least this many
-    // times as stiff as its region (0.25, the default, becomes 0.5, which holds a lock combed
+    // times as stiff as its region (0.25, the default, becomes 0.6, which holds a lock combed
     // sideways; the solver carries a lock's weight to its root, so default hair could not).
-    static constexpr float kCombSetsStiffness = 2.0f;
+    static constexpr float kCombSetsStiffness = 2.4f;
     // A strand's stiffness scale: its region's, times its hairspray, at least the comb's set.
     static float strandStiffnessScale(float regionScale, const StrandStyle* style);
 

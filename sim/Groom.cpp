@@ -855,47 +855,53 @@ void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, c
                          w < wetClumpOfWisp.size() ? wetClumpOfWisp[w] : 0.0f, fix);
 }
 
+namespace {
+
+// Point p, `depth` inside a surface of outward unit normal n, turned about `parent` onto the
+// surface's tangent plane keeping its distance `length` from the parent (as the solver's contact
+// does); with `push`, whatever the turn cannot reach is pushed out along n, less `slack`.
+glm::vec3 turnedOut(const glm::vec3& parent, const glm::vec3& p, const glm::vec3& n, float depth, float length, bool push,
+                    float slack)
+{
+    const glm::vec3 u = (p - parent) / glm::max(glm::distance(p, parent), 1e-9f);
+    const float along = glm::dot(n, u);
+    const float reach = std::min(depth / length + along, 1.0f);
+    glm::vec3 side = u - n * along;
+    const float sl = glm::length(side);
+    side = sl > 1e-9f ? side / sl : glm::vec3(0.0f);
+    const glm::vec3 turned = parent + (n * reach + side * std::sqrt(std::max(1.0f - reach * reach, 0.0f))) * length;
+    return turned + n * (push ? std::max(depth - slack - glm::dot(turned - p, n), 0.0f) : 0.0f);
+}
+
+}  // namespace
+
 void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& contact, std::span<glm::vec3> points)
 {
     constexpr int kMemberContactPasses = 4;
     // Follow the leader along the member's own guide (Müller et al. 2012): each point at its rest
-    // length from the one before, toward where the key put it; then out of the head, turned about
-    // the point before so the length holds (as the solver's contact does), pushed only by what
-    // the segment cannot reach.
+    // length from the one before, toward where the key put it; then out of the head and the body,
+    // turned about the point before so the length holds, pushed only by what the segment cannot
+    // reach (a segment shorter than twice the hair offset only out of the skin itself).
     for (std::size_t j = 1; j < points.size() && j < rest.size(); ++j) {
         const float length = glm::distance(rest[j], rest[j - 1]);
+        const float slack = length < 2.0f * contact.offsetMetres ? contact.offsetMetres : 0.0f;
         const glm::vec3 parent = points[j - 1];
-        glm::vec3 d = points[j] - parent;
+        const glm::vec3 d = points[j] - parent;
         const float dl = glm::length(d);
-        glm::vec3 u = dl > 1e-9f ? d / dl : glm::normalize(rest[j] - rest[j - 1]);
-        glm::vec3 p = parent + u * length;
+        glm::vec3 p = parent + (dl > 1e-9f ? d / dl : glm::normalize(rest[j] - rest[j - 1])) * length;
         // A curved surface (a nose, an ear) is not its tangent plane: look again from where the
-        // turn put it, a few times.
+        // turn put it, a few times; only the last pass pushes.
         for (int pass = 0; contact.head && pass < kMemberContactPasses; ++pass) {
             const glm::vec3 local = glm::transpose(contact.headRotation) * (p - contact.headTranslation);
             const float depth = contact.offsetMetres - contact.head->distance(local);
             if (depth <= 0.0f)
                 break;
-            u = (p - parent) / glm::max(glm::distance(p, parent), 1e-9f);
-            {
-                glm::vec3 n = contact.headRotation * contact.head->gradient(local);
-                const float nl = glm::length(n);
-                n = nl > 1e-9f ? n / nl : glm::vec3(0, 1, 0);
-                const float along = glm::dot(n, u);
-                const float reach = std::min(depth / length + along, 1.0f);
-                glm::vec3 t = u - n * along;
-                const float tl = glm::length(t);
-                t = tl > 1e-9f ? t / tl : glm::vec3(0.0f);
-                const glm::vec3 turned = parent + (n * reach + t * std::sqrt(std::max(1.0f - reach * reach, 0.0f))) * length;
-                // Only the last pass pushes what the segment cannot reach.
-                // (a segment shorter than twice the offset only out of the head itself: see the
-                // solver's contact)
-                const float slack = length < 2.0f * contact.offsetMetres ? contact.offsetMetres : 0.0f;
-                const float left = pass + 1 == kMemberContactPasses ? std::max(depth - slack - glm::dot(turned - p, n), 0.0f) : 0.0f;
-                p = turned + n * left;
-            }
+            glm::vec3 n = contact.headRotation * contact.head->gradient(local);
+            const float nl = glm::length(n);
+            n = nl > 1e-9f ? n / nl : glm::vec3(0, 1, 0);
+            p = turnedOut(parent, p, n, depth, length, pass + 1 == kMemberContactPasses, slack);
         }
-        // The body's capsules are exact: one look each, turned about the point before as above.
+        // The body's capsules are exact: one look each.
         for (const Capsule& capsule : contact.body) {
             const glm::vec3 ab = capsule.b - capsule.a;
             const float ab2 = glm::dot(ab, ab);
@@ -903,22 +909,13 @@ void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& conta
             const glm::vec3 away = p - (capsule.a + ab * t);
             const float distance = glm::length(away);
             const float depth = capsule.radiusMetres + contact.offsetMetres - distance;
-            if (depth <= 0.0f || distance < 1e-9f)
-                continue;
-            const glm::vec3 n = away / distance;
-            u = (p - parent) / glm::max(glm::distance(p, parent), 1e-9f);
-            const float along = glm::dot(n, u);
-            const float reach = std::min(depth / length + along, 1.0f);
-            glm::vec3 side = u - n * along;
-            const float sl = glm::length(side);
-            side = sl > 1e-9f ? side / sl : glm::vec3(0.0f);
-            const glm::vec3 turned = parent + (n * reach + side * std::sqrt(std::max(1.0f - reach * reach, 0.0f))) * length;
-            const float slack = length < 2.0f * contact.offsetMetres ? contact.offsetMetres : 0.0f;
-            p = turned + n * std::max(depth - slack - glm::dot(turned - p, n), 0.0f);
+            if (depth > 0.0f && distance > 1e-9f)
+                p = turnedOut(parent, p, away / distance, depth, length, true, slack);
         }
         points[j] = p;
     }
 }
+
 namespace {
 
 // Writes wisp w's key (from `key`) and its members into `out` (Lee et al.: members follow their key

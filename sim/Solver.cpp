@@ -421,12 +421,15 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
         const V3 checked = position;
         Lane clearance = p.clearance - l1Length(position - before);
         if (c.field && (Transformed || anyOf(clearance < splat(0.0f)))) {
-            V3 local = position;
-            if (Transformed)
-                local = transform(glm::transpose(c.rotation), position - splat(c.translation));
-            SdfSample sample = sampleField(*c.field, local);
-            if (Transformed)
-                sample.normal = transform(c.rotation, sample.normal);
+            // The head's distance and normal at a world-space position.
+            auto sampleHead = [&](const V3& at) {
+                SdfSample sample =
+                    sampleField(*c.field, Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at);
+                if (Transformed)
+                    sample.normal = transform(c.rotation, sample.normal);
+                return sample;
+            };
+            const SdfSample sample = sampleHead(position);
             const Lane depth = splat(c.offset) - sample.distance;
             const Mask inside = depth > splat(0.0f);
             if (anyOf(inside)) {
@@ -435,12 +438,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous, false,
                                splat(c.offset));
                 for (int pass = 1; pass < kHeadContactPasses; ++pass) {
-                    V3 again = position;
-                    if (Transformed)
-                        again = transform(glm::transpose(c.rotation), position - splat(c.translation));
-                    SdfSample next = sampleField(*c.field, again);
-                    if (Transformed)
-                        next.normal = transform(c.rotation, next.normal);
+                    const SdfSample next = sampleHead(position);
                     const Lane nextDepth = splat(c.offset) - next.distance;
                     const Mask stillInside = nextDepth > splat(0.0f);
                     if (!anyOf(stillInside))

@@ -379,6 +379,28 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
     const Lane velocityCorrection = splat(c.velocityCorrection);
     const ContactFriction mu{splat(c.friction), splat(c.friction * kStaticOverKineticFriction)};
 
+    // The capsules any particle of this block can reach this step: none farther from its root than
+    // its strand is long (with a margin for what contact may have stretched), so a capsule beyond
+    // that from every root is left out for the whole step, as the head is by its clearance bound.
+    std::array<const Capsule*, 16> capsules{};
+    std::size_t capsuleCount = 0;
+    const bool filterCapsules = c.capsulesWorld.size() <= capsules.size();
+    for (const Capsule& capsule : c.capsulesWorld) {
+        if (!filterCapsules)
+            break;
+        const V3 a = splat(capsule.a);
+        const glm::vec3 abv = capsule.b - capsule.a;
+        const float ab2 = glm::dot(abv, abv);
+        const V3 ab = splat(abv);
+        const Lane u = ab2 > 0.0f ? lmin(lmax(dot(rootEnd - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f)) : splat(0.0f);
+        const V3 away = rootEnd - (a + ab * u);
+        const Lane reach = block.strandLength * 1.25f + (capsule.radiusMetres + c.offset + 0.02f);
+        if (anyOf(dot(away, away) < reach * reach))
+            capsules[capsuleCount++] = &capsule;
+    }
+    auto capsuleAt = [&](std::size_t k) -> const Capsule& { return filterCapsules ? *capsules[k] : c.capsulesWorld[k]; };
+    const std::size_t capsulesToCheck = filterCapsules ? capsuleCount : c.capsulesWorld.size();
+
     // Verlet (eq. 3) with drag toward the wind taken implicitly: v' = (keep v + k dt w) / (1 + k dt)
     // + g dt, which only ever moves v toward w, so any drag at any step is stable, and leaves
     // gravity whole (hair at rest feels all its weight, whatever the drag and the step). k is the
@@ -450,7 +472,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             // A moving head moves the field under the particles: no bound survives that.
             clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));
         }
-        for (const Capsule& capsule : c.capsulesWorld) {
+        for (std::size_t k = 0; k < capsulesToCheck; ++k) {
+            const Capsule& capsule = capsuleAt(k);
             const V3 a = splat(capsule.a);
             const glm::vec3 abv = capsule.b - capsule.a;
             const float ab2 = glm::dot(abv, abv);

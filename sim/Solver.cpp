@@ -63,6 +63,28 @@ inline Lane lrsqrt(Lane a)
 #endif
 }
 
+// 1/a for a > 0: the hardware estimate refined by one Newton step (about 23 correct bits), far
+// shorter latency than a divide.
+inline Lane lrcp(Lane a)
+{
+#if defined(__AVX512F__)
+    const Lane y = reinterpret_cast<Lane>(_mm512_maskz_rcp14_ps(0xFFFF, reinterpret_cast<__m512>(a)));
+#elif defined(__AVX__)
+    Lane y;
+    for (int i = 0; i < kLanes; i += 8) {
+        __m256 half;
+        std::memcpy(&half, reinterpret_cast<const float*>(&a) + i, sizeof half);
+        half = _mm256_rcp_ps(half);
+        std::memcpy(reinterpret_cast<float*>(&y) + i, &half, sizeof half);
+    }
+#else
+    return splat(1.0f) / a;
+#endif
+#if defined(__AVX__)
+    return y * (2.0f - a * y);
+#endif
+}
+
 inline bool anyOf(Mask m)
 {
     int any = 0;
@@ -414,12 +436,12 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
         const V3 tangent = x - parentBefore;
         const Lane wt = dot(wind, tangent);
         const Lane invTangent = lrsqrt(lmax(dot(tangent, tangent), splat(1e-20f)));
-        const Lane across2 = splat(1.0f) - (wt * wt) * (invTangent * invTangent) / select(calm, splat(1.0f), windSpeed2);
+        const Lane across2 = splat(1.0f) - (wt * wt) * (invTangent * invTangent) * lrcp(select(calm, splat(1.0f), windSpeed2));
         const Lane across2Safe = lmax(across2, splat(1e-20f));
         const Lane across = select(calm, splat(1.0f), across2Safe * lrsqrt(across2Safe));
         const Lane kdt = drag * across * dt;
         const V3 move = (x - previous) * keep + wind * (kdt * dt);
-        return x + move * (splat(1.0f) / (splat(1.0f) + kdt)) + gravityStep;
+        return x + move * lrcp(splat(1.0f) + kdt) + gravityStep;
     };
 
     // Length, then contact, for particle i whose bent position is `bent` and whose parent is final
@@ -576,9 +598,9 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             const V3 d = (position - parent) * r.inverseLength;
             const V3 axis = cross(frameD, d);
             const Lane cosine = dot(frameD, d);
-            frameE = frameE * cosine + cross(axis, frameE) +
-                     axis * (dot(axis, frameE) / lmax(splat(1.0f) + cosine, splat(1e-2f)));
-            frameE = frameE * lrsqrt(lmax(dot(frameE, frameE), splat(1e-24f)));
+            // (Rodrigues keeps e unit and across d to float precision: no renormalisation on the
+            // serial chain; the reciprocal estimate is one Newton step from exact.)
+            frameE = frameE * cosine + cross(axis, frameE) + axis * (dot(axis, frameE) * lrcp(lmax(splat(1.0f) + cosine, splat(1e-2f))));
             frameD = d;
             parent = position;
         }

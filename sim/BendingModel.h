@@ -33,6 +33,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 namespace wisp::bending {
 
@@ -44,6 +46,7 @@ namespace wisp::bending {
 constexpr float kRigidityScale = 0.0016f;  // m³/s²
 constexpr float kRigidityRange = 9.21f;   // ln 10⁴: stiffness 0..1 spans four decades
 constexpr float kBendDampingRatio = 8.0f;
+constexpr float kFadeStepSeconds = 1.0f / 60.0f;  // the longest substep the editor runs by default
 
 inline float rigidity(float stiffness)
 {
@@ -78,23 +81,27 @@ inline Constraint constraint(float rigidityB, float dt, const float* segmentLeng
     const float mass = particleMass(segmentLengths, n, j);
     const float parentMass = particleMass(segmentLengths, n, j - 1);
     const float length = segmentLengths[j];
-    const float compliance = std::isinf(rigidityB) ? 0.0f : length * length / (rigidityB * dt * dt);
+    // Implicit spring k and damper c = 2 ζ sqrt(k m) on the child: Δx = (w k dt² C - w c dt v dt)
+    // / (1 + w k dt² + w c dt); its share of C at a substep of `step` seconds.
+    auto childShare = [&](float step) {
+        const float k2 = rigidityB / (length * length);
+        const float spring = k2 * step * step / mass, damper = 2.0f * kBendDampingRatio * std::sqrt(k2 / mass) * step;
+        return std::pair{spring / (1.0f + spring + damper), damper / (1.0f + spring + damper)};
+    };
     if (std::isinf(rigidityB)) {
         k.child = 1.0f;
     } else {
-        // Implicit spring k and damper c = 2 ζ sqrt(k m) on the child: Δx = (w k dt² C - w c dt v dt)
-        // / (1 + w k dt² + w c dt).
-        const float k2 = rigidityB / (length * length);
-        const float zeta = kBendDampingRatio;
-        const float spring = k2 * dt * dt / mass, damper = 2.0f * zeta * std::sqrt(k2 / mass) * dt;
-        k.child = spring / (1.0f + spring + damper);
-        k.damping = damper / (1.0f + spring + damper);
+        std::tie(k.child, k.damping) = childShare(dt);
     }
-    (void)compliance;
-    // The parent's equal and opposite momentum is an explicit kick; where the joint is stiff for
-    // the substep (the child share near 1) a full kick overshoots, so it fades with (1 - share),
-    // as DFTL's velocity correction is kept below 1 for the same reason.
-    k.parentRatio = parentMass > 0.0f ? (1.0f - k.child) * mass / parentMass : 0.0f;
+    // The parent's equal and opposite momentum is an explicit kick; where the joint is stiff (the
+    // child's share near 1) a full kick overshoots, so it fades with (1 - share), as DFTL's
+    // velocity correction is kept below 1 for the same reason. The share is taken at a fixed
+    // kFadeStepSeconds, not the substep: the kick's size decides how much of the hair's weight
+    // reaches the root, so it must not change with the substep count (a combed lock must rest
+    // where it was combed whatever substeps the editor's pacer runs); a shorter substep only has
+    // more margin.
+    const float fade = std::isinf(rigidityB) ? 0.0f : 1.0f - childShare(kFadeStepSeconds).first;
+    k.parentRatio = parentMass > 0.0f ? fade * mass / parentMass : 0.0f;
     return k;
 }
 

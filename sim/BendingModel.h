@@ -17,9 +17,11 @@
 // put it, as FTL moves only the child, Müller et al. 2012):
 //   Δx_j = (w k dt² C - w c dt v_rel dt) / (1 + w k dt² + w c dt),   c = 2 ζ sqrt(k m),
 // and the parent takes the equal and opposite momentum as a velocity, the way DFTL's velocity
-// correction does: Δv_{j-1} = -(1 - a)(m_j / m_{j-1}) Δx_j / dt, a = w k dt² / (1 + w k dt² + w c dt).
-// The (1 - a) fades that explicit kick where the joint is stiff for the substep (a → 1), where a
-// full kick overshoots; where the joint is soft (a ≪ 1, the usual case) the momentum is kept.
+// correction does: Δv_{j-1} = -(1 - a)(m_j / m_{j-1}) Δx_j / dt, a = w k h² / (1 + w k h² + w c h)
+// at a fixed h = 1/60 s. The (1 - a) fades that explicit kick where the joint is stiff (a → 1),
+// where a full kick overshoots; where the joint is soft (a ≪ 1, the usual case) the momentum is
+// kept. Taken at a fixed h, the share of a lock's weight that reaches its root is the same at any
+// substep count, so the static shape is too.
 //
 // Why the shape does not depend on the substep or the segment count: as dt → 0 the child's
 // correction is Verlet integration of the force k C, so the static shape (k C = the load the

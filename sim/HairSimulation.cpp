@@ -303,7 +303,7 @@ void HairSimulation::step()
     m_solver.step();
 }
 
-int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::function<bool()>& cancelled)
+int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::function<bool()>& cancelled, int substeps)
 {
     m_solver.resetToRest();
     const SolverSettings settings = m_solver.settings();
@@ -312,6 +312,8 @@ int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::func
     still.turbulence = 0.0f;
     constexpr float kDrapeDampingPerSecond = 8.0f;  // about critically damped for a 25 cm strand
     still.dampingPerSecond = std::max(settings.dampingPerSecond, kDrapeDampingPerSecond);
+    if (substeps > 0)
+        still.substeps = substeps;
     if (!m_solver.setSettings(still).empty())
         return 0;
     m_solver.setStrandAir({}, {});  // no dryer; wet hair keeps its softness (the stiffness scales)

@@ -88,9 +88,11 @@ public:
     // moves more than `stillMetres` over 10 steps, or `maxSteps` ran, or `cancelled` says so: the
     // hair as it hangs at rest, which is what an artist expects "rest" to look like (the groom's
     // rest shape is the shape without gravity). Forces and per-strand air are as before after it.
-    // Returns the steps run. Deterministic, like step().
+    // Returns the steps run. Deterministic, like step(). `substeps` (0: the solver's now) drapes at
+    // that substep count: the editor's pacer may have lowered the running one, and the same rest
+    // must look the same after New and after any Reset.
     int drapeAtRest(int maxSteps = kDrapeMaxSteps, float stillMetres = 2e-4f,
-                    const std::function<bool()>& cancelled = {});
+                    const std::function<bool()>& cancelled = {}, int substeps = 0);
     static constexpr int kDrapeMaxSteps = 600;
 
     // Every drawn strand in world space, in the groom's strand order (wet wisps clumped).

@@ -280,7 +280,8 @@ private:
         m_sim->applyForces(withSubsteps(values, m_pacer.substeps()));
         m_host.m_effectiveSubsteps.store(m_pacer.substeps());
         if (drape)
-            m_sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); });
+            m_sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); },
+                               m_values.getInt(Param::Substeps));  // as asked, not as the pacer runs now
         if (m_playing)
             m_pacer.restart(now());  // the groom's duration is not the solver falling behind
         m_host.publish(makeFrame());
@@ -320,7 +321,8 @@ private:
     {
         if (!m_sim)
             return;
-        m_sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); });
+        m_sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); },
+                               m_values.getInt(Param::Substeps));  // as asked, not as the pacer runs now
         m_step = 0;
         m_simulatedSeconds = 0.0;
         if (m_playing)

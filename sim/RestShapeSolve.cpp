@@ -8,8 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
-#include <cstdio>
-#include <cstdlib>
 
 namespace wisp {
 
@@ -208,7 +206,6 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
             }
         }
     }
-    if (getenv("RSDEBUG")) fprintf(stderr, "rest solve: %zu strands, %d iterations, worst %g\n", count, out.iterations, *std::max_element(bestGap.begin(), bestGap.end()));
     out.rest = std::move(best);
     out.worstGapMetres = count == 0 ? 0.0f : *std::max_element(bestGap.begin(), bestGap.end());
     return out;

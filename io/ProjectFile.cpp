@@ -14,7 +14,6 @@
 #include <filesystem>
 #include <map>
 #include <set>
-#include <unistd.h>
 
 namespace wisp::io {
 
@@ -461,28 +460,6 @@ Project readProjectJson(const json& root, const std::string& projectPath, const 
     return project;
 }
 
-// Keeps the file at `path` as `backup` without a moment when neither exists: a hard link (or a
-// copy where links are not supported) under a temporary name, renamed over the old backup.
-std::string keepBackup(const std::string& path, const std::string& backup)
-{
-    const std::string temporary = backup + ".tmp-" + std::to_string(::getpid());
-    std::error_code error;
-    fs::remove(temporary, error);
-    fs::create_hard_link(path, temporary, error);
-    if (error) {
-        error.clear();
-        fs::copy_file(path, temporary, fs::copy_options::overwrite_existing, error);
-    }
-    if (!error)
-        fs::rename(temporary, backup, error);
-    if (error) {
-        std::error_code ignored;
-        fs::remove(temporary, ignored);
-        return "cannot keep the previous file as " + backup + " (" + error.message() + "); nothing was saved";
-    }
-    return {};
-}
-
 }  // namespace
 
 std::string projectToJson(const Project& project, const std::string& projectPath)
@@ -639,9 +616,12 @@ Result<std::monostate> writeProject(const std::string& path, const Project& proj
     std::error_code error;
     if (fs::is_directory(path, error))
         return IoError{path, "", "this is a folder; a project is saved as a file"};
-    if (fs::exists(path, error))
-        if (std::string failure = keepBackup(path, path + ".bak"); !failure.empty())
-            return IoError{path, "", failure};
+    // The backup sits beside the file a symbolic link at `path` leads to, as the new content does.
+    if (fs::exists(path, error)) {
+        const std::string target = writeTargetOf(path);
+        if (std::string failure = keepCopyAtomically(target, target + ".bak"); !failure.empty())
+            return IoError{path, "", "cannot keep the previous file as .bak (" + failure + "); nothing was saved"};
+    }
     if (std::string failure = writeFileAtomically(path, [&](std::ostream& out) { out << text; }); !failure.empty())
         return IoError{path, "", withoutPath(std::move(failure), path)};
     return std::monostate{};

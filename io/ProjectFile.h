@@ -120,7 +120,10 @@ Result<ProjectReadResult> parseProject(std::string_view json, const std::string&
                                        const HeadLoader& loadHead = {});
 
 // Atomic (io/AtomicFile.h); an existing file at `path` is first kept as path + ".bak" (replacing an
-// older .bak). On failure nothing at `path` has changed and no temporary file is left.
+// older .bak; where `path` is a symbolic link, beside the file it leads to, which gets the new
+// content while the link stays). On failure nothing at `path` has changed and no temporary file is
+// left; a process killed while saving leaves the old or the new file and a temporary that
+// removeStaleTemporaryFiles takes away.
 // (std::monostate stands for "nothing": IoError.h has no Result<void> yet.)
 Result<std::monostate> writeProject(const std::string& path, const Project& project);
 

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace wisp;
@@ -445,6 +446,28 @@ TEST_F(ProjectFileTest, SavingOverAProjectKeepsTheOldOneAsBak)
         names.push_back(entry.path().filename().string());
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names, (std::vector<std::string>{"p.wisp", "p.wisp.bak"}));
+}
+
+TEST_F(ProjectFileTest, SavingThroughASymbolicLinkKeepsTheLinkAndAPrivateFileStaysPrivate)
+{
+    fs::create_directories(m_dir / "real");
+    const fs::path real = m_dir / "real" / "p.wisp";
+    const fs::path link = m_dir / "p.wisp";
+    const Project first = smallProject();
+    Project second = first;
+    second.regions[0].name = "Renamed";
+    ASSERT_TRUE(writeProject(real.string(), first));
+    ASSERT_EQ(::chmod(real.c_str(), 0600), 0);
+    fs::create_symlink("real/p.wisp", link);
+
+    ASSERT_TRUE(writeProject(link.string(), second));
+    EXPECT_TRUE(fs::is_symlink(link));
+    expectBitIdentical(readProject(real.string()).value().project, second);
+    // The backup is beside the file the link leads to, and as private as it.
+    expectBitIdentical(readProject(real.string() + ".bak").value().project, first);
+    EXPECT_EQ(fs::status(real).permissions(), fs::perms::owner_read | fs::perms::owner_write);
+    EXPECT_EQ(fs::status(real.string() + ".bak").permissions(), fs::perms::owner_read | fs::perms::owner_write);
+    EXPECT_EQ(std::distance(fs::directory_iterator(m_dir / "real"), fs::directory_iterator()), 2);
 }
 
 TEST_F(ProjectFileTest, SavingIntoAMissingFolderFailsCleanly)

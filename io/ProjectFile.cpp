@@ -605,7 +605,7 @@ Result<ProjectReadResult> parseProject(std::string_view text, const std::string&
     }
 }
 
-Result<std::monostate> writeProject(const std::string& path, const Project& project)
+Result<std::monostate> writeProject(const std::string& path, const Project& project, Backup backup)
 {
     try {
         checkProject(project);
@@ -617,7 +617,7 @@ Result<std::monostate> writeProject(const std::string& path, const Project& proj
     if (fs::is_directory(path, error))
         return IoError{path, "", "this is a folder; a project is saved as a file"};
     // The backup sits beside the file a symbolic link at `path` leads to, as the new content does.
-    if (fs::exists(path, error)) {
+    if (backup == Backup::Keep && fs::exists(path, error)) {
         const std::string target = writeTargetOf(path);
         if (std::string failure = keepCopyAtomically(target, target + ".bak"); !failure.empty())
             return IoError{path, "", "cannot keep the previous file as .bak (" + failure + "); nothing was saved"};

@@ -10,7 +10,10 @@
 #include "sim/GrowthMap.h"
 #include "widgets/Viewport.h"
 
+#include <QAbstractButton>
 #include <QAction>
+#include <QDateTime>
+#include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QInputDialog>
@@ -18,6 +21,7 @@
 #include <QMenu>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QPushButton>
 
 namespace wisp {
 
@@ -212,15 +216,33 @@ void FileMenu::warn(const QString& title, const QString& text)
 
 void FileMenu::offerRecovery()
 {
-    if (!m_projects->recoveryAvailable() || !m_interactive)
+    if (!m_projects->recoveryAvailable() || (!m_recoveryPrompt && !m_interactive))
         return;
-    const auto answer = QMessageBox::question(
-        m_window, tr("Recover work"),
-        tr("Wisp did not close properly last time. Recover the work it saved automatically?"),
-        QMessageBox::Yes | QMessageBox::Discard, QMessageBox::Yes);
-    if (answer == QMessageBox::Yes)
+    const QString project = m_projects->recoveryProjectPath();
+    const QString when = QFileInfo(m_projects->recoveryAutosavePath()).lastModified().toString(Qt::TextDate);
+    const QString question =
+        project.isEmpty()
+            ? tr("Wisp did not close properly last time. Recover the untitled project it saved automatically "
+                 "(%1)?").arg(when)
+            : tr("Wisp did not close properly last time. Recover the unsaved changes to %1 that it saved "
+                 "automatically (%2)?").arg(QDir::toNativeSeparators(project), when);
+    RecoveryAnswer answer = RecoveryAnswer::Later;
+    if (m_recoveryPrompt) {
+        answer = m_recoveryPrompt(question);
+    } else {
+        QMessageBox box(QMessageBox::Question, tr("Recover work"), question, QMessageBox::NoButton, m_window);
+        QAbstractButton* recover = box.addButton(tr("Recover"), QMessageBox::AcceptRole);
+        QAbstractButton* discard = box.addButton(QMessageBox::Discard);
+        box.addButton(tr("Later"), QMessageBox::RejectRole);  // Esc: keep it for the next start
+        box.setDefaultButton(qobject_cast<QPushButton*>(recover));
+        box.exec();
+        answer = box.clickedButton() == recover   ? RecoveryAnswer::Recover
+                 : box.clickedButton() == discard ? RecoveryAnswer::Discard
+                                                  : RecoveryAnswer::Later;
+    }
+    if (answer == RecoveryAnswer::Recover)
         m_projects->recover();
-    else
+    else if (answer == RecoveryAnswer::Discard)
         m_projects->discardRecovery();
 }
 

@@ -9,6 +9,7 @@
 #include <QObject>
 #include <QString>
 
+#include <functional>
 #include <memory>
 
 class QAction;
@@ -47,6 +48,11 @@ public:
     bool placeAgain(float metresPerUnit, bool zUp);
     // After the window shows: offers the last session's unsaved work if it ended without closing.
     void offerRecovery();
+    // What the artist answers to the recovery question: Later keeps the work for the next start.
+    enum class RecoveryAnswer { Recover, Discard, Later };
+    using RecoveryPrompt = std::function<RecoveryAnswer(const QString& question)>;
+    // Replaces the recovery message box (tests; it is asked even when not interactive).
+    void setRecoveryPrompt(RecoveryPrompt prompt) { m_recoveryPrompt = std::move(prompt); }
     // Without dialogs (tests): problems go only to message(); questions take their default.
     void setInteractive(bool interactive);
 
@@ -71,6 +77,7 @@ private:
     QAction* m_zUp = nullptr;
     std::shared_ptr<const ImportedHead> m_lastHead;  // as read, to place again at another scale
     bool m_interactive = true;
+    RecoveryPrompt m_recoveryPrompt;
 };
 
 }  // namespace wisp

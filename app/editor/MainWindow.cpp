@@ -89,6 +89,7 @@ MainWindow::~MainWindow()
     // The children go after this body: the document's undo stack, clearing, must not call back
     // into a window that is half gone.
     m_document->undoStack()->disconnect(this);
+    m_document->undoStack()->disconnect(m_fileMenu->projects());  // it watches the stack for autosave
     m_document->disconnect(this);
     m_fileMenu->projects()->disconnect(this);
 }

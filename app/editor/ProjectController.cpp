@@ -1,9 +1,11 @@
 #include "app/editor/ProjectController.h"
 
 #include "app/editor/Document.h"
+#include "io/AtomicFile.h"
 #include "io/MeshReader.h"
 #include "widgets/Viewport.h"
 
+#include <QDateTime>
 #include <QDir>
 #include <QFile>
 #include <QFileDialog>
@@ -11,6 +13,7 @@
 #include <QMessageBox>
 #include <QSettings>
 #include <QStandardPaths>
+#include <QUndoStack>
 
 #include <unistd.h>
 
@@ -18,12 +21,31 @@ namespace wisp {
 
 namespace {
 
-constexpr int kAutosaveMinutes = 3;
 const char* kRecentKey = "files/recent";
+const QString kLockPrefix = QStringLiteral("session");
+const QString kAutosavePrefix = QStringLiteral("autosave");
 
 io::CameraState cameraOf(const OrbitCamera& camera)
 {
     return {camera.pivot(), camera.yaw(), camera.pitch(), camera.distance(), camera.fovYDegrees()};
+}
+
+// A lock's pid (first line) and project path (second line; absent in locks of older versions).
+struct LockContent {
+    long pid = 0;
+    QString projectPath;
+};
+
+LockContent readLock(const QString& path)
+{
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly))
+        return {};
+    const QList<QByteArray> lines = file.read(64 * 1024).split('\n');
+    LockContent lock;
+    lock.pid = lines.value(0).trimmed().toLong();
+    lock.projectPath = QString::fromUtf8(lines.value(1));
+    return lock;
 }
 
 }  // namespace
@@ -32,21 +54,35 @@ ProjectController::ProjectController(Document* document, Viewport* viewport, QWi
     : QObject(dialogParent), m_document(document), m_viewport(viewport), m_dialogParent(dialogParent)
 {
     QDir().mkpath(dataFolder());
-    // A lock left by the last session means it did not close; its autosave is the work it lost.
-    QFile lock(dataFolder() + QStringLiteral("/session.lock"));
-    m_recoveryAvailable = lock.exists() && QFileInfo::exists(autosavePath());
-    if (lock.open(QIODevice::WriteOnly | QIODevice::Truncate))
-        lock.write(QByteArray::number(static_cast<qint64>(::getpid())));
-    m_autosave.setInterval(kAutosaveMinutes * 60 * 1000);
-    connect(&m_autosave, &QTimer::timeout, this, &ProjectController::autosaveNow);
+    // Saves killed mid-way left temporaries; their writers are gone (a live writer's stay).
+    io::removeStaleTemporaryFiles(dataFolder().toStdString());
+    for (const QString& recent : recentFiles())
+        io::removeStaleTemporaryFiles(QFileInfo(recent).absolutePath().toStdString());
+    findRecovery();   // before claiming a session, so that its files are never mistaken for ours
+    claimSession();
+
+    QUndoStack* stack = m_document->undoStack();
+    connect(stack, &QUndoStack::indexChanged, this, &ProjectController::documentChanged);
+    connect(stack, &QUndoStack::cleanChanged, this, [this](bool clean) {
+        if (clean)
+            documentSaved();
+    });
+    m_autosaveSoon.setSingleShot(true);
+    m_autosaveSoon.setInterval(0);
+    connect(&m_autosaveSoon, &QTimer::timeout, this, [this] {
+        if (autosaveNow())
+            m_autosaveDue = false;
+    });
+    m_autosave.setInterval(kAutosaveIntervalMs);
+    connect(&m_autosave, &QTimer::timeout, this, &ProjectController::autosaveTick);
     m_autosave.start();
 }
 
 ProjectController::~ProjectController()
 {
-    if (!m_recoveryAvailable)  // a recovery not yet taken or refused stays for the next start
-        QFile::remove(autosavePath());
-    QFile::remove(dataFolder() + QStringLiteral("/session.lock"));
+    // A clean exit: this session's work is saved or knowingly dropped. Another session's stays.
+    QFile::remove(autosavePath());
+    QFile::remove(sessionLockPath());
 }
 
 QString ProjectController::dataFolder() const
@@ -54,7 +90,66 @@ QString ProjectController::dataFolder() const
     return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation);
 }
 
-QString ProjectController::autosavePath() const { return dataFolder() + QStringLiteral("/autosave.wisp"); }
+// The newest autosave of a session whose process is gone. Locks of live processes belong to other
+// editors running now; a dead session's lock without an autosave had nothing unsaved and goes.
+void ProjectController::findRecovery()
+{
+    QDateTime newest;
+    const QDir folder(dataFolder());
+    for (const QString& lockName : folder.entryList({kLockPrefix + QStringLiteral("*.lock")}, QDir::Files)) {
+        const QString lockPath = folder.filePath(lockName);
+        const LockContent lock = readLock(lockPath);
+        if (io::isProcessAlive(lock.pid))
+            continue;
+        // "session-<id>.lock" goes with "autosave-<id>.wisp" ("session.lock" with "autosave.wisp").
+        const QString id = lockName.mid(kLockPrefix.size(), lockName.size() - kLockPrefix.size() - 5);
+        const QFileInfo autosave(folder.filePath(kAutosavePrefix + id + QStringLiteral(".wisp")));
+        if (!autosave.exists()) {
+            QFile::remove(lockPath);
+            continue;
+        }
+        if (newest.isValid() && autosave.lastModified() <= newest)
+            continue;
+        newest = autosave.lastModified();
+        m_recovery = {lockPath, autosave.filePath(), lock.projectPath};
+        m_recoveryAvailable = true;
+    }
+}
+
+// This session's lock, under a name no other lock or autosave has (a pid may come back after a
+// reboot while a lost session's files are still waiting to be recovered).
+void ProjectController::claimSession()
+{
+    for (int n = 0; n < 1000; ++n) {
+        m_sessionId = QStringLiteral("%1-%2").arg(::getpid()).arg(n);
+        if (QFileInfo::exists(autosavePath()))
+            continue;
+        QFile lock(sessionLockPath());
+        if (lock.open(QIODevice::WriteOnly | QIODevice::NewOnly)) {
+            lock.write(QByteArray::number(static_cast<qint64>(::getpid())) + '\n');
+            return;
+        }
+        if (!lock.exists())
+            return;  // the data folder cannot be written: nothing to protect the work with
+    }
+}
+
+// The lock names the project, so that recovered work goes back to its file.
+void ProjectController::writeLock()
+{
+    const QByteArray text = QByteArray::number(static_cast<qint64>(::getpid())) + '\n' + m_path.toUtf8() + '\n';
+    io::writeFileAtomically(sessionLockPath().toStdString(), [&](std::ostream& out) { out.write(text.data(), text.size()); });
+}
+
+QString ProjectController::sessionLockPath() const
+{
+    return dataFolder() + QStringLiteral("/%1-%2.lock").arg(kLockPrefix, m_sessionId);
+}
+
+QString ProjectController::autosavePath() const
+{
+    return dataFolder() + QStringLiteral("/%1-%2.wisp").arg(kAutosavePrefix, m_sessionId);
+}
 
 bool ProjectController::isModified() const { return !m_document->undoStack()->isClean(); }
 
@@ -76,6 +171,7 @@ void ProjectController::fail(const QString& title, const QString& text)
 void ProjectController::setPath(const QString& path)
 {
     m_path = path;
+    writeLock();
     emit currentPathChanged(path);
 }
 
@@ -147,7 +243,7 @@ bool ProjectController::newProject()
     return true;
 }
 
-bool ProjectController::load(const QString& path, bool asRecovered)
+bool ProjectController::load(const QString& path, bool asRecovered, const QString& projectPath)
 {
     const io::HeadLoader loader = [](const std::string& headPath) -> io::Result<TriangleMesh> {
         io::Result<io::MeshReadResult> mesh = io::readMesh(headPath);
@@ -163,6 +259,7 @@ bool ProjectController::load(const QString& path, bool asRecovered)
     io::ProjectReadResult result = std::move(read).value();
     const io::CameraState camera = result.project.camera;
     m_document->loadProject(std::move(result.project));
+    setPath(projectPath);
     OrbitCamera& view = m_viewport->camera();
     view.setPivot(camera.pivot);
     view.setOrientation(camera.yawRadians, camera.pitchRadians);
@@ -171,13 +268,10 @@ bool ProjectController::load(const QString& path, bool asRecovered)
     m_viewport->update();
     for (const std::string& warning : result.warnings)
         emit message(QString::fromStdString(warning));
-    if (asRecovered) {
+    if (asRecovered)
         m_document->undoStack()->resetClean();  // recovered work is not saved anywhere yet
-        setPath({});
-    } else {
-        setPath(path);
+    else
         addRecent(path);
-    }
     return true;
 }
 
@@ -193,7 +287,7 @@ bool ProjectController::open(const QString& chosen)
     }
     if (!maybeSave())
         return false;
-    return load(path, false);
+    return load(path, false, path);
 }
 
 QStringList ProjectController::recentFiles() const { return QSettings().value(kRecentKey).toStringList(); }
@@ -212,13 +306,39 @@ void ProjectController::addRecent(const QString& path)
 
 bool ProjectController::autosaveNow()
 {
-    const int index = m_document->undoStack()->index();
-    if (!isModified() || index == m_autosavedIndex || m_document->inStroke())
+    if (!isModified() || m_changes == m_autosavedChanges || m_document->inStroke())
         return false;
-    if (!io::writeProject(autosavePath().toStdString(), snapshot()))
+    return writeAutosave();
+}
+
+bool ProjectController::writeAutosave()
+{
+    if (!io::writeProject(autosavePath().toStdString(), snapshot(), io::Backup::None))
         return false;  // the next tick tries again; the artist's own saves are unaffected
-    m_autosavedIndex = index;
+    m_autosavedChanges = m_changes;
+    emit autosaved(autosavePath());
     return true;
+}
+
+void ProjectController::documentChanged()
+{
+    ++m_changes;
+    if (m_autosaveDue && isModified())
+        m_autosaveSoon.start();
+}
+
+void ProjectController::autosaveTick()
+{
+    // A tick with nothing to save ends a quiet interval: the next change is autosaved at once.
+    m_autosaveDue = !autosaveNow();
+}
+
+void ProjectController::documentSaved()
+{
+    // The file holds the work now; an older autosave must not be offered over it after a crash.
+    QFile::remove(autosavePath());
+    m_autosavedChanges = m_changes;
+    m_autosaveDue = true;
 }
 
 bool ProjectController::recover()
@@ -226,16 +346,26 @@ bool ProjectController::recover()
     if (!m_recoveryAvailable)
         return false;
     m_recoveryAvailable = false;
-    if (!load(autosavePath(), true))
+    if (!load(m_recovery.autosavePath, true, m_recovery.projectPath))
         return false;
-    emit message(tr("Recovered the work of the last session; save it to keep it"));
+    // The work is this session's now: its own autosave protects it, the lost session's files go.
+    writeAutosave();
+    QFile::remove(m_recovery.autosavePath);
+    QFile::remove(m_recovery.lockPath);
+    emit message(m_recovery.projectPath.isEmpty()
+                     ? tr("Recovered the work of the last session; save it to keep it")
+                     : tr("Recovered the unsaved work on %1; save it to keep it")
+                           .arg(QDir::toNativeSeparators(m_recovery.projectPath)));
     return true;
 }
 
 void ProjectController::discardRecovery()
 {
+    if (!m_recoveryAvailable)
+        return;
     m_recoveryAvailable = false;
-    QFile::remove(autosavePath());
+    QFile::remove(m_recovery.autosavePath);
+    QFile::remove(m_recovery.lockPath);
 }
 
 }  // namespace wisp

@@ -1,11 +1,21 @@
 #pragma once
 // The editor's project files: new, open, save, save as, recent files, the unsaved-changes prompt,
-// autosave every few minutes and recovery after a crash.
+// autosave and recovery after a crash.
 //
-// Saving is atomic (io/ProjectFile.h: never a half-written file, the previous version kept as
-// .bak). While the editor runs it holds a session lock file in the per-user data folder; a clean
-// exit removes it together with the autosave. If the next start finds the lock still there and an
-// autosave beside it, the last session ended without closing and its work can be recovered.
+// Saving is atomic (io/AtomicFile.h, io/ProjectFile.h: never a half-written file, the previous
+// version kept as .bak). Each editor session holds its own lock, session-<id>.lock, in the per-user
+// data folder: the lock holds the session's pid on its first line and its project's path (empty
+// for Untitled) on the second, and its autosave is autosave-<id>.wisp beside it. A clean exit, or a
+// save that makes the document clean, removes the autosave; a clean exit removes the lock.
+//
+// Autosave: the first change after a save, an open or a quiet interval is autosaved at once; while
+// changes go on, at most once an interval (1 minute; setAutosaveIntervalMs), never mid-stroke.
+//
+// Recovery: a start that finds a lock whose pid is not alive and an autosave beside it offers that
+// work (the newest such session first); a lock of a live process is another editor's running
+// session and is left alone. Recovered work keeps its project's path and comes back unsaved.
+// Temporary files of killed saves are removed at start from the data folder and from the folders
+// of the recent projects (io::removeStaleTemporaryFiles).
 //
 // Thread: GUI.
 
@@ -15,6 +25,8 @@
 #include <QString>
 #include <QStringList>
 #include <QTimer>
+
+#include <cstdint>
 
 class QWidget;
 
@@ -44,12 +56,19 @@ public:
     QStringList recentFiles() const;
     static constexpr int kMaxRecentFiles = 8;
 
-    QString autosavePath() const;
+    QString autosavePath() const;             // this session's
+    QString sessionLockPath() const;          // this session's
     bool autosaveNow();                       // when changed since the last autosave; true if written
+    static constexpr int kAutosaveIntervalMs = 60 * 1000;
     void setAutosaveIntervalMs(int ms) { m_autosave.setInterval(ms); }
+    int autosaveIntervalMs() const { return m_autosave.interval(); }
+
+    // A session that did not close left work behind (found at construction).
     bool recoveryAvailable() const { return m_recoveryAvailable; }
-    bool recover();                           // opens the autosave as unsaved work
-    void discardRecovery();
+    QString recoveryProjectPath() const { return m_recovery.projectPath; }  // empty: it was Untitled
+    QString recoveryAutosavePath() const { return m_recovery.autosavePath; }
+    bool recover();                           // opens that autosave as unsaved work at its path
+    void discardRecovery();                   // removes that session's autosave and lock
 
     static constexpr const char* kFileFilter = "Wisp projects (*.wisp)";
 
@@ -57,15 +76,29 @@ signals:
     void currentPathChanged(const QString& path);
     void recentFilesChanged();
     void message(const QString& text);
+    void autosaved(const QString& autosavePath);
 
 private:
     io::Project snapshot() const;
     bool write(const QString& path);
-    bool load(const QString& path, bool asRecovered);
+    bool load(const QString& path, bool asRecovered, const QString& projectPath);
     void addRecent(const QString& path);
     void fail(const QString& title, const QString& text);
     void setPath(const QString& path);
     QString dataFolder() const;
+    bool writeAutosave();
+    void findRecovery();
+    void claimSession();
+    void writeLock();
+    void documentChanged();
+    void autosaveTick();
+    void documentSaved();
+
+    struct LostSession {
+        QString lockPath;
+        QString autosavePath;
+        QString projectPath;
+    };
 
     Document* m_document;
     Viewport* m_viewport;
@@ -74,8 +107,13 @@ private:
     QString m_lastError;
     bool m_interactive = true;
     bool m_recoveryAvailable = false;
-    int m_autosavedIndex = -1;  // undo index the last autosave holds
-    QTimer m_autosave;
+    LostSession m_recovery;
+    QString m_sessionId;           // "<pid>-<n>": the lock's and the autosave's names
+    std::uint64_t m_changes = 0;   // undo stack changes seen (an undo index alone repeats)
+    std::uint64_t m_autosavedChanges = 0;
+    bool m_autosaveDue = true;     // no autosave this interval yet: the next change goes at once
+    QTimer m_autosave;             // every interval while changed
+    QTimer m_autosaveSoon;         // 0 ms: one autosave for a burst of changes in one event
 };
 
 }  // namespace wisp

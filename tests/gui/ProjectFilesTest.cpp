@@ -1,6 +1,7 @@
 // The editor's files as an artist uses them: save and reopen a project exactly, the unsaved-changes
-// prompt, autosave and recovery, a head opened without freezing the window, hair imported as a
-// region and exported from the running simulation.
+// prompt, autosave (the first change at once) and recovery (only of sessions whose process is gone,
+// at the project's path), temporaries of killed saves removed at start, a head opened without
+// freezing the window, hair imported as a region and exported from the running simulation.
 #include "app/editor/Document.h"
 #include "app/editor/ExportHairDialog.h"
 #include "app/editor/FileMenu.h"
@@ -10,6 +11,7 @@
 #include "app/editor/SimulationHost.h"
 #include "GuiTestSupport.h"
 #include "io/HairFiles.h"
+#include "io/ProjectFile.h"
 #include "widgets/Viewport.h"
 
 #include <QAbstractButton>
@@ -27,6 +29,9 @@
 
 #include <algorithm>
 #include <filesystem>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 using namespace wisp;
 using namespace wisp::test;
@@ -47,6 +52,49 @@ void answerNextMessageBox(QMessageBox::StandardButton button, bool* asked)
             }
         answerNextMessageBox(button, asked);  // not open yet
     });
+}
+
+// A pid no process has: a child that has exited and been reaped.
+pid_t deadPid()
+{
+    const pid_t child = ::fork();
+    if (child == 0)
+        ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    return child;
+}
+
+QList<QByteArray> lockLines(const QString& lockPath)
+{
+    QFile lock(lockPath);
+    EXPECT_TRUE(lock.open(QIODevice::ReadOnly)) << lockPath.toStdString();
+    return lock.readAll().split('\n');
+}
+QByteArray lockPidOf(const QString& lockPath) { return lockLines(lockPath).value(0); }
+QString lockProjectOf(const QString& lockPath) { return QString::fromUtf8(lockLines(lockPath).value(1)); }
+
+// Makes a session's lock say its process is gone, as after a crash or kill -9 (its project line kept).
+void killSession(const QString& lockPath)
+{
+    QList<QByteArray> lines = lockLines(lockPath);
+    lines[0] = QByteArray::number(deadPid());
+    QFile lock(lockPath);
+    ASSERT_TRUE(lock.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    lock.write(lines.join('\n'));
+}
+
+// Another editor window starting now; its recovery question is answered `answer` and kept in `asked`.
+std::unique_ptr<MainWindow> startEditor(FileMenu::RecoveryAnswer answer, QStringList* asked)
+{
+    auto window = std::make_unique<MainWindow>();
+    window->fileMenu()->setInteractive(false);
+    window->fileMenu()->setRecoveryPrompt([answer, asked](const QString& question) {
+        asked->append(question);
+        return answer;
+    });
+    window->show();
+    EXPECT_TRUE(QTest::qWaitForWindowExposed(window.get()));
+    return window;
 }
 
 class ProjectFilesTest : public ::testing::Test {
@@ -143,25 +191,153 @@ TEST_F(ProjectFilesTest, ClosingWithUnsavedChangesAsksAndCancelKeepsTheWindow)
     EXPECT_FALSE(window->isVisible());
 }
 
-TEST_F(ProjectFilesTest, AutosaveIsOfferedBackAfterASessionThatDidNotClose)
+TEST_F(ProjectFilesTest, ASecondEditorIsNotOfferedTheWorkOfALiveOne)
 {
     doc()->editParameter(Param::WindSpeed, 7.0, false);
-    doc()->addRegion(QStringLiteral("Nape"));
-    ASSERT_TRUE(projects()->autosaveNow());
-    EXPECT_FALSE(projects()->autosaveNow()) << "nothing changed since";
-    ASSERT_TRUE(QFileInfo::exists(projects()->autosavePath()));
+    ASSERT_TRUE(waitUntil([&] { return QFileInfo::exists(projects()->autosavePath()); }));
+    ASSERT_EQ(lockPidOf(projects()->sessionLockPath()), QByteArray::number(::getpid())) << "a lock holds its pid";
 
-    // This session is still running (its lock is there), as after a crash: the next start sees it.
-    Document recovered;
-    Viewport view;
-    ProjectController next(&recovered, &view, nullptr);
-    next.setInteractive(false);
-    ASSERT_TRUE(next.recoveryAvailable());
-    ASSERT_TRUE(next.recover());
-    EXPECT_DOUBLE_EQ(recovered.parameters().get(Param::WindSpeed), 7.0);
-    EXPECT_EQ(recovered.regionCount(), 2);
-    EXPECT_TRUE(next.isModified()) << "recovered work is not saved anywhere yet";
-    EXPECT_TRUE(next.currentPath().isEmpty());
+    // Another editor starts while this one runs (its lock holds a live pid: this process's).
+    QStringList asked;
+    auto other = startEditor(FileMenu::RecoveryAnswer::Discard, &asked);
+    other->fileMenu()->offerRecovery();  // as its first show did: nothing to offer
+    EXPECT_FALSE(other->fileMenu()->projects()->recoveryAvailable());
+    EXPECT_TRUE(asked.isEmpty()) << asked.value(0).toStdString();
+    EXPECT_NE(other->fileMenu()->projects()->autosavePath(), projects()->autosavePath()) << "each session its own";
+    other.reset();  // a clean exit removes only its own files
+    EXPECT_TRUE(QFileInfo::exists(projects()->autosavePath())) << "the live session's autosave stays";
+    EXPECT_TRUE(QFileInfo::exists(projects()->sessionLockPath()));
+}
+
+TEST_F(ProjectFilesTest, AnEditorThatDiedIsOfferedItsWorkBackAtItsPath)
+{
+    const QString path = dir.filePath(QStringLiteral("look.wisp"));
+    ASSERT_TRUE(projects()->saveAs(path)) << projects()->lastError().toStdString();
+    doc()->editParameter(Param::WindSpeed, 7.0, false);
+    ASSERT_TRUE(waitUntil([&] { return QFileInfo::exists(projects()->autosavePath()); }));
+    doc()->addRegion(QStringLiteral("Nape"));
+    ASSERT_TRUE(projects()->autosaveNow()) << "the region came after the first autosave";
+    EXPECT_FALSE(projects()->autosaveNow()) << "nothing changed since";
+    const QString lostAutosave = projects()->autosavePath();
+    const QString lostLock = projects()->sessionLockPath();
+    killSession(lostLock);
+
+    QStringList asked;
+    auto next = startEditor(FileMenu::RecoveryAnswer::Recover, &asked);
+    ASSERT_TRUE(waitUntil([&] { return !asked.isEmpty(); }));
+    EXPECT_EQ(asked.size(), 1);
+    EXPECT_TRUE(asked.front().contains(QStringLiteral("look.wisp"))) << asked.front().toStdString();
+    ProjectController* recovered = next->fileMenu()->projects();
+    EXPECT_DOUBLE_EQ(next->document()->parameters().get(Param::WindSpeed), 7.0);
+    EXPECT_EQ(next->document()->regionCount(), 2);
+    EXPECT_EQ(recovered->currentPath(), path) << "the recovered project keeps its file";
+    EXPECT_TRUE(recovered->isModified()) << "recovered work is not saved anywhere yet";
+    EXPECT_TRUE(next->isWindowModified());
+    EXPECT_TRUE(next->windowTitle().contains(QStringLiteral("look.wisp"))) << next->windowTitle().toStdString();
+    // The work moved into the new session: its autosave protects it, the lost session's files go.
+    EXPECT_TRUE(QFileInfo::exists(recovered->autosavePath()));
+    EXPECT_FALSE(QFileInfo::exists(lostAutosave));
+    EXPECT_FALSE(QFileInfo::exists(lostLock));
+    EXPECT_EQ(lockProjectOf(recovered->sessionLockPath()), path);
+
+    // Save goes to the project's file without asking where; then the autosave is not needed.
+    next->fileMenu()->setInteractive(false);
+    ASSERT_TRUE(recovered->save()) << recovered->lastError().toStdString();
+    EXPECT_FALSE(QFileInfo::exists(recovered->autosavePath()));
+    doc()->undoStack()->setClean();  // the first window stands in for the session that died
+    ASSERT_TRUE(projects()->open(path)) << projects()->lastError().toStdString();
+    EXPECT_DOUBLE_EQ(doc()->parameters().get(Param::WindSpeed), 7.0);
+    EXPECT_EQ(doc()->regionCount(), 2);
+}
+
+TEST_F(ProjectFilesTest, RecoveryLaterKeepsTheWorkForTheNextStartAndDiscardRemovesIt)
+{
+    doc()->editParameter(Param::WindSpeed, 5.0, false);
+    ASSERT_TRUE(waitUntil([&] { return QFileInfo::exists(projects()->autosavePath()); }));
+    const QString lostAutosave = projects()->autosavePath();
+    const QString lostLock = projects()->sessionLockPath();
+    killSession(lostLock);
+
+    QStringList asked;
+    auto later = startEditor(FileMenu::RecoveryAnswer::Later, &asked);
+    ASSERT_TRUE(waitUntil([&] { return !asked.isEmpty(); }));
+    EXPECT_TRUE(asked.front().contains(QStringLiteral("untitled"))) << asked.front().toStdString();
+    EXPECT_DOUBLE_EQ(later->document()->parameters().get(Param::WindSpeed), ParameterValues().get(Param::WindSpeed));
+    later.reset();
+    EXPECT_TRUE(QFileInfo::exists(lostAutosave));
+
+    asked.clear();
+    auto discard = startEditor(FileMenu::RecoveryAnswer::Discard, &asked);
+    ASSERT_TRUE(waitUntil([&] { return !asked.isEmpty(); }));
+    EXPECT_FALSE(QFileInfo::exists(lostAutosave));
+    EXPECT_FALSE(QFileInfo::exists(lostLock));
+    discard.reset();
+
+    asked.clear();
+    auto third = startEditor(FileMenu::RecoveryAnswer::Recover, &asked);
+    third->fileMenu()->offerRecovery();
+    EXPECT_TRUE(asked.isEmpty()) << "nothing is left to offer";
+}
+
+TEST_F(ProjectFilesTest, TheFirstChangeIsAutosavedAtOnceThenOncePerInterval)
+{
+    projects()->setAutosaveIntervalMs(3600 * 1000);  // no tick during the first part
+    QSignalSpy autosaved(projects(), &ProjectController::autosaved);
+    window->activateWindow();
+    ASSERT_TRUE(QTest::qWaitForWindowActive(window.get()));
+    typeValue(window->forcePanel(), Param::Gravity, QStringLiteral("2"));
+    ASSERT_TRUE(waitUntil([&] { return autosaved.count() == 1; })) << "the first change is protected at once";
+    EXPECT_EQ(autosaved.front().front().toString(), projects()->autosavePath());
+    EXPECT_DOUBLE_EQ(io::readProject(projects()->autosavePath().toStdString()).value().project.parameters.get(Param::Gravity), 2.0);
+
+    // More changes wait for the interval: after 100 rounds of the event loop, still one autosave.
+    typeValue(window->forcePanel(), Param::Gravity, QStringLiteral("3"));
+    for (int i = 0; i < 100; ++i)
+        QCoreApplication::processEvents();
+    EXPECT_EQ(autosaved.count(), 1);
+    projects()->setAutosaveIntervalMs(1);
+    ASSERT_TRUE(waitUntil([&] { return autosaved.count() == 2; })) << "the interval's tick saves them";
+    EXPECT_DOUBLE_EQ(io::readProject(projects()->autosavePath().toStdString()).value().project.parameters.get(Param::Gravity), 3.0);
+
+    // A quiet interval (ticks with nothing to save): the next change goes at once again.
+    for (int i = 0; i < 20; ++i)
+        QTest::qWait(2);
+    projects()->setAutosaveIntervalMs(3600 * 1000);
+    EXPECT_EQ(autosaved.count(), 2);
+    typeValue(window->forcePanel(), Param::Gravity, QStringLiteral("4"));
+    ASSERT_TRUE(waitUntil([&] { return autosaved.count() == 3; }));
+    EXPECT_FALSE(QFileInfo::exists(projects()->autosavePath() + QStringLiteral(".bak"))) << "an autosave keeps no .bak";
+
+    // Saving makes the autosave stale: it goes, so a crash never offers it over the newer file.
+    ASSERT_TRUE(projects()->saveAs(dir.filePath(QStringLiteral("saved.wisp"))));
+    EXPECT_FALSE(QFileInfo::exists(projects()->autosavePath()));
+    EXPECT_EQ(ProjectController::kAutosaveIntervalMs, 60 * 1000);
+}
+
+TEST_F(ProjectFilesTest, TemporariesOfKilledSavesAreRemovedAtStartButNotThoseOfLiveOnes)
+{
+    const QString path = dir.filePath(QStringLiteral("look.wisp"));
+    ASSERT_TRUE(projects()->saveAs(path));  // its folder is a recent project's
+    const QString data = QFileInfo(projects()->autosavePath()).absolutePath();
+    const QString dead = QString::number(deadPid());
+    const QString live = QString::number(::getpid());
+    const QStringList stale = {data + QStringLiteral("/autosave-1-0.wisp.0123456789abcdef.tmp-") + dead,
+                               path + QStringLiteral(".fedcba9876543210.tmp-") + dead,
+                               path + QStringLiteral(".bak.00000000ffffffff.tmp-") + dead};
+    const QStringList kept = {data + QStringLiteral("/autosave-1-0.wisp.0123456789abcdef.tmp-") + live,
+                              path + QStringLiteral(".fedcba9876543210.tmp-") + live};
+    for (const QString& name : stale + kept) {
+        QFile file(name);
+        ASSERT_TRUE(file.open(QIODevice::WriteOnly)) << name.toStdString();
+        file.write("half a save");
+    }
+    QStringList asked;
+    auto next = startEditor(FileMenu::RecoveryAnswer::Later, &asked);
+    for (const QString& name : stale)
+        EXPECT_FALSE(QFileInfo::exists(name)) << name.toStdString();
+    for (const QString& name : kept)
+        EXPECT_TRUE(QFileInfo::exists(name)) << name.toStdString();
+    EXPECT_TRUE(QFileInfo::exists(path));
 }
 
 TEST_F(ProjectFilesTest, AHeadOpensOnAWorkerThreadAtItsUnitAndTheWindowKeepsDrawing)

@@ -2,6 +2,7 @@
 // What several GUI tests need: waiting for the simulation host's frames, measuring where the hair
 // hangs, and typing into a parameter panel as an artist does.
 
+#include "app/editor/FileMenu.h"
 #include "app/editor/MainWindow.h"
 #include "app/editor/SimulationHost.h"
 #include "sim/Frame.h"
@@ -48,12 +49,22 @@ inline bool waitForFrames(const SimulationHost& host, std::uint64_t count, int t
     return waitForFramesSince(host, host.publishedFrames(), count, timeoutMs);
 }
 
+// A new editor window whose recovery question, should a test process killed earlier have left an
+// autosave, is answered Later instead of opening a modal box that nobody would close (show()
+// asks it). The work stays for the tests that look at recovery.
+inline std::unique_ptr<MainWindow> newEditorWindow()
+{
+    auto window = std::make_unique<MainWindow>();
+    window->fileMenu()->setRecoveryPrompt([](const QString&) { return FileMenu::RecoveryAnswer::Later; });
+    return window;
+}
+
 // The editor's main window as an artist starts it (settings and data in Qt's test locations), shown
 // at `width` x `height`, exposed and active, so key and mouse events reach it.
 inline std::unique_ptr<MainWindow> openEditor(int width = 1300, int height = 850)
 {
     QStandardPaths::setTestModeEnabled(true);
-    auto window = std::make_unique<MainWindow>();
+    auto window = newEditorWindow();
     window->resize(width, height);
     window->show();
     EXPECT_TRUE(QTest::qWaitForWindowExposed(window.get()));

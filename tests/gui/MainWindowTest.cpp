@@ -51,7 +51,7 @@ protected:
     {
         // Keep the artist's real settings out of the tests.
         QStandardPaths::setTestModeEnabled(true);
-        window = std::make_unique<MainWindow>();
+        window = newEditorWindow();
         window->show();
         ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
         // Shortcuts need an active window; Xvfb has no window manager to activate it.
@@ -265,7 +265,7 @@ TEST(Editor, ClosingWhileSimulatingExitsWithinASecondAndLeavesNoThread)
 {
     QStandardPaths::setTestModeEnabled(true);
     EXPECT_EQ(wispThreads(), 0);
-    auto window = std::make_unique<MainWindow>();
+    auto window = newEditorWindow();
     window->show();
     ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
     ASSERT_TRUE(waitForFrames(*window->simulation(), 10));

@@ -103,7 +103,7 @@ protected:
     {
         QStandardPaths::setTestModeEnabled(true);
         QDir(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation)).removeRecursively();
-        window = std::make_unique<MainWindow>();
+        window = newEditorWindow();
         window->show();
         ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
         window->fileMenu()->setInteractive(false);

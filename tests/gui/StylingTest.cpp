@@ -22,6 +22,7 @@
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QListWidget>
+#include <QPainter>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QStandardPaths>
@@ -895,7 +896,12 @@ TEST_F(StylingTest, TheDryerBlowsFromTheEyeTowardTheSurfaceAndShowsItsCone)
     EXPECT_GT(glm::length(dryerAirAt(dryer, hit->point)), 5.0f);
     if (const char* folder = std::getenv("WISP_TEST_SCREENSHOT_DIR")) {
         QTest::qWait(200);
-        window->grab().save(QString::fromLocal8Bit(folder) + QStringLiteral("/dryer-cone.png"));
+        // The window, with the viewport's GL frame read back into its place (grab() leaves it blank).
+        QImage shot = window->grab().toImage();
+        QPainter painter(&shot);
+        painter.drawImage(view->mapTo(window.get(), QPoint(0, 0)), view->grabFramebuffer());
+        painter.end();
+        shot.save(QString::fromLocal8Bit(folder) + QStringLiteral("/dryer-cone.png"));
     }
     QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, at);
     EXPECT_TRUE(window->styleTool()->dryers().empty());

@@ -53,6 +53,13 @@ enum class Param : int {
 enum class ParamGroup { Wisp, Groom, Forces, Solver };
 enum class ParamKind { Real, Integer, Toggle };
 
+// How a slider spreads a parameter's range along its travel (the spin box always gives the exact
+// value). Linear: evenly. Log: by ratio, so 1 -> 2 is as far as 100 -> 200 (a range over decades,
+// such as wisp size or wind speed; a range from 0 gets a soft zero, see sliderValueAt). Centred:
+// logarithmic both ways from the middle of a symmetric range, so values near the middle (gravity
+// near 0 and 9.81) get most of the travel and the extremes stay reachable.
+enum class SliderScale { Linear, Log, Centred };
+
 struct ParameterInfo {
     Param id;
     std::string_view key;    // snake_case; preset files and CLI options (--key) use it
@@ -64,7 +71,31 @@ struct ParameterInfo {
     double maximum;
     double defaultValue;
     std::string_view help;  // one line, shown as the tooltip and in --help
+    SliderScale slider = SliderScale::Linear;
 };
+
+// A slider's range and how it spreads it (parameters, and the tools' own settings: brush, perm).
+struct SliderRange {
+    double minimum = 0.0;
+    double maximum = 1.0;
+    SliderScale scale = SliderScale::Linear;
+    bool wholeNumbers = false;  // integer parameters: values are rounded
+};
+SliderRange sliderRangeOf(const ParameterInfo& info);
+
+// The slider's fraction of travel (0..1) that shows `value`, and the value at a fraction; inverse
+// to each other within rounding (whole numbers) and clamped to the range.
+double sliderFractionOf(const SliderRange& range, double value);
+double sliderValueAt(const SliderRange& range, double fraction);
+// Ctrl-drag snapping: the nearest "round" value, 1, 2 or 5 times a power of ten, on a grid of about
+// 1/20 of the range (Linear, Centred) or of about a tenth of the value (Log); clamped to the range.
+double snappedSliderValue(const SliderRange& range, double value);
+
+// The tools' own settings, which are not document parameters (no preset key, no CLI option, no
+// undo): their ranges and slider scales, in SI units, stated here beside the parameters'. The
+// limits themselves are ScalpBrush.h's and StyleEdits.h's, which check them.
+enum class ToolSetting { BrushRadius, BrushStrength, BrushFalloff, PermRadius, PermTurns };
+SliderRange toolSettingRange(ToolSetting setting);
 
 constexpr std::size_t kParamCount = static_cast<std::size_t>(Param::Count);
 

@@ -24,8 +24,8 @@ constexpr float kRelaxation = 0.7f;
 // Substeps of the fixed-point search at most, the share of the estimated turn it takes, and the
 // largest turn of one iteration (a large miss is not linear in the turn).
 constexpr int kFixedPointIterations = 40;
-// The settle check refines again only while each refinement cuts the worst gap below this share
-// of the one before.
+// The settle check refines again only while a refinement cuts some strand's gap below this share
+// of the one before (per strand: one strand that cannot be held must not stop the others).
 constexpr float kKeepRefiningBelow = 0.8f;
 constexpr float kFixedPointRelaxation = 0.8f;
 constexpr float kMaxTurnRadians = 0.3f;
@@ -156,7 +156,7 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
     // One solver (its collision field is built once per solve: for the whole head).
     fixedPointRest(targets, stiffnessScales, settings, solver, out.rest);
     HairCurves best = out.rest;
-    float previousWorst = 1e30f;
+    std::vector<float> previousGap(count, 1e30f);
     for (int k = 0; k < maxIterations; ++k) {
         if (!solver.setStrands(out.rest).empty() || !solver.setSettings(settle).empty())
             break;
@@ -169,6 +169,7 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
             solver.step();
         solver.copyPositions(settled);
         float worst = 0.0f;
+        bool improving = false;
         for (std::size_t i = 0; i < count; ++i) {
             float gap = 0.0f;
             for (std::size_t p = targets.offsets[i]; p < targets.offsets[i + 1]; ++p)
@@ -179,15 +180,18 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
                 std::copy(r.begin(), r.end(), best.strandForWrite(i).begin());
             }
             worst = std::max(worst, gap);
+            improving = improving || (gap >= toleranceMetres && gap < kKeepRefiningBelow * previousGap[i]);
+            previousGap[i] = gap;
         }
         out.iterations = k + 1;
         if (worst < toleranceMetres)
             break;
-        // Refining helps only while it helps: a strand that cannot be held (too soft, pushed by
-        // the head) keeps its best, and the others have converged as far as they will.
-        if (worst > kKeepRefiningBelow * previousWorst)
+        // Refining helps only while it helps some strand: a strand that cannot be held (too soft,
+        // pushed by the head) keeps its best, while the others go on converging. (Stopping on the
+        // worst gap alone let one such strand, caught by a comb, leave every other combed strand
+        // half solved, and the whole lock sagged back.)
+        if (!improving)
             break;
-        previousWorst = worst;
         // Turn each rest segment by how far the settled segment missed the target's direction.
         for (std::size_t i = 0; i < targets.strandCount(); ++i) {
             const std::span<const glm::vec3> t = targets.strand(i);

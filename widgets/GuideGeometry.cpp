@@ -61,7 +61,65 @@ std::vector<GuideVertex> buildBrushRings(const BrushCursor& cursor, float bandMe
     if (cursor.mirrored)
         appendRing(triangles, cursor.mirrorCentre, cursor.mirrorNormal, cursor.radiusMetres, mirrorBandMetres,
             glm::vec4(colour, 0.45f));
+    if (cursor.dryer) {
+        const std::vector<GuideVertex> cone
+            = buildDryerCone(cursor.dryerNozzle, cursor.centre, cursor.dryerHalfAngleRadians, bandMetres, 1.0f);
+        triangles.insert(triangles.end(), cone.begin(), cone.end());
+        if (cursor.mirrored) {
+            // The nozzle's offset from the aim, mirrored across x like the ring.
+            const glm::vec3 offset = cursor.dryerNozzle - cursor.centre;
+            const glm::vec3 mirrorNozzle = cursor.mirrorCentre + glm::vec3(-offset.x, offset.y, offset.z);
+            const std::vector<GuideVertex> mirror = buildDryerCone(
+                mirrorNozzle, cursor.mirrorCentre, cursor.dryerHalfAngleRadians, mirrorBandMetres, 0.45f);
+            triangles.insert(triangles.end(), mirror.begin(), mirror.end());
+        }
+    }
     return triangles;
+}
+
+std::vector<GuideVertex> buildDryerCone(const glm::vec3& nozzle, const glm::vec3& aim, float halfAngleRadians,
+    float bandMetres, float alpha)
+{
+    std::vector<GuideVertex> out;
+    const glm::vec3 along = aim - nozzle;
+    const float length = glm::length(along);
+    if (!finite(nozzle) || !finite(aim) || !(length > 1e-5f) || !std::isfinite(halfAngleRadians)
+        || !std::isfinite(bandMetres))
+        return out;
+    const glm::vec3 axis = along / length;
+    glm::vec3 u, v;
+    basisAround(axis, u, v);
+    const float rim = length * std::tan(std::clamp(halfAngleRadians, 0.01f, 1.4f));
+    const glm::vec3 none{ 0.0f }; // unlit
+    // The air: pale blue, mostly see-through, so the hair under it stays visible.
+    const glm::vec4 air{ 0.55f, 0.80f, 1.0f, 0.16f * alpha };
+    const glm::vec4 edge{ 0.70f, 0.88f, 1.0f, 0.85f * alpha };
+    const auto around = [&](float angle) { return std::cos(angle) * u + std::sin(angle) * v; };
+    for (int i = 0; i < kDryerConeSides; ++i) {
+        const float a0 = glm::two_pi<float>() * static_cast<float>(i) / kDryerConeSides;
+        const float a1 = glm::two_pi<float>() * static_cast<float>(i + 1) / kDryerConeSides;
+        out.insert(out.end(),
+            { { nozzle, none, air }, { aim + rim * around(a0), none, air }, { aim + rim * around(a1), none, air } });
+    }
+    // The edges: thin quads from the nozzle to the rim, facing the axis' sideways direction.
+    const float halfBand = 0.5f * std::max(bandMetres, 0.0f);
+    for (int i = 0; i < kDryerConeEdges; ++i) {
+        const float a = glm::two_pi<float>() * static_cast<float>(i) / kDryerConeEdges;
+        const glm::vec3 out0 = around(a);
+        const glm::vec3 side = glm::cross(axis, out0) * halfBand;
+        const glm::vec3 tip = aim + rim * out0;
+        out.insert(out.end(), { { nozzle - side, none, edge }, { tip - side, none, edge }, { tip + side, none, edge } });
+        out.insert(out.end(), { { nozzle - side, none, edge }, { tip + side, none, edge }, { nozzle + side, none, edge } });
+    }
+    // The nozzle: a small bright disc where the air leaves the dryer.
+    const float nozzleRadius = std::max(2.0f * halfBand, 0.004f);
+    for (int i = 0; i < kDryerConeSides; ++i) {
+        const float a0 = glm::two_pi<float>() * static_cast<float>(i) / kDryerConeSides;
+        const float a1 = glm::two_pi<float>() * static_cast<float>(i + 1) / kDryerConeSides;
+        out.insert(out.end(), { { nozzle, none, edge }, { nozzle + nozzleRadius * around(a0), none, edge },
+                                  { nozzle + nozzleRadius * around(a1), none, edge } });
+    }
+    return out;
 }
 
 GroundGrid buildGroundGrid(const Aabb& head)

@@ -55,6 +55,12 @@ struct BrushCursor {
     bool mirrored = false; // X-symmetric painting: a second, dimmer ring at mirrorCentre
     glm::vec3 mirrorCentre{ 0.0f };
     glm::vec3 mirrorNormal{ 0.0f, 1.0f, 0.0f };
+    // The blow-dryer (sim/HairDryer.h): its cone of air from the nozzle (the apex) along the axis
+    // to the ring, drawn translucent with its edges; the mirror dryer's is mirrored across the same
+    // plane as the mirror ring (x), toward mirrorCentre.
+    bool dryer = false;
+    glm::vec3 dryerNozzle{ 0.0f }; // world, metres
+    float dryerHalfAngleRadians = 0.35f;
 
     bool operator==(const BrushCursor&) const = default;
 };
@@ -69,5 +75,13 @@ constexpr float kBrushRingLiftMetres = 0.0005f;
 // at another depth, hence its own width). White to add, red to erase; the mirror ring is dimmer
 // (lower alpha). Empty for a non-finite cursor or a radius that is not positive.
 std::vector<GuideVertex> buildBrushRings(const BrushCursor& cursor, float bandMetres, float mirrorBandMetres);
+
+constexpr int kDryerConeSides = 32;
+constexpr int kDryerConeEdges = 8; // lines from the nozzle to the rim, so the cone reads as one
+// The dryer's cone as GL_TRIANGLES: a translucent surface from `nozzle` to the circle of the
+// cone's radius at `aim` (perpendicular to nozzle -> aim), kDryerConeEdges edges `bandMetres`
+// wide, and a small disc at the nozzle. Empty when nozzle and aim coincide or are not finite.
+std::vector<GuideVertex> buildDryerCone(const glm::vec3& nozzle, const glm::vec3& aim, float halfAngleRadians,
+    float bandMetres, float alpha);
 
 } // namespace wisp

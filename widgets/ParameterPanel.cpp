@@ -1,11 +1,11 @@
 #include "widgets/ParameterPanel.h"
 
+#include "widgets/SliderRow.h"
+
 #include <QCheckBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
-#include <QHBoxLayout>
 #include <QLabel>
-#include <QSignalBlocker>
 #include <QSlider>
 
 #include <cmath>
@@ -56,50 +56,19 @@ ParameterPanel::ParameterPanel(std::vector<Param> parameters, QWidget* parent) :
             });
             form->addRow(label, row.check);
         } else {
-            auto* line = new QWidget(this);
-            auto* h = new QHBoxLayout(line);
-            h->setContentsMargins(0, 0, 0, 0);
-            row.slider = new QSlider(Qt::Horizontal, line);
-            row.slider->setRange(0, kSliderSteps);
-            row.slider->setToolTip(tooltip);
-            row.slider->setObjectName(QString::fromUtf8(p.key.data(), static_cast<int>(p.key.size())));
-            row.spin = new QDoubleSpinBox(line);
-            row.spin->setRange(p.minimum, p.maximum);
-            row.spin->setDecimals(decimalsFor(p));
-            row.spin->setSingleStep(p.kind == ParamKind::Real ? (p.maximum - p.minimum) / 100.0 : 1.0);
-            row.spin->setKeyboardTracking(false);
-            row.spin->setToolTip(tooltip);
+            SliderRowSpec spec;
+            spec.range = sliderRangeOf(p);
+            spec.decimals = decimalsFor(p);
+            spec.singleStep = p.kind == ParamKind::Real ? (p.maximum - p.minimum) / 100.0 : 1.0;
             if (!p.unit.empty())
-                row.spin->setSuffix(QStringLiteral(" ") + QString::fromUtf8(p.unit.data(), static_cast<int>(p.unit.size())));
-            row.spin->setMinimumWidth(110);
-            h->addWidget(row.slider, 1);
-            h->addWidget(row.spin);
-            form->addRow(label, line);
-
-            QSlider* slider = row.slider;
-            QDoubleSpinBox* spin = row.spin;
-            connect(slider, &QSlider::valueChanged, this, [this, id, spin](int position) {
-                if (m_updating)
-                    return;
-                const double v = valueAt(id, position);
-                {
-                    const QSignalBlocker block(spin);
-                    spin->setValue(v);
-                }
-                emit valueEdited(id, v, sliderFor(id)->isSliderDown());
-            });
-            connect(slider, &QSlider::sliderReleased, this, [this, id, slider] {
+                spec.suffix = QStringLiteral(" ") + QString::fromUtf8(p.unit.data(), static_cast<int>(p.unit.size()));
+            spec.tooltip = tooltip;
+            spec.objectName = QString::fromUtf8(p.key.data(), static_cast<int>(p.key.size()));
+            row.numbers = new SliderRow(std::move(spec), this);
+            form->addRow(label, row.numbers);
+            connect(row.numbers, &SliderRow::valueEdited, this, [this, id](double v, bool dragging) {
                 if (!m_updating)
-                    emit valueEdited(id, valueAt(id, slider->value()), false);
-            });
-            connect(spin, &QDoubleSpinBox::valueChanged, this, [this, id, slider](double v) {
-                if (m_updating)
-                    return;
-                {
-                    const QSignalBlocker block(slider);
-                    slider->setValue(sliderPosition(id, v));
-                }
-                emit valueEdited(id, v, false);
+                    emit valueEdited(id, v, dragging);
             });
         }
         m_rows.push_back(row);
@@ -107,24 +76,7 @@ ParameterPanel::ParameterPanel(std::vector<Param> parameters, QWidget* parent) :
     setValues(ParameterValues());
 }
 
-// Sliders are linear over the registry's range; the spin box gives the exact value.
-int ParameterPanel::sliderPosition(Param id, double value) const
-{
-    const ParameterInfo& p = parameterInfo(id);
-    const double t = (value - p.minimum) / (p.maximum - p.minimum);
-    return static_cast<int>(std::lround(std::clamp(t, 0.0, 1.0) * kSliderSteps));
-}
-
-double ParameterPanel::valueAt(Param id, int position) const
-{
-    const ParameterInfo& p = parameterInfo(id);
-    double v = p.minimum + (p.maximum - p.minimum) * static_cast<double>(position) / kSliderSteps;
-    if (p.kind != ParamKind::Real)
-        v = std::round(v);
-    return std::clamp(v, p.minimum, p.maximum);
-}
-
-const ParameterPanel::Row* ParameterPanel::rowFor(Param id) const
+const ParameterPanel::Row* ParameterPanel::find(Param id) const
 {
     for (const Row& r : m_rows)
         if (r.id == id)
@@ -132,49 +84,48 @@ const ParameterPanel::Row* ParameterPanel::rowFor(Param id) const
     return nullptr;
 }
 
-void ParameterPanel::showValue(const Row& row, double value)
-{
-    if (row.check) {
-        row.check->setChecked(value != 0.0);
-        return;
-    }
-    row.spin->setValue(value);
-    if (!row.slider->isSliderDown())
-        row.slider->setValue(sliderPosition(row.id, value));
-}
-
 void ParameterPanel::setValues(const ParameterValues& values)
 {
     m_updating = true;
-    for (const Row& row : m_rows)
-        showValue(row, values.get(row.id));
+    for (const Row& row : m_rows) {
+        if (row.check)
+            row.check->setChecked(values.get(row.id) != 0.0);
+        else
+            row.numbers->setValue(values.get(row.id));
+    }
     m_updating = false;
 }
 
 double ParameterPanel::value(Param id) const
 {
-    const Row* row = rowFor(id);
+    const Row* row = find(id);
     if (!row)
         return 0.0;
-    return row->check ? (row->check->isChecked() ? 1.0 : 0.0) : row->spin->value();
+    return row->check ? (row->check->isChecked() ? 1.0 : 0.0) : row->numbers->value();
 }
 
 QSlider* ParameterPanel::sliderFor(Param id) const
 {
-    const Row* row = rowFor(id);
-    return row ? row->slider : nullptr;
+    const Row* row = find(id);
+    return row && row->numbers ? row->numbers->slider() : nullptr;
 }
 
 QDoubleSpinBox* ParameterPanel::spinBoxFor(Param id) const
 {
-    const Row* row = rowFor(id);
-    return row ? row->spin : nullptr;
+    const Row* row = find(id);
+    return row && row->numbers ? row->numbers->spinBox() : nullptr;
 }
 
 QCheckBox* ParameterPanel::checkBoxFor(Param id) const
 {
-    const Row* row = rowFor(id);
+    const Row* row = find(id);
     return row ? row->check : nullptr;
+}
+
+SliderRow* ParameterPanel::rowFor(Param id) const
+{
+    const Row* row = find(id);
+    return row ? row->numbers : nullptr;
 }
 
 }  // namespace wisp

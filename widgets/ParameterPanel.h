@@ -1,6 +1,7 @@
 #pragma once
-// A panel of parameter rows, each a slider with a spin box, its unit and a tooltip, all taken
-// from the parameter registry (sim/Parameters.h): panels state no range, default or help of their own.
+// A panel of parameter rows, each a slider with a spin box (SliderRow: the registry's slider scale,
+// Shift + drag fine, Ctrl + drag snaps), its unit and a tooltip, all taken from the parameter
+// registry (sim/Parameters.h): panels state no range, default, scale or help of their own.
 //
 // Thread: GUI.
 
@@ -14,7 +15,10 @@ class QDoubleSpinBox;
 class QSlider;
 class QCheckBox;
 
+
 namespace wisp {
+
+class SliderRow;
 
 class ParameterPanel : public QWidget {
     Q_OBJECT
@@ -28,8 +32,7 @@ public:
     QSlider* sliderFor(Param id) const;         // for tests and keyboard focus
     QDoubleSpinBox* spinBoxFor(Param id) const;  // null for toggles
     QCheckBox* checkBoxFor(Param id) const;      // null for numbers
-
-    static constexpr int kSliderSteps = 1000;
+    SliderRow* rowFor(Param id) const;           // null for toggles
 
 signals:
     // The artist changed a value. `dragging` is true while a slider is held, so that one drag can
@@ -39,14 +42,10 @@ signals:
 private:
     struct Row {
         Param id;
-        QSlider* slider = nullptr;
-        QDoubleSpinBox* spin = nullptr;
+        SliderRow* numbers = nullptr;
         QCheckBox* check = nullptr;
     };
-    const Row* rowFor(Param id) const;
-    void showValue(const Row& row, double value);
-    int sliderPosition(Param id, double value) const;
-    double valueAt(Param id, int position) const;
+    const Row* find(Param id) const;
 
     std::vector<Row> m_rows;
     bool m_updating = false;

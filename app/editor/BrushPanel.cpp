@@ -1,6 +1,8 @@
 #include "app/editor/BrushPanel.h"
 
 #include "app/editor/PaintTool.h"
+#include "sim/Parameters.h"
+#include "widgets/SliderRow.h"
 
 #include <QCheckBox>
 #include <QComboBox>
@@ -13,17 +15,21 @@ namespace wisp {
 
 namespace {
 
-QDoubleSpinBox* spinBox(double minimum, double maximum, double step, int decimals, const QString& suffix,
-                        const QString& tip)
+// A slider-and-spin-box row over a tool setting's range (toolSettingRange), shown in `unitScale`
+// units of it (100: metres as centimetres).
+SliderRow* settingRow(ToolSetting setting, double unitScale, int decimals, double step, const QString& suffix,
+                      const QString& tip, const QString& name)
 {
-    auto* box = new QDoubleSpinBox;
-    box->setRange(minimum, maximum);
-    box->setSingleStep(step);
-    box->setDecimals(decimals);
-    box->setSuffix(suffix);
-    box->setToolTip(tip);
-    box->setKeyboardTracking(false);
-    return box;
+    SliderRowSpec spec;
+    spec.range = toolSettingRange(setting);
+    spec.range.minimum *= unitScale;
+    spec.range.maximum *= unitScale;
+    spec.decimals = decimals;
+    spec.singleStep = step;
+    spec.suffix = suffix;
+    spec.tooltip = tip;
+    spec.objectName = name;
+    return new SliderRow(std::move(spec));
 }
 
 }  // namespace
@@ -44,13 +50,15 @@ BrushPanel::BrushPanel(PaintTool* tool, QWidget* parent) : QWidget(parent), m_to
     m_mode->setToolTip(tr("What a stroke does to the growth weights; hold Ctrl to erase, Shift to smooth"));
     form->addRow(tr("Mode"), m_mode);
 
-    m_radius = spinBox(kBrushRadiusMinMetres * 100.0, kBrushRadiusMaxMetres * 100.0, 0.25, 2, tr(" cm"),
-                       tr("Brush radius on the head, in centimetres ([ and ] change it)"));
+    m_radius = settingRow(ToolSetting::BrushRadius, 100.0, 2, 0.25, tr(" cm"),
+                          tr("Brush radius on the head, in centimetres ([ and ] change it)"), QStringLiteral("brush_radius"));
     form->addRow(tr("Radius"), m_radius);
-    m_strength = spinBox(0.0, 1.0, 0.05, 2, QString(), tr("Share of the way to the target a dab moves a weight, 0..1"));
+    m_strength = settingRow(ToolSetting::BrushStrength, 1.0, 2, 0.05, QString(),
+                            tr("Share of the way to the target a dab moves a weight, 0..1"), QStringLiteral("brush_strength"));
     form->addRow(tr("Strength"), m_strength);
-    m_falloff = spinBox(0.0, 1.0, 0.05, 2, QString(),
-                        tr("0: full strength to the rim; 1: fades smoothly from the centre to the rim"));
+    m_falloff = settingRow(ToolSetting::BrushFalloff, 1.0, 2, 0.05, QString(),
+                           tr("0: full strength to the rim; 1: fades smoothly from the centre to the rim"),
+                           QStringLiteral("brush_falloff"));
     form->addRow(tr("Falloff"), m_falloff);
     m_mirror = new QCheckBox(tr("X mirror"));
     m_mirror->setToolTip(tr("Paint both sides of the head at once (symmetry across the head's mid-plane)"));
@@ -67,15 +75,15 @@ BrushPanel::BrushPanel(PaintTool* tool, QWidget* parent) : QWidget(parent), m_to
         if (!m_updating)
             m_tool->setMode(static_cast<BrushMode>(m_mode->itemData(index).toInt()));
     });
-    connect(m_radius, &QDoubleSpinBox::valueChanged, this, [this](double cm) {
+    connect(m_radius, &SliderRow::valueEdited, this, [this](double cm) {
         if (!m_updating)
             m_tool->setRadius(cm / 100.0);
     });
-    connect(m_strength, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+    connect(m_strength, &SliderRow::valueEdited, this, [this](double v) {
         if (!m_updating)
             m_tool->setStrength(v);
     });
-    connect(m_falloff, &QDoubleSpinBox::valueChanged, this, [this](double v) {
+    connect(m_falloff, &SliderRow::valueEdited, this, [this](double v) {
         if (!m_updating)
             m_tool->setFalloff(v);
     });
@@ -99,5 +107,9 @@ void BrushPanel::showSettings()
     m_mirror->setChecked(s.mirrorX);
     m_updating = false;
 }
+
+QDoubleSpinBox* BrushPanel::radiusBox() const { return m_radius->spinBox(); }
+QDoubleSpinBox* BrushPanel::strengthBox() const { return m_strength->spinBox(); }
+QDoubleSpinBox* BrushPanel::falloffBox() const { return m_falloff->spinBox(); }
 
 }  // namespace wisp

@@ -1,5 +1,6 @@
 #pragma once
-// The growth brush's settings: on/off, mode, radius (cm), strength, falloff, X-mirror, and whether
+// The growth brush's settings: on/off, mode, radius (cm), strength, falloff (slider-and-spin-box
+// rows, as in the parameter panels), X-mirror, and whether
 // the painted weights are shown on the head. It edits the PaintTool and follows it ([ and ] change
 // the radius from the viewport).
 //
@@ -15,6 +16,7 @@ class QPushButton;
 namespace wisp {
 
 class PaintTool;
+class SliderRow;
 
 class BrushPanel : public QWidget {
     Q_OBJECT
@@ -23,9 +25,12 @@ public:
 
     QPushButton* paintButton() const { return m_paint; }
     QComboBox* modeBox() const { return m_mode; }
-    QDoubleSpinBox* radiusBox() const { return m_radius; }
-    QDoubleSpinBox* strengthBox() const { return m_strength; }
-    QDoubleSpinBox* falloffBox() const { return m_falloff; }
+    QDoubleSpinBox* radiusBox() const;
+    QDoubleSpinBox* strengthBox() const;
+    QDoubleSpinBox* falloffBox() const;
+    SliderRow* radiusRow() const { return m_radius; }
+    SliderRow* strengthRow() const { return m_strength; }
+    SliderRow* falloffRow() const { return m_falloff; }
     QCheckBox* mirrorBox() const { return m_mirror; }
     QCheckBox* overlayBox() const { return m_overlay; }
 
@@ -38,9 +43,9 @@ private:
     PaintTool* m_tool;
     QPushButton* m_paint = nullptr;
     QComboBox* m_mode = nullptr;
-    QDoubleSpinBox* m_radius = nullptr;
-    QDoubleSpinBox* m_strength = nullptr;
-    QDoubleSpinBox* m_falloff = nullptr;
+    SliderRow* m_radius = nullptr;
+    SliderRow* m_strength = nullptr;
+    SliderRow* m_falloff = nullptr;
     QCheckBox* m_mirror = nullptr;
     QCheckBox* m_overlay = nullptr;
     bool m_updating = false;

@@ -58,7 +58,13 @@ void FileMenu::buildMenu()
     m_recentMenu = m_menu->addMenu(tr("Open &Recent"));
     rebuildRecentMenu();
     m_menu->addAction(tr("&Save"), QKeySequence::Save, this, [this] { m_projects->save(); });
-    m_menu->addAction(tr("Save &As…"), QKeySequence::SaveAs, this, [this] { m_projects->saveAs(); });
+    m_saveAs = m_menu->addAction(tr("Save &As…"), this, [this] { m_projects->saveAs(); });
+    // Ctrl+Shift+S everywhere: the platform's Save As keys are empty on some desktops (KDE, plain X11).
+    QList<QKeySequence> saveAsKeys{QKeySequence(tr("Ctrl+Shift+S"))};
+    for (const QKeySequence& key : QKeySequence::keyBindings(QKeySequence::SaveAs))
+        if (!saveAsKeys.contains(key))
+            saveAsKeys.push_back(key);
+    m_saveAs->setShortcuts(saveAsKeys);
     m_menu->addSeparator();
 
     m_menu->addAction(tr("Open &Head…"), QKeySequence(tr("Ctrl+Shift+O")), this, [this] {

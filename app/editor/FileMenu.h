@@ -34,6 +34,7 @@ public:
     QMenu* menu() const { return m_menu; }
     ProjectController* projects() const { return m_projects; }
     HeadImporter* headImporter() const { return m_importer; }
+    QAction* saveAsAction() const { return m_saveAs; }  // Ctrl+Shift+S
 
     // Opens whatever `path` is: a project (.wisp), else a head mesh. For `wisp FILE` and drops.
     bool openAny(const QString& path);
@@ -75,6 +76,7 @@ private:
     QMenu* m_menu = nullptr;
     QMenu* m_recentMenu = nullptr;
     QAction* m_zUp = nullptr;
+    QAction* m_saveAs = nullptr;
     std::shared_ptr<const ImportedHead> m_lastHead;  // as read, to place again at another scale
     bool m_interactive = true;
     RecoveryPrompt m_recoveryPrompt;

@@ -9,6 +9,8 @@
 #include "app/editor/PaintTool.h"
 #include "app/editor/PresetBrowser.h"
 #include "app/editor/RegionPanel.h"
+#include "app/editor/ShortcutsDialog.h"
+#include "app/editor/UndoShortcuts.h"
 #include "app/editor/SimulationHost.h"
 #include "app/editor/StylePanel.h"
 #include "app/editor/StyleTool.h"
@@ -110,6 +112,7 @@ void MainWindow::createActions()
     redo->setShortcut(QKeySequence::Redo);
     edit->addAction(undo);
     edit->addAction(redo);
+    new UndoShortcuts(this);  // and from a spin box that has focus, unless it holds an edit of its own
 
     m_viewMenu = menuBar()->addMenu(tr("&View"));
     QAction* frame = m_viewMenu->addAction(tr("&Frame Head"), m_viewport, &Viewport::frameHead);
@@ -136,6 +139,14 @@ void MainWindow::createActions()
         toolGroup->addAction(action);
         toolsMenu->addAction(action);
     }
+    toolsMenu->addSeparator();
+    m_leaveToolAction = toolsMenu->addAction(tr("&Leave Tool"));
+    m_leaveToolAction->setShortcut(QKeySequence(Qt::Key_Escape));
+    m_leaveToolAction->setToolTip(tr("Put the paint or styling tool down: the mouse moves the camera only (Esc)"));
+    connect(m_leaveToolAction, &QAction::triggered, this, [this] {
+        m_paintTool->setActive(false);
+        m_styleTool->setBrush(std::nullopt);
+    });
     m_overlayAction = m_viewMenu->addAction(tr("Show Growth &Weights"));
     m_overlayAction->setCheckable(true);
     m_overlayAction->setChecked(true);
@@ -156,6 +167,14 @@ void MainWindow::createActions()
     updatePlayAction(false);
 
     QMenu* help = menuBar()->addMenu(tr("&Help"));
+    m_shortcutsAction = help->addAction(tr("&Keyboard Shortcuts"), this, [this] {
+        // Not modal: it can stay open beside the work. Built anew each time, from the actions.
+        if (m_shortcutsDialog)
+            m_shortcutsDialog->deleteLater();
+        m_shortcutsDialog = new ShortcutsDialog(this);
+        m_shortcutsDialog->setAttribute(Qt::WA_DeleteOnClose);
+        m_shortcutsDialog->show();
+    });
     help->addAction(tr("&About Wisp"), this, [this] {
         QMessageBox::about(this, tr("About Wisp"),
                            tr("<b>Wisp</b> — hair styling and simulation.<br>Paint where hair grows, shape it into "
@@ -170,11 +189,14 @@ void MainWindow::createActions()
     tools->addSeparator();
     tools->addAction(frame);
     tools->addAction(m_paintAction);
+    // Named as toolbars: the Styling panel's entry is "Styling" too.
+    tools->toggleViewAction()->setText(tr("Simulation Toolbar"));
     m_viewMenu->addAction(tools->toggleViewAction());
     QToolBar* styling = addToolBar(tr("Styling"));
     styling->setObjectName(QStringLiteral("stylingToolBar"));
     for (const auto& [brush, action] : m_stylePanel->brushActions())
         styling->addAction(action);
+    styling->toggleViewAction()->setText(tr("Styling Toolbar"));
     m_viewMenu->addAction(styling->toggleViewAction());
 }
 
@@ -216,7 +238,12 @@ void MainWindow::createDocks()
     tabifyDockWidget(wisp, brush);
     tabifyDockWidget(brush, styling);
     wisp->raise();
-    connect(m_styleTool, &StyleTool::message, this, [this](const QString& text) { statusBar()->showMessage(text, 5000); });
+    connect(m_styleTool, &StyleTool::message, this, [this](const QString& text) {
+        if (text.isEmpty())
+            statusBar()->clearMessage();  // a new stroke: the last one's news is old
+        else
+            statusBar()->showMessage(text, 5000);
+    });
     // A styling tool picked: its panel and the brush settings it shares come forward.
     connect(m_styleTool, &StyleTool::brushChanged, this, [this, styling](std::optional<StyleBrush> b) {
         if (b)

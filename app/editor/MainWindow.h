@@ -4,7 +4,10 @@
 //
 // Thread: GUI.
 
+#include "app/editor/ShortcutsDialog.h"
+
 #include <QMainWindow>
+#include <QPointer>
 
 class QAction;
 class QDockWidget;
@@ -19,6 +22,7 @@ class PaintTool;
 class ParameterPanel;
 class PresetBrowser;
 class RegionPanel;
+class ShortcutsDialog;
 class WispPanel;
 class SimulationHost;
 class StylePanel;
@@ -41,6 +45,9 @@ public:
     QAction* resetAction() const { return m_reset; }
     QAction* paintAction() const { return m_paintAction; }
     QAction* overlayAction() const { return m_overlayAction; }
+    QAction* leaveToolAction() const { return m_leaveToolAction; }  // Esc
+    QAction* shortcutsAction() const { return m_shortcutsAction; }  // Help ▸ Keyboard Shortcuts
+    ShortcutsDialog* shortcutsDialog() const { return m_shortcutsDialog; }  // null until opened
     PaintTool* paintTool() const { return m_paintTool; }
     StyleTool* styleTool() const { return m_styleTool; }
     StylePanel* stylePanel() const { return m_stylePanel; }
@@ -82,6 +89,9 @@ private:
     PresetBrowser* m_presetBrowser = nullptr;
     QAction* m_paintAction = nullptr;
     QAction* m_overlayAction = nullptr;
+    QAction* m_leaveToolAction = nullptr;
+    QAction* m_shortcutsAction = nullptr;
+    QPointer<ShortcutsDialog> m_shortcutsDialog;
     QAction* m_play = nullptr;
     QAction* m_step = nullptr;
     QAction* m_reset = nullptr;

@@ -1,5 +1,8 @@
 #include "app/editor/StylePanel.h"
 
+#include "sim/Parameters.h"
+#include "widgets/SliderRow.h"
+
 #include <QAction>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
@@ -58,25 +61,31 @@ StylePanel::StylePanel(StyleTool* tool, QWidget* parent) : QWidget(parent), m_to
     }
     form->addRow(grid);
 
-    m_curlRadius = new QDoubleSpinBox;
-    m_curlRadius->setRange(0.0, kStyleMaxCurlRadiusMetres * 1000.0);
-    m_curlRadius->setDecimals(1);
-    m_curlRadius->setSingleStep(0.5);
-    m_curlRadius->setSuffix(tr(" mm"));
-    m_curlRadius->setToolTip(tr("Curl radius the perm gives, in millimetres (0: straight)"));
-    m_curlRadius->setKeyboardTracking(false);
+    // The perm's curl: slider-and-spin-box rows over the tool settings' ranges (sim/Parameters.h).
+    SliderRowSpec radius;
+    radius.range = toolSettingRange(ToolSetting::PermRadius);
+    radius.range.minimum *= 1000.0;  // shown in millimetres
+    radius.range.maximum *= 1000.0;
+    radius.decimals = 1;
+    radius.singleStep = 0.5;
+    radius.suffix = tr(" mm");
+    radius.tooltip = tr("Curl radius the perm gives, in millimetres (0: straight)");
+    radius.objectName = QStringLiteral("perm_radius");
+    m_curlRadius = new SliderRow(std::move(radius));
     m_curlRadius->setValue(m_tool->curlRadiusMetres() * 1000.0);
     form->addRow(tr("Perm radius"), m_curlRadius);
-    m_curlTurns = new QDoubleSpinBox;
-    m_curlTurns->setRange(0.0, kStyleMaxCurlTurnsPerMetre);
-    m_curlTurns->setDecimals(1);
-    m_curlTurns->setSuffix(tr(" turns/m"));
-    m_curlTurns->setToolTip(tr("Curl turns per metre of hair the perm gives (period = 1 / turns)"));
-    m_curlTurns->setKeyboardTracking(false);
+    SliderRowSpec turns;
+    turns.range = toolSettingRange(ToolSetting::PermTurns);
+    turns.decimals = 1;
+    turns.singleStep = 1.0;
+    turns.suffix = tr(" turns/m");
+    turns.tooltip = tr("Curl turns per metre of hair the perm gives (period = 1 / turns)");
+    turns.objectName = QStringLiteral("perm_turns");
+    m_curlTurns = new SliderRow(std::move(turns));
     m_curlTurns->setValue(m_tool->curlTurnsPerMetre());
     form->addRow(tr("Perm turns"), m_curlTurns);
-    connect(m_curlRadius, &QDoubleSpinBox::valueChanged, m_tool, [this](double mm) { m_tool->setCurlRadiusMetres(mm / 1000.0); });
-    connect(m_curlTurns, &QDoubleSpinBox::valueChanged, m_tool, &StyleTool::setCurlTurnsPerMetre);
+    connect(m_curlRadius, &SliderRow::valueEdited, m_tool, [this](double mm) { m_tool->setCurlRadiusMetres(mm / 1000.0); });
+    connect(m_curlTurns, &SliderRow::valueEdited, m_tool, [this](double turns) { m_tool->setCurlTurnsPerMetre(turns); });
 
     m_hint = new QLabel;
     m_hint->setWordWrap(true);
@@ -95,5 +104,8 @@ void StylePanel::showBrush(std::optional<StyleBrush> brush)
         action->setChecked(brush == b);  // re-entry is harmless: setBrush ignores the brush it has
     m_hint->setText(brush ? styleBrushHelp(*brush) : tr("Pick a styling tool to work on the moving hair."));
 }
+
+QDoubleSpinBox* StylePanel::curlRadiusBox() const { return m_curlRadius->spinBox(); }
+QDoubleSpinBox* StylePanel::curlTurnsBox() const { return m_curlTurns->spinBox(); }
 
 }  // namespace wisp

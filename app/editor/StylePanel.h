@@ -18,6 +18,8 @@ class QLabel;
 
 namespace wisp {
 
+class SliderRow;
+
 class StylePanel : public QWidget {
     Q_OBJECT
 public:
@@ -26,16 +28,16 @@ public:
     // Checkable, one per brush, in StyleBrush order; checking one selects it, unchecking it ends styling.
     const std::map<StyleBrush, QAction*>& brushActions() const { return m_actions; }
     QAction* actionFor(StyleBrush brush) const { return m_actions.at(brush); }
-    QDoubleSpinBox* curlRadiusBox() const { return m_curlRadius; }
-    QDoubleSpinBox* curlTurnsBox() const { return m_curlTurns; }
+    QDoubleSpinBox* curlRadiusBox() const;
+    QDoubleSpinBox* curlTurnsBox() const;
 
 private:
     void showBrush(std::optional<StyleBrush> brush);
 
     StyleTool* m_tool;
     std::map<StyleBrush, QAction*> m_actions;
-    QDoubleSpinBox* m_curlRadius = nullptr;
-    QDoubleSpinBox* m_curlTurns = nullptr;
+    SliderRow* m_curlRadius = nullptr;
+    SliderRow* m_curlTurns = nullptr;
     QLabel* m_hint = nullptr;
 };
 

@@ -142,6 +142,14 @@ void StyleTool::showCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifie
     const float plane = m_brushSettings->mirrorPlaneX();
     cursor.mirrorCentre = mirroredPoint(cursor.centre, plane);
     cursor.mirrorNormal = mirroredDirection(cursor.normal);
+    if (m_brush == StyleBrush::BlowDry) {  // the cone of air, from the nozzle to where it aims
+        const HairDryer dryer = dryerAt(widgetPosition);
+        cursor.dryer = true;
+        cursor.dryerNozzle = dryer.nozzle;
+        cursor.dryerHalfAngleRadians = dryer.halfAngleRadians;
+        cursor.radiusMetres = kDryerDistanceMetres * std::tan(dryer.halfAngleRadians);
+        cursor.erase = false;
+    }
     viewport()->setBrushCursor(cursor);
 }
 
@@ -153,6 +161,7 @@ bool StyleTool::beginStroke(QPointF position, Qt::KeyboardModifiers modifiers)
     }
     m_lastPosition = position;
     m_touched.clear();
+    emit message(QString());  // the last stroke's news (or warning) is old now
     switch (*m_brush) {
     case StyleBrush::Comb:
         m_document->beginStyleStroke();
@@ -212,12 +221,14 @@ void StyleTool::end()
         for (const Grabbed& g : m_grabbed)
             edits[g.identity].shape = g.positions;
         m_document->styleStrokeUpdated();
-        report(m_document->endStyleStroke(brushName()));
+        // The drawn strands it moved (a key hair's wisp follows it), not only the key hairs.
+        report(m_document->endStyleStroke(brushName()) > 0 ? m_combedStrands : 0);
         m_simulation->holdStrands({});
         m_grabbed.clear();
         return;
     }
     if (m_brush == StyleBrush::BlowDry) {
+        m_dryers.clear();
         m_simulation->setDryers({});
         keepDriedWetness();
         return;
@@ -244,37 +255,61 @@ void StyleTool::cancel()
     stopStroking();
     m_grabbed.clear();
     m_simulation->holdStrands({});
+    m_dryers.clear();
     m_simulation->setDryers({});
     if (m_document->inStyleStroke())
         m_document->endStyleStroke(brushName());
 }
 
+// The comb catches every strand its ring covers. Members are not simulated (only their wisp's key
+// hair is, unless every strand is): a wisp is caught when any of its strands is under the ring, by
+// its key hair, as firmly as its strand nearest the ring's centre.
 void StyleTool::grabForComb(QPointF position)
 {
     m_grabbed.clear();
+    m_combedStrands = 0;
     const FramePtr frame = styledFrame(*m_simulation);
     if (!frame)
         return;
+    const GroomShape& shape = *frame->groomShape;
+    const bool everyStrandSimulated = m_document->parameters().get(Param::SimulateAllStrands) != 0.0;
     const BrushSettings& s = m_brushSettings->settings();
     const std::vector<Ray> rays = raysAt(position);
-    std::set<std::uint32_t> taken;
+    std::map<std::uint32_t, std::size_t> grabbedOf;  // simulated strand -> its entry in m_grabbed
     for (std::size_t r = 0; r < rays.size(); ++r) {
         const Ray& ray = rays[r];
-        for (const StrandPick& pick : strandsNearRay(frame->strands, frame->groomShape->keyStrands, ray.origin,
-                                                     ray.direction, s.radiusMetres, s.falloff, ray.maxDepth)) {
-            if (!taken.insert(pick.strand).second)
-                continue;  // under both rings: the nearer one's
+        for (const StrandPick& pick :
+             strandsNearRay(frame->strands, {}, ray.origin, ray.direction, s.radiusMetres, s.falloff, ray.maxDepth)) {
+            const std::uint32_t held = everyStrandSimulated || pick.strand >= shape.wispOf.size()
+                                           ? pick.strand
+                                           : shape.keyOfWisp[shape.wispOf[pick.strand]];
+            const float weight = pick.weight * (0.5f + 0.5f * s.strength);
+            if (const auto found = grabbedOf.find(held); found != grabbedOf.end()) {
+                Grabbed& g = m_grabbed[found->second];
+                if (g.mirrored == (r == 1) && weight > g.weight) {  // under both rings: the first one's
+                    g.weight = weight;
+                    g.depth = pick.depth;
+                }
+                continue;
+            }
             Grabbed g;
-            g.identity = frame->groomShape->identities[pick.strand];
-            g.weight = pick.weight * (0.5f + 0.5f * s.strength);
+            g.identity = shape.identities[held];
+            g.weight = weight;
             g.depth = pick.depth;
             g.mirrored = r == 1;
-            const auto points = frame->strands.strand(pick.strand);
+            const auto points = frame->strands.strand(held);
             g.positions.assign(points.begin(), points.end());
             for (std::size_t j = 1; j < points.size(); ++j)
                 g.segmentLengths.push_back(glm::distance(points[j], points[j - 1]));
+            grabbedOf.emplace(held, m_grabbed.size());
             m_grabbed.push_back(std::move(g));
         }
+    }
+    // What the stroke moves: the caught strands and, through their key hairs, their wisps.
+    for (std::uint32_t i = 0; i < shape.identities.size(); ++i) {
+        const std::uint32_t held =
+            everyStrandSimulated || i >= shape.wispOf.size() ? i : shape.keyOfWisp[shape.wispOf[i]];
+        m_combedStrands += grabbedOf.count(held) ? 1 : 0;
     }
     if (m_grabbed.empty())
         return;
@@ -451,17 +486,26 @@ void StyleTool::dab(QPointF position, Qt::KeyboardModifiers modifiers)
         m_document->styleStrokeUpdated();
 }
 
-void StyleTool::placeDryer(QPointF position)
+// The dryer held at the cursor: aimed from the eye through the cursor at the head's surface under
+// it (or, past the head, at the depth of the camera's pivot), its nozzle kDryerDistanceMetres in
+// front of that point, so its air blows from the artist toward the surface they point at.
+HairDryer StyleTool::dryerAt(QPointF position) const
 {
     const ViewRay ray = viewport()->rayAt(position);
     glm::vec3 aim;
     if (const auto hit = m_brushSettings->hitAt(position))
         aim = hit->point;
-    else  // past the head: aim at the depth of the camera's pivot
+    else
         aim = ray.origin + ray.direction * glm::dot(viewport()->camera().pivot() - ray.origin, ray.direction);
     HairDryer dryer;
-    dryer.nozzle = aim - ray.direction * kDryerDistanceMetres;
-    dryer.direction = ray.direction;
+    dryer.direction = glm::normalize(aim - ray.origin);
+    dryer.nozzle = aim - dryer.direction * kDryerDistanceMetres;
+    return dryer;
+}
+
+void StyleTool::placeDryer(QPointF position)
+{
+    HairDryer dryer = dryerAt(position);
     std::vector<HairDryer> dryers{dryer};
     if (m_brushSettings->settings().mirrorX) {  // symmetry: a second dryer, mirrored
         const float plane = m_brushSettings->mirrorPlaneX();
@@ -469,6 +513,7 @@ void StyleTool::placeDryer(QPointF position)
         dryer.direction = mirroredDirection(dryer.direction);
         dryers.push_back(dryer);
     }
+    m_dryers = dryers;
     m_simulation->setDryers(std::move(dryers));
 }
 

@@ -23,6 +23,7 @@
 // Thread: GUI.
 
 #include "app/editor/ViewportBrush.h"
+#include "sim/HairDryer.h"
 #include "sim/StyleEdits.h"
 
 #include <glm/vec3.hpp>
@@ -62,6 +63,8 @@ public:
     bool isActive() const { return m_brush.has_value(); }
     float curlRadiusMetres() const { return m_curlRadius; }
     float curlTurnsPerMetre() const { return m_curlTurns; }
+    // The blow-dryers blowing now (while the button is held; two with X symmetry).
+    const std::vector<HairDryer>& dryers() const { return m_dryers; }
 
     // The length brush changes a strand by this share of its length per dab at full strength.
     static constexpr float kLengthStepShare = 0.06f;
@@ -112,6 +115,7 @@ private:
     void combTo(QPointF position);
     void cutBetween(QPointF from, QPointF to);
     void dab(QPointF position, Qt::KeyboardModifiers modifiers);
+    HairDryer dryerAt(QPointF position) const;
     void placeDryer(QPointF position);
     void keepDriedWetness();
     float lengthOf(std::uint64_t identity, std::uint32_t strand) const;
@@ -127,7 +131,9 @@ private:
 
     QPointF m_lastPosition;
     std::vector<Grabbed> m_grabbed;
+    int m_combedStrands = 0;  // drawn strands the comb's stroke moves (the caught wisps')
     std::set<std::uint64_t> m_touched;  // strands this stroke already changed (spray, perm: once)
+    std::vector<HairDryer> m_dryers;
     std::map<std::uint64_t, float> m_wetBefore;  // the blow-dry stroke: applied wetness as it began
 };
 

@@ -22,6 +22,7 @@
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QListWidget>
+#include <QPainter>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QStandardPaths>
@@ -36,6 +37,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <map>
 
 using namespace wisp;
@@ -780,4 +782,128 @@ TEST_F(StylingTest, CutThenCurlyPresetLeavesNoStrandStickingOut)
     EXPECT_EQ(wrongLength, 0) << "of " << keysMeasured << " keys";
     EXPECT_GT(cutKeys, 0) << "no cut key hair after the preset: the test proves nothing";
     document()->undoStack()->setClean();
+}
+
+// Before: the comb picked only key hairs under the ring (11 of the strands across the face), so most
+// of the hair it visibly covered stayed where it was.
+TEST_F(StylingTest, TheCombCatchesTheStrandsItsRingCovers)
+{
+    window->paintTool()->setMirror(false);
+    const float combY = box.center().y - 0.06f;
+    look(90.0f, {box.center().x, combY, box.center().z});
+    pick(Qt::Key_C, StyleBrush::Comb);
+    const FramePtr before = frame();
+    const GroomShape& shape = *before->groomShape;
+
+    // What lies under the ring where the stroke starts, measured here: every drawn strand with a
+    // point within the radius of the cursor's ray, in front of the head's surface under it.
+    const glm::vec3 from = rightSide(0.06f, 0.02f) + glm::vec3(0.04f, 0, 0);
+    const glm::vec3 to = rightSide(0.06f, -0.03f) + glm::vec3(0.04f, 0, 0);
+    Viewport* view = window->viewport();
+    const QPoint at = screenOf(from);
+    const ViewRay ray = view->rayAt(at);
+    const float radius = window->paintTool()->settings().radiusMetres;
+    const auto hit = window->paintTool()->hitAt(at);
+    ASSERT_TRUE(hit.has_value()) << "the stroke does not start over the head";
+    const float surface = glm::dot(hit->point - ray.origin, ray.direction) + radius;
+    std::set<std::uint32_t> under;
+    for (std::uint32_t s = 0; s < before->strands.strandCount(); ++s)
+        for (const glm::vec3& p : before->strands.strand(s)) {
+            const float t = glm::dot(p - ray.origin, ray.direction);
+            if (t > 0.0f && t < surface && glm::length(p - ray.origin - t * ray.direction) < 0.98f * radius) {
+                under.insert(s);
+                break;
+            }
+        }
+    ASSERT_GE(under.size(), 20u) << "too little hair under the ring: the test proves nothing";
+
+    QSignalSpy said(window->statusBar(), &QStatusBar::messageChanged);
+    stroke({from, to}, Qt::NoModifier, 6);
+    // Caught: the strands whose wisp's key hair the comb moved (members follow their key).
+    std::set<std::uint64_t> combedKeys;
+    for (const auto& [id, style] : *document()->style())
+        if (!style.shape.empty())
+            combedKeys.insert(id);
+    std::set<std::uint32_t> caught;
+    for (std::uint32_t s = 0; s < shape.wispOf.size(); ++s)
+        if (combedKeys.count(shape.identities[shape.keyOfWisp[shape.wispOf[s]]]))
+            caught.insert(s);
+    int missed = 0;
+    for (std::uint32_t s : under)
+        missed += caught.count(s) ? 0 : 1;
+    EXPECT_LE(missed, static_cast<int>(under.size() / 20))
+        << missed << " of the " << under.size() << " strands under the ring were not caught";
+    EXPECT_LE(caught.size(), 3 * under.size()) << "the comb caught far more than its ring covers";
+    // The status bar says how many strands the stroke moved (a warning may have followed since).
+    QStringList messages;
+    for (const QList<QVariant>& message : said)
+        messages << message.value(0).toString();
+    EXPECT_TRUE(messages.contains(QStringLiteral("Comb: %1 strands changed").arg(caught.size())))
+        << messages.join(QStringLiteral(" | ")).toStdString();
+}
+
+// Before: a stroke that changed nothing left its warning on the status bar through the next stroke.
+TEST_F(StylingTest, ANewStrokeClearsTheLastStrokesWarning)
+{
+    look(90.0f, {box.center().x, box.center().y - 0.05f, box.center().z});
+    pick(Qt::Key_X, StyleBrush::Cut);
+    // Far above the head: nothing to cut.
+    stroke({glm::vec3(box.max.x + 0.05f, box.max.y + 0.15f, box.center().z + 0.05f),
+            glm::vec3(box.max.x + 0.05f, box.max.y + 0.15f, box.center().z - 0.05f)});
+    ASSERT_EQ(window->statusBar()->currentMessage(), QStringLiteral("Cut: no strand under the brush changed"));
+    pick(Qt::Key_W, StyleBrush::Wet);
+    Viewport* view = window->viewport();
+    const QPoint at = screenOf(rightSide(0.05f) + glm::vec3(0.03f, 0, 0));
+    QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, at);
+    EXPECT_TRUE(window->statusBar()->currentMessage().isEmpty())
+        << "the new stroke still shows: " << window->statusBar()->currentMessage().toStdString();
+    QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, at);
+    settle();
+    EXPECT_TRUE(window->statusBar()->currentMessage().startsWith(QStringLiteral("Wet: ")));
+}
+
+TEST_F(StylingTest, TheDryerBlowsFromTheEyeTowardTheSurfaceAndShowsItsCone)
+{
+    const glm::vec3 aim{box.center().x + 0.25f * box.size().x, box.center().y - 0.03f, box.center().z};
+    look(0.0f, {box.center().x, aim.y, box.center().z}, 0.8f);
+    pick(Qt::Key_D, StyleBrush::BlowDry);
+    Viewport* view = window->viewport();
+    const QPoint at = screenOf(aim);
+    QTest::mouseMove(view, at);
+    ASSERT_TRUE(wisp::test::waitUntil([&] { return view->brushCursor().has_value(); }, 2000));
+    const BrushCursor cursor = *view->brushCursor();
+    EXPECT_TRUE(cursor.dryer) << "the dryer shows no cone";
+    const ViewRay ray = view->rayAt(at);
+    const auto hit = window->paintTool()->hitAt(at);
+    ASSERT_TRUE(hit.has_value());
+    const float hitDepth = glm::dot(hit->point - ray.origin, ray.direction);
+    // The cone: from a nozzle between the eye and the surface to a rim around the aimed point.
+    EXPECT_NEAR(glm::distance(cursor.dryerNozzle, hit->point), StyleTool::kDryerDistanceMetres, 1e-4f);
+    EXPECT_LT(glm::distance(cursor.dryerNozzle, ray.origin), hitDepth);
+    EXPECT_GT(cursor.radiusMetres, 0.02f);
+    const std::vector<GuideVertex> cone =
+        buildDryerCone(cursor.dryerNozzle, cursor.centre, cursor.dryerHalfAngleRadians, 0.002f, 1.0f);
+    EXPECT_FALSE(cone.empty());
+
+    QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, at);
+    const std::vector<HairDryer> dryers = window->styleTool()->dryers();
+    ASSERT_FALSE(dryers.empty()) << "no dryer blows while the button is held";
+    const HairDryer& dryer = dryers.front();
+    const glm::vec3 eyeToSurface = glm::normalize(hit->point - ray.origin);
+    EXPECT_GT(glm::dot(dryer.direction, eyeToSurface), 0.9999f) << "the dryer does not blow from the eye at the surface";
+    EXPECT_LT(glm::dot(dryer.direction, hit->normal), 0.0f) << "the dryer blows away from the surface";
+    // The air reaches the aimed point, on the axis, at speed.
+    EXPECT_GT(glm::length(dryerAirAt(dryer, hit->point)), 5.0f);
+    if (const char* folder = std::getenv("WISP_TEST_SCREENSHOT_DIR")) {
+        QTest::qWait(200);
+        // The window, with the viewport's GL frame read back into its place (grab() leaves it blank).
+        QImage shot = window->grab().toImage();
+        QPainter painter(&shot);
+        painter.drawImage(view->mapTo(window.get(), QPoint(0, 0)), view->grabFramebuffer());
+        painter.end();
+        shot.save(QString::fromLocal8Bit(folder) + QStringLiteral("/dryer-cone.png"));
+    }
+    QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, at);
+    EXPECT_TRUE(window->styleTool()->dryers().empty());
+    settle();
 }

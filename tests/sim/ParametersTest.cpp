@@ -97,3 +97,70 @@ TEST(Parameters, SolverAndGroomSettingsAcceptTheRangeEnds)
         }
     }
 }
+
+TEST(Parameters, SliderScalesRoundTripAndMapTheEndsToTheEnds)
+{
+    for (const ParameterInfo& p : allParameters()) {
+        if (p.kind == ParamKind::Toggle)
+            continue;
+        const SliderRange r = sliderRangeOf(p);
+        EXPECT_EQ(sliderValueAt(r, 0.0), p.minimum) << p.key;
+        EXPECT_EQ(sliderValueAt(r, 1.0), p.maximum) << p.key;
+        EXPECT_DOUBLE_EQ(sliderFractionOf(r, p.minimum), 0.0) << p.key;
+        EXPECT_DOUBLE_EQ(sliderFractionOf(r, p.maximum), 1.0) << p.key;
+        const double f = sliderFractionOf(r, p.defaultValue);
+        EXPECT_GE(f, 0.0) << p.key;
+        EXPECT_LE(f, 1.0) << p.key;
+        const double back = sliderValueAt(r, f);
+        EXPECT_NEAR(back, p.defaultValue, p.kind == ParamKind::Real ? 1e-9 * (p.maximum - p.minimum) : 0.5) << p.key;
+        // Monotonic: more travel, never less value.
+        double last = sliderValueAt(r, 0.0);
+        for (int i = 1; i <= 100; ++i) {
+            const double v = sliderValueAt(r, i / 100.0);
+            EXPECT_GE(v, last) << p.key << " at " << i;
+            last = v;
+        }
+    }
+}
+
+TEST(Parameters, GravityIsCentredAndWispSizeLogarithmic)
+{
+    const SliderRange gravity = sliderRangeOf(parameterInfo(Param::Gravity));
+    EXPECT_EQ(gravity.scale, SliderScale::Centred);
+    EXPECT_DOUBLE_EQ(sliderFractionOf(gravity, 0.0), 0.5);
+    EXPECT_NEAR(sliderFractionOf(gravity, -9.81), 1.0 - sliderFractionOf(gravity, 9.81), 1e-12);
+    // Earth's gravity about half way out from the middle: the everyday values get most of the travel.
+    EXPECT_GT(sliderFractionOf(gravity, 9.81), 0.70);
+    EXPECT_LT(sliderFractionOf(gravity, 9.81), 0.80);
+    // 4 % of the travel (24 pixels of a 600-pixel drag) from 9.81 m/s² moves it by less than 5.
+    EXPECT_NEAR(sliderValueAt(gravity, sliderFractionOf(gravity, 9.81) - 0.04), 9.81, 5.0);
+
+    const SliderRange size = sliderRangeOf(parameterInfo(Param::WispSize));
+    EXPECT_EQ(size.scale, SliderScale::Log);
+    EXPECT_NEAR(sliderFractionOf(size, 32.0), 0.5, 1e-12);  // 1..1024: the middle is sqrt(1024)
+    EXPECT_EQ(sliderValueAt(size, 0.5), 32.0);
+    // A range from 0 has a soft zero: wind 0..100 m/s puts 1.5 m/s well inside the travel.
+    const SliderRange wind = sliderRangeOf(parameterInfo(Param::WindSpeed));
+    EXPECT_GT(sliderFractionOf(wind, 1.5), 0.3);
+    EXPECT_LT(sliderFractionOf(wind, 1.5), 0.5);
+    EXPECT_EQ(sliderValueAt(wind, 0.0), 0.0);
+}
+
+TEST(Parameters, CtrlSnapGoesToRoundValuesInsideTheRange)
+{
+    const SliderRange gravity = sliderRangeOf(parameterInfo(Param::Gravity));
+    EXPECT_DOUBLE_EQ(snappedSliderValue(gravity, 9.81), 10.0);
+    EXPECT_DOUBLE_EQ(snappedSliderValue(gravity, -3.2), 0.0);
+    EXPECT_DOUBLE_EQ(snappedSliderValue(gravity, 99.0), 100.0);
+    const SliderRange size = sliderRangeOf(parameterInfo(Param::WispSize));
+    EXPECT_DOUBLE_EQ(snappedSliderValue(size, 19.0), 20.0);
+    EXPECT_DOUBLE_EQ(snappedSliderValue(size, 12.0), 12.0);
+    EXPECT_DOUBLE_EQ(snappedSliderValue(size, 1.4), 1.0);
+    const SliderRange length = sliderRangeOf(parameterInfo(Param::Length));
+    EXPECT_NEAR(snappedSliderValue(length, 0.283), 0.28, 1e-12);
+    EXPECT_NEAR(snappedSliderValue(length, 1.93), 2.0, 1e-12);
+    EXPECT_EQ(snappedSliderValue(length, 1.99), 2.0);
+    const SliderRange radius = toolSettingRange(ToolSetting::BrushRadius);
+    EXPECT_EQ(radius.scale, SliderScale::Log);
+    EXPECT_GE(snappedSliderValue(radius, 0.0001), radius.minimum);
+}

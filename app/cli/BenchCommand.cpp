@@ -169,7 +169,7 @@ std::vector<GrowthRegion> scalpOf(const TriangleMesh& head)
 {
     std::vector<GrowthRegion> regions(1);
     regions[0].name = "Scalp";
-    regions[0].weights = upperHeadGrowth(head);
+    regions[0].weights = scalpGrowth(head);
     return regions;
 }
 

@@ -189,10 +189,11 @@ TEST_F(ProjectFilesTest, AHeadOpensOnAWorkerThreadAtItsUnitAndTheWindowKeepsDraw
 
     // Head Scale: the same file at twice the metres per unit is twice the size; undo returns.
     const float height = box.size().y;
-    ASSERT_TRUE(window->fileMenu()->placeAgain(0.002f, false));
+    ASSERT_TRUE(window->fileMenu()->placeAgain(0.002f, std::nullopt));
     EXPECT_NEAR(boundsOf(doc()->head()).size().y, 2.0f * height, 1e-4f);
-    ASSERT_TRUE(window->fileMenu()->placeAgain(0.001f, true));  // Z-up: the file's z becomes height
-    EXPECT_TRUE(doc()->headPlacement().rotatedUpright);
+    ASSERT_TRUE(window->fileMenu()->placeAgain(0.001f, io::Axis::PosZ));  // Z-up: the file's z becomes height
+    EXPECT_EQ(doc()->headPlacement().up, io::Axis::PosZ);
+    EXPECT_EQ(doc()->headPlacement().front, io::Axis::NegY);
     doc()->undoStack()->undo();
     doc()->undoStack()->undo();
     EXPECT_NEAR(boundsOf(doc()->head()).size().y, height, 1e-5f);

@@ -46,6 +46,8 @@ void expectBitIdentical(const Project& a, const Project& b)
     EXPECT_EQ(a.headSource, b.headSource);
     EXPECT_EQ(a.headEmbedded, b.headEmbedded);
     EXPECT_EQ(bitsOf(a.headImportScale), bitsOf(b.headImportScale));
+    EXPECT_EQ(a.headImportUp, b.headImportUp);
+    EXPECT_EQ(a.headImportFront, b.headImportFront);
     for (const ParameterInfo& info : allParameters())
         EXPECT_EQ(std::bit_cast<std::uint64_t>(a.parameters.get(info.id)), std::bit_cast<std::uint64_t>(b.parameters.get(info.id)))
             << info.key;
@@ -119,7 +121,8 @@ Project makeProject(TriangleMesh head, std::vector<float> scalpWeights)
     project.camera = {{0.01f, 1.6f, -0.0f}, 2.5f / 3.0f, -0.2f, 0.85f, 37.5f};
     project.headImportScale = 0.001f;  // embedded: kept as it was, not applied again
     project.headImportOffset = {0.0f, -1.0f / 3.0f, 0.0125f};
-    project.headImportZUp = true;
+    project.headImportUp = io::Axis::PosX;  // CT2Hair's heads are +X up, the face -Y
+    project.headImportFront = io::Axis::NegY;
     return project;
 }
 
@@ -312,7 +315,8 @@ TEST_F(ProjectFileTest, ReferencedHeadResolvesRelativeToTheProjectFile)
     Project project = makeProject(file, std::vector<float>(6, 0.25f));
     project.headImportScale = 0.01f;
     project.headImportOffset = {0.0f, -0.02f, 0.005f};
-    project.headImportZUp = true;
+    project.headImportUp = io::Axis::PosZ;
+    project.headImportFront = io::Axis::NegY;
     for (glm::vec3& p : project.head.positions)
         p = glm::vec3(p.x, p.z, -p.y) * 0.01f + project.headImportOffset;
     project.headEmbedded = false;

@@ -282,31 +282,34 @@ TEST(HeadPlacement, SharedHeadsAreTurnedUprightFromTheirShape)
     }
 }
 
-// Turning a file to another up axis does not change where the head lands.
+// Turning a file to another up axis does not change where the head lands: each shared head, turned
+// so that its up goes to +Z, -Z, +X and -Y (the last also turning its face), lands where it did.
 TEST(HeadPlacement, RotatedCopiesOfAHeadLandTheSame)
 {
-    const fs::path path = assetPath("heads/max_planck_decimated.obj");
-    REQUIRE_ASSET(path);
-    const TriangleMesh original = readHead(path);
-    TriangleMesh reference = original;
-    const HeadPlacement referencePlacement = placeHead(reference);
-    ASSERT_EQ(referencePlacement.up, Axis::PosY);
-
     const std::pair<const char*, glm::vec3 (*)(const glm::vec3&)> turns[] = {
-        {"+Z up", [](const glm::vec3& p) { return glm::vec3(p.x, -p.z, p.y); }},
-        {"-Z up", [](const glm::vec3& p) { return glm::vec3(p.x, p.z, -p.y); }},
-        {"+X up", [](const glm::vec3& p) { return glm::vec3(p.y, -p.x, p.z); }},
-        {"-Y up, face turned", [](const glm::vec3& p) { return glm::vec3(p.z, -p.y, p.x); }},
+        {"+Y to +Z", [](const glm::vec3& p) { return glm::vec3(p.x, -p.z, p.y); }},
+        {"+Y to -Z", [](const glm::vec3& p) { return glm::vec3(p.x, p.z, -p.y); }},
+        {"+Y to +X", [](const glm::vec3& p) { return glm::vec3(p.y, -p.x, p.z); }},
+        {"+Y to -Y, +Z to +X", [](const glm::vec3& p) { return glm::vec3(p.z, -p.y, p.x); }},
     };
-    for (const auto& [name, turn] : turns) {
-        TriangleMesh copy = turnedCopy(original, turn);
-        const HeadPlacement placed = placeHead(copy);
-        EXPECT_TRUE(placed.upFromShape) << name << ": " << placed.orientation;
-        EXPECT_FLOAT_EQ(placed.scale, referencePlacement.scale) << name;
-        float worst = 0.0f;
-        for (std::size_t i = 0; i < copy.positions.size(); ++i)
-            worst = std::max(worst, glm::distance(copy.positions[i], reference.positions[i]));
-        EXPECT_LT(worst, 1e-5f) << name << ": " << placed.orientation;
+    for (const SharedHead& head : kSharedHeads) {
+        const fs::path path = assetPath(head.name);
+        REQUIRE_ASSET(path);
+        const TriangleMesh original = readHead(path);
+        TriangleMesh reference = original;
+        const HeadPlacement referencePlacement = placeHead(reference);
+        ASSERT_TRUE(referencePlacement.upFromShape) << head.name;
+        const float size = glm::length(boundsOf(reference).size());
+        for (const auto& [name, turn] : turns) {
+            TriangleMesh copy = turnedCopy(original, turn);
+            const HeadPlacement placed = placeHead(copy);
+            EXPECT_TRUE(placed.upFromShape) << head.name << ", " << name << ": " << placed.orientation;
+            EXPECT_FLOAT_EQ(placed.scale, referencePlacement.scale) << head.name << ", " << name;
+            float worst = 0.0f;
+            for (std::size_t i = 0; i < copy.positions.size(); ++i)
+                worst = std::max(worst, glm::distance(copy.positions[i], reference.positions[i]));
+            EXPECT_LT(worst, 1e-5f * size) << head.name << ", " << name << ": " << placed.orientation;
+        }
     }
 }
 

@@ -807,3 +807,38 @@ TEST(Base64, KnownVectorsAndStrictDecoding)
     ASSERT_TRUE(back);
     EXPECT_EQ(std::memcmp(back->data(), floats.data(), sizeof(float) * floats.size()), 0);
 }
+
+// The head's up and front axes are stored by name; a project from before them (import_z_up) reads
+// as the Z-up turn; a name that is no axis, or a front along the up axis, is refused by key.
+TEST_F(ProjectFileTest, TheHeadsImportAxesAreStoredAndOldZUpFilesStillRead)
+{
+    nlohmann::json json = validJson();
+    EXPECT_EQ(json["head"]["import_up"], "+X"); // smallProject's
+    EXPECT_EQ(json["head"]["import_front"], "-Y");
+
+    json["head"]["import_up"] = "-Z";
+    json["head"]["import_front"] = "+x";
+    const fs::path path = m_dir / "axes.wisp";
+    writeText(path, json.dump());
+    const Result<ProjectReadResult> read = readProject(path.string());
+    ASSERT_TRUE(read) << read.error().toString();
+    EXPECT_EQ(read.value().project.headImportUp, io::Axis::NegZ);
+    EXPECT_EQ(read.value().project.headImportFront, io::Axis::PosX);
+
+    nlohmann::json old = validJson();
+    old["head"].erase("import_up");
+    old["head"].erase("import_front");
+    old["head"]["import_z_up"] = true;
+    writeText(path, old.dump());
+    const Result<ProjectReadResult> oldRead = readProject(path.string());
+    ASSERT_TRUE(oldRead) << oldRead.error().toString();
+    EXPECT_EQ(oldRead.value().project.headImportUp, io::Axis::PosZ);
+    EXPECT_EQ(oldRead.value().project.headImportFront, io::Axis::NegY);
+
+    nlohmann::json bad = validJson();
+    bad["head"]["import_up"] = "up";
+    EXPECT_EQ(errorOf(bad.dump()), "head.import_up: \"up\" is no axis (+X, -X, +Y, -Y, +Z or -Z)");
+    bad = validJson();
+    bad["head"]["import_front"] = "-X";
+    EXPECT_EQ(errorOf(bad.dump()), "head.import_front: -X is not perpendicular to head.import_up +X");
+}

@@ -20,11 +20,11 @@ namespace {
 // How clear each fact must be (measured on the four shared heads: the mirror ratio is 0.0-0.52,
 // the nose slab 0.07-0.16 of the head's width against 0.24-0.29 for the next narrowest, the
 // cross-section above the nose 1.4-2.3 times the one below).
-constexpr float kMirrorRatioMax = 0.8f;   // best mirror error / second best
-constexpr float kNoseSlabDepth = 0.04f;   // of the left-right extent
-constexpr float kNoseWidthMax = 0.3f;     // nose slab width / left-right extent
-constexpr float kNoseRatioMax = 0.6f;     // nose slab width / next narrowest slab
-constexpr float kSkullRatioMin = 1.15f;   // cross-section above the nose / below it (or inverse)
+constexpr float kMirrorRatioMax = 0.8f; // best mirror error / second best
+constexpr float kNoseSlabDepth = 0.04f; // of the left-right extent
+constexpr float kNoseWidthMax = 0.3f; // nose slab width / left-right extent
+constexpr float kNoseRatioMax = 0.6f; // nose slab width / next narrowest slab
+constexpr float kSkullRatioMin = 1.15f; // cross-section above the nose / below it (or inverse)
 constexpr std::size_t kMirrorSamples = 4000;
 
 Axis axisOf(int index, int sign)
@@ -50,7 +50,8 @@ std::string formatRatio(double value)
 class MirrorError {
 public:
     MirrorError(std::span<const glm::vec3> points, const glm::vec3& lo, const glm::vec3& hi)
-        : m_points(points), m_centre(0.5f * (lo + hi))
+        : m_points(points)
+        , m_centre(0.5f * (lo + hi))
     {
         m_cell = std::max(glm::length(hi - lo) / 64.0f, std::numeric_limits<float>::min());
         for (std::size_t i = 0; i < points.size(); ++i)
@@ -102,7 +103,7 @@ private:
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> m_grid;
 };
 
-}  // namespace
+} // namespace
 
 glm::vec3 axisVector(Axis axis)
 {
@@ -113,7 +114,7 @@ glm::vec3 axisVector(Axis axis)
 
 const char* axisName(Axis axis)
 {
-    static constexpr std::array<const char*, 6> names = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
+    static constexpr std::array<const char*, 6> names = { "+X", "-X", "+Y", "-Y", "+Z", "-Z" };
     return names[static_cast<std::size_t>(axis)];
 }
 
@@ -126,7 +127,7 @@ std::optional<Axis> parseAxis(std::string_view text)
     }
     if (text.size() != 1)
         return std::nullopt;
-    const char c = static_cast<char>(text.front() | 0x20);  // lower case
+    const char c = static_cast<char>(text.front() | 0x20); // lower case
     if (c < 'x' || c > 'z')
         return std::nullopt;
     return axisOf(c - 'x', sign);
@@ -138,13 +139,13 @@ Axis defaultFront(Axis up)
     case Axis::PosY:
     case Axis::PosX:
     case Axis::NegX:
-        return Axis::PosZ;  // turns about Z (or none) leave Z alone
+        return Axis::PosZ; // turns about Z (or none) leave Z alone
     case Axis::NegY:
-        return Axis::NegZ;  // half a turn about X
+        return Axis::NegZ; // half a turn about X
     case Axis::PosZ:
-        return Axis::NegY;  // -90 degrees about X: (x, y, z) -> (x, z, -y)
+        return Axis::NegY; // -90 degrees about X: (x, y, z) -> (x, z, -y)
     case Axis::NegZ:
-        return Axis::PosY;  // +90 degrees about X: (x, y, z) -> (x, -z, y)
+        return Axis::PosY; // +90 degrees about X: (x, y, z) -> (x, -z, y)
     }
     return Axis::PosZ;
 }
@@ -153,7 +154,7 @@ glm::vec3 orient(const glm::vec3& p, Axis up, Axis front)
 {
     const glm::vec3 u = axisVector(up), f = axisVector(front);
     // Rows of the rotation: Wisp's X = up x front (so that X x Y = Z), Y = up, Z = front.
-    return {glm::dot(glm::cross(u, f), p), glm::dot(u, p), glm::dot(f, p)};
+    return { glm::dot(glm::cross(u, f), p), glm::dot(u, p), glm::dot(f, p) };
 }
 
 HeadOrientation detectHeadOrientation(std::span<const glm::vec3> positions)
@@ -165,8 +166,18 @@ HeadOrientation detectHeadOrientation(std::span<const glm::vec3> positions)
     }
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
     for (const glm::vec3& p : positions) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+            result.reason = "a vertex is not a finite point";
+            return result;
+        }
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
+    }
+    // The grid below needs a finite, non-zero size (and the slabs a width).
+    const float diagonal = glm::length(hi - lo);
+    if (!(std::isfinite(diagonal) && diagonal > 0.0f && std::min({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) > 0.0f)) {
+        result.reason = "the mesh is flat or has no finite extent";
+        return result;
     }
 
     // 1. Left-right: the axis of best mirror symmetry.
@@ -174,7 +185,7 @@ HeadOrientation detectHeadOrientation(std::span<const glm::vec3> positions)
     std::array<double, 3> error{};
     for (int a = 0; a < 3; ++a)
         error[a] = mirror(a);
-    std::array<int, 3> order{0, 1, 2};
+    std::array<int, 3> order{ 0, 1, 2 };
     std::sort(order.begin(), order.end(), [&](int a, int b) { return error[a] < error[b]; });
     const int lateral = order[0];
     if (!(error[order[0]] < kMirrorRatioMax * error[order[1]])) {
@@ -188,13 +199,13 @@ HeadOrientation detectHeadOrientation(std::span<const glm::vec3> positions)
         int axis = 0;
         int sign = 1;
         float widthRatio = 0.0f;
-        glm::vec3 tip{0.0f};
+        glm::vec3 tip{ 0.0f };
     };
     std::vector<Slab> slabs;
     for (int a = 0; a < 3; ++a) {
         if (a == lateral)
             continue;
-        for (int sign : {1, -1}) {
+        for (int sign : { 1, -1 }) {
             float extreme = std::numeric_limits<float>::lowest();
             glm::vec3 tip(0.0f);
             for (const glm::vec3& p : positions)
@@ -208,14 +219,14 @@ HeadOrientation detectHeadOrientation(std::span<const glm::vec3> positions)
                     l = std::min(l, p[lateral]);
                     h = std::max(h, p[lateral]);
                 }
-            slabs.push_back({a, sign, (h - l) / width, tip});
+            slabs.push_back({ a, sign, (h - l) / width, tip });
         }
     }
     std::sort(slabs.begin(), slabs.end(), [](const Slab& a, const Slab& b) { return a.widthRatio < b.widthRatio; });
     const Slab& nose = slabs[0];
     if (!(nose.widthRatio < kNoseWidthMax && nose.widthRatio < kNoseRatioMax * slabs[1].widthRatio)) {
-        result.reason = "no nose-like narrow tip stands out (narrowest end " + formatRatio(nose.widthRatio) +
-                        " of the width, next " + formatRatio(slabs[1].widthRatio) + ")";
+        result.reason = "no nose-like narrow tip stands out (narrowest end " + formatRatio(nose.widthRatio)
+            + " of the width, next " + formatRatio(slabs[1].widthRatio) + ")";
         return result;
     }
 
@@ -231,8 +242,8 @@ HeadOrientation detectHeadOrientation(std::span<const glm::vec3> positions)
     const float window = 0.6f * (nh - nl);
     constexpr int kSlices = 8;
     struct Extent {
-        glm::vec2 lo{std::numeric_limits<float>::max()};
-        glm::vec2 hi{std::numeric_limits<float>::lowest()};
+        glm::vec2 lo{ std::numeric_limits<float>::max() };
+        glm::vec2 hi{ std::numeric_limits<float>::lowest() };
     };
     std::array<Extent, 2 * kSlices> slices{};
     for (const glm::vec3& p : positions) {
@@ -253,16 +264,16 @@ HeadOrientation detectHeadOrientation(std::span<const glm::vec3> positions)
     }
     const double ratio = above / std::max(below, 1e-30);
     if (!(ratio > kSkullRatioMin || ratio < 1.0 / kSkullRatioMin)) {
-        result.reason = "cannot tell the skull from the jaw around the nose (cross-sections " + formatRatio(ratio) +
-                        " to 1)";
+        result.reason
+            = "cannot tell the skull from the jaw around the nose (cross-sections " + formatRatio(ratio) + " to 1)";
         return result;
     }
     const int upSign = ratio > 1.0 ? 1 : -1;
     result.up = axisOf(vertical, upSign);
     result.front = axisOf(nose.axis, nose.sign);
     result.found = true;
-    result.reason = std::string("mirror-symmetric across ") + "XYZ"[lateral] + ", the nose points " +
-                    axisName(result.front) + ", the skull is on the " + axisName(result.up) + " side";
+    result.reason = std::string("mirror-symmetric across ") + "XYZ"[lateral] + ", the nose points "
+        + axisName(result.front) + ", the skull is on the " + axisName(result.up) + " side";
     return result;
 }
 
@@ -273,7 +284,8 @@ float skullWidth(std::span<const glm::vec3> upright)
     // Vertices from the top down, with the running left-right extent, so that width(d) is a lookup.
     std::vector<std::uint32_t> order(upright.size());
     std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return upright[a].y > upright[b].y; });
+    std::sort(
+        order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return upright[a].y > upright[b].y; });
     std::vector<float> spanDown(order.size());
     float l = std::numeric_limits<float>::max(), h = std::numeric_limits<float>::lowest();
     for (std::size_t i = 0; i < order.size(); ++i) {
@@ -283,8 +295,8 @@ float skullWidth(std::span<const glm::vec3> upright)
     }
     const float top = upright[order.front()].y, height = top - upright[order.back()].y;
     const auto widthAt = [&](float depth) {
-        const auto end = std::partition_point(order.begin(), order.end(),
-                                              [&](std::uint32_t i) { return upright[i].y >= top - depth; });
+        const auto end = std::partition_point(
+            order.begin(), order.end(), [&](std::uint32_t i) { return upright[i].y >= top - depth; });
         return end == order.begin() ? 0.0f : spanDown[static_cast<std::size_t>(end - order.begin()) - 1];
     };
     // width(d) grows with d; from a thin band, d <- width(d) climbs to the first d with width(d) <= d.
@@ -297,4 +309,4 @@ float skullWidth(std::span<const glm::vec3> upright)
     return width;
 }
 
-}  // namespace wisp::io
+} // namespace wisp::io

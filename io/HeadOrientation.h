@@ -32,7 +32,7 @@ namespace wisp::io {
 enum class Axis : std::uint8_t { PosX, NegX, PosY, NegY, PosZ, NegZ };
 
 glm::vec3 axisVector(Axis axis);
-const char* axisName(Axis axis);  // "+X", "-Z", ...
+const char* axisName(Axis axis); // "+X", "-Z", ...
 // "+x", "x", "-Z" and the like; nullopt for anything else.
 std::optional<Axis> parseAxis(std::string_view text);
 
@@ -47,8 +47,8 @@ glm::vec3 orient(const glm::vec3& p, Axis up, Axis front);
 struct HeadOrientation {
     Axis up = Axis::PosY;
     Axis front = Axis::PosZ;
-    bool found = false;  // false: the file's axes were kept (up +Y, front +Z)
-    std::string reason;  // how it was found, or why not
+    bool found = false; // false: the file's axes were kept (up +Y, front +Z)
+    std::string reason; // how it was found, or why not
 };
 
 HeadOrientation detectHeadOrientation(std::span<const glm::vec3> positions);
@@ -60,4 +60,4 @@ HeadOrientation detectHeadOrientation(std::span<const glm::vec3> positions);
 // wide. 0 for fewer than one point.
 float skullWidth(std::span<const glm::vec3> upright);
 
-}  // namespace wisp::io
+} // namespace wisp::io

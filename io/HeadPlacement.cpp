@@ -105,6 +105,7 @@ HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& setting
     }
 
     // Which way is up: as named, or from the shape, or the file's own axes.
+    std::string whyNotFound;
     if (settings.up) {
         placement.up = *settings.up;
         placement.front = defaultFront(*settings.up);
@@ -119,6 +120,8 @@ HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& setting
         placement.orientation = found.found ? std::string(axisName(found.up)) + " up, face " +
                                                   axisName(found.front) + " (found from its shape: " + found.reason + ")"
                                             : "kept the file's +Y up: " + found.reason;
+        if (!found.found)
+            whyNotFound = found.reason;
     }
     std::vector<glm::vec3> upright(mesh.positions.size());
     for (std::size_t i = 0; i < upright.size(); ++i)
@@ -178,8 +181,8 @@ HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& setting
             notes.push_back("at this scale the skull is " + metresText(widthMetres) + " wide; skulls are usually "
                 + metresText(skullMinWidthMetres) + " to " + metresText(skullMaxWidthMetres));
     }
-    if (!settings.up && !placement.upFromShape)
-        notes.push_back("could not tell which way is up (" + placement.orientation.substr(placement.orientation.find(": ") + 2)
+    if (!whyNotFound.empty())
+        notes.push_back("could not tell which way is up (" + whyNotFound
             + "); kept the file's +Y up: choose the up axis if the head lies on its side");
 
     for (const std::string& note : notes)

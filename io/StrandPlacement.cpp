@@ -23,7 +23,7 @@ std::string number(double value)
     return text;
 }
 
-}  // namespace
+} // namespace
 
 StrandPlacement placeStrands(HairCurves& strands, const HeadPlacement* head, float explicitScale)
 {
@@ -52,25 +52,28 @@ StrandPlacement placeStrands(HairCurves& strands, const HeadPlacement* head, flo
             hi = glm::max(hi, strands.positions[strands.offsets[s]]);
         }
     const glm::vec3 size = hi - lo;
-    const double span = lo.x <= hi.x ? double(std::max({size.x, size.y, size.z})) : 0.0;
-    for (LengthUnit unit : {LengthUnit::Millimetres, LengthUnit::Centimetres, LengthUnit::Metres}) {
-        const double metres = span * (unit == LengthUnit::Millimetres ? 0.001 : unit == LengthUnit::Centimetres ? 0.01 : 1.0);
+    const double span = lo.x <= hi.x ? double(std::max({ size.x, size.y, size.z })) : 0.0;
+    for (LengthUnit unit : { LengthUnit::Millimetres, LengthUnit::Centimetres, LengthUnit::Metres }) {
+        const double metres = span
+            * (unit == LengthUnit::Millimetres        ? 0.001
+                    : unit == LengthUnit::Centimetres ? 0.01
+                                                      : 1.0);
         if (metres >= kRootsMinSpanMetres && metres < kRootsMaxSpanMetres) {
             placed.unit = unit;
             placed.scale = metresPerUnit(unit);
             for (glm::vec3& p : strands.positions)
                 p *= placed.scale;
-            placed.description = "strands in " + std::string(unitName(unit)) + " (their roots span " + number(span) +
-                                 " units), \u00D7" + number(placed.scale);
+            placed.description = "strands in " + std::string(unitName(unit)) + " (their roots span " + number(span)
+                + " units), \u00D7" + number(placed.scale);
             return placed;
         }
     }
     placed.unit = LengthUnit::Auto;
     placed.description = "strands left as stored";
-    placed.note = "the roots span " + number(span) + " units, which is no scalp (" + number(kRootsMinSpanMetres) +
-                  " m to under " + number(kRootsMaxSpanMetres) +
-                  " m) in millimetres, centimetres or metres; left as stored (give a scale if they are not metres)";
+    placed.note = "the roots span " + number(span) + " units, which is no scalp (" + number(kRootsMinSpanMetres)
+        + " m to under " + number(kRootsMaxSpanMetres)
+        + " m) in millimetres, centimetres or metres; left as stored (give a scale if they are not metres)";
     return placed;
 }
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -22,15 +22,15 @@
 namespace wisp::io {
 
 struct StrandPlacement {
-    float scale = 1.0f;                     // metres per file unit
-    LengthUnit unit = LengthUnit::Metres;   // Auto: a chosen factor, or nothing fitted
-    bool followedHead = false;              // the head's placement was applied
-    std::string description;                // one line: "placed with the head (×0.001, ...)"
-    std::string note;                       // a warning, or empty
+    float scale = 1.0f; // metres per file unit
+    LengthUnit unit = LengthUnit::Metres; // Auto: a chosen factor, or nothing fitted
+    bool followedHead = false; // the head's placement was applied
+    std::string description; // one line: "placed with the head (×0.001, ...)"
+    std::string note; // a warning, or empty
 };
 
 // `head`: the placement of the head the strands were made on, or nullptr. `explicitScale` > 0:
 // the artist's factor.
 StrandPlacement placeStrands(HairCurves& strands, const HeadPlacement* head, float explicitScale = 0.0f);
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -19,11 +19,11 @@ float smoothstep(float edge0, float edge1, float x)
 constexpr float kFrontHairline = 0.67f;
 constexpr float kEarHairline = 0.45f;
 constexpr float kNapeHairline = -0.10f;
-constexpr float kEarDepth = 0.55f;  // where the ear sits, as a fraction from the back to the nose
+constexpr float kEarDepth = 0.55f; // where the ear sits, as a fraction from the back to the nose
 constexpr float kFade = 0.10f;
 constexpr float kNoseSearchMetres = 0.30f;
 
-}  // namespace
+} // namespace
 
 std::vector<float> scalpGrowth(const TriangleMesh& head)
 {
@@ -54,14 +54,14 @@ std::vector<float> scalpGrowth(const TriangleMesh& head)
     const std::vector<glm::vec3> normals = vertexNormals(head);
     for (std::size_t i = 0; i < weights.size(); ++i) {
         const glm::vec3& p = head.positions[i];
-        const float s = std::clamp((p.z - back) / depth, 0.0f, 1.0f);  // 0 at the back, 1 at the nose
+        const float s = std::clamp((p.z - back) / depth, 0.0f, 1.0f); // 0 at the back, 1 at the nose
         const float line = s < kEarDepth
-                               ? kNapeHairline + (kEarHairline - kNapeHairline) * (s / kEarDepth)
-                               : kEarHairline + (kFrontHairline - kEarHairline) * ((s - kEarDepth) / (1.0f - kEarDepth));
+            ? kNapeHairline + (kEarHairline - kNapeHairline) * (s / kEarDepth)
+            : kEarHairline + (kFrontHairline - kEarHairline) * ((s - kEarDepth) / (1.0f - kEarDepth));
         const float lineY = nose.y + line * height;
         weights[i] = smoothstep(lineY, lineY + kFade * height, p.y) * smoothstep(-0.6f, -0.3f, normals[i].y);
     }
     return weights;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -20,4 +20,4 @@ namespace wisp {
 // underside). No hair on the face, the ears, the neck's front or a bust.
 std::vector<float> scalpGrowth(const TriangleMesh& head);
 
-}  // namespace wisp
+} // namespace wisp

@@ -60,15 +60,15 @@ float longestStrand(const HairCurves& strands)
     return longest;
 }
 
-}  // namespace
+} // namespace
 
 // CT2Hair's bangs on the head they were made on: the command line moves the strands with the
 // head (+X up, millimetres, centred), so each root stays where it was on the scalp.
 TEST_F(CliPlacement, ImportedHairIsPlacedWithItsHead)
 {
     const fs::path head = kAssets / "hair/ct2hair_bangs_head.ply", out = dir / "rest.txt";
-    const CliRun run = cli("simulate --steps 0 --rest --head " + head.string() + " --hair " +
-                           (kAssets / "hair/ct2hair_bangs100.data").string() + " --out " + out.string());
+    const CliRun run = cli("simulate --steps 0 --rest --head " + head.string() + " --hair "
+        + (kAssets / "hair/ct2hair_bangs100.data").string() + " --out " + out.string());
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_NE(run.output.find("strands placed with their head"), std::string::npos) << run.output;
     auto rest = io::readStrandText(out.string());

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -361,4 +362,29 @@ TEST(HeadPlacement, AChosenUpAxisOverridesTheShape)
     const HeadPlacement zUp = placeHead(upright, settings);
     EXPECT_EQ(zUp.front, Axis::NegY) << "the smallest turn from +Z up";
     EXPECT_NEAR(boundsOf(upright).size().y / boundsOf(upright).size().x, 120.0f / 85.94f, 0.01f);
+}
+
+// Shapes that are no head keep their axes and say why; nothing odd in them trips the detector.
+TEST(HeadPlacement, ShapesThatAreNoHeadKeepTheirAxesAndSayWhy)
+{
+    const TriangleMesh cube = box({1.0f, 1.0f, 1.0f});
+    const HeadOrientation symmetric = detectHeadOrientation(cube.positions);
+    EXPECT_FALSE(symmetric.found);
+    EXPECT_NE(symmetric.reason.find("mirror symmetry"), std::string::npos) << symmetric.reason;
+
+    std::vector<glm::vec3> odd = cube.positions;
+    odd.push_back({std::nanf(""), 0.0f, 0.0f});
+    EXPECT_EQ(detectHeadOrientation(odd).reason, "a vertex is not a finite point");
+    const TriangleMesh sheet = box({2.0f, 0.0f, 1.0f});
+    EXPECT_EQ(detectHeadOrientation(sheet.positions).reason, "the mesh is flat or has no finite extent");
+    std::vector<glm::vec3> huge = {{-3e38f, 0, 0}, {3e38f, 1, 0}, {0, 0, 1}, {0, 1, 1}};
+    EXPECT_FALSE(detectHeadOrientation(huge).found);
+    EXPECT_EQ(detectHeadOrientation(std::vector<glm::vec3>{}).reason, "too few vertices to tell which way is up");
+
+    EXPECT_EQ(parseAxis("+x"), Axis::PosX);
+    EXPECT_EQ(parseAxis("Z"), Axis::PosZ);
+    EXPECT_EQ(parseAxis("-y"), Axis::NegY);
+    EXPECT_FALSE(parseAxis("up"));
+    EXPECT_FALSE(parseAxis("+"));
+    EXPECT_FALSE(parseAxis("-w"));
 }

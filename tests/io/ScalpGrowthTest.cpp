@@ -21,8 +21,8 @@ using wisp::test::assetPath;
 
 TEST(ScalpGrowth, RootsGrowOnTheScalpOfEverySharedHead)
 {
-    for (const char* name : {"heads/max_planck_decimated.obj", "heads/igea_tristrips.ply", "heads/cy_woman_head.ply",
-             "hair/ct2hair_bangs_head.ply"}) {
+    for (const char* name : { "heads/max_planck_decimated.obj", "heads/igea_tristrips.ply", "heads/cy_woman_head.ply",
+             "hair/ct2hair_bangs_head.ply" }) {
         const auto path = assetPath(name);
         REQUIRE_ASSET(path);
         Result<MeshReadResult> read = readMesh(path.string());
@@ -86,8 +86,8 @@ TEST(ScalpGrowth, RootsGrowOnTheScalpOfEverySharedHead)
         EXPECT_EQ(crownCovered, crown) << name;
         EXPECT_GE(double(rearCovered), 0.95 * double(rear)) << name;
         std::cout << "[          ] " << name << ": " << grown.groom.strandCount() << " roots; lowest on the face "
-                  << lowestOnFace << ", in the front half " << lowestFrontHalf << ", anywhere " << lowest << " (nose-to-top heights above the nose tip, "
-                  << height << " m); crown " << crownCovered << "/" << crown << ", back " << rearCovered << "/" << rear
-                  << " vertices covered\n";
+                  << lowestOnFace << ", in the front half " << lowestFrontHalf << ", anywhere " << lowest
+                  << " (nose-to-top heights above the nose tip, " << height << " m); crown " << crownCovered << "/"
+                  << crown << ", back " << rearCovered << "/" << rear << " vertices covered\n";
     }
 }

@@ -1,11 +1,11 @@
 // Imported strands land on their head: io/StrandPlacement.h, the one placement the editor's Import
 // Hair and wisp-cli simulate --hair share. Checked against the head's surface (a BVH of the
 // placed mesh), on CT2Hair's bangs and the head they were made on.
+#include "io/StrandPlacement.h"
 #include "IoTestSupport.h"
 #include "io/HairFiles.h"
 #include "io/HeadPlacement.h"
 #include "io/MeshReader.h"
-#include "io/StrandPlacement.h"
 #include "sim/MeshBvh.h"
 
 #include <glm/geometric.hpp>
@@ -78,9 +78,8 @@ TEST(StrandPlacement, TheUnitOfAGroomIsFoundFromItsRoots)
     REQUIRE_ASSET(assetPath("hair/ct2hair_bangs100.data"));
     const HairCurves millimetres = readBangs();
     const std::vector<float> lengthsMm = strandLengths(millimetres);
-    for (const auto& [unit, perMillimetre] :
-        {std::pair{LengthUnit::Millimetres, 1.0f}, std::pair{LengthUnit::Centimetres, 0.1f},
-            std::pair{LengthUnit::Metres, 0.001f}}) {
+    for (const auto& [unit, perMillimetre] : { std::pair{ LengthUnit::Millimetres, 1.0f },
+             std::pair{ LengthUnit::Centimetres, 0.1f }, std::pair{ LengthUnit::Metres, 0.001f } }) {
         HairCurves strands = millimetres;
         for (glm::vec3& p : strands.positions)
             p *= perMillimetre;

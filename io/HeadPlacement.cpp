@@ -13,12 +13,6 @@ namespace wisp::io {
 
 namespace {
 
-// The Z-up to Y-up turn: -90 degrees about +X. A proper rotation, so winding is kept.
-glm::vec3 turnUpright(const glm::vec3& p)
-{
-    return {p.x, p.z, -p.y};
-}
-
 std::string formatNumber(double value)
 {
     char text[32];
@@ -40,9 +34,9 @@ LengthUnit unitOfScale(float scale)
     return LengthUnit::Auto;
 }
 
-bool headSized(double extentMetres)
+bool skullSized(double widthMetres)
 {
-    return extentMetres >= headMinExtentMetres && extentMetres < headMaxExtentMetres;
+    return widthMetres >= skullMinWidthMetres && widthMetres < skullMaxWidthMetres;
 }
 
 // Metres per unit as the decimal it stands for: 0.01f is not exactly 0.01, and the size
@@ -105,18 +99,46 @@ HeadPlacement placeHead(TriangleMesh& mesh, LengthUnit unit, float explicitScale
 HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& settings)
 {
     HeadPlacement placement;
-    placement.rotatedUpright = settings.zUp;
     if (mesh.positions.empty()) {
         placement.note = "the mesh has no vertices; nothing to place";
         return placement;
     }
 
-    // Bounds in file units, after the optional turn (which only permutes and negates axes).
-    Aabb box = boundsOf(mesh);
-    if (settings.zUp)
-        box = Aabb{glm::vec3(box.min.x, box.min.z, -box.max.y), glm::vec3(box.max.x, box.max.z, -box.min.y)};
+    // Which way is up: as named, or from the shape, or the file's own axes.
+    std::string whyNotFound;
+    if (settings.up) {
+        placement.up = *settings.up;
+        placement.front = defaultFront(*settings.up);
+        placement.orientation = std::string(axisName(placement.up)) + " up as chosen";
+    } else {
+        const HeadOrientation found = detectHeadOrientation(mesh.positions);
+        placement.upFromShape = found.found;
+        if (found.found) {
+            placement.up = found.up;
+            placement.front = found.front;
+        }
+        placement.orientation = found.found ? std::string(axisName(found.up)) + " up, face " +
+                                                  axisName(found.front) + " (found from its shape: " + found.reason + ")"
+                                            : "kept the file's +Y up: " + found.reason;
+        if (!found.found)
+            whyNotFound = found.reason;
+    }
+    std::vector<glm::vec3> upright(mesh.positions.size());
+    for (std::size_t i = 0; i < upright.size(); ++i)
+        upright[i] = orient(mesh.positions[i], placement.up, placement.front);
+
+    // Bounds and skull width in file units, after the turn.
+    Aabb box{upright.front(), upright.front()};
+    for (const glm::vec3& p : upright) {
+        box.min = glm::min(box.min, p);
+        box.max = glm::max(box.max, p);
+    }
     const glm::vec3 size = box.size();
     const float largest = std::max({size.x, size.y, size.z});
+    // A flat mesh (a mask, a plane seen edge on) may have no width at the top; its largest extent stands in.
+    float skull = skullWidth(upright);
+    if (!(skull > 1e-6f * largest))
+        skull = largest;
 
     const bool explicitGiven = settings.explicitScale > 0.0f && std::isfinite(settings.explicitScale);
     std::vector<std::string> notes;
@@ -137,45 +159,49 @@ HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& setting
     } else {
         placement.unit = LengthUnit::Auto;
         for (LengthUnit candidate : {LengthUnit::Millimetres, LengthUnit::Centimetres, LengthUnit::Metres})
-            if (headSized(double{largest} * exactMetresPerUnit(candidate))) {
+            if (skullSized(double{skull} * exactMetresPerUnit(candidate))) {
                 placement.unit = candidate;
                 placement.scale = metresPerUnit(candidate);
             }
         if (placement.unit == LengthUnit::Auto) {
-            // Height, not the largest extent, is what the artist will check; a flat mesh (a
-            // mask, a plane) has none, so its largest extent stands in.
-            const float height = size.y > 1e-6f * largest ? size.y : largest;
-            placement.scale = static_cast<float>(fittedHeadHeightMetres / double{height});
+            placement.scale = static_cast<float>(fittedSkullWidthMetres / double{skull});
             placement.scaledToFit = true;
-            notes.push_back("the mesh is " + formatNumber(largest) + " units at its largest, which is no head size ("
-                + metresText(headMinExtentMetres) + " to under " + metresText(headMaxExtentMetres)
-                + ") in millimetres, centimetres or metres; scaled it to " + metresText(fittedHeadHeightMetres)
-                + " tall");
+            notes.push_back("the skull is " + formatNumber(skull) + " units wide, which is no skull width ("
+                + metresText(skullMinWidthMetres) + " to under " + metresText(skullMaxWidthMetres)
+                + ") in millimetres, centimetres or metres; scaled it to " + metresText(fittedSkullWidthMetres)
+                + " wide");
         }
     }
+    placement.skullWidthMetres = skull * placement.scale;
 
     // A unit the artist chose (or a factor) may still make an odd head; say so, do not undo it.
     if (explicitGiven || settings.unit != LengthUnit::Auto) {
-        const double largestMetres = double{largest} * double{placement.scale};
-        if (largest > 0.0f && !headSized(largestMetres))
-            notes.push_back("at this scale the head is " + metresText(largestMetres)
-                + " at its largest; heads are usually " + metresText(headMinExtentMetres) + " to "
-                + metresText(headMaxExtentMetres));
+        const double widthMetres = double{skull} * double{placement.scale};
+        if (largest > 0.0f && !skullSized(widthMetres))
+            notes.push_back("at this scale the skull is " + metresText(widthMetres) + " wide; skulls are usually "
+                + metresText(skullMinWidthMetres) + " to " + metresText(skullMaxWidthMetres));
     }
+    if (!whyNotFound.empty())
+        notes.push_back("could not tell which way is up (" + whyNotFound
+            + "); kept the file's +Y up: choose the up axis if the head lies on its side");
 
     for (const std::string& note : notes)
         placement.note += (placement.note.empty() ? "" : "; ") + note;
     placement.offset = -box.center() * placement.scale;
-    applyPlacement(mesh, placement);
+    for (std::size_t i = 0; i < upright.size(); ++i)
+        mesh.positions[i] = upright[i] * placement.scale + placement.offset;
     return placement;
 }
 
 void applyPlacement(TriangleMesh& mesh, const HeadPlacement& placement)
 {
-    for (glm::vec3& p : mesh.positions) {
-        const glm::vec3 upright = placement.rotatedUpright ? turnUpright(p) : p;
-        p = upright * placement.scale + placement.offset;
-    }
+    applyPlacement(std::span<glm::vec3>(mesh.positions), placement);
+}
+
+void applyPlacement(std::span<glm::vec3> points, const HeadPlacement& placement)
+{
+    for (glm::vec3& p : points)
+        p = orient(p, placement.up, placement.front) * placement.scale + placement.offset;
 }
 
 std::string describePlacement(const HeadPlacement& placement)
@@ -184,12 +210,13 @@ std::string describePlacement(const HeadPlacement& placement)
     if (placement.unit != LengthUnit::Auto)
         text += unitName(placement.unit);
     else if (placement.scaledToFit)
-        text += "scaled to " + metresText(fittedHeadHeightMetres) + " tall";
+        text += "scaled to a " + metresText(fittedSkullWidthMetres) + " wide skull";
     else
         text += "chosen scale";
     text += ")";
-    if (placement.rotatedUpright)
-        text += ", turned Z-up to Y-up";
+    if (placement.turned() || placement.upFromShape)
+        text += std::string(", ") + axisName(placement.up) + " up, face " + axisName(placement.front) +
+                (placement.upFromShape ? " (from its shape)" : "");
     return text;
 }
 

@@ -2,8 +2,10 @@
 
 #include "io/AtomicFile.h"
 #include "io/Base64.h"
+#include "io/HeadPlacement.h"
 #include "io/PresetFile.h"
 
+#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -241,11 +243,13 @@ void readReferencedHead(const std::string& projectPath, const fs::path& folder, 
     if (!loaded)
         throw Refusal{"head.source", "cannot load the head: " + loaded.error().toString()};
     project.head = std::move(loaded).value();
-    // The same arithmetic as io/HeadPlacement.cpp's applyPlacement, so the head lands where the import put it.
-    for (glm::vec3& p : project.head.positions) {
-        const glm::vec3 upright = project.headImportZUp ? glm::vec3(p.x, p.z, -p.y) : p;
-        p = upright * project.headImportScale + project.headImportOffset;
-    }
+    // io/HeadPlacement.cpp's applyPlacement, so the head lands where the import put it.
+    HeadPlacement placement;
+    placement.scale = project.headImportScale;
+    placement.offset = project.headImportOffset;
+    placement.up = project.headImportUp;
+    placement.front = project.headImportFront;
+    applyPlacement(project.head, placement);
     if (project.head.vertexCount() != vertexCount)
         throw Refusal{"head.source", chosen.string() + " has " + std::to_string(project.head.vertexCount()) +
                                          " vertices, but the project was painted on " + std::to_string(vertexCount) +
@@ -258,7 +262,7 @@ void readHead(const json& root, const std::string& projectPath, const fs::path& 
 {
     const json& head = requireObject(require(root, "", "head"), "head");
     warnUnknownKeys(head, "head",
-                    {"source", "absolute_source", "embedded", "import_scale", "import_offset", "import_z_up",
+                    {"source", "absolute_source", "embedded", "import_scale", "import_offset", "import_z_up", "import_up", "import_front",
                      "vertex_count", "triangle_count", "positions", "triangles"},
                     warnings);
     std::string source, absoluteSource;
@@ -272,8 +276,21 @@ void readHead(const json& root, const std::string& projectPath, const fs::path& 
         project.headImportScale = readFloat(*value, "head.import_scale");
     if (const json* value = find(head, "import_offset"))
         project.headImportOffset = readFiniteVec3(*value, "head.import_offset");
-    if (const json* value = find(head, "import_z_up"))
-        project.headImportZUp = readBool(*value, "head.import_z_up");
+    if (const json* value = find(head, "import_z_up"); value && readBool(*value, "head.import_z_up")) {
+        project.headImportUp = Axis::PosZ;
+        project.headImportFront = defaultFront(Axis::PosZ);
+    }
+    for (auto [key, axis] : {std::pair{"import_up", &project.headImportUp}, std::pair{"import_front", &project.headImportFront}})
+        if (const json* value = find(head, key)) {
+            const std::string text = readText(*value, std::string("head.") + key, 8);
+            const std::optional<Axis> parsed = parseAxis(text);
+            if (!parsed)
+                throw Refusal{std::string("head.") + key, "\"" + text + "\" is no axis (+X, -X, +Y, -Y, +Z or -Z)"};
+            *axis = *parsed;
+        }
+    if (glm::dot(axisVector(project.headImportUp), axisVector(project.headImportFront)) != 0.0f)
+        throw Refusal{"head.import_front", std::string(axisName(project.headImportFront)) + " is not perpendicular to "
+                                               + "head.import_up " + axisName(project.headImportUp)};
     const std::uint64_t vertexCount = readWhole(require(head, "head", "vertex_count"), "head.vertex_count", 0xffffffffu);
     const std::uint64_t triangleCount =
         readWhole(require(head, "head", "triangle_count"), "head.triangle_count", 0xffffffffu);
@@ -482,7 +499,8 @@ std::string projectToJson(const Project& project, const std::string& projectPath
     head["embedded"] = project.headEmbedded;
     head["import_scale"] = shortestDoubleForFloat(project.headImportScale);
     head["import_offset"] = vec3ToJson(project.headImportOffset);
-    head["import_z_up"] = project.headImportZUp;
+    head["import_up"] = axisName(project.headImportUp);
+    head["import_front"] = axisName(project.headImportFront);
     head["vertex_count"] = project.head.vertexCount();
     head["triangle_count"] = project.head.triangleCount();
     if (project.headEmbedded) {

@@ -44,6 +44,7 @@
 //
 // Thread safety: any thread; no state. The head loader is called on the calling thread.
 
+#include "io/HeadOrientation.h"
 #include "io/IoError.h"
 #include "sim/GrowthRegion.h"
 #include "sim/Parameters.h"
@@ -86,12 +87,14 @@ struct Project {
     bool headEmbedded = true;  // the head's vertices and triangles are stored in the project; when
                                // false, readProject loads headSource again (it must not be "")
     // How the import placed the file's vertices (io/HeadPlacement.h's HeadPlacement): a vertex p of
-    // the file is at upright(p) * headImportScale + headImportOffset in `head`, where upright turns
-    // +Z up to +Y up, (x, y, z) -> (x, z, -y), when headImportZUp. readProject redoes it for a
-    // referenced head; for an embedded head it is only kept, so that a re-import can offer it.
+    // the file is at orient(p, headImportUp, headImportFront) * headImportScale + headImportOffset
+    // in `head` (io/HeadOrientation.h). readProject redoes it for a referenced head; for an
+    // embedded head it is only kept, so that a re-import can offer it. Files written before the
+    // up axis was found from the shape hold "import_z_up" instead: true reads as +Z up, front -Y.
     float headImportScale = 1.0f;          // metres per file unit (0.01 for centimetres)
     glm::vec3 headImportOffset{0.0f};      // metres, added after turning and scaling
-    bool headImportZUp = false;
+    io::Axis headImportUp = io::Axis::PosY;     // the file's axis that became +Y
+    io::Axis headImportFront = io::Axis::PosZ;  // the file's axis that became +Z
     ParameterValues parameters;    // all of them, written with every registry key
     std::vector<GrowthRegion> regions;
     std::uint32_t soloRegion = kNoSolo;  // a region's id, or kNoSolo

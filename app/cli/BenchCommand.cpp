@@ -5,6 +5,7 @@
 #include "app/cli/Commands.h"
 #include "app/cli/StepTimer.h"
 
+#include "io/HeadPlacement.h"
 #include "io/MeshReader.h"
 #include "sim/DefaultHead.h"
 #include "sim/GrowthMap.h"
@@ -146,8 +147,8 @@ BenchResult sphereWorkload(const RunOptions& o)
     return r;
 }
 
-// A head for the brush workload: the file given with --head (brought to a head's size, 0.25 m
-// tall, when its units are not metres), or the default head.
+// A head for the brush workload: the file given with --head, placed as the editor places it
+// (io/HeadPlacement.h), or the default head.
 TriangleMesh benchHead(const std::string& path)
 {
     if (path.empty())
@@ -156,20 +157,19 @@ TriangleMesh benchHead(const std::string& path)
     if (!read)
         throw CliError{kBadInput, read.error().toString()};
     TriangleMesh mesh = std::move(read).value().mesh;
-    const Aabb box = boundsOf(mesh);
-    const float height = box.size().y;
-    if (!(height > 0.1f && height < 0.5f))
-        for (glm::vec3& p : mesh.positions)
-            p = (p - box.center()) * (0.25f / height);
+    io::HeadPlacementSettings settings;
+    if (io::formatFixesUpAxis(path))
+        settings.up = io::Axis::PosY;
+    io::placeHead(mesh, settings);
     return mesh;
 }
 
-// The scene the editor starts a head from a file with: one region, "Scalp", grown on its upper part.
+// The scene the editor starts a head from a file with: one region, "Scalp", grown on its scalp.
 std::vector<GrowthRegion> scalpOf(const TriangleMesh& head)
 {
     std::vector<GrowthRegion> regions(1);
     regions[0].name = "Scalp";
-    regions[0].weights = upperHeadGrowth(head);
+    regions[0].weights = scalpGrowth(head);
     return regions;
 }
 

@@ -7,7 +7,8 @@
 
 namespace wisp::cli {
 
-LoadedHead loadHead(const std::string& path, std::optional<double> scale, bool zUp, const std::string& command)
+LoadedHead loadHead(const std::string& path, std::optional<double> scale, std::optional<io::Axis> up,
+                    const std::string& command)
 {
     io::Result<io::MeshReadResult> read = io::readMesh(path);
     if (!read)
@@ -19,8 +20,11 @@ LoadedHead loadHead(const std::string& path, std::optional<double> scale, bool z
     LoadedHead head{std::move(read).value().mesh, {}};
     io::HeadPlacementSettings settings;
     settings.explicitScale = scale ? static_cast<float>(*scale) : 0.0f;
-    settings.zUp = zUp && !io::formatFixesUpAxis(path);
+    settings.up = io::formatFixesUpAxis(path) ? std::optional(io::Axis::PosY) : up;
     head.placement = io::placeHead(head.mesh, settings);
+    std::cout << path << ": " << io::describePlacement(head.placement) << "; " << head.placement.orientation << "\n";
+    if (!head.placement.note.empty())
+        std::cerr << "wisp-cli " << command << ": " << path << ": warning: " << head.placement.note << "\n";
     return head;
 }
 

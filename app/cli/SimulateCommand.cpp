@@ -9,6 +9,7 @@
 #include "io/MeshReader.h"
 #include "io/PresetFile.h"
 #include "io/ParameterText.h"
+#include "io/StrandPlacement.h"
 #include "io/StrandText.h"
 #include "sim/DefaultHead.h"
 #include "sim/GrowthMap.h"
@@ -33,13 +34,17 @@ std::vector<OptionSpec> simulateOptions()
         {"help", "", "show this help"},
         {"head", "FILE", "head mesh (OBJ, PLY, OFF, STL, glTF, GLB); default: the built-in head and its growth map"},
         {"scale", "FACTOR", "the head's metres per file unit (default: millimetres, centimetres or metres, guessed "
-                            "from its size); the head is then centred"},
-        {"z-up", "", "the head file is +Z up (turned to Wisp's +Y up; glTF is always +Y up)"},
+                            "from the skull's width); the head is then centred"},
+        {"up", "AXIS", "the head file's up axis, +x -x +y -y +z or -z (default: found from the head's shape; glTF is "
+                       "always +y)"},
+        {"z-up", "", "the same as --up +z"},
         {"preset", "FILE", "a preset (JSON, see resources/presets): its parameters and its first region's wisp"},
         {"params", "FILE", "parameter file: 'key = value' lines with the keys below (applied after --preset)"},
-        {"hair", "FILE", "grow these strands (.hair, .data; head space, metres) instead of the growth map: each is "
-                         "a simulated wisp rooted on the nearest point of the head"},
-        {"hair-scale", "FACTOR", "multiply the --hair strands' coordinates (e.g. 0.001 for strands in millimetres)"},
+        {"hair", "FILE", "grow these strands (.hair, .data) instead of the growth map: each is a simulated wisp "
+                         "rooted on the nearest point of the head. With --head they are in the head file's frame and "
+                         "placed with it; without, their unit is guessed from the span of their roots"},
+        {"hair-scale", "FACTOR", "instead: multiply the --hair strands' coordinates (e.g. 0.001 for millimetres) and "
+                                 "take them as they are in Wisp's frame"},
         {"steps", "N", "time steps to simulate (default 120)"},
         {"threads", "N", "solver threads (default: one per core)"},
         {"grid", "WxHxP", "the first paper's layout: W x H strands of P particles on the scalp"},
@@ -94,14 +99,27 @@ int runSimulate(int argc, char** argv)
     const auto steps = static_cast<int>(args.integer("steps", 120, 0, 10'000'000));
     const auto threads = static_cast<int>(args.integer("threads", 0, 0, 1024));
 
+    std::optional<io::Axis> up;
+    if (const auto text = args.text("up")) {
+        up = io::parseAxis(*text);
+        if (!up)
+            throw CliError{kBadInput, "--up: '" + *text + "' is no axis (+x, -x, +y, -y, +z or -z)"};
+    }
+    if (args.has("z-up")) {
+        if (up && *up != io::Axis::PosZ)
+            throw CliError{kBadInput, "--z-up contradicts --up " + *args.text("up")};
+        up = io::Axis::PosZ;
+    }
+
     TriangleMesh head;
     std::vector<float> weights;
+    std::optional<io::HeadPlacement> headPlacement;
     if (const auto path = args.text("head")) {
         LoadedHead loaded = loadHead(*path, args.has("scale") ? std::optional(args.real("scale", 1.0)) : std::nullopt,
-                                     args.has("z-up"), "simulate");
-        std::cout << *path << ": " << io::describePlacement(loaded.placement) << "\n";
+                                     up, "simulate");
+        headPlacement = loaded.placement;
         head = std::move(loaded.mesh);
-        weights = upperHeadGrowth(head);
+        weights = scalpGrowth(head);
     } else {
         DefaultHead d = makeDefaultHead();
         head = std::move(d.mesh);
@@ -130,9 +148,15 @@ int runSimulate(int argc, char** argv)
         const double hairScale = args.real("hair-scale", 1.0);
         if (!(hairScale > 0.0 && hairScale < 1e6))
             throw CliError{kBadInput, "--hair-scale: " + *args.text("hair-scale") + " must be a positive factor"};
+        // One placement for the editor and the command line (io/StrandPlacement.h).
+        const io::StrandPlacement placed =
+            io::placeStrands(strands, headPlacement ? &*headPlacement : nullptr,
+                             args.has("hair-scale") ? static_cast<float>(hairScale) : 0.0f);
+        std::cout << *hairPath << ": " << placed.description << "\n";
+        if (!placed.note.empty())
+            std::cerr << "wisp-cli simulate: " << *hairPath << ": warning: " << placed.note << "\n";
         glm::vec3 lo(INFINITY), hi(-INFINITY);
-        for (glm::vec3& p : strands.positions) {
-            p *= static_cast<float>(hairScale);
+        for (const glm::vec3& p : strands.positions) {
             lo = glm::min(lo, p);
             hi = glm::max(hi, p);
         }

@@ -59,8 +59,13 @@ void validateHead(const std::string& path)
         throw CliError{kBadInput, path + ": " + problem};
     std::cout << path << ": head mesh, " << mesh.positions.size() << " vertices, " << mesh.triangles.size()
               << " triangles, " << size(boundsOf(mesh)) << " file units\n";
-    const io::HeadPlacement placement = io::placeHead(mesh);
+    io::HeadPlacementSettings settings;  // as simulate and the editor place it
+    if (io::formatFixesUpAxis(path))
+        settings.up = io::Axis::PosY;
+    const io::HeadPlacement placement = io::placeHead(mesh, settings);
     std::cout << "  " << io::describePlacement(placement) << " -> " << size(boundsOf(mesh)) << " m\n";
+    if (!placement.note.empty())
+        std::cout << "  check: " << placement.note << "\n";
     printWarnings(read.value().warnings);
 }
 

@@ -296,7 +296,8 @@ io::Project Document::toProject() const
     p.headEmbedded = true;  // a project opens even when the head file has moved
     p.headImportScale = m_headPlacement.scale;
     p.headImportOffset = m_headPlacement.offset;
-    p.headImportZUp = m_headPlacement.rotatedUpright;
+    p.headImportUp = m_headPlacement.up;
+    p.headImportFront = m_headPlacement.front;
     p.parameters = m_parameters;
     p.regions = m_regions;
     p.soloRegion = m_soloId;
@@ -311,7 +312,8 @@ void Document::loadProject(io::Project project)
     m_headPlacement = {};
     m_headPlacement.scale = project.headImportScale;
     m_headPlacement.offset = project.headImportOffset;
-    m_headPlacement.rotatedUpright = project.headImportZUp;
+    m_headPlacement.up = project.headImportUp;
+    m_headPlacement.front = project.headImportFront;
     m_parameters = project.parameters;
     m_soloId = kNoSolo;
     m_styleStroke.reset();

@@ -7,6 +7,7 @@
 #include "app/editor/SimulationHost.h"
 #include "io/HairFiles.h"
 #include "io/MeshReader.h"
+#include "io/StrandPlacement.h"
 #include "sim/GrowthMap.h"
 #include "widgets/Viewport.h"
 
@@ -14,6 +15,7 @@
 #include <QAction>
 #include <QDateTime>
 #include <QDir>
+#include <QActionGroup>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QInputDialog>
@@ -75,13 +77,26 @@ void FileMenu::buildMenu()
     });
     QAction* scale = m_menu->addAction(tr("Head &Scale…"), this, &FileMenu::changeHeadScale);
     scale->setToolTip(tr("The imported head's metres per file unit"));
-    m_zUp = m_menu->addAction(tr("Head File Is &Z-Up"));
-    m_zUp->setCheckable(true);
-    m_zUp->setToolTip(tr("The head file was made with +Z up (some scanners and CAD tools): turn it upright"));
-    connect(m_zUp, &QAction::triggered, this, [this](bool zUp) {
-        if (m_lastHead)
-            placeAgain(m_lastHead->placement.scale, zUp);
-    });
+    m_upMenu = m_menu->addMenu(tr("Head &Up Axis"));
+    m_upMenu->setToolTipsVisible(true);
+    auto* upGroup = new QActionGroup(m_upMenu);
+    const auto addUp = [&](const QString& text, std::optional<io::Axis> up) {
+        QAction* action = m_upMenu->addAction(text);
+        action->setCheckable(true);
+        action->setData(up ? QVariant(static_cast<int>(*up)) : QVariant());
+        upGroup->addAction(action);
+        connect(action, &QAction::triggered, this, [this, up] {
+            if (m_lastHead)
+                placeAgain(m_lastHead->placement.scale, up);
+        });
+    };
+    addUp(tr("From Its Shape"), std::nullopt);
+    m_upMenu->actions().front()->setToolTip(
+        tr("Find up and the face from the head itself: its mirror symmetry, its nose, the skull above the nose"));
+    m_upMenu->addSeparator();
+    for (io::Axis up : {io::Axis::PosY, io::Axis::PosZ, io::Axis::NegZ, io::Axis::PosX, io::Axis::NegX, io::Axis::NegY})
+        addUp(QString::fromLatin1(io::axisName(up)), up);
+    m_upMenu->actions().front()->setChecked(true);
     m_menu->addSeparator();
     m_menu->addAction(tr("&Import Hair…"), this, [this] {
         const QString path = QFileDialog::getOpenFileName(m_window, tr("Import Hair"), QString(),
@@ -124,14 +139,19 @@ bool FileMenu::openHead(const QString& path) { return m_importer->start(path); }
 void FileMenu::takeHead(const std::shared_ptr<const ImportedHead>& head)
 {
     m_lastHead = head;
-    m_zUp->setChecked(head->placement.rotatedUpright);
-    m_zUp->setEnabled(!io::formatFixesUpAxis(head->path.toStdString()));
+    for (QAction* action : m_upMenu->actions())
+        if (action->isCheckable())
+            action->setChecked(head->chosenUp ? action->data() == QVariant(static_cast<int>(*head->chosenUp))
+                                              : !action->data().isValid());
+    m_upMenu->setEnabled(!io::formatFixesUpAxis(head->path.toStdString()));
     TriangleMesh mesh = head->mesh;
-    std::vector<float> weights = upperHeadGrowth(mesh);
+    std::vector<float> weights = scalpGrowth(mesh);
     m_document->replaceHead(std::move(mesh), std::move(weights), QFileInfo(head->path).fileName(), head->path,
                             head->placement);
     QString text = QFileInfo(head->path).fileName() + QStringLiteral(": ") +
                    QString::fromStdString(io::describePlacement(head->placement));
+    if (!head->placement.note.empty())
+        text += QStringLiteral(" · ") + tr("check: %1").arg(QString::fromStdString(head->placement.note));
     if (!head->warnings.isEmpty())
         text += QStringLiteral(" · ") + head->warnings.join(QStringLiteral(" · "));
     emit message(text);
@@ -152,10 +172,10 @@ void FileMenu::changeHeadScale()
         m_lastHead->placement.scale, 1e-6, 1e3, 6, &ok);
     if (!ok)
         return;
-    placeAgain(static_cast<float>(scale), m_lastHead->placement.rotatedUpright);
+    placeAgain(static_cast<float>(scale), m_lastHead->chosenUp);
 }
 
-bool FileMenu::placeAgain(float scale, bool zUp)
+bool FileMenu::placeAgain(float scale, std::optional<io::Axis> up)
 {
     if (!m_lastHead || !(scale > 0.0f))
         return false;
@@ -163,7 +183,8 @@ bool FileMenu::placeAgain(float scale, bool zUp)
     head->mesh = head->asRead;
     io::HeadPlacementSettings settings;
     settings.explicitScale = scale;
-    settings.zUp = zUp && !io::formatFixesUpAxis(head->path.toStdString());
+    head->chosenUp = up;
+    settings.up = io::formatFixesUpAxis(head->path.toStdString()) ? std::optional(io::Axis::PosY) : up;
     head->placement = io::placeHead(head->mesh, settings);
     takeHead(head);
     return true;
@@ -179,14 +200,18 @@ QString FileMenu::importHair(const QString& path)
     }
     io::HairReadResult result = std::move(read).value();
     // Strands come in the units and axes of the file they were made with, like the head that came
-    // with them: the head's placement brings both to Wisp's metres, +Y up (one formula for both).
-    TriangleMesh points;
-    points.positions = std::move(result.strands.positions);
-    io::applyPlacement(points, m_document->headPlacement());
-    result.strands.positions = std::move(points.positions);
+    // with them: the head's placement brings both to Wisp's metres, +Y up; on the built-in head
+    // only their unit is guessed. The same function as wisp-cli simulate --hair.
+    const bool headFromFile = !m_document->headSource().isEmpty();
+    const io::StrandPlacement placed =
+        io::placeStrands(result.strands, headFromFile ? &m_document->headPlacement() : nullptr);
     auto strands = std::make_shared<const HairCurves>(std::move(result.strands));
     m_document->addImportedHair(strands, QFileInfo(path).fileName());
-    QString text = tr("Imported %1 strands from %2").arg(strands->strandCount()).arg(QFileInfo(path).fileName());
+    QString text = tr("Imported %1 strands from %2: %3")
+                       .arg(strands->strandCount())
+                       .arg(QFileInfo(path).fileName(), QString::fromStdString(placed.description));
+    if (!placed.note.empty())
+        text += QStringLiteral(" · ") + tr("check: %1").arg(QString::fromStdString(placed.note));
     for (const std::string& w : result.warnings)
         text += QStringLiteral(" · ") + QString::fromStdString(w);
     emit message(text);

@@ -6,11 +6,14 @@
 //
 // Thread: GUI.
 
+#include "io/HeadOrientation.h"
+
 #include <QObject>
 #include <QString>
 
 #include <functional>
 #include <memory>
+#include <optional>
 
 class QAction;
 class QMainWindow;
@@ -44,9 +47,10 @@ public:
     QString importHair(const QString& path);
     // Writes the newest frame's hair; returns the error, empty on success.
     QString exportHair(const QString& path, bool restPose, bool keysOnly);
-    // Places the last head read anew at `metresPerUnit`, turned from Z-up or not (one undo step;
-    // Head Scale and Head File Is Z-Up). False when no head came from a file.
-    bool placeAgain(float metresPerUnit, bool zUp);
+    // Places the last head read anew at `metresPerUnit`, with `up` as the file's up axis (nullopt:
+    // found from its shape); one undo step (Head Scale, Head Up Axis). False when no head came
+    // from a file.
+    bool placeAgain(float metresPerUnit, std::optional<io::Axis> up);
     // After the window shows: offers the last session's unsaved work if it ended without closing.
     void offerRecovery();
     // What the artist answers to the recovery question: Later keeps the work for the next start.
@@ -75,8 +79,8 @@ private:
     HeadImporter* m_importer;
     QMenu* m_menu = nullptr;
     QMenu* m_recentMenu = nullptr;
-    QAction* m_zUp = nullptr;
     QAction* m_saveAs = nullptr;
+    QMenu* m_upMenu = nullptr;  // Head Up Axis: "From Its Shape", then +Y, +Z, -Z, +X, -X, -Y
     std::shared_ptr<const ImportedHead> m_lastHead;  // as read, to place again at another scale
     bool m_interactive = true;
     RecoveryPrompt m_recoveryPrompt;

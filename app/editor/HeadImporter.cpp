@@ -64,7 +64,9 @@ bool HeadImporter::start(const QString& path, const io::HeadPlacementSettings& s
                 head->asRead = std::move(result.mesh);
                 head->mesh = head->asRead;
                 io::HeadPlacementSettings settings = job->settings;
-                settings.zUp = settings.zUp && !io::formatFixesUpAxis(job->path.toStdString());
+                head->chosenUp = settings.up;
+                if (io::formatFixesUpAxis(job->path.toStdString()))
+                    settings.up = io::Axis::PosY;
                 head->placement = io::placeHead(head->mesh, settings);
                 head->path = job->path;
                 for (const std::string& w : result.warnings)

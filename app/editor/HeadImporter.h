@@ -1,7 +1,8 @@
 #pragma once
 // Reads a head file on a worker thread so the window never freezes, with a progress dialog for
 // files that take a moment (a 270k-triangle scan takes about a second), then places it as
-// io/HeadPlacement.h says (unit from its size unless given, centred, +Y up).
+// io/HeadPlacement.h says (unit from its skull's width unless given, up axis from its shape unless
+// given, centred).
 //
 // The readers report no fraction done, so the dialog is a busy indicator with Cancel; a cancelled
 // read finishes in the background and its result is dropped.
@@ -16,6 +17,7 @@
 #include <QStringList>
 
 #include <memory>
+#include <optional>
 #include <thread>
 
 class QProgressDialog;
@@ -27,6 +29,7 @@ struct ImportedHead {
     TriangleMesh mesh;            // placed: metres, centred, +Y up
     TriangleMesh asRead;          // as the file holds it, to place again at another scale
     io::HeadPlacement placement;
+    std::optional<io::Axis> chosenUp;  // the up axis the artist named; nullopt: from the shape
     QString path;
     QStringList warnings;
 };

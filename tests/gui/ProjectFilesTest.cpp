@@ -12,11 +12,14 @@
 #include "GuiTestSupport.h"
 #include "io/HairFiles.h"
 #include "io/ProjectFile.h"
+#include "sim/MeshBvh.h"
 #include "widgets/Viewport.h"
 
 #include <QAbstractButton>
+#include <QAction>
 #include <QApplication>
 #include <QDir>
+#include <QMenu>
 #include <QMessageBox>
 #include <QSignalSpy>
 #include <QStandardPaths>
@@ -365,10 +368,11 @@ TEST_F(ProjectFilesTest, AHeadOpensOnAWorkerThreadAtItsUnitAndTheWindowKeepsDraw
 
     // Head Scale: the same file at twice the metres per unit is twice the size; undo returns.
     const float height = box.size().y;
-    ASSERT_TRUE(window->fileMenu()->placeAgain(0.002f, false));
+    ASSERT_TRUE(window->fileMenu()->placeAgain(0.002f, std::nullopt));
     EXPECT_NEAR(boundsOf(doc()->head()).size().y, 2.0f * height, 1e-4f);
-    ASSERT_TRUE(window->fileMenu()->placeAgain(0.001f, true));  // Z-up: the file's z becomes height
-    EXPECT_TRUE(doc()->headPlacement().rotatedUpright);
+    ASSERT_TRUE(window->fileMenu()->placeAgain(0.001f, io::Axis::PosZ));  // Z-up: the file's z becomes height
+    EXPECT_EQ(doc()->headPlacement().up, io::Axis::PosZ);
+    EXPECT_EQ(doc()->headPlacement().front, io::Axis::NegY);
     doc()->undoStack()->undo();
     doc()->undoStack()->undo();
     EXPECT_NEAR(boundsOf(doc()->head()).size().y, height, 1e-5f);
@@ -411,4 +415,55 @@ TEST_F(ProjectFilesTest, ImportedHairBecomesASimulatedRegionAndExportsBack)
     doc()->undoStack()->undo();
     EXPECT_EQ(doc()->regionCount(), 1);
     EXPECT_NE(window->fileMenu()->exportHair(dir.filePath(QStringLiteral("x.abc")), false, false), QString());
+}
+
+// The editor's path for a head and the strands made on it: the head is turned upright from its
+// shape (CT2Hair's is +X up), the status line says so, and Import Hair moves the strands with it,
+// so every root lies within a few millimetres of the head's surface (checked against a BVH of the
+// document's head). The same placement as wisp-cli simulate --head --hair.
+TEST_F(ProjectFilesTest, HairImportedAfterItsHeadLandsOnItsScalp)
+{
+    const std::string head = (kAssets / "hair/ct2hair_bangs_head.ply").string();
+    const std::string bangs = (kAssets / "hair/ct2hair_bangs100.data").string();
+    if (!std::filesystem::exists(head))
+        GTEST_SKIP() << "the shared assets are not at " << kAssets;
+    QSignalSpy said(window->fileMenu(), &FileMenu::message);
+    QSignalSpy headChanged(doc(), &Document::headChanged);
+    QSignalSpy refused(window->fileMenu()->headImporter(), &HeadImporter::failed);
+    ASSERT_TRUE(window->fileMenu()->openAny(QString::fromStdString(head)));
+    ASSERT_TRUE(waitUntil([&] { return headChanged.count() > 0 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
+    ASSERT_EQ(refused.count(), 0) << refused.front().front().toString().toStdString();
+    EXPECT_EQ(doc()->headPlacement().up, io::Axis::PosX);
+    ASSERT_GT(said.count(), 0);
+    EXPECT_TRUE(said.back().front().toString().contains(QStringLiteral("+X up, face -Y (from its shape)")))
+        << said.back().front().toString().toStdString();
+
+    ASSERT_EQ(window->fileMenu()->importHair(QString::fromStdString(bangs)), QString());
+    EXPECT_TRUE(said.back().front().toString().contains(QStringLiteral("strands placed with their head")))
+        << said.back().front().toString().toStdString();
+    ASSERT_EQ(doc()->regionCount(), 2);
+    const HairCurves& strands = *doc()->region(1).importedStrands;
+    const MeshBvh bvh(doc()->head());
+    float worst = 0.0f;
+    for (std::size_t s = 0; s < strands.strandCount(); ++s)
+        worst = std::max(worst, bvh.closestPoint(strands.positions[strands.offsets[s]]).distance);
+    EXPECT_LT(worst, 0.006f) << "roots within a few millimetres of the scalp";
+
+    // A head that needs a word: the status line carries the placement's warning.
+    const std::string woman = (kAssets / "heads/cy_woman_head.ply").string();
+    ASSERT_TRUE(window->fileMenu()->openAny(QString::fromStdString(woman)));
+    ASSERT_TRUE(waitUntil([&] { return headChanged.count() > 1 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
+    EXPECT_TRUE(said.back().front().toString().contains(QStringLiteral("check: the skull is 64.7")))
+        << said.back().front().toString().toStdString();
+    // Head Up Axis ▸ +Y keeps the file's axes (the head lies on its back), one undo step.
+    QAction* plusY = nullptr;
+    for (QAction* a : window->fileMenu()->menu()->findChildren<QAction*>())
+        if (a->text() == QStringLiteral("+Y"))
+            plusY = a;
+    ASSERT_NE(plusY, nullptr);
+    plusY->trigger();
+    EXPECT_EQ(doc()->headPlacement().up, io::Axis::PosY);
+    EXPECT_FALSE(doc()->headPlacement().turned());
+    doc()->undoStack()->undo();
+    EXPECT_EQ(doc()->headPlacement().up, io::Axis::PosZ);
 }

@@ -47,6 +47,8 @@ void expectBitIdentical(const Project& a, const Project& b)
     EXPECT_EQ(a.headSource, b.headSource);
     EXPECT_EQ(a.headEmbedded, b.headEmbedded);
     EXPECT_EQ(bitsOf(a.headImportScale), bitsOf(b.headImportScale));
+    EXPECT_EQ(a.headImportUp, b.headImportUp);
+    EXPECT_EQ(a.headImportFront, b.headImportFront);
     for (const ParameterInfo& info : allParameters())
         EXPECT_EQ(std::bit_cast<std::uint64_t>(a.parameters.get(info.id)), std::bit_cast<std::uint64_t>(b.parameters.get(info.id)))
             << info.key;
@@ -120,7 +122,8 @@ Project makeProject(TriangleMesh head, std::vector<float> scalpWeights)
     project.camera = {{0.01f, 1.6f, -0.0f}, 2.5f / 3.0f, -0.2f, 0.85f, 37.5f};
     project.headImportScale = 0.001f;  // embedded: kept as it was, not applied again
     project.headImportOffset = {0.0f, -1.0f / 3.0f, 0.0125f};
-    project.headImportZUp = true;
+    project.headImportUp = io::Axis::PosX;  // CT2Hair's heads are +X up, the face -Y
+    project.headImportFront = io::Axis::NegY;
     return project;
 }
 
@@ -313,7 +316,8 @@ TEST_F(ProjectFileTest, ReferencedHeadResolvesRelativeToTheProjectFile)
     Project project = makeProject(file, std::vector<float>(6, 0.25f));
     project.headImportScale = 0.01f;
     project.headImportOffset = {0.0f, -0.02f, 0.005f};
-    project.headImportZUp = true;
+    project.headImportUp = io::Axis::PosZ;
+    project.headImportFront = io::Axis::NegY;
     for (glm::vec3& p : project.head.positions)
         p = glm::vec3(p.x, p.z, -p.y) * 0.01f + project.headImportOffset;
     project.headEmbedded = false;
@@ -825,4 +829,39 @@ TEST(Base64, KnownVectorsAndStrictDecoding)
     const auto back = decodeFloat32Array(encodeFloat32Array(floats));
     ASSERT_TRUE(back);
     EXPECT_EQ(std::memcmp(back->data(), floats.data(), sizeof(float) * floats.size()), 0);
+}
+
+// The head's up and front axes are stored by name; a project from before them (import_z_up) reads
+// as the Z-up turn; a name that is no axis, or a front along the up axis, is refused by key.
+TEST_F(ProjectFileTest, TheHeadsImportAxesAreStoredAndOldZUpFilesStillRead)
+{
+    nlohmann::json json = validJson();
+    EXPECT_EQ(json["head"]["import_up"], "+X"); // smallProject's
+    EXPECT_EQ(json["head"]["import_front"], "-Y");
+
+    json["head"]["import_up"] = "-Z";
+    json["head"]["import_front"] = "+x";
+    const fs::path path = m_dir / "axes.wisp";
+    writeText(path, json.dump());
+    const Result<ProjectReadResult> read = readProject(path.string());
+    ASSERT_TRUE(read) << read.error().toString();
+    EXPECT_EQ(read.value().project.headImportUp, io::Axis::NegZ);
+    EXPECT_EQ(read.value().project.headImportFront, io::Axis::PosX);
+
+    nlohmann::json old = validJson();
+    old["head"].erase("import_up");
+    old["head"].erase("import_front");
+    old["head"]["import_z_up"] = true;
+    writeText(path, old.dump());
+    const Result<ProjectReadResult> oldRead = readProject(path.string());
+    ASSERT_TRUE(oldRead) << oldRead.error().toString();
+    EXPECT_EQ(oldRead.value().project.headImportUp, io::Axis::PosZ);
+    EXPECT_EQ(oldRead.value().project.headImportFront, io::Axis::NegY);
+
+    nlohmann::json bad = validJson();
+    bad["head"]["import_up"] = "up";
+    EXPECT_EQ(errorOf(bad.dump()), "head.import_up: \"up\" is no axis (+X, -X, +Y, -Y, +Z or -Z)");
+    bad = validJson();
+    bad["head"]["import_front"] = "-X";
+    EXPECT_EQ(errorOf(bad.dump()), "head.import_front: -X is not perpendicular to head.import_up +X");
 }

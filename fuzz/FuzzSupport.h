@@ -11,7 +11,7 @@
 namespace wisp::fuzz {
 
 // Writes `size` bytes to a file named `name` in this process's own temporary folder (made once,
-// under $TMPDIR or /tmp, removed at exit) and returns its path. The same name is overwritten on
+// under $TMPDIR, else /dev/shm, else /tmp; removed at exit) and returns its path. The same name is overwritten on
 // every call, so a run leaves one file however many inputs it tries.
 std::string writeInput(const std::string& name, const std::uint8_t* data, std::size_t size);
 

@@ -20,8 +20,8 @@ rm -rf "$out"
 mkdir -p "$out"/{mesh,gltf,hair,preset,project,params}
 
 # Little-endian binary helpers: u32 / u16 / f32 (from a hex bit pattern) as raw bytes.
-u32() { printf "\\x%02x\\x%02x\\x%02x\\x%02x" $(($1 & 255)) $(($1 >> 8 & 255)) $(($1 >> 16 & 255)) $(($1 >> 24 & 255)); }
-u16() { printf "\\x%02x\\x%02x" $(($1 & 255)) $(($1 >> 8 & 255)); }
+u32() { printf "$(printf '\\x%02x\\x%02x\\x%02x\\x%02x' $(($1 & 255)) $(($1 >> 8 & 255)) $(($1 >> 16 & 255)) $(($1 >> 24 & 255)))"; }
+u16() { printf "$(printf '\\x%02x\\x%02x' $(($1 & 255)) $(($1 >> 8 & 255)))"; }
 f32() { u32 "$1"; }  # f32 0x3e4ccccd = 0.2
 # The tetrahedron (0,0,0) (0.2,0,0) (0,0.2,0) (0,0,0.2) as little-endian floats.
 tetra_le() { f32 0; f32 0; f32 0; f32 0x3e4ccccd; f32 0; f32 0; f32 0; f32 0x3e4ccccd; f32 0; f32 0; f32 0; f32 0x3e4ccccd; }
@@ -66,7 +66,7 @@ gltf_json ",\"uri\":\"data:application/octet-stream;base64,$(tri_bin | base64 -w
 
 # --- fuzz_hair: the file as it is ---------------------------------------------------------------
 h=$out/hair
-{ u32 2; u32 2; tetra_le | head -c 24; u32 1; f32 0x3e4ccccd; f32 0x3e4ccccd; f32 0x3e4ccccd; } > "$h/two.data"
+{ u32 2; u32 2; f32 0; f32 0; f32 0; f32 0x3e4ccccd; f32 0; f32 0; u32 1; f32 0x3e4ccccd; f32 0x3e4ccccd; f32 0x3e4ccccd; } > "$h/hand-made.data"
 printf 'wisp-strands 1\n# hand-made\nstrands 2 points 4\n2 0 0 0 0 0.1 0\n2 0.1 0 0 0.1 0.1 0\n' > "$h/two-strands.txt"
 
 # --- fuzz_params --------------------------------------------------------------------------------

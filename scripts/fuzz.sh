@@ -9,6 +9,7 @@
 #   (default)  the longer run: each target for `seconds` (default 600), keeping what it learns in
 #              build-fuzz/corpus/<target>/ for the next run.
 #   targets    mesh gltf hair preset project params (default: all).
+#   WISP_FUZZ_ARGS  more libFuzzer options, e.g. -runs=1000000 to stop a target at a million inputs.
 #
 # A finding (crash, sanitizer report, leak, an input slower than 10 s or one that needs more than
 # 2 GB) stops that target; the input is kept as build-fuzz/findings/<target>-crash-… and printed,
@@ -50,11 +51,11 @@ for t in "${targets[@]}"; do
   echo "== fuzz_$t: ${seconds} s"
   status=0
   build-fuzz/fuzz/fuzz_"$t" "$corpus" build-fuzz/seeds/"$t" -max_total_time="$seconds" -max_len=16384 -timeout=10 \
-    -rss_limit_mb=2048 -jobs=1 -print_final_stats=1 -artifact_prefix=build-fuzz/findings/"$t"- > "$log" 2>&1 || status=$?
+    -rss_limit_mb=2048 -jobs=1 -print_final_stats=1 -artifact_prefix=build-fuzz/findings/"$t"- ${WISP_FUZZ_ARGS:-} > "$log" 2>&1 || status=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
   corp=$(grep -o 'corp: [0-9]*/[0-9]*[a-zA-Z]*' "$log" | tail -1)
-  echo "   ${runs:-?} executions, ${rate:-?} a second, ${corp:-corp: ?}"
+  echo "   ${runs:-?} executions, ${rate:-?} a second, $(grep -o 'cov: [0-9]*' "$log" | tail -1), ${corp:-corp: ?} (inputs/bytes)"
   if ((status != 0)); then
     failed+=("$t")
     echo "!! fuzz_$t found a problem (exit $status); the end of its log ($log):"

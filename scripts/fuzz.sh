@@ -51,7 +51,7 @@ for t in "${targets[@]}"; do
   echo "== fuzz_$t: ${seconds} s"
   status=0
   build-fuzz/fuzz/fuzz_"$t" "$corpus" build-fuzz/seeds/"$t" -max_total_time="$seconds" -max_len=16384 -timeout=10 \
-    -rss_limit_mb=2048 -jobs=1 -print_final_stats=1 -artifact_prefix=build-fuzz/findings/"$t"- ${WISP_FUZZ_ARGS:-} > "$log" 2>&1 || status=$?
+    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build-fuzz/findings/"$t"- ${WISP_FUZZ_ARGS:-} > "$log" 2>&1 || status=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
   corp=$(grep -o 'corp: [0-9]*/[0-9]*[a-zA-Z]*' "$log" | tail -1)

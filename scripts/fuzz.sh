@@ -60,7 +60,7 @@ for t in "${targets[@]}"; do
     failed+=("$t")
     echo "!! fuzz_$t found a problem (exit $status); the end of its log ($log):"
     grep -v '^#[0-9]' "$log" | tail -40
-    for a in $(grep -o "build-fuzz/findings/$t-[a-z-]*[0-9a-f]*" "$log" | sort -u); do
+    for a in $(sed -n 's/.*Test unit written to //p' "$log"); do
       echo "!! the input, $a ($(stat -c %s "$a") bytes; replay: build-fuzz/fuzz/fuzz_$t $a):"
       head -c 2048 "$a" | od -A d -c | head -40
     done

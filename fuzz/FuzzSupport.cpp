@@ -61,12 +61,17 @@ std::string writeInput(const std::string& name, const std::uint8_t* data, std::s
     return path.string();
 }
 
-void exerciseHead(TriangleMesh mesh, bool zUp)
+void placeAndExerciseHead(TriangleMesh mesh, bool zUp)
 {
     io::HeadPlacementSettings settings;
     settings.zUp = zUp;
     const io::HeadPlacement placement = io::placeHead(mesh, settings);
     (void)io::describePlacement(placement);
+    exerciseHead(mesh);
+}
+
+void exerciseHead(const TriangleMesh& mesh)
+{
     if (!validateMesh(mesh).empty())
         return;  // the importer refuses it with that message
     // validateMesh promises finite coordinates and indices in range: everything below relies on it.

@@ -16,10 +16,12 @@ namespace wisp::fuzz {
 std::string writeInput(const std::string& name, const std::uint8_t* data, std::size_t size);
 
 // The editor's steps after a head is read (app/editor/HeadImporter.cpp, then the document, the
-// paint tool and the simulation): place it, check it, and, when it is usable, build its BVH, its
-// growth map, its body and a coarse collider, and ask the BVH the questions the tools ask. A
-// finding here is a crash, a sanitizer report, or a broken promise of sim/ (see the .cpp).
-void exerciseHead(TriangleMesh mesh, bool zUp);
+// paint tool and the simulation): check it and, when it is usable, build its BVH, its growth map,
+// its body and a coarse collider, and ask the BVH the questions the tools ask. A finding here is
+// a crash, a sanitizer report, or a broken promise of sim/ (see the .cpp).
+void exerciseHead(const TriangleMesh& mesh);
+// The same for a head as read from a mesh file: placed first (unit, centre, Z-up turn if asked).
+void placeAndExerciseHead(TriangleMesh mesh, bool zUp);
 
 // Stops the run with a message libFuzzer keeps with the input (a broken promise, not a crash).
 [[noreturn]] void fail(const std::string& what);

@@ -18,6 +18,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!read)
         return 0;
     // The artist may tick "Z up" for these formats: the turn is part of what the editor does.
-    wisp::fuzz::exerciseHead(std::move(read).value().mesh, (data[0] & 4) != 0);
+    wisp::fuzz::placeAndExerciseHead(std::move(read).value().mesh, (data[0] & 4) != 0);
     return 0;
 }

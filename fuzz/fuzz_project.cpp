@@ -33,6 +33,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!again)
         wisp::fuzz::fail("a project read does not read back once written: " + again.error().toString());
     // The document takes the head as placed (it is stored in metres): only the checks and builds.
-    wisp::fuzz::exerciseHead(project.head, false);
+    wisp::fuzz::exerciseHead(project.head);
     return 0;
 }

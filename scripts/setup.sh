@@ -4,6 +4,8 @@
 #
 #   scripts/setup.sh              Release build in build/
 #   scripts/setup.sh --sanitize   Debug build with AddressSanitizer + UBSan in build-asan/
+#   scripts/setup.sh --fuzz       the libFuzzer targets (clang, ASan + UBSan) in build-fuzz/
+#                                 (scripts/fuzz.sh runs them)
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
@@ -15,6 +17,8 @@ packages=(
   libgtest-dev libbenchmark-dev
   xvfb xauth
 )
+# Only the fuzz build uses clang (libFuzzer); every other build is g++.
+if [ "${1:-}" = "--fuzz" ]; then packages+=(clang-14 libclang-rt-14-dev); fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -33,6 +37,10 @@ cmake_args=(-G Ninja -DCMAKE_BUILD_TYPE=Release)
 if [ "${1:-}" = "--sanitize" ]; then
   build_dir=build-asan
   cmake_args=(-G Ninja -DCMAKE_BUILD_TYPE=Debug -DWISP_SANITIZE=ON)
+elif [ "${1:-}" = "--fuzz" ]; then
+  # Debug keeps assertions; WISP_FUZZ adds -O1 and the sanitizers, and builds only sim, io, fuzz/.
+  build_dir=build-fuzz
+  cmake_args=(-G Ninja -DCMAKE_BUILD_TYPE=Debug -DWISP_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++-14)
 fi
 
 cmake -S . -B "$build_dir" "${cmake_args[@]}" > /dev/null

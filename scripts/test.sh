@@ -4,6 +4,9 @@
 #
 #   scripts/test.sh              Release build
 #   scripts/test.sh --sanitize   Debug build with AddressSanitizer + UBSan
+#
+# After the tests, the Release mode also fuzzes every reader briefly (scripts/fuzz.sh --ci: its
+# own clang build, about 20 s a target); WISP_CI_FUZZ=0 skips that.
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
@@ -14,3 +17,7 @@ build_dir=build
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 cd "$build_dir"
 xvfb-run -a -s "-screen 0 1600x1000x24" ctest --output-on-failure -j2 --timeout 600
+cd ..
+if [ "${1:-}" != "--sanitize" ] && [ "${WISP_CI_FUZZ:-1}" != 0 ]; then
+  scripts/fuzz.sh --ci
+fi

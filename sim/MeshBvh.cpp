@@ -50,6 +50,17 @@ bool finite(const glm::vec3& v)
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+// The bin (0 .. kBins-1) of a centroid coordinate, `scale` being kBins / the centroids' extent.
+// Guarded because the float division does not always give a usable scale: a subnormal extent
+// (a head flat to 1e-39 m along an axis) makes it infinite, and (centroid - lo) * inf is NaN or
+// infinite, which no int can hold (found by fuzz/fuzz_mesh). NaN lands in the last bin; the build
+// and the partition use this one function, so they always agree.
+int binOf(float centroid, float lo, float scale)
+{
+    const float bin = (centroid - lo) * scale;
+    return bin < static_cast<float>(kBins) ? (bin > 0.0f ? static_cast<int>(bin) : 0) : kBins - 1;
+}
+
 float boxDistance2(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi)
 {
     const glm::vec3 d = glm::max(glm::max(lo - p, p - hi), glm::vec3(0.0f));
@@ -126,7 +137,7 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh)
             Bin bins[kBins];
             for (std::uint32_t i = task.begin; i < task.end; ++i) {
                 const Ref& r = refs[i];
-                const int b = std::min(kBins - 1, static_cast<int>((r.centroid[axis] - centroidBounds.lo[axis]) * scale));
+                const int b = binOf(r.centroid[axis], centroidBounds.lo[axis], scale);
                 bins[b].box.grow(r.box);
                 ++bins[b].count;
             }
@@ -174,7 +185,7 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh)
             const float lo = centroidBounds.lo[bestAxis];
             const float scale = static_cast<float>(kBins) / extent[bestAxis];
             const Ref* middle = std::partition(refs.data() + task.begin, refs.data() + task.end, [&](const Ref& r) {
-                return std::min(kBins - 1, static_cast<int>((r.centroid[bestAxis] - lo) * scale)) < bestPlane;
+                return binOf(r.centroid[bestAxis], lo, scale) < bestPlane;
             });
             mid = static_cast<std::uint32_t>(middle - refs.data());
             if (mid == task.begin || mid == task.end)

@@ -210,6 +210,35 @@ TEST(MeshBvh, OwnsItsDataAndHandlesBadInput)
     EXPECT_NEAR(pileBvh.closestPoint(glm::vec3(0.2f, 0.2f, 1.0f)).distance, 1.0f, 1e-6f);
 }
 
+// A head flat to a subnormal thickness (y is 0 or 1e-39 m): the binning's kBins / extent is
+// infinite on that axis, and its bin index was a cast of NaN to int, which wrote far outside the
+// bins (found by fuzz/fuzz_mesh). The tree must build and answer like brute force.
+TEST(MeshBvh, BuildsOnASubnormalThickness)
+{
+    const float thin = 1e-39f;
+    ASSERT_EQ(std::fpclassify(thin), FP_SUBNORMAL);
+    TriangleMesh mesh;
+    // An n x n grid of quads in the xz plane, a few corners raised by `thin`: the triangles'
+    // centroids then differ in y by a subnormal amount.
+    const int n = 6;
+    for (int i = 0; i <= n; ++i)
+        for (int k = 0; k <= n; ++k)
+            mesh.positions.push_back({0.05f * static_cast<float>(i), i % 3 == 0 && k % 2 == 0 ? thin : 0.0f, 0.05f * static_cast<float>(k)});
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < n; ++k) {
+            const auto v = static_cast<unsigned>(i * (n + 1) + k);
+            mesh.triangles.push_back({v, v + 1, v + n + 1});
+            mesh.triangles.push_back({v + 1, v + n + 2, v + n + 1});
+        }
+    const MeshBvh bvh(mesh);
+    ASSERT_EQ(bvh.triangleCount(), mesh.triangleCount());
+    for (const glm::vec3 p : {glm::vec3(0.12f, 0.1f, 0.07f), glm::vec3(-0.1f, -0.2f, 0.31f), glm::vec3(0.3f, 0.0f, 0.3f)})
+        EXPECT_NEAR(bvh.closestPoint(p).distance, bruteClosest(mesh, p).distance, 1e-6f) << p.x << " " << p.z;
+    const auto hit = bvh.raycast(glm::vec3(0.17f, 1.0f, 0.22f), glm::vec3(0.0f, -1.0f, 0.0f), 2.0f);
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->t, 1.0f, 1e-6f);
+}
+
 // A ~330k-triangle mesh stays interactive: the build and single queries are timed and printed;
 // the assertions are loose so slow (sanitizer, debug) builds still pass.
 TEST(MeshBvh, LargeMeshQueriesAnswer)

@@ -10,13 +10,17 @@
 
 namespace wisp {
 
-DragSlider::DragSlider(QWidget* parent) : QSlider(Qt::Horizontal, parent)
+DragSlider::DragSlider(QWidget* parent)
+    : QSlider(Qt::Horizontal, parent)
 {
     setRange(0, kSteps);
     setPageStep(kSteps / 20);
 }
 
-double DragSlider::fractionPerPixel() const { return 1.0 / std::max(static_cast<double>(width()), kMinTravelPixels); }
+double DragSlider::fractionPerPixel() const
+{
+    return 1.0 / std::max(static_cast<double>(width()), kMinTravelPixels);
+}
 
 void DragSlider::mousePressEvent(QMouseEvent* event)
 {
@@ -58,7 +62,9 @@ void DragSlider::mouseReleaseEvent(QMouseEvent* event)
     event->accept();
 }
 
-SliderRow::SliderRow(SliderRowSpec spec, QWidget* parent) : QWidget(parent), m_spec(std::move(spec))
+SliderRow::SliderRow(SliderRowSpec spec, QWidget* parent)
+    : QWidget(parent)
+    , m_spec(std::move(spec))
 {
     auto* h = new QHBoxLayout(this);
     h->setContentsMargins(0, 0, 0, 0);
@@ -140,6 +146,9 @@ void SliderRow::setValue(double value)
     m_updating = false;
 }
 
-double SliderRow::value() const { return m_spin->value(); }
+double SliderRow::value() const
+{
+    return m_spin->value();
+}
 
-}  // namespace wisp
+} // namespace wisp

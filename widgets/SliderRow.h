@@ -26,15 +26,15 @@ class DragSlider : public QSlider {
 public:
     explicit DragSlider(QWidget* parent = nullptr);
 
-    static constexpr int kSteps = 1000;               // slider positions over the travel
-    static constexpr double kMinTravelPixels = 600.0;  // the whole range takes at least this much drag
-    static constexpr double kFineFactor = 0.1;         // Shift + drag
+    static constexpr int kSteps = 1000; // slider positions over the travel
+    static constexpr double kMinTravelPixels = 600.0; // the whole range takes at least this much drag
+    static constexpr double kFineFactor = 0.1; // Shift + drag
 
     // Fraction of travel per pixel of mouse movement now (without Shift).
     double fractionPerPixel() const;
 
 signals:
-    void dragged(double fraction, Qt::KeyboardModifiers modifiers);  // while the button is held
+    void dragged(double fraction, Qt::KeyboardModifiers modifiers); // while the button is held
     void dragFinished(Qt::KeyboardModifiers modifiers);
 
 protected:
@@ -51,10 +51,10 @@ private:
 struct SliderRowSpec {
     SliderRange range;
     int decimals = 2;
-    double singleStep = 0.01;  // the spin box's arrows
-    QString suffix;            // " m/s²": the unit, after a space
+    double singleStep = 0.01; // the spin box's arrows
+    QString suffix; // " m/s²": the unit, after a space
     QString tooltip;
-    QString objectName;        // the slider's (the parameter's key)
+    QString objectName; // the slider's (the parameter's key)
 };
 
 class SliderRow : public QWidget {
@@ -77,7 +77,7 @@ signals:
 
 private:
     void showOnSlider(double value);
-    double shown(double value) const;  // as the spin box holds it (its decimals)
+    double shown(double value) const; // as the spin box holds it (its decimals)
 
     SliderRowSpec m_spec;
     DragSlider* m_slider = nullptr;
@@ -85,4 +85,4 @@ private:
     bool m_updating = false;
 };
 
-}  // namespace wisp
+} // namespace wisp

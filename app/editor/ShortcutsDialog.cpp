@@ -32,7 +32,8 @@ QString keysOf(const QAction* action)
     return keys.join(QStringLiteral(", "));
 }
 
-void collectMenu(const QMenu* menu, const QString& path, std::vector<ShortcutEntry>& out, std::set<const QAction*>& seen)
+void collectMenu(
+    const QMenu* menu, const QString& path, std::vector<ShortcutEntry>& out, std::set<const QAction*>& seen)
 {
     for (const QAction* action : menu->actions()) {
         if (action->menu()) {
@@ -41,7 +42,7 @@ void collectMenu(const QMenu* menu, const QString& path, std::vector<ShortcutEnt
         }
         if (action->isSeparator() || action->shortcuts().isEmpty() || !seen.insert(action).second)
             continue;
-        out.push_back({keysOf(action), plain(action->text()), path});
+        out.push_back({ keysOf(action), plain(action->text()), path });
     }
 }
 
@@ -49,21 +50,21 @@ void collectMenu(const QMenu* menu, const QString& path, std::vector<ShortcutEnt
 const std::vector<ShortcutEntry>& mouseBindings()
 {
     static const std::vector<ShortcutEntry> bindings{
-        {QObject::tr("Alt+Left drag, Middle drag"), QObject::tr("Orbit the camera"), QObject::tr("Viewport")},
-        {QObject::tr("Shift+Middle drag"), QObject::tr("Pan the camera"), QObject::tr("Viewport")},
-        {QObject::tr("Wheel"), QObject::tr("Zoom"), QObject::tr("Viewport")},
-        {QObject::tr("Left drag"), QObject::tr("Paint, or use the styling tool"), QObject::tr("Viewport")},
-        {QObject::tr("Ctrl+Left drag"), QObject::tr("Erase (paint); shrink, take out, towel-dry, wash out (styling)"),
-         QObject::tr("Viewport")},
-        {QObject::tr("Shift+Left drag"), QObject::tr("Smooth the growth weights (paint)"), QObject::tr("Viewport")},
-        {QObject::tr("[ and ]"), QObject::tr("Brush radius smaller / larger"), QObject::tr("Viewport")},
-        {QObject::tr("Shift+drag"), QObject::tr("Fine: a tenth as fast"), QObject::tr("Sliders")},
-        {QObject::tr("Ctrl+drag"), QObject::tr("Snap to round values"), QObject::tr("Sliders")},
+        { QObject::tr("Alt+Left drag, Middle drag"), QObject::tr("Orbit the camera"), QObject::tr("Viewport") },
+        { QObject::tr("Shift+Middle drag"), QObject::tr("Pan the camera"), QObject::tr("Viewport") },
+        { QObject::tr("Wheel"), QObject::tr("Zoom"), QObject::tr("Viewport") },
+        { QObject::tr("Left drag"), QObject::tr("Paint, or use the styling tool"), QObject::tr("Viewport") },
+        { QObject::tr("Ctrl+Left drag"), QObject::tr("Erase (paint); shrink, take out, towel-dry, wash out (styling)"),
+            QObject::tr("Viewport") },
+        { QObject::tr("Shift+Left drag"), QObject::tr("Smooth the growth weights (paint)"), QObject::tr("Viewport") },
+        { QObject::tr("[ and ]"), QObject::tr("Brush radius smaller / larger"), QObject::tr("Viewport") },
+        { QObject::tr("Shift+drag"), QObject::tr("Fine: a tenth as fast"), QObject::tr("Sliders") },
+        { QObject::tr("Ctrl+drag"), QObject::tr("Snap to round values"), QObject::tr("Sliders") },
     };
     return bindings;
 }
 
-}  // namespace
+} // namespace
 
 std::vector<ShortcutEntry> shortcutEntries(const QWidget* window)
 {
@@ -78,24 +79,25 @@ std::vector<ShortcutEntry> shortcutEntries(const QWidget* window)
         if (action->shortcuts().isEmpty() || !seen.insert(action).second)
             continue;
         const QWidget* holder = action->associatedObjects().isEmpty()
-                                    ? nullptr
-                                    : qobject_cast<const QWidget*>(action->associatedObjects().front());
-        out.push_back({keysOf(action), plain(action->text()),
-                       holder ? holder->windowTitle().isEmpty() ? holder->objectName() : holder->windowTitle() : QString()});
+            ? nullptr
+            : qobject_cast<const QWidget*>(action->associatedObjects().front());
+        out.push_back({ keysOf(action), plain(action->text()),
+            holder ? holder->windowTitle().isEmpty() ? holder->objectName() : holder->windowTitle() : QString() });
     }
     const auto& mouse = mouseBindings();
     out.insert(out.end(), mouse.begin(), mouse.end());
     return out;
 }
 
-ShortcutsDialog::ShortcutsDialog(QWidget* window) : QDialog(window)
+ShortcutsDialog::ShortcutsDialog(QWidget* window)
+    : QDialog(window)
 {
     setWindowTitle(tr("Keyboard Shortcuts"));
     setObjectName(QStringLiteral("shortcutsDialog"));
     auto* layout = new QVBoxLayout(this);
     const std::vector<ShortcutEntry> entries = shortcutEntries(window);
     m_table = new QTableWidget(static_cast<int>(entries.size()), 3, this);
-    m_table->setHorizontalHeaderLabels({tr("Keys"), tr("Does"), tr("Where")});
+    m_table->setHorizontalHeaderLabels({ tr("Keys"), tr("Does"), tr("Where") });
     m_table->verticalHeader()->hide();
     m_table->setEditTriggers(QAbstractItemView::NoEditTriggers);
     m_table->setSelectionBehavior(QAbstractItemView::SelectRows);
@@ -114,4 +116,4 @@ ShortcutsDialog::ShortcutsDialog(QWidget* window) : QDialog(window)
     resize(620, 560);
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -15,9 +15,9 @@ class QTableWidget;
 namespace wisp {
 
 struct ShortcutEntry {
-    QString keys;    // "Ctrl+Shift+S", native text; several keys joined by ", "
-    QString action;  // "Save As…", without the mnemonic's &
-    QString where;   // the menu path ("File"), or the toolbar or panel that holds the action
+    QString keys; // "Ctrl+Shift+S", native text; several keys joined by ", "
+    QString action; // "Save As…", without the mnemonic's &
+    QString where; // the menu path ("File"), or the toolbar or panel that holds the action
 };
 
 // Every action inside `window` that has a shortcut (one entry each, in menu order first), then the
@@ -34,4 +34,4 @@ private:
     QTableWidget* m_table = nullptr;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -1,11 +1,11 @@
 #include "app/editor/UndoShortcuts.h"
 
 #include <QAbstractSpinBox>
-#include <QDoubleSpinBox>
-#include <QSpinBox>
 #include <QApplication>
+#include <QDoubleSpinBox>
 #include <QKeyEvent>
 #include <QLineEdit>
+#include <QSpinBox>
 
 namespace wisp {
 
@@ -34,13 +34,15 @@ bool hasOwnEdit(QAbstractSpinBox* box)
     else if (auto* whole = qobject_cast<QSpinBox*>(box))
         committed = whole->prefix() + whole->locale().toString(whole->value()) + whole->suffix();
     else
-        return true;  // another kind of spin box: its keys stay its own
+        return true; // another kind of spin box: its keys stay its own
     return edit->text() != committed;
 }
 
-}  // namespace
+} // namespace
 
-UndoShortcuts::UndoShortcuts(QWidget* window) : QObject(window), m_window(window)
+UndoShortcuts::UndoShortcuts(QWidget* window)
+    : QObject(window)
+    , m_window(window)
 {
     qApp->installEventFilter(this);
 }
@@ -60,4 +62,4 @@ bool UndoShortcuts::eventFilter(QObject* watched, QEvent* event)
     return true;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -27,4 +27,4 @@ private:
     QWidget* m_window;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -3,6 +3,7 @@
 // list made from the real actions; unique View menu names; a status bar that forgets the last
 // stroke's news; a comb that catches what its ring covers; a visible dryer aimed at the surface.
 // Real windows, real mouse and key events; no modal dialog is ever opened, every wait is bounded.
+#include "GuiTestSupport.h"
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
 #include "app/editor/FileMenu.h"
@@ -11,7 +12,6 @@
 #include "app/editor/ShortcutsDialog.h"
 #include "app/editor/SimulationHost.h"
 #include "app/editor/StyleTool.h"
-#include "GuiTestSupport.h"
 #include "sim/StrandPicking.h"
 #include "widgets/ParameterPanel.h"
 #include "widgets/SliderRow.h"
@@ -67,7 +67,7 @@ protected:
     {
         window = openEditor();
         ASSERT_FALSE(HasFailure()) << "the window did not open";
-        window->fileMenu()->setInteractive(false);  // no dialog of any kind
+        window->fileMenu()->setInteractive(false); // no dialog of any kind
         window->document()->editParameter(Param::Density, 2.0, false);
         window->document()->undoStack()->clear();
         ASSERT_TRUE(waitForFrames(*window->simulation(), 3));
@@ -80,8 +80,8 @@ protected:
     // `modifiers` held, releases: real mouse events.
     static void dragSlider(QSlider* slider, int pixels, Qt::KeyboardModifiers modifiers)
     {
-        const double fraction = static_cast<double>(slider->value() - slider->minimum()) /
-                                (slider->maximum() - slider->minimum());
+        const double fraction
+            = static_cast<double>(slider->value() - slider->minimum()) / (slider->maximum() - slider->minimum());
         QPoint at(static_cast<int>(fraction * (slider->width() - 1)), slider->height() / 2);
         QTest::mousePress(slider, Qt::LeftButton, modifiers, at);
         int left = pixels;
@@ -99,7 +99,7 @@ protected:
     std::unique_ptr<MainWindow> window;
 };
 
-}  // namespace
+} // namespace
 
 // Before: a 23-pixel drag took gravity from 9.81 to -56.6 m/s² (1000 steps over a narrow slider).
 TEST_F(EditorConventionsTest, A23PixelDragChangesGravityALittleShiftLessAndCtrlSnaps)
@@ -126,7 +126,7 @@ TEST_F(EditorConventionsTest, A23PixelDragChangesGravityALittleShiftLessAndCtrlS
     window->document()->undoStack()->undo();
     dragSlider(slider, 3, Qt::ControlModifier);
     const double snapped = gravity();
-    const double grid = 10.0;  // 1-2-5 nearest a twentieth of the 200 m/s² range
+    const double grid = 10.0; // 1-2-5 nearest a twentieth of the 200 m/s² range
     EXPECT_NEAR(snapped, grid * std::round(snapped / grid), 1e-9) << "Ctrl did not snap: " << snapped;
     EXPECT_NEAR(snapped, 10.0, 1e-9);
 
@@ -208,15 +208,15 @@ TEST_F(EditorConventionsTest, TheShortcutListShowsEveryActionWithAShortcut)
             help = top->menu();
     ASSERT_NE(help, nullptr);
     ASSERT_TRUE(help->actions().contains(window->shortcutsAction()));
-    window->shortcutsAction()->trigger();  // shows the dialog, not modal
+    window->shortcutsAction()->trigger(); // shows the dialog, not modal
     ShortcutsDialog* dialog = window->shortcutsDialog();
     ASSERT_NE(dialog, nullptr);
     EXPECT_FALSE(dialog->isModal());
     EXPECT_TRUE(dialog->isVisible());
     QTableWidget* table = dialog->table();
-    std::set<std::pair<QString, QString>> listed;  // (keys, action)
+    std::set<std::pair<QString, QString>> listed; // (keys, action)
     for (int row = 0; row < table->rowCount(); ++row)
-        listed.insert({table->item(row, 0)->text(), table->item(row, 1)->text()});
+        listed.insert({ table->item(row, 0)->text(), table->item(row, 1)->text() });
     int withShortcut = 0;
     for (QAction* action : window->findChildren<QAction*>()) {
         if (action->shortcut().isEmpty())
@@ -224,13 +224,13 @@ TEST_F(EditorConventionsTest, TheShortcutListShowsEveryActionWithAShortcut)
         ++withShortcut;
         const QString key = action->shortcut().toString(QKeySequence::NativeText);
         const bool found = std::any_of(listed.begin(), listed.end(), [&](const auto& entry) {
-            return entry.first.split(QStringLiteral(", ")).contains(key) &&
-                   entry.second == QString(action->text()).remove('&');
+            return entry.first.split(QStringLiteral(", ")).contains(key)
+                && entry.second == QString(action->text()).remove('&');
         });
         EXPECT_TRUE(found) << "not listed: " << action->text().toStdString() << " " << key.toStdString();
     }
     EXPECT_GE(withShortcut, 20) << "the window has fewer shortcuts than it should: the test proves little";
-    const auto has = [&](const QString& keys, const QString& action) { return listed.count({keys, action}) == 1; };
+    const auto has = [&](const QString& keys, const QString& action) { return listed.count({ keys, action }) == 1; };
     EXPECT_TRUE(has(QStringLiteral("Ctrl+Shift+S"), QStringLiteral("Save As…")));
     EXPECT_TRUE(has(QStringLiteral("Esc"), QStringLiteral("Leave Tool")));
     EXPECT_TRUE(has(QStringLiteral("Ctrl+Z"), QStringLiteral("Undo")));

@@ -1,7 +1,7 @@
 // The combed rest-shape solve (sim/RestShapeSolve.*): strands are solved independently, so one
 // that cannot be held must not leave the others half solved.
-#include "sim/HairCurves.h"
 #include "sim/RestShapeSolve.h"
+#include "sim/HairCurves.h"
 #include "sim/SolverSettings.h"
 
 #include <glm/geometric.hpp>
@@ -24,7 +24,7 @@ void addSidewaysLock(HairCurves& curves, const glm::vec3& root)
         points[static_cast<std::size_t>(j)] = root + glm::vec3(0.2f * static_cast<float>(j) / kSegments, 0.0f, 0.0f);
 }
 
-}  // namespace
+} // namespace
 
 // Before: refinement stopped for every strand as soon as the worst gap stopped shrinking, so a
 // limp strand combed with stiff ones (a comb catching a wisp too soft to hold) left the stiff ones
@@ -38,14 +38,14 @@ TEST(RestShapeSolve, AStrandThatCannotBeHeldDoesNotStopTheOthersConverging)
 
     HairCurves alone;
     addSidewaysLock(alone, glm::vec3(0.0f));
-    const std::vector<float> stiff{1.0f};
+    const std::vector<float> stiff{ 1.0f };
     const RestShapeSolution held = solveRestShapes(alone, stiff, settings, nullptr);
     ASSERT_GT(held.iterations, 1) << "the stiff lock needed no refinement: the test proves nothing";
 
     HairCurves both;
     addSidewaysLock(both, glm::vec3(0.0f));
     addSidewaysLock(both, glm::vec3(0.0f, 0.0f, 0.3f));
-    const std::vector<float> scales{1.0f, 0.0f};  // the second is limp: no rest shape holds it sideways
+    const std::vector<float> scales{ 1.0f, 0.0f }; // the second is limp: no rest shape holds it sideways
     const RestShapeSolution mixed = solveRestShapes(both, scales, settings, nullptr);
     EXPECT_GT(mixed.worstGapMetres, 0.05f) << "the limp strand was held: the test proves nothing";
 

@@ -170,10 +170,10 @@ std::string writeWithPermissionsOf(const std::string& path, const std::function<
         temporary = temporaryNameFor(target);
         fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, like ? 0600 : 0666);
         if (fd < 0 && errno != EEXIST)
-            return path + ": cannot create a temporary file in " + folderOf(target) + " (" + reason(errno) + ")";
+            return path + ": cannot write there (" + reason(errno) + ", creating a temporary file in " + folderOf(target) + ")";
     }
     if (fd < 0)
-        return path + ": cannot create a temporary file in " + folderOf(target) + " (every name tried exists)";
+        return path + ": cannot write there (every temporary name tried in " + folderOf(target) + " exists)";
 
     auto abandon = [&](const std::string& message) {
         ::close(fd);
@@ -280,7 +280,7 @@ std::string keepCopyAtomically(const std::string& source, const std::string& cop
     }
     if (linked != 0) {
         if (error == EEXIST)
-            return copyPath + ": cannot create a temporary file in " + folderOf(target) + " (every name tried exists)";
+            return copyPath + ": cannot write there (every temporary name tried in " + folderOf(target) + " exists)";
         // Another file system, or one without hard links: a copy, written as any file is.
         std::ifstream in(realSource, std::ios::binary);
         if (!in)

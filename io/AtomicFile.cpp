@@ -22,16 +22,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kMaxSymlinks = 40;           // as the kernel's path walk (ELOOP)
-constexpr int kNameAttempts = 100;         // an O_EXCL clash with 64 random bits is someone's doing
-constexpr std::size_t kRandomDigits = 16;  // 64 bits
+constexpr int kMaxSymlinks = 40; // as the kernel's path walk (ELOOP)
+constexpr int kNameAttempts = 100; // an O_EXCL clash with 64 random bits is someone's doing
+constexpr std::size_t kRandomDigits = 16; // 64 bits
 constexpr std::size_t kMaxBaseBytes = 200; // leaves room for the suffix under NAME_MAX (255)
 constexpr const char* kTmpTag = ".tmp-";
 
 std::mutex g_nameSourceMutex;
-std::function<std::string()> g_nameSource;  // tests only
+std::function<std::string()> g_nameSource; // tests only
 
-std::string reason(int error) { return std::strerror(error); }
+std::string reason(int error)
+{
+    return std::strerror(error);
+}
 
 std::string randomDigits()
 {
@@ -42,7 +45,7 @@ std::string randomDigits()
     }
     std::array<unsigned char, kRandomDigits / 2> bytes{};
     if (::getrandom(bytes.data(), bytes.size(), 0) != static_cast<ssize_t>(bytes.size())) {
-        std::random_device device;  // getrandom before Linux 3.17; still unpredictable
+        std::random_device device; // getrandom before Linux 3.17; still unpredictable
         for (unsigned char& b : bytes)
             b = static_cast<unsigned char>(device());
     }
@@ -83,7 +86,9 @@ void syncFolder(const std::string& folder)
 // An output stream buffer on a file descriptor that remembers the first write error (errno).
 class FdStreamBuf : public std::streambuf {
 public:
-    explicit FdStreamBuf(int fd) : m_fd(fd), m_buffer(std::size_t(1) << 16)
+    explicit FdStreamBuf(int fd)
+        : m_fd(fd)
+        , m_buffer(std::size_t(1) << 16)
     {
         setp(m_buffer.data(), m_buffer.data() + m_buffer.size());
     }
@@ -142,15 +147,15 @@ private:
 
 // The writer both public functions share. `permissionsFrom`: the file whose mode (and owner, where
 // allowed) the new file takes; null for the file being replaced.
-std::string writeWithPermissionsOf(const std::string& path, const std::function<void(std::ostream&)>& write,
-                                   const struct stat* permissionsFrom)
+std::string writeWithPermissionsOf(
+    const std::string& path, const std::function<void(std::ostream&)>& write, const struct stat* permissionsFrom)
 {
     std::string why;
     const std::string target = writeTargetOf(path, &why);
     if (target.empty())
         return path + ": " + why;
 
-    struct stat old {};
+    struct stat old { };
     bool replacing = false;
     if (::stat(target.c_str(), &old) == 0) {
         if (S_ISDIR(old.st_mode))
@@ -170,10 +175,11 @@ std::string writeWithPermissionsOf(const std::string& path, const std::function<
         temporary = temporaryNameFor(target);
         fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, like ? 0600 : 0666);
         if (fd < 0 && errno != EEXIST)
-            return path + ": cannot create a temporary file in " + folderOf(target) + " (" + reason(errno) + ")";
+            return path + ": cannot write there (" + reason(errno) + ", creating a temporary file in "
+                + folderOf(target) + ")";
     }
     if (fd < 0)
-        return path + ": cannot create a temporary file in " + folderOf(target) + " (every name tried exists)";
+        return path + ": cannot write there (every temporary name tried in " + folderOf(target) + " exists)";
 
     auto abandon = [&](const std::string& message) {
         ::close(fd);
@@ -182,7 +188,7 @@ std::string writeWithPermissionsOf(const std::string& path, const std::function<
     };
     if (like) {
         // The owner first: changing it may clear the mode's set-id bits, which are not kept anyway.
-        [[maybe_unused]] const int owned = ::fchown(fd, like->st_uid, like->st_gid);  // allowed or not: best effort
+        [[maybe_unused]] const int owned = ::fchown(fd, like->st_uid, like->st_gid); // allowed or not: best effort
         if (::fchmod(fd, like->st_mode & 0777) != 0)
             return abandon(path + ": cannot give the new file the permissions of the old (" + reason(errno) + ")");
     }
@@ -197,10 +203,11 @@ std::string writeWithPermissionsOf(const std::string& path, const std::function<
         throw;
     }
     if (!out || buffer.error() != 0)
-        return abandon(path + ": writing failed (" + (buffer.error() ? reason(buffer.error()) : "the content could not be made") + ")");
+        return abandon(path + ": writing failed ("
+            + (buffer.error() ? reason(buffer.error()) : "the content could not be made") + ")");
     if (::fsync(fd) != 0)
         return abandon(path + ": writing failed (" + reason(errno) + ")");
-    if (::close(fd) != 0) {  // NFS reports some write errors only here
+    if (::close(fd) != 0) { // NFS reports some write errors only here
         const int error = errno;
         ::unlink(temporary.c_str());
         return path + ": writing failed (" + reason(error) + ")";
@@ -223,13 +230,13 @@ long temporaryOwner(const std::string& name, std::size_t* baseEnd, bool* random)
     const std::string digits = name.substr(tag + std::strlen(kTmpTag));
     if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
         return 0;
-    *random = tag > kRandomDigits + 1 && name[tag - kRandomDigits - 1] == '.' &&
-              name.substr(tag - kRandomDigits, kRandomDigits).find_first_not_of("0123456789abcdef") == std::string::npos;
+    *random = tag > kRandomDigits + 1 && name[tag - kRandomDigits - 1] == '.'
+        && name.substr(tag - kRandomDigits, kRandomDigits).find_first_not_of("0123456789abcdef") == std::string::npos;
     *baseEnd = *random ? tag - kRandomDigits - 1 : tag;
     return std::stol(digits);
 }
 
-}  // namespace
+} // namespace
 
 std::string writeTargetOf(const std::string& path, std::string* error)
 {
@@ -265,7 +272,7 @@ std::string keepCopyAtomically(const std::string& source, const std::string& cop
     const std::string target = writeTargetOf(copyPath, &why);
     if (target.empty())
         return copyPath + ": " + why;
-    struct stat sourceStat {};
+    struct stat sourceStat { };
     if (::stat(realSource.c_str(), &sourceStat) != 0)
         return source + ": cannot look at the file (" + reason(errno) + ")";
 
@@ -280,7 +287,7 @@ std::string keepCopyAtomically(const std::string& source, const std::string& cop
     }
     if (linked != 0) {
         if (error == EEXIST)
-            return copyPath + ": cannot create a temporary file in " + folderOf(target) + " (every name tried exists)";
+            return copyPath + ": cannot write there (every temporary name tried in " + folderOf(target) + " exists)";
         // Another file system, or one without hard links: a copy, written as any file is.
         std::ifstream in(realSource, std::ios::binary);
         if (!in)
@@ -333,7 +340,7 @@ std::size_t removeStaleTemporaryFiles(const std::string& folder)
 bool isProcessAlive(long pid)
 {
     if (pid <= 0 || pid > INT_MAX)
-        return false;  // kill(0) and kill(-1) would ask about groups, not a process
+        return false; // kill(0) and kill(-1) would ask about groups, not a process
     return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
 }
 
@@ -343,6 +350,6 @@ void setTemporaryNameSourceForTests(std::function<std::string()> next)
     std::lock_guard lock(g_nameSourceMutex);
     g_nameSource = std::move(next);
 }
-}  // namespace detail
+} // namespace detail
 
-}  // namespace wisp::io
+} // namespace wisp::io

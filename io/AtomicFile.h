@@ -45,6 +45,6 @@ namespace detail {
 // Tests only: the random part of the next temporary names comes from `next` (nullptr: the system's
 // random source), so a test can plant a file at the exact name the writer will try first.
 void setTemporaryNameSourceForTests(std::function<std::string()> next);
-}  // namespace detail
+} // namespace detail
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -43,7 +43,7 @@ std::vector<std::string> namesIn(const fs::path& folder)
 
 unsigned modeOf(const fs::path& path)
 {
-    struct stat st {};
+    struct stat st { };
     EXPECT_EQ(::stat(path.c_str(), &st), 0) << path;
     return st.st_mode & 07777;
 }
@@ -61,11 +61,11 @@ pid_t deadPid()
 // Puts the temporary names the writer tries next, in order, then back to random names.
 class NameSequence {
 public:
-    explicit NameSequence(std::vector<std::string> names) : m_names(std::move(names))
+    explicit NameSequence(std::vector<std::string> names)
+        : m_names(std::move(names))
     {
-        detail::setTemporaryNameSourceForTests([this] {
-            return m_next < m_names.size() ? m_names[m_next++] : std::string("ffffffffffffffff");
-        });
+        detail::setTemporaryNameSourceForTests(
+            [this] { return m_next < m_names.size() ? m_names[m_next++] : std::string("ffffffffffffffff"); });
     }
     ~NameSequence() { detail::setTemporaryNameSourceForTests(nullptr); }
 
@@ -74,7 +74,7 @@ private:
     std::size_t m_next = 0;
 };
 
-}  // namespace
+} // namespace
 
 TEST(AtomicFile, KillDuringAWriteLeavesTheOldFileAndTheNextStartRemovesOnlyDeadWritersTemporaries)
 {
@@ -103,16 +103,15 @@ TEST(AtomicFile, KillDuringAWriteLeavesTheOldFileAndTheNextStartRemovesOnlyDeadW
             if (::write(ready[1], &go, 1) != 1)
                 ::_exit(3);
             char nothing;
-            while (::read(never[0], &nothing, 1) != 0) {
-            }
+            while (::read(never[0], &nothing, 1) != 0) { }
             out << "never";
         });
-        ::_exit(0);  // only when the parent died first
+        ::_exit(0); // only when the parent died first
     }
     ::close(ready[1]);
     ::close(never[0]);
     char got = 0;
-    const ssize_t n = ::read(ready[0], &got, 1);  // returns 0 at once if the child died instead
+    const ssize_t n = ::read(ready[0], &got, 1); // returns 0 at once if the child died instead
     ::close(ready[0]);
 
     // The temporary is beside the target, named with the child's pid, and holds the 8 MiB.
@@ -147,8 +146,9 @@ TEST(AtomicFile, KillDuringAWriteLeavesTheOldFileAndTheNextStartRemovesOnlyDeadW
     put(dir / ("look.wisp.0123456789ABCDEF.tmp-" + dead), "not our digits");
 
     EXPECT_EQ(removeStaleTemporaryFiles(dir.string()), 2u);
-    EXPECT_EQ(namesIn(dir), (std::vector<std::string>{"look.wisp", "look.wisp.0123456789ABCDEF.tmp-" + dead,
-                                                      live.filename().string(), "notes.tmp-" + dead}));
+    EXPECT_EQ(namesIn(dir),
+        (std::vector<std::string>{
+            "look.wisp", "look.wisp.0123456789ABCDEF.tmp-" + dead, live.filename().string(), "notes.tmp-" + dead }));
     EXPECT_EQ(slurp(target), old);
     EXPECT_EQ(removeStaleTemporaryFiles(dir.string()), 0u);
     fs::remove_all(dir);
@@ -169,7 +169,7 @@ TEST(AtomicFile, NothingPlantedAtATemporaryNameRedirectsTheWrite)
     fs::create_symlink(victim, dir / ("look.wisp.aaaaaaaaaaaaaaaa.tmp-" + pid));
     put(dir / ("look.wisp.bbbbbbbbbbbbbbbb.tmp-" + pid), "someone else's");
     {
-        NameSequence names({"aaaaaaaaaaaaaaaa", "bbbbbbbbbbbbbbbb", "cccccccccccccccc"});
+        NameSequence names({ "aaaaaaaaaaaaaaaa", "bbbbbbbbbbbbbbbb", "cccccccccccccccc" });
         ASSERT_EQ(writeFileAtomically(target.string(), [](std::ostream& out) { out << "new"; }), "");
     }
     EXPECT_EQ(slurp(target), "new");
@@ -182,7 +182,7 @@ TEST(AtomicFile, NothingPlantedAtATemporaryNameRedirectsTheWrite)
     // The backup's hard link takes the same care.
     fs::create_symlink(victim, dir / ("look.wisp.bak.dddddddddddddddd.tmp-" + pid));
     {
-        NameSequence names({"dddddddddddddddd", "eeeeeeeeeeeeeeee"});
+        NameSequence names({ "dddddddddddddddd", "eeeeeeeeeeeeeeee" });
         ASSERT_EQ(keepCopyAtomically(target.string(), (dir / "look.wisp.bak").string()), "");
     }
     EXPECT_EQ(slurp(dir / "look.wisp.bak"), "new");
@@ -196,15 +196,15 @@ TEST(AtomicFile, ASymbolicLinkStaysALinkAndTheFileItLeadsToGetsTheContent)
     const fs::path dir = freshTestFolder("wisp-atomic");
     fs::create_directories(dir / "real");
     put(dir / "real" / "look.wisp", "old");
-    fs::create_symlink("real/look.wisp", dir / "hop.wisp");  // relative, as `ln -s` makes them
-    fs::create_symlink(dir / "hop.wisp", dir / "look.wisp");  // two links in a row
+    fs::create_symlink("real/look.wisp", dir / "hop.wisp"); // relative, as `ln -s` makes them
+    fs::create_symlink(dir / "hop.wisp", dir / "look.wisp"); // two links in a row
 
     ASSERT_EQ(writeFileAtomically((dir / "look.wisp").string(), [](std::ostream& out) { out << "new"; }), "");
     EXPECT_TRUE(fs::is_symlink(dir / "look.wisp"));
     EXPECT_TRUE(fs::is_symlink(dir / "hop.wisp"));
     EXPECT_EQ(fs::read_symlink(dir / "hop.wisp"), fs::path("real/look.wisp"));
     EXPECT_EQ(slurp(dir / "real" / "look.wisp"), "new");
-    EXPECT_EQ(namesIn(dir / "real"), (std::vector<std::string>{"look.wisp"})) << "no temporary left";
+    EXPECT_EQ(namesIn(dir / "real"), (std::vector<std::string>{ "look.wisp" })) << "no temporary left";
 
     // A link to nowhere yet: the file appears where it points.
     fs::create_symlink("real/later.wisp", dir / "later.wisp");
@@ -215,8 +215,7 @@ TEST(AtomicFile, ASymbolicLinkStaysALinkAndTheFileItLeadsToGetsTheContent)
     // A loop is refused by name, and nothing is written.
     fs::create_symlink("loop-b", dir / "loop-a");
     fs::create_symlink("loop-a", dir / "loop-b");
-    const std::string error =
-        writeFileAtomically((dir / "loop-a").string(), [](std::ostream& out) { out << "x"; });
+    const std::string error = writeFileAtomically((dir / "loop-a").string(), [](std::ostream& out) { out << "x"; });
     EXPECT_NE(error.find((dir / "loop-a").string() + ": "), std::string::npos) << error;
     EXPECT_NE(error.find("symbolic links"), std::string::npos) << error;
     fs::remove_all(dir);
@@ -225,7 +224,7 @@ TEST(AtomicFile, ASymbolicLinkStaysALinkAndTheFileItLeadsToGetsTheContent)
 TEST(AtomicFile, PermissionsOfTheReplacedFileAreKept)
 {
     const fs::path dir = freshTestFolder("wisp-atomic");
-    for (const unsigned mode : {0600u, 0640u, 0664u}) {
+    for (const unsigned mode : { 0600u, 0640u, 0664u }) {
         const fs::path path = dir / ("mode-" + std::to_string(mode));
         put(path, "old");
         ASSERT_EQ(::chmod(path.c_str(), mode), 0);
@@ -259,13 +258,13 @@ TEST(AtomicFile, AFailedWriteLeavesTheOldFileAndNoTemporaryAndNamesThePath)
     EXPECT_EQ(error.rfind(target.string() + ": writing failed", 0), 0u) << error;
     // ...or its maker throws.
     EXPECT_THROW(writeFileAtomically(target.string(),
-                                     [](std::ostream& out) {
-                                         out << "half";
-                                         throw std::runtime_error("out of memory");
-                                     }),
-                 std::runtime_error);
+                     [](std::ostream& out) {
+                         out << "half";
+                         throw std::runtime_error("out of memory");
+                     }),
+        std::runtime_error);
     EXPECT_EQ(slurp(target), "old");
-    EXPECT_EQ(namesIn(dir), (std::vector<std::string>{"look.wisp"}));
+    EXPECT_EQ(namesIn(dir), (std::vector<std::string>{ "look.wisp" }));
 
     // Only regular files are replaced: a link to a device is refused by name.
     fs::create_symlink("/dev/full", dir / "full.wisp");
@@ -276,7 +275,8 @@ TEST(AtomicFile, AFailedWriteLeavesTheOldFileAndNoTemporaryAndNamesThePath)
     // A folder that does not exist: the system's reason, naming the path.
     const fs::path missing = dir / "no-such-folder" / "look.wisp";
     error = writeFileAtomically(missing.string(), [](std::ostream& out) { out << "x"; });
-    EXPECT_EQ(error.rfind(missing.string() + ": cannot create a temporary file in ", 0), 0u) << error;
-    EXPECT_NE(error.find("No such file or directory"), std::string::npos) << error;
+    EXPECT_EQ(error,
+        missing.string() + ": cannot write there (No such file or directory, creating a temporary file in "
+            + missing.parent_path().string() + ")");
     fs::remove_all(dir);
 }

@@ -1,4 +1,5 @@
 #include "io/GltfReader.h"
+#include "io/RegularFile.h"
 
 // tinygltf is header-only; its implementation is compiled here and nowhere else. Wisp never
 // needs pixels, so no image codec is compiled in (no stb dependency), images referenced by URI
@@ -127,52 +128,14 @@ std::vector<std::string> messageLines(const std::string& text)
 // device named by a buffer URI would block or never end.
 
 // The whole file, or empty with `problem` set.
-std::string readRegularFile(const std::string& path, std::string& problem)
+std::string readGltfFile(const std::string& path, std::string& problem)
 {
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (status.type() == fs::file_type::not_found) {
-        problem = "the file does not exist";
-        return {};
-    }
-    if (ec) {
-        problem = "cannot look at the file: " + ec.message();
-        return {};
-    }
-    if (fs::is_directory(status)) {
-        problem = "this is a folder, not a glTF file";
-        return {};
-    }
-    if (!fs::is_regular_file(status)) {
-        problem = "this is not a regular file";
-        return {};
-    }
-    const std::uintmax_t size = fs::file_size(path, ec);
-    if (ec) {
-        problem = "cannot tell the size of the file: " + ec.message();
-        return {};
-    }
-    // tinygltf takes sizes as 32-bit unsigned numbers.
-    if (size > std::numeric_limits<std::uint32_t>::max()) {
-        problem = "the file is larger than 4 GiB, more than glTF readers accept";
-        return {};
-    }
-    if (size == 0) {
-        problem = "the file is empty (0 bytes)";
-        return {};
-    }
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    Result<std::string> file = readRegularFile(path, {kMaxMeshFileBytes, "glTF", false});
     if (!file) {
-        problem = std::string("cannot open the file: ") + std::strerror(errno);
+        problem = file.error().message;
         return {};
     }
-    std::string bytes(static_cast<std::size_t>(size), '\0');
-    const std::size_t got = std::fread(bytes.data(), 1, bytes.size(), file.get());
-    if (std::ferror(file.get()) != 0 || got != bytes.size()) {
-        problem = "could not read the whole file (" + std::to_string(got) + " of " + std::to_string(size) + " bytes)";
-        return {};
-    }
-    return bytes;
+    return std::move(file).value();
 }
 
 // tinygltf's file-system callbacks. It looks for an external buffer first in the glTF's folder
@@ -192,7 +155,7 @@ std::string externalPathAsIs(const std::string& path, void*)
 bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*)
 {
     std::string problem;
-    const std::string bytes = readRegularFile(path, problem);
+    const std::string bytes = readGltfFile(path, problem);
     if (!problem.empty()) {
         if (err != nullptr)
             *err += problem;
@@ -1228,7 +1191,7 @@ Result<MeshReadResult> readGltf(const std::string& path)
 {
     try {
         std::string problem;
-        const std::string bytes = readRegularFile(path, problem);
+        const std::string bytes = readGltfFile(path, problem);
         if (!problem.empty())
             fail({}, problem);
         MeshReadResult result;

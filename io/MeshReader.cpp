@@ -1,6 +1,7 @@
 #include "io/MeshReader.h"
 
 #include "io/GltfReader.h"
+#include "io/RegularFile.h"
 
 #include <OpenMesh/Core/IO/Options.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
@@ -80,32 +81,10 @@ std::string lowerExtension(const std::string& path)
 
 std::string readWholeFile(const std::string& path)
 {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (status.type() == fs::file_type::not_found)
-        fail({}, "the file does not exist");
-    if (ec)
-        fail({}, "cannot look at the file: " + ec.message());
-    if (fs::is_directory(status))
-        fail({}, "this is a folder, not a mesh file");
-    // A pipe or device could feed us forever; meshes are regular files.
-    if (!fs::is_regular_file(status))
-        fail({}, "this is not a regular file");
-
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    Result<std::string> file = readRegularFile(path, {kMaxMeshFileBytes, "mesh", false});
     if (!file)
-        fail({}, std::string("cannot open the file: ") + std::strerror(errno));
-    const std::uintmax_t size = fs::file_size(path, ec);
-    if (ec)
-        fail({}, "cannot tell the size of the file: " + ec.message());
-    std::string bytes(static_cast<std::size_t>(size), '\0');
-    const std::size_t got = bytes.empty() ? 0 : std::fread(bytes.data(), 1, bytes.size(), file.get());
-    if (std::ferror(file.get()) != 0 || got != bytes.size())
-        fail(byteAt(got), "could not read the whole file (" + std::to_string(got) + " of " + std::to_string(size) + " bytes)");
-    if (bytes.empty())
-        fail({}, "the file is empty (0 bytes)");
-    return bytes;
+        fail(file.error().location, file.error().message);
+    return std::move(file).value();
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,4 +1,5 @@
 #include "io/PresetFile.h"
+#include "io/RegularFile.h"
 
 #include "io/AtomicFile.h"
 
@@ -56,9 +57,7 @@ std::string shortestText(double value)
 
 std::string megabytes(std::size_t bytes)
 {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.0f MB", std::ceil(static_cast<double>(bytes) / (1 << 20)));
-    return buffer;
+    return megabytesText(bytes);
 }
 
 // A short array of plain numbers ([0.16, 0.1, 0.06]) starting at text[open] == '[': its one-line
@@ -108,32 +107,10 @@ std::vector<std::string> Warnings::take()
 
 std::string readWholeFile(const std::string& path, std::size_t maxBytes, const char* what)
 {
-    std::error_code error;
-    const fs::file_status status = fs::status(path, error);
-    if (status.type() == fs::file_type::not_found)
-        throw Refusal{"", "the file does not exist"};
-    if (error)
-        throw Refusal{"", "cannot open the file (" + error.message() + ")"};
-    if (fs::is_directory(status))
-        throw Refusal{"", std::string("this is a folder, not a ") + what + " file"};
-    if (const std::uintmax_t size = fs::file_size(path, error); !error && size > maxBytes)
-        throw Refusal{"", "the file is " + megabytes(size) + "; a " + what + " file is at most " + megabytes(maxBytes)};
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw Refusal{"", std::string("cannot open the file (") + std::strerror(errno) + ")"};
-    // Read in chunks up to the limit even when the size was known: a file that is not a regular
-    // file (a pipe, /dev/zero) has none, and a file may grow while it is read.
-    std::string text;
-    char chunk[1 << 16];
-    while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
-        text.append(chunk, static_cast<std::size_t>(in.gcount()));
-        if (text.size() > maxBytes)
-            throw Refusal{"", std::string("the file is larger than a ") + what + " file may be (" + megabytes(maxBytes) +
-                                  ")"};
-    }
-    if (in.bad())
-        throw Refusal{"", "reading the file failed"};
-    return text;
+    Result<std::string> file = readRegularFile(path, {maxBytes, what, true});
+    if (!file)
+        throw Refusal{file.error().location, file.error().message};
+    return std::move(file).value();
 }
 
 json parseJson(std::string_view text, std::size_t maxBytes, const char* what)

@@ -21,6 +21,8 @@ LoadedHead loadHead(const std::string& path, std::optional<double> scale, bool z
     settings.explicitScale = scale ? static_cast<float>(*scale) : 0.0f;
     settings.zUp = zUp && !io::formatFixesUpAxis(path);
     head.placement = io::placeHead(head.mesh, settings);
+    if (std::string problem = io::checkPlacedHead(head.mesh); !problem.empty())
+        throw CliError{kBadInput, path + ": " + problem};
     return head;
 }
 

@@ -15,7 +15,8 @@ struct LoadedHead {
     io::HeadPlacement placement;
 };
 
-// Throws CliError{kBadInput} naming the file and the problem; prints the reader's warnings to
+// Refuses a head the groom and solver cannot use (io::checkPlacedHead: flat, or absurdly large
+// once placed). Throws CliError{kBadInput} naming the file and the problem; prints the reader's warnings to
 // stderr prefixed with `command`.
 LoadedHead loadHead(const std::string& path, std::optional<double> scale, bool zUp, const std::string& command);
 

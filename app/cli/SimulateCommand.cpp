@@ -5,6 +5,7 @@
 #include "app/cli/StepTimer.h"
 
 #include "app/cli/HeadLoading.h"
+#include "app/cli/OutputCheck.h"
 #include "io/HairFiles.h"
 #include "io/MeshReader.h"
 #include "io/PresetFile.h"
@@ -64,6 +65,12 @@ int runSimulate(int argc, char** argv)
         std::cout << "usage: wisp-cli simulate [options]\n\n" << describeOptions(options);
         return kSuccess;
     }
+
+    // Outputs first: a bad path found after the simulation wastes the whole run.
+    if (const auto out = args.text("out"))
+        checkOutputPath(*out, "--out", {});
+    if (const auto out = args.text("export"))
+        checkOutputPath(*out, "--export", io::hairWriteExtensions());
 
     ParameterValues values;
     if (const auto path = args.text("preset")) {

@@ -159,19 +159,28 @@ std::optional<IoError> checkStrandsToWrite(const std::string& path, const HairCu
     return std::nullopt;
 }
 
-std::optional<IoError> appendFinitePoints(const std::string& path, const char* p, std::uint32_t points,
-                                          std::uint64_t firstPoint, std::uint64_t strandIndex,
-                                          std::uint64_t fileOffset, HairCurves& out)
+std::optional<IoError> checkFinitePoints(const std::string& path, const char* p, std::uint32_t points,
+                                         std::uint64_t firstPoint, std::uint64_t strandIndex, std::uint64_t fileOffset)
 {
-    const std::size_t first = out.positions.size();
-    out.positions.resize(first + points);
     for (std::uint32_t i = 0; i < points; ++i, p += 12) {
         const glm::vec3 v{loadF32(p), loadF32(p + 4), loadF32(p + 8)};
         if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
             return IoError{path, byteAt(fileOffset + 12ull * i),
                            "point " + std::to_string(firstPoint + i) + " (strand " + std::to_string(strandIndex) + ") is not finite"};
-        out.positions[first + i] = v;
     }
+    return std::nullopt;
+}
+
+std::optional<IoError> appendFinitePoints(const std::string& path, const char* p, std::uint32_t points,
+                                          std::uint64_t firstPoint, std::uint64_t strandIndex,
+                                          std::uint64_t fileOffset, HairCurves& out)
+{
+    if (std::optional<IoError> error = checkFinitePoints(path, p, points, firstPoint, strandIndex, fileOffset))
+        return error;
+    const std::size_t first = out.positions.size();
+    out.positions.resize(first + points);
+    for (std::uint32_t i = 0; i < points; ++i, p += 12)
+        out.positions[first + i] = glm::vec3{loadF32(p), loadF32(p + 4), loadF32(p + 8)};
     out.offsets.push_back(static_cast<std::uint32_t>(out.positions.size()));
     return std::nullopt;
 }

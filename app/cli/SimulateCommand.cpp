@@ -140,10 +140,28 @@ int runSimulate(int argc, char** argv)
         glm::vec3 lo(INFINITY), hi(-INFINITY);
         for (glm::vec3& p : strands.positions) {
             p *= static_cast<float>(hairScale);
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                throw CliError{kBadInput, *hairPath + ": point " + std::to_string(&p - strands.positions.data()) +
+                                              " is not finite once scaled by --hair-scale " + std::to_string(hairScale)};
             lo = glm::min(lo, p);
             hi = glm::max(hi, p);
         }
         const Aabb box = boundsOf(head);
+        // Hair is rooted on the head and at most a few metres long: a point farther than this from
+        // the head's box is in other units or corrupt, and the solver would only reset it forever.
+        constexpr float kMaxHairDistanceMetres = 10.0f;
+        for (std::size_t i = 0; i < strands.positions.size(); ++i) {
+            const glm::vec3& p = strands.positions[i];
+            const glm::dvec3 outside = glm::max(glm::max(glm::dvec3(box.min - p), glm::dvec3(p - box.max)), glm::dvec3(0.0));
+            const double away = glm::length(outside);
+            if (!(away <= kMaxHairDistanceMetres)) {
+                char metres[32];
+                std::snprintf(metres, sizeof metres, "%.3g m", away);
+                throw CliError{kBadInput, *hairPath + ": point " + std::to_string(i) + " lies " + metres +
+                                              " from the head, more than 10 m: the strands must be in the head's "
+                                              "space, in metres (see --hair-scale)"};
+            }
+        }
         const float headExtent = glm::length(box.size()), hairExtent = glm::length(hi - lo);
         if (hairExtent > 5.0f * headExtent)
             std::cerr << "wisp-cli simulate: " << *hairPath << ": the strands span " << hairExtent << " m, the head "
@@ -155,6 +173,9 @@ int runSimulate(int argc, char** argv)
     }
     if (!error.empty())
         throw CliError{kBadInput, (args.has("head") ? *args.text("head") + ": " : std::string()) + error};
+    if (args.has("hair") && sim.groom().strandCount() == 0)
+        throw CliError{kBadInput, *args.text("hair") + ": no strand could be rooted on the head (are they in its space "
+                                                         "and units? see --hair-scale)"};
 
     std::cout << "strands " << sim.groom().strandCount() << " (simulated " << sim.solver().strandCount() << ", particles "
               << sim.solver().particleCount() << "), threads " << sim.solver().threadCount() << ", steps " << steps << "\n";

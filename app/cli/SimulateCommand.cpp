@@ -173,6 +173,8 @@ int runSimulate(int argc, char** argv)
     }
     if (!error.empty())
         throw CliError{kBadInput, (args.has("head") ? *args.text("head") + ": " : std::string()) + error};
+    for (const std::string& warning : sim.groomWarnings())
+        std::cerr << "wisp-cli simulate: warning: " << warning << "\n";
     if (args.has("hair") && sim.groom().strandCount() == 0)
         throw CliError{kBadInput, *args.text("hair") + ": no strand could be rooted on the head (are they in its space "
                                                          "and units? see --hair-scale)"};

@@ -71,6 +71,7 @@ void validateHead(const std::string& path)
         throw CliError{kBadInput, path + ": " + error};
     std::cout << "  default groom: " << sim.groom().strandCount() << " strands\n";
     printWarnings(read.value().warnings);
+    printWarnings(sim.groomWarnings());
 }
 
 void validateHair(const std::string& path)

@@ -1,5 +1,6 @@
 #include "io/GltfReader.h"
 #include "io/GltfSchema.h"
+#include "io/JsonErrors.h"
 #include "io/RegularFile.h"
 
 // tinygltf is header-only; its implementation is compiled here and nowhere else. Wisp never
@@ -458,6 +459,9 @@ std::string geometryJson(std::string_view text, bool binary, std::size_t jsonOff
     } catch (const Json::parse_error& e) {
         fail(jsonPlace(text, e.byte == 0 ? 0 : e.byte - 1, binary, jsonOffset),
             "invalid JSON: " + jsonProblem(e.what()));
+    } catch (const Json::exception& e) { // out_of_range.406: a number that overflows a double
+        const JsonFailure failure = describeJsonFailure(text, e);
+        fail(binary ? std::string() : failure.place, "invalid JSON: " + failure.message);
     }
     if (!root.is_object())
         fail({}, "the JSON is not an object, so this is not a glTF file");
@@ -1223,7 +1227,7 @@ Result<MeshReadResult> readGltf(const std::string& path)
     } catch (const std::bad_alloc&) {
         return IoError{path, {}, "not enough memory to read this glTF file"};
     } catch (const std::exception& e) {
-        return IoError{path, {}, std::string("unexpected error while reading: ") + e.what()};
+        return IoError{path, {}, "unexpected error while reading: " + withoutJsonPrefix(e.what())};
     }
 }
 

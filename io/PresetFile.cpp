@@ -1,4 +1,5 @@
 #include "io/PresetFile.h"
+#include "io/JsonErrors.h"
 #include "io/RegularFile.h"
 
 #include "io/AtomicFile.h"
@@ -121,20 +122,10 @@ json parseJson(std::string_view text, std::size_t maxBytes, const char* what)
         throw Refusal{"", "the file is empty"};
     try {
         return json::parse(text.begin(), text.end());
-    } catch (const json::parse_error& e) {
-        // nlohmann's byte is 1-based and may point one past the end; lines and columns count from 1.
-        const std::size_t offset = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-        const std::string_view before = text.substr(0, offset);
-        const std::size_t line = 1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
-        const std::size_t lineStart = before.rfind('\n') == std::string_view::npos ? 0 : before.rfind('\n') + 1;
-        // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: " and
-        // shorten what is left: its "last read" quotes the token, which may be megabytes of string.
-        std::string message = e.what();
-        if (const std::size_t column = message.find("column "); column != std::string::npos)
-            if (const std::size_t colon = message.find(": ", column); colon != std::string::npos)
-                message.erase(0, colon + 2);
-        throw Refusal{"line " + std::to_string(line) + ", column " + std::to_string(offset - lineStart + 1),
-                      shorten(message, 200)};
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for a number that overflows
+        const JsonFailure failure = describeJsonFailure(text, e);
+        // "last read" quotes the token, which may be megabytes of string: shorten.
+        throw Refusal{failure.place, shorten(failure.message, 200)};
     }
 }
 
@@ -457,7 +448,7 @@ Result<PresetReadResult> parsePreset(std::string_view text, const std::string& n
     } catch (const Refusal& refusal) {
         return IoError{nameForMessages, refusal.location, refusal.message};
     } catch (const json::exception& e) {  // a check above missed a case: still an error, not a crash
-        return IoError{nameForMessages, "", e.what()};
+        return IoError{nameForMessages, "", withoutJsonPrefix(e.what())};
     } catch (const std::bad_alloc&) {
         return IoError{nameForMessages, "", "not enough memory to read the preset"};
     }

@@ -1,4 +1,5 @@
 #include "io/ProjectFile.h"
+#include "io/JsonErrors.h"
 
 #include "io/AtomicFile.h"
 #include "io/Base64.h"
@@ -622,7 +623,7 @@ Result<ProjectReadResult> parseProject(std::string_view text, const std::string&
     } catch (const Refusal& refusal) {
         return IoError{path, refusal.location, refusal.message};
     } catch (const json::exception& e) {  // a check above missed a case: still an error, not a crash
-        return IoError{path, "", e.what()};
+        return IoError{path, "", withoutJsonPrefix(e.what())};
     } catch (const std::bad_alloc&) {
         return IoError{path, "", "not enough memory to read the project"};
     }

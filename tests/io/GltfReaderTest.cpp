@@ -955,6 +955,13 @@ TEST(GltfReader, MisspelledKeysAndWrongTypesAreRefusedWithTheirKeyPath)
                       "not mean what it says"}},
         {[](GltfBuilder& b) { b.root["scene"] = -1; }, {"scene", "must be a scene index, not -1"}},
     };
+    // A number too large for a double: nlohmann's raw out_of_range text used to come through.
+    const std::string overflow = "{\"asset\": {\"version\": \"2.0\"},\n \"scene\": 1e999}";
+    const Result<MeshReadResult> overflowRead = readMesh(dir.write("overflow.gltf", overflow).string());
+    ASSERT_FALSE(overflowRead.ok());
+    EXPECT_EQ(overflowRead.error().toString(), (dir.path() / "overflow.gltf").string() +
+                                                   ": line 2, column 11: invalid JSON: the number 1e999 is too large "
+                                                   "to hold (it overflows a double)");
     int n = 0;
     for (const auto& [edit, want] : cases) {
         GltfBuilder b = tetra(edit);

@@ -803,3 +803,10 @@ TEST(Base64, KnownVectorsAndStrictDecoding)
     ASSERT_TRUE(back);
     EXPECT_EQ(std::memcmp(back->data(), floats.data(), sizeof(float) * floats.size()), 0);
 }
+
+// Issue 12: nlohmann's raw "[json.exception.out_of_range.406]" text, with no place, is translated.
+TEST_F(ProjectFileTest, NumberOverflowNamesTheLineAndColumn)
+{
+    EXPECT_EQ(errorOf("{\"format\": \"wisp-project\",\n \"version\": 1e400}"),
+              "line 2, column 13: the number 1e400 is too large to hold (it overflows a double)");
+}

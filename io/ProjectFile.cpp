@@ -1,4 +1,5 @@
 #include "io/ProjectFile.h"
+#include "io/HeadPlacement.h"
 #include "io/JsonErrors.h"
 
 #include "io/AtomicFile.h"
@@ -619,6 +620,10 @@ Result<ProjectReadResult> parseProject(std::string_view text, const std::string&
         const json root = parseJson(text, kMaxProjectBytes, "project");
         Warnings warnings;
         Project project = readProjectJson(root, path, loadHead, warnings);
+        // The same check as Open Head and wisp-cli: a flat or absurdly large head is refused
+        // before the editor builds its BVH, collider and groom on it.
+        if (std::string problem = checkPlacedHead(project.head); !problem.empty())
+            throw Refusal{"head", problem};
         return ProjectReadResult{std::move(project), warnings.take()};
     } catch (const Refusal& refusal) {
         return IoError{path, refusal.location, refusal.message};

@@ -16,6 +16,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -111,6 +112,24 @@ TEST(SpecialFiles, SizeCapIsCheckedBeforeReading)
     const Result<std::string> within = readRegularFile(big.string(), {kMaxTextFileBytes + 1, "test", false});
     ASSERT_TRUE(within) << within.error().toString();
     EXPECT_EQ(within.value().size(), kMaxTextFileBytes + 1);
+    fs::remove_all(dir);
+}
+
+// OpenMesh opened an OBJ's material library by the name the file gives: a FIFO beside the file
+// blocked the reader forever. No material library is opened now.
+TEST(SpecialFiles, ObjMaterialLibraryIsNeverOpened)
+{
+    const fs::path dir = freshTestFolder("wisp-mtllib");
+    ASSERT_EQ(::mkfifo((dir / "skin.mtl").c_str(), 0600), 0);
+    const fs::path obj = dir / "head.obj";
+    std::ofstream(obj) << "mtllib skin.mtl\nusemtl skin\nv 0 0 0\nv 0.2 0 0\nv 0 0.2 0\nv 0 0 0.2\n"
+                          "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    const Result<MeshReadResult> read = readMesh(obj.string());
+    ASSERT_TRUE(read) << read.error().toString();
+    EXPECT_EQ(read.value().mesh.triangleCount(), 4u);
+    const std::vector<std::string>& warnings = read.value().warnings;
+    EXPECT_NE(std::find(warnings.begin(), warnings.end(), "ignored the material library 'skin.mtl': Wisp reads no materials"),
+              warnings.end());
     fs::remove_all(dir);
 }
 

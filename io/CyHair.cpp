@@ -125,6 +125,8 @@ Result<HairReadResult> readCyHair(const std::string& path)
         const std::uint32_t n = static_cast<std::uint32_t>(((flags & kSegmentsArray) ? loadU16(segments + 2 * s) : defaultSegments) + 1);
         const std::uint64_t offset = pointsStart + 12 * point;
         if (n < 2) {
+            if (std::optional<IoError> error = checkFinitePoints(path, data + offset, n, point, s, offset))
+                return *error;
             skipped.push_back(s);
         } else if (std::optional<IoError> error = appendFinitePoints(path, data + offset, n, point, s, offset, curves)) {
             return *error;

@@ -1,4 +1,7 @@
 #include "io/GltfReader.h"
+#include "io/GltfSchema.h"
+#include "io/JsonErrors.h"
+#include "io/RegularFile.h"
 
 // tinygltf is header-only; its implementation is compiled here and nowhere else. Wisp never
 // needs pixels, so no image codec is compiled in (no stb dependency), images referenced by URI
@@ -127,61 +130,24 @@ std::vector<std::string> messageLines(const std::string& text)
 // device named by a buffer URI would block or never end.
 
 // The whole file, or empty with `problem` set.
-std::string readRegularFile(const std::string& path, std::string& problem)
+std::string readGltfFile(const std::string& path, std::string& problem)
 {
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (status.type() == fs::file_type::not_found) {
-        problem = "the file does not exist";
-        return {};
-    }
-    if (ec) {
-        problem = "cannot look at the file: " + ec.message();
-        return {};
-    }
-    if (fs::is_directory(status)) {
-        problem = "this is a folder, not a glTF file";
-        return {};
-    }
-    if (!fs::is_regular_file(status)) {
-        problem = "this is not a regular file";
-        return {};
-    }
-    const std::uintmax_t size = fs::file_size(path, ec);
-    if (ec) {
-        problem = "cannot tell the size of the file: " + ec.message();
-        return {};
-    }
-    // tinygltf takes sizes as 32-bit unsigned numbers.
-    if (size > std::numeric_limits<std::uint32_t>::max()) {
-        problem = "the file is larger than 4 GiB, more than glTF readers accept";
-        return {};
-    }
-    if (size == 0) {
-        problem = "the file is empty (0 bytes)";
-        return {};
-    }
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    Result<std::string> file = readRegularFile(path, {kMaxMeshFileBytes, "glTF", false});
     if (!file) {
-        problem = std::string("cannot open the file: ") + std::strerror(errno);
+        problem = file.error().message;
         return {};
     }
-    std::string bytes(static_cast<std::size_t>(size), '\0');
-    const std::size_t got = std::fread(bytes.data(), 1, bytes.size(), file.get());
-    if (std::ferror(file.get()) != 0 || got != bytes.size()) {
-        problem = "could not read the whole file (" + std::to_string(got) + " of " + std::to_string(size) + " bytes)";
-        return {};
-    }
-    return bytes;
+    return std::move(file).value();
 }
 
 // tinygltf's file-system callbacks. It looks for an external buffer first in the glTF's folder
 // and then in "." (the working directory); only the first is meant, so only absolute paths (we
 // pass the folder as an absolute path) are said to exist.
-bool externalFileExists(const std::string& path, void*)
+bool externalFileExists(const std::string& path, void* folder)
 {
-    std::error_code ec;
-    return fs::path(path).is_absolute() && fs::is_regular_file(path, ec);
+    // The schema check already refused URIs that leave the folder; this is the second lock.
+    return fs::path(path).is_absolute() && folder != nullptr
+        && regularFileInside(path, *static_cast<const fs::path*>(folder));
 }
 
 std::string externalPathAsIs(const std::string& path, void*)
@@ -189,10 +155,15 @@ std::string externalPathAsIs(const std::string& path, void*)
     return path;
 }
 
-bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*)
+bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* folder)
 {
+    if (folder == nullptr || !regularFileInside(path, *static_cast<const fs::path*>(folder))) {
+        if (err != nullptr)
+            *err += "'" + path + "' is not a regular file inside the glTF file's folder";
+        return false;
+    }
     std::string problem;
-    const std::string bytes = readRegularFile(path, problem);
+    const std::string bytes = readGltfFile(path, problem);
     if (!problem.empty()) {
         if (err != nullptr)
             *err += problem;
@@ -300,6 +271,13 @@ GlbParts splitGlb(std::string_view bytes, std::vector<std::string>& warnings)
             fail(byteAt(offset),
                 "a chunk of " + std::to_string(chunkBytes) + " bytes starts here, but only " + std::to_string(left - 8)
                     + " bytes of GLB data follow its header: it is truncated or corrupt");
+        // The spec: chunks start and end on 4-byte boundaries (Khronos' validator:
+        // CHUNK_LENGTH_UNALIGNED). A reader that accepts an unaligned length reads the next
+        // chunk's header from the wrong bytes.
+        if (chunkBytes % 4 != 0)
+            fail(byteAt(offset),
+                "a chunk of " + std::to_string(chunkBytes)
+                    + " bytes: GLB chunk lengths are multiples of 4 (the chunk is not padded; the file is malformed)");
         const std::string_view data = bytes.substr(offset + 8, chunkBytes);
         if (chunkIndex == 0 && type != glbChunkJson)
             fail(byteAt(offset + 4), "the first chunk must be JSON but is of type " + chunkTypeName(type));
@@ -466,7 +444,8 @@ void refuseUnsupportedExtensions(const Json& root)
 
 // Parses and checks the JSON, and returns it reduced to the parts that make geometry, as text
 // for tinygltf.
-std::string geometryJson(std::string_view text, bool binary, std::size_t jsonOffset, std::vector<std::string>& warnings)
+std::string geometryJson(std::string_view text, bool binary, std::size_t jsonOffset, const fs::path& folder,
+                         std::vector<std::string>& warnings)
 {
     if (const std::size_t deep = tooDeepAt(text, maxJsonDepth); deep != std::string_view::npos)
         fail(jsonPlace(text, deep, binary, jsonOffset),
@@ -480,6 +459,9 @@ std::string geometryJson(std::string_view text, bool binary, std::size_t jsonOff
     } catch (const Json::parse_error& e) {
         fail(jsonPlace(text, e.byte == 0 ? 0 : e.byte - 1, binary, jsonOffset),
             "invalid JSON: " + jsonProblem(e.what()));
+    } catch (const Json::exception& e) { // out_of_range.406: a number that overflows a double
+        const JsonFailure failure = describeJsonFailure(text, e);
+        fail(binary ? std::string() : failure.place, "invalid JSON: " + failure.message);
     }
     if (!root.is_object())
         fail({}, "the JSON is not an object, so this is not a glTF file");
@@ -497,6 +479,8 @@ std::string geometryJson(std::string_view text, bool binary, std::size_t jsonOff
                 + (versionText.rfind("1.", 0) == 0 ? ": re-export the head as glTF 2.0" : ""));
 
     refuseUnsupportedExtensions(root);
+    if (const std::optional<GltfSchemaProblem> problem = checkGltfSchema(root, folder, warnings))
+        fail(problem->keyPath, problem->message);
 
     static const char* const kept[] = {"asset",       "extensionsUsed", "extensionsRequired", "buffers", "bufferViews",
                                        "accessors",   "meshes",         "nodes",              "scenes",  "scene"};
@@ -1170,12 +1154,14 @@ tinygltf::Model loadWithTinyGltf(const std::string& path, std::string_view bytes
     // goes to the container check, which says what is wrong.
     const bool namedGlb = lowerExtension(path) == ".glb";
     const bool binary = namedGlb || (bytes.size() >= 4 && u32At(bytes, 0) == glbMagic);
+    std::error_code ec;
+    const fs::path folder = fs::absolute(fs::path(path), ec).parent_path();
     std::string loaderInput;
     if (binary) {
         const GlbParts parts = splitGlb(bytes, warnings);
-        loaderInput = canonicalGlb(geometryJson(parts.json, true, parts.jsonOffset, warnings), parts.bin);
+        loaderInput = canonicalGlb(geometryJson(parts.json, true, parts.jsonOffset, folder, warnings), parts.bin);
     } else {
-        loaderInput = geometryJson(bytes, false, 0, warnings);
+        loaderInput = geometryJson(bytes, false, 0, folder, warnings);
     }
     if (loaderInput.size() > std::numeric_limits<std::uint32_t>::max())
         fail({}, "the glTF data is larger than 4 GiB, more than glTF readers accept");
@@ -1183,12 +1169,11 @@ tinygltf::Model loadWithTinyGltf(const std::string& path, std::string_view bytes
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&ignoreImage, nullptr);
     loader.SetFsCallbacks(
-        tinygltf::FsCallbacks{&externalFileExists, &externalPathAsIs, &readExternalFile, &refuseWrite, nullptr});
+        tinygltf::FsCallbacks{&externalFileExists, &externalPathAsIs, &readExternalFile, &refuseWrite,
+            const_cast<fs::path*>(&folder)});
     loader.SetStoreOriginalJSONForExtrasAndExtensions(false);
 
-    std::error_code ec;
-    const fs::path absolute = fs::absolute(fs::path(path), ec);
-    const std::string baseDir = ec ? fs::path(path).parent_path().string() : absolute.parent_path().string();
+    const std::string baseDir = folder.string();
 
     tinygltf::Model model;
     std::string err;
@@ -1228,7 +1213,7 @@ Result<MeshReadResult> readGltf(const std::string& path)
 {
     try {
         std::string problem;
-        const std::string bytes = readRegularFile(path, problem);
+        const std::string bytes = readGltfFile(path, problem);
         if (!problem.empty())
             fail({}, problem);
         MeshReadResult result;
@@ -1242,7 +1227,7 @@ Result<MeshReadResult> readGltf(const std::string& path)
     } catch (const std::bad_alloc&) {
         return IoError{path, {}, "not enough memory to read this glTF file"};
     } catch (const std::exception& e) {
-        return IoError{path, {}, std::string("unexpected error while reading: ") + e.what()};
+        return IoError{path, {}, "unexpected error while reading: " + withoutJsonPrefix(e.what())};
     }
 }
 

@@ -5,6 +5,7 @@
 
 #include "io/AtomicFile.h"
 #include "io/HairFilesInternal.h"
+#include "io/RegularFile.h"
 
 #include <algorithm>
 #include <cctype>
@@ -122,32 +123,7 @@ namespace hair_detail {
 
 Result<std::string> readWholeFile(const std::string& path)
 {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (status.type() == fs::file_type::not_found)
-        return IoError{path, "", "the file does not exist"};
-    if (ec)
-        return IoError{path, "", "cannot look at the file: " + ec.message()};
-    if (fs::is_directory(status))
-        return IoError{path, "", "this is a folder, not a hair file"};
-    // A pipe or a device could feed us forever; hair files are regular files.
-    if (!fs::is_regular_file(status))
-        return IoError{path, "", "this is not a regular file"};
-
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!file)
-        return IoError{path, "", std::string("cannot open the file: ") + std::strerror(errno)};
-    const std::uintmax_t size = fs::file_size(path, ec);
-    if (ec)
-        return IoError{path, "", "cannot tell the size of the file: " + ec.message()};
-    if (size == 0)
-        return IoError{path, "", "the file is empty (0 bytes)"};
-    std::string bytes(static_cast<std::size_t>(size), '\0');
-    const std::size_t got = std::fread(bytes.data(), 1, bytes.size(), file.get());
-    if (std::ferror(file.get()) != 0 || got != bytes.size())
-        return IoError{path, byteAt(got), "could not read the whole file (" + std::to_string(got) + " of " + std::to_string(size) + " bytes)"};
-    return bytes;
+    return readRegularFile(path, {kMaxHairFileBytes, "hair", false});
 }
 
 std::optional<IoError> writeBytesAtomically(const std::string& path, const std::string& bytes)
@@ -183,19 +159,28 @@ std::optional<IoError> checkStrandsToWrite(const std::string& path, const HairCu
     return std::nullopt;
 }
 
-std::optional<IoError> appendFinitePoints(const std::string& path, const char* p, std::uint32_t points,
-                                          std::uint64_t firstPoint, std::uint64_t strandIndex,
-                                          std::uint64_t fileOffset, HairCurves& out)
+std::optional<IoError> checkFinitePoints(const std::string& path, const char* p, std::uint32_t points,
+                                         std::uint64_t firstPoint, std::uint64_t strandIndex, std::uint64_t fileOffset)
 {
-    const std::size_t first = out.positions.size();
-    out.positions.resize(first + points);
     for (std::uint32_t i = 0; i < points; ++i, p += 12) {
         const glm::vec3 v{loadF32(p), loadF32(p + 4), loadF32(p + 8)};
         if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
             return IoError{path, byteAt(fileOffset + 12ull * i),
                            "point " + std::to_string(firstPoint + i) + " (strand " + std::to_string(strandIndex) + ") is not finite"};
-        out.positions[first + i] = v;
     }
+    return std::nullopt;
+}
+
+std::optional<IoError> appendFinitePoints(const std::string& path, const char* p, std::uint32_t points,
+                                          std::uint64_t firstPoint, std::uint64_t strandIndex,
+                                          std::uint64_t fileOffset, HairCurves& out)
+{
+    if (std::optional<IoError> error = checkFinitePoints(path, p, points, firstPoint, strandIndex, fileOffset))
+        return error;
+    const std::size_t first = out.positions.size();
+    out.positions.resize(first + points);
+    for (std::uint32_t i = 0; i < points; ++i, p += 12)
+        out.positions[first + i] = glm::vec3{loadF32(p), loadF32(p + 4), loadF32(p + 8)};
     out.offsets.push_back(static_cast<std::uint32_t>(out.positions.size()));
     return std::nullopt;
 }

@@ -62,6 +62,11 @@ std::optional<IoError> appendFinitePoints(const std::string& path, const char* p
                                           std::uint64_t firstPoint, std::uint64_t strandIndex,
                                           std::uint64_t fileOffset, HairCurves& out);
 
+// The same check without keeping the points: for strands a reader skips (a single point), whose
+// non-finite coordinates still mean the file is corrupt.
+std::optional<IoError> checkFinitePoints(const std::string& path, const char* p, std::uint32_t points,
+                                         std::uint64_t firstPoint, std::uint64_t strandIndex, std::uint64_t fileOffset);
+
 // "skipped 3 strands with a single point (strands 5, 17, 40)": the warning readers give.
 std::string skippedStrandsWarning(const std::vector<std::uint64_t>& strands, const std::string& what);
 

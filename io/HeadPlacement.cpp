@@ -193,6 +193,26 @@ HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& setting
     return placement;
 }
 
+std::string checkPlacedHead(const TriangleMesh& placed)
+{
+    if (std::string problem = validateMesh(placed); !problem.empty())
+        return problem;
+    const glm::vec3 size = boundsOf(placed).size();
+    char extents[96];
+    std::snprintf(extents, sizeof extents, "%.4g x %.4g x %.4g m", size.x, size.y, size.z);
+    const double largest = std::max({double{size.x}, double{size.y}, double{size.z}});
+    if (!(largest <= headMaxPlacedExtentMetres))
+        return std::string("the placed head is ") + extents + ", more than " + metresText(headMaxPlacedExtentMetres) +
+               " at its largest: a stray vertex far from the others, or the wrong unit (--scale / Head Scale)";
+    static const char* const axisNames[] = {"x", "y", "z"};
+    for (int axis = 0; axis < 3; ++axis)
+        if (!(double{size[axis]} >= headMinAxisExtentMetres))
+            return std::string("the placed head is ") + extents + ": flat along " + axisNames[axis] +
+                   " (less than " + metresText(headMinAxisExtentMetres) +
+                   "); a head needs depth on every axis to have an inside the hair can collide with";
+    return {};
+}
+
 void applyPlacement(TriangleMesh& mesh, const HeadPlacement& placement)
 {
     applyPlacement(std::span<glm::vec3>(mesh.positions), placement);

@@ -76,6 +76,16 @@ struct HeadPlacement {
 HeadPlacement placeHead(TriangleMesh& mesh, LengthUnit unit = LengthUnit::Auto, float explicitScale = 0.0f);
 HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& settings);
 
+// What a placed head must be for the groom and the solver to use it (wisp-cli validate, simulate
+// and the editor's Open Head all ask): a valid mesh (sim/TriangleMesh's validateMesh), at least
+// headMinAxisExtentMetres deep on every axis (a flat or collapsed mesh has no inside to collide
+// with, and a subnormal extent broke the BVH build), and at most headMaxPlacedExtentMetres at its
+// largest (one stray vertex far away made the scalp area, and with it the groom's work, absurd).
+// Empty when usable, else the reason in an artist's words.
+inline constexpr double headMinAxisExtentMetres = 0.01;
+inline constexpr double headMaxPlacedExtentMetres = 3.0;
+std::string checkPlacedHead(const TriangleMesh& placed);
+
 // Applies a placement (as returned by placeHead, or stored in a project) to a mesh as read.
 // The same for points in the head file's frame (strands that came with the head).
 void applyPlacement(TriangleMesh& mesh, const HeadPlacement& placement);

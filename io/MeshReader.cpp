@@ -1,6 +1,7 @@
 #include "io/MeshReader.h"
 
 #include "io/GltfReader.h"
+#include "io/RegularFile.h"
 
 #include <OpenMesh/Core/IO/Options.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
@@ -80,32 +81,10 @@ std::string lowerExtension(const std::string& path)
 
 std::string readWholeFile(const std::string& path)
 {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (status.type() == fs::file_type::not_found)
-        fail({}, "the file does not exist");
-    if (ec)
-        fail({}, "cannot look at the file: " + ec.message());
-    if (fs::is_directory(status))
-        fail({}, "this is a folder, not a mesh file");
-    // A pipe or device could feed us forever; meshes are regular files.
-    if (!fs::is_regular_file(status))
-        fail({}, "this is not a regular file");
-
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    Result<std::string> file = readRegularFile(path, {kMaxMeshFileBytes, "mesh", false});
     if (!file)
-        fail({}, std::string("cannot open the file: ") + std::strerror(errno));
-    const std::uintmax_t size = fs::file_size(path, ec);
-    if (ec)
-        fail({}, "cannot tell the size of the file: " + ec.message());
-    std::string bytes(static_cast<std::size_t>(size), '\0');
-    const std::size_t got = bytes.empty() ? 0 : std::fread(bytes.data(), 1, bytes.size(), file.get());
-    if (std::ferror(file.get()) != 0 || got != bytes.size())
-        fail(byteAt(got), "could not read the whole file (" + std::to_string(got) + " of " + std::to_string(size) + " bytes)");
-    if (bytes.empty())
-        fail({}, "the file is empty (0 bytes)");
-    return bytes;
+        fail(file.error().location, file.error().message);
+    return std::move(file).value();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1173,27 +1152,62 @@ void scanStl(std::string_view bytes)
     }
 }
 
-std::vector<std::string> readWithOpenMesh(const std::string& path, const std::string& ext, std::size_t fileSize,
+// The OBJ text with every `mtllib` statement turned into a comment. OpenMesh opens material
+// libraries by the name the file gives (`mtllib /dev/zero`, a FIFO beside the file: it read or
+// blocked forever); Wisp reads no materials, so none is opened. `ignored` gets their names.
+std::string withoutMaterialLibraries(std::string_view bytes, std::vector<std::string>& ignored)
+{
+    std::string text(bytes);
+    std::size_t lineStart = 0;
+    while (lineStart < text.size()) {
+        std::size_t lineEnd = text.find('\n', lineStart);
+        if (lineEnd == std::string::npos)
+            lineEnd = text.size();
+        const std::size_t first = text.find_first_not_of(" \t", lineStart);
+        if (first < lineEnd && text.compare(first, 6, "mtllib") == 0 &&
+            (first + 6 == lineEnd || text[first + 6] == ' ' || text[first + 6] == '\t' || text[first + 6] == '\r')) {
+            std::string name = text.substr(first + 6, lineEnd - first - 6);
+            name.erase(0, std::min(name.find_first_not_of(" \t"), name.size()));
+            while (!name.empty() && (name.back() == '\r' || name.back() == ' '))
+                name.pop_back();
+            ignored.push_back(name);
+            text[first] = '#';
+        }
+        lineStart = lineEnd + 1;
+    }
+    return text;
+}
+
+std::vector<std::string> readWithOpenMesh(const std::string& path, const std::string& ext, std::string_view bytes,
                                           MeshBuilder& builder)
 {
     const std::lock_guard<std::mutex> lock(openMeshMutex());
     OpenMeshStreamCapture capture;
-    CollectingImporter importer(builder, fileSize);
+    CollectingImporter importer(builder, bytes.size());
     OpenMesh::IO::Options options;  // no normals, colours or texture coordinates
-    const bool ok = ext == "obj" ? OpenMesh::IO::OBJReader().read(path, importer, options)
-                                 : OpenMesh::IO::STLReader().read(path, importer, options);
+    std::vector<std::string> materialLibraries;
+    bool ok = false;
+    if (ext == "obj") {
+        // From memory: the file is read once, by io/RegularFile, and OpenMesh never opens a path.
+        std::istringstream in(withoutMaterialLibraries(bytes, materialLibraries));
+        ok = OpenMesh::IO::OBJReader().read(in, importer, options);
+    } else {
+        ok = OpenMesh::IO::STLReader().read(path, importer, options);
+    }
     std::vector<std::string> remarks = capture.lines();
     if (!ok)
         fail({}, "OpenMesh could not read the file: " + (remarks.empty() ? std::string("it gave no reason") : remarks.front()));
     for (std::string& remark : remarks)
         remark.insert(0, "OpenMesh: ");
+    for (const std::string& library : materialLibraries)
+        remarks.push_back("ignored the material library '" + library + "': Wisp reads no materials");
     return remarks;
 }
 
 void readObj(const std::string& path, std::string_view bytes, MeshBuilder& builder, std::vector<std::string>& warnings)
 {
     const ObjScan scan = scanObj(bytes);
-    const std::vector<std::string> remarks = readWithOpenMesh(path, "obj", bytes.size(), builder);
+    const std::vector<std::string> remarks = readWithOpenMesh(path, "obj", bytes, builder);
     // The scan accepted every vertex line, so OpenMesh must have read every one; if not, the
     // indices would be shifted and the mesh silently wrong.
     if (builder.mesh.positions.size() != scan.vertexLines)
@@ -1220,7 +1234,7 @@ void readObj(const std::string& path, std::string_view bytes, MeshBuilder& build
 void readStl(const std::string& path, std::string_view bytes, MeshBuilder& builder, std::vector<std::string>& warnings)
 {
     scanStl(bytes);
-    const std::vector<std::string> remarks = readWithOpenMesh(path, "stl", bytes.size(), builder);
+    const std::vector<std::string> remarks = readWithOpenMesh(path, "stl", bytes, builder);
     warnings.insert(warnings.end(), remarks.begin(), remarks.end());
     if (builder.mesh.triangles.empty())
         fail({}, "no triangles found: the file is not an STL ('solid ... facet ... outer loop ... vertex') or holds only degenerate facets");

@@ -1,8 +1,9 @@
 #include "io/ParameterText.h"
+#include "io/RegularFile.h"
 
 #include <cerrno>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 
 namespace wisp::io {
 
@@ -19,9 +20,10 @@ std::string trim(const std::string& s)
 
 Result<ParameterFile> readParameterText(const std::string& path)
 {
-    std::ifstream in(path);
-    if (!in)
-        return IoError{path, "", "cannot open the file"};
+    Result<std::string> text = readRegularFile(path, {kMaxTextFileBytes, "parameter", true});
+    if (!text)
+        return text.error();
+    std::istringstream in(std::move(text).value());
     ParameterFile file;
     std::string line;
     for (std::size_t number = 1; std::getline(in, line); ++number) {

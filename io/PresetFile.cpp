@@ -1,4 +1,6 @@
 #include "io/PresetFile.h"
+#include "io/JsonErrors.h"
+#include "io/RegularFile.h"
 
 #include "io/AtomicFile.h"
 
@@ -56,9 +58,7 @@ std::string shortestText(double value)
 
 std::string megabytes(std::size_t bytes)
 {
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.0f MB", std::ceil(static_cast<double>(bytes) / (1 << 20)));
-    return buffer;
+    return megabytesText(bytes);
 }
 
 // A short array of plain numbers ([0.16, 0.1, 0.06]) starting at text[open] == '[': its one-line
@@ -108,32 +108,10 @@ std::vector<std::string> Warnings::take()
 
 std::string readWholeFile(const std::string& path, std::size_t maxBytes, const char* what)
 {
-    std::error_code error;
-    const fs::file_status status = fs::status(path, error);
-    if (status.type() == fs::file_type::not_found)
-        throw Refusal{"", "the file does not exist"};
-    if (error)
-        throw Refusal{"", "cannot open the file (" + error.message() + ")"};
-    if (fs::is_directory(status))
-        throw Refusal{"", std::string("this is a folder, not a ") + what + " file"};
-    if (const std::uintmax_t size = fs::file_size(path, error); !error && size > maxBytes)
-        throw Refusal{"", "the file is " + megabytes(size) + "; a " + what + " file is at most " + megabytes(maxBytes)};
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw Refusal{"", std::string("cannot open the file (") + std::strerror(errno) + ")"};
-    // Read in chunks up to the limit even when the size was known: a file that is not a regular
-    // file (a pipe, /dev/zero) has none, and a file may grow while it is read.
-    std::string text;
-    char chunk[1 << 16];
-    while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
-        text.append(chunk, static_cast<std::size_t>(in.gcount()));
-        if (text.size() > maxBytes)
-            throw Refusal{"", std::string("the file is larger than a ") + what + " file may be (" + megabytes(maxBytes) +
-                                  ")"};
-    }
-    if (in.bad())
-        throw Refusal{"", "reading the file failed"};
-    return text;
+    Result<std::string> file = readRegularFile(path, {maxBytes, what, true});
+    if (!file)
+        throw Refusal{file.error().location, file.error().message};
+    return std::move(file).value();
 }
 
 json parseJson(std::string_view text, std::size_t maxBytes, const char* what)
@@ -144,20 +122,10 @@ json parseJson(std::string_view text, std::size_t maxBytes, const char* what)
         throw Refusal{"", "the file is empty"};
     try {
         return json::parse(text.begin(), text.end());
-    } catch (const json::parse_error& e) {
-        // nlohmann's byte is 1-based and may point one past the end; lines and columns count from 1.
-        const std::size_t offset = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-        const std::string_view before = text.substr(0, offset);
-        const std::size_t line = 1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
-        const std::size_t lineStart = before.rfind('\n') == std::string_view::npos ? 0 : before.rfind('\n') + 1;
-        // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: " and
-        // shorten what is left: its "last read" quotes the token, which may be megabytes of string.
-        std::string message = e.what();
-        if (const std::size_t column = message.find("column "); column != std::string::npos)
-            if (const std::size_t colon = message.find(": ", column); colon != std::string::npos)
-                message.erase(0, colon + 2);
-        throw Refusal{"line " + std::to_string(line) + ", column " + std::to_string(offset - lineStart + 1),
-                      shorten(message, 200)};
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for a number that overflows
+        const JsonFailure failure = describeJsonFailure(text, e);
+        // "last read" quotes the token, which may be megabytes of string: shorten.
+        throw Refusal{failure.place, shorten(failure.message, 200)};
     }
 }
 
@@ -480,7 +448,7 @@ Result<PresetReadResult> parsePreset(std::string_view text, const std::string& n
     } catch (const Refusal& refusal) {
         return IoError{nameForMessages, refusal.location, refusal.message};
     } catch (const json::exception& e) {  // a check above missed a case: still an error, not a crash
-        return IoError{nameForMessages, "", e.what()};
+        return IoError{nameForMessages, "", withoutJsonPrefix(e.what())};
     } catch (const std::bad_alloc&) {
         return IoError{nameForMessages, "", "not enough memory to read the preset"};
     }

@@ -1,4 +1,6 @@
 #include "io/ProjectFile.h"
+#include "io/HeadPlacement.h"
+#include "io/JsonErrors.h"
 
 #include "io/AtomicFile.h"
 #include "io/Base64.h"
@@ -613,11 +615,15 @@ Result<ProjectReadResult> parseProject(std::string_view text, const std::string&
         const json root = parseJson(text, kMaxProjectBytes, "project");
         Warnings warnings;
         Project project = readProjectJson(root, path, loadHead, warnings);
+        // The same check as Open Head and wisp-cli: a flat or absurdly large head is refused
+        // before the editor builds its BVH, collider and groom on it.
+        if (std::string problem = checkPlacedHead(project.head); !problem.empty())
+            throw Refusal{"head", problem};
         return ProjectReadResult{std::move(project), warnings.take()};
     } catch (const Refusal& refusal) {
         return IoError{path, refusal.location, refusal.message};
     } catch (const json::exception& e) {  // a check above missed a case: still an error, not a crash
-        return IoError{path, "", e.what()};
+        return IoError{path, "", withoutJsonPrefix(e.what())};
     } catch (const std::bad_alloc&) {
         return IoError{path, "", "not enough memory to read the project"};
     }

@@ -1,6 +1,7 @@
 #include "io/StrandText.h"
 
 #include "io/AtomicFile.h"
+#include "io/RegularFile.h"
 
 #include <cmath>
 #include <cstdio>
@@ -31,9 +32,10 @@ std::string writeStrandText(const std::string& path, const HairCurves& curves)
 
 Result<HairCurves> readStrandText(const std::string& path)
 {
-    std::ifstream in(path);
-    if (!in)
-        return IoError{path, "", "cannot open the file"};
+    Result<std::string> file = readRegularFile(path, {kMaxStrandTextBytes, "wisp-strands", false});
+    if (!file)
+        return file.error();
+    std::istringstream in(std::move(file).value());
     std::string line;
     std::size_t lineNumber = 0;
     auto nextLine = [&]() -> bool {

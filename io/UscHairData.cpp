@@ -57,6 +57,8 @@ Result<HairReadResult> readUscData(const std::string& path)
         if (point + std::uint64_t(n) > std::numeric_limits<std::uint32_t>::max())
             return IoError{path, byteAt(at - 4), "the file holds more than 4,294,967,295 points, more than Wisp can hold"};
         if (n < 2) {
+            if (std::optional<IoError> error = checkFinitePoints(path, data + at, static_cast<std::uint32_t>(n), point, s, at))
+                return *error;
             skipped.push_back(s);
         } else if (std::optional<IoError> error = appendFinitePoints(path, data + at, static_cast<std::uint32_t>(n), point, s, at, curves)) {
             return *error;

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <functional>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <map>
 #include <tuple>
@@ -90,12 +91,36 @@ constexpr float kThinnedPointsPerRadiusSquared = 0.52f;
 // The weight-independent pore set for a density: candidates per triangle from counter-based
 // randomness keyed by the triangle, thinned to blue noise. Changing the growth weights never
 // changes this set; the weights only decide which pores grow a strand.
-std::vector<Pore> poreSet(const TriangleMesh& head, float densityPerM2, std::uint32_t seed, float* radiusOut)
+struct PoreSetStats {
+    std::size_t candidates = 0;
+    double wantedCandidates = 0.0;  // before the cap
+    bool capped = false;
+};
+
+std::vector<Pore> poreSet(const TriangleMesh& head, float densityPerM2, std::uint32_t seed, std::size_t maxCandidates,
+                          float* radiusOut, PoreSetStats* stats)
 {
     constexpr float kOversample = 4.0f;
+    // Candidates scale with the whole mesh's area, painted or not: bound them (and with them the
+    // sort and the thinning) by maxCandidates (kMaxPoreCandidates). Past it every triangle gets proportionally
+    // fewer, so the layout stays even but sparser than asked; the caller warns.
+    double wanted = 0.0;
+    for (std::uint32_t t = 0; t < head.triangles.size(); ++t)
+        wanted += static_cast<double>(triangleArea(head, t)) * densityPerM2 * kOversample;
+    const bool capped = !(wanted <= static_cast<double>(maxCandidates));
+    // Each triangle rounds its count up by a random fraction: aim a little low so the total stays
+    // under the cap.
+    const double aim = static_cast<double>(maxCandidates) - static_cast<double>(head.triangles.size());
+    const float share = capped ? static_cast<float>(std::max(aim, 0.0) / wanted) : 1.0f;
+    if (!(share > 0.0f)) {  // a cap below one candidate a triangle: no pores at all
+        *stats = {0, wanted, true};
+        *radiusOut = std::sqrt(kThinnedPointsPerRadiusSquared / densityPerM2);
+        return {};
+    }
     std::vector<Pore> candidates;
+    candidates.reserve(static_cast<std::size_t>(std::min(wanted, static_cast<double>(maxCandidates))) + head.triangles.size());
     for (std::uint32_t t = 0; t < head.triangles.size(); ++t) {
-        const float expected = triangleArea(head, t) * densityPerM2 * kOversample;
+        const float expected = triangleArea(head, t) * densityPerM2 * kOversample * share;
         const auto count = static_cast<std::uint32_t>(expected + randomUnit(seed, CandidateCount, t));
         for (std::uint32_t i = 0; i < count; ++i) {
             float b1 = randomUnit(seed, CandidatePoint, t, 2 * i);
@@ -108,11 +133,12 @@ std::vector<Pore> poreSet(const TriangleMesh& head, float densityPerM2, std::uin
             candidates.push_back({sp, pointOn(head, sp), randomUnit(seed, Priority, t, i)});
         }
     }
+    *stats = {candidates.size(), wanted, capped};
     std::vector<std::uint32_t> order(candidates.size());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return candidates[a].priority < candidates[b].priority; });
-    const float radius = std::sqrt(kThinnedPointsPerRadiusSquared / densityPerM2);
+    const float radius = std::sqrt(kThinnedPointsPerRadiusSquared / (densityPerM2 * share));
     std::vector<std::uint32_t> kept = thinToBlueNoise(candidates, order, radius);
     std::sort(kept.begin(), kept.end());  // stable ids in triangle order
     std::vector<Pore> pores;
@@ -403,16 +429,17 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
 // coarser blue-noise subset, so a wisp's neighbourhood does not shift when an artist paints
 // elsewhere) and each pore's nearest site.
 struct PoreLayout {
+    PoreSetStats stats;
     std::vector<Pore> pores;
     std::vector<std::uint32_t> sites;       // pore index of each site
     std::vector<std::uint32_t> siteOfPore;  // nearest site of each pore
 };
 
-PoreLayout makePoreLayout(const TriangleMesh& head, const GroomSettings& settings)
+PoreLayout makePoreLayout(const TriangleMesh& head, const GroomSettings& settings, std::size_t maxCandidates)
 {
     PoreLayout layout;
     float radius = 0.0f;
-    layout.pores = poreSet(head, settings.densityPerCm2 * 1e4f, settings.seed, &radius);
+    layout.pores = poreSet(head, settings.densityPerCm2 * 1e4f, settings.seed, maxCandidates, &radius, &layout.stats);
     const std::vector<Pore>& pores = layout.pores;
     std::vector<std::uint32_t> order(pores.size());
     std::iota(order.begin(), order.end(), 0u);
@@ -641,11 +668,18 @@ GroomBuilder& GroomBuilder::operator=(GroomBuilder&&) noexcept = default;
 
 void GroomBuilder::forgetHead() { *m_cache = Cache{}; }
 
+void GroomBuilder::setMaxPoreCandidates(std::size_t cap)
+{
+    m_maxPoreCandidates = cap;
+    forgetHead();
+}
+
 GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomRegionInput> regions,
                                 const GroomSettings& shared, const SignedDistanceField* collider, const Groom* previous,
                                 const MeshBvh* bvh, const StyleEdits* style)
 {
     m_reused = m_built = 0;
+    m_poreCandidates = 0;
     Cache& cache = *m_cache;
     if (cache.head != &head || cache.vertices != head.positions.size() || cache.triangles != head.triangles.size()) {
         if (std::string error = validateMesh(head); !error.empty())
@@ -709,7 +743,17 @@ GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomR
         if (!layout) {
             const auto found = cache.layouts.find(key);
             layout = found != cache.layouts.end() ? found->second
-                                                  : std::make_shared<const PoreLayout>(makePoreLayout(head, settings));
+                                                  : std::make_shared<const PoreLayout>(makePoreLayout(head, settings, m_maxPoreCandidates));
+        }
+        m_poreCandidates += layout->stats.candidates;
+        if (layout->stats.capped) {
+            char text[320];
+            std::snprintf(text, sizeof text,
+                          "region %zu: density %g strands/cm² on the head's %.0f cm² needs %.0f pore candidates; capped "
+                          "at %zu, so the hair is sparser than asked",
+                          r + 1, static_cast<double>(settings.densityPerCm2), cache.areaM2 * 1e4,
+                          layout->stats.wantedCandidates, m_maxPoreCandidates);
+            result.warnings.emplace_back(text);
         }
         growRegion(groom, head, *layout, region.weights, settings, static_cast<std::uint16_t>(r));
     }

@@ -100,9 +100,16 @@ struct Groom {
     }
 };
 
+// Pore candidates a region's layout may draw over the whole head (4 per strand at the asked
+// density). Past it the layout is made sparser, evenly, and GroomResult warns: a stray vertex far
+// away used to make the candidates, and a groom, take 12-34 s and 266 MB.
+// 2,097,152: the built-in head at the highest density (200 strands/cm²) needs 1.4 million.
+inline constexpr std::size_t kMaxPoreCandidates = std::size_t{1} << 21;
+
 struct GroomResult {
     Groom groom;
     std::string error;  // empty on success
+    std::vector<std::string> warnings{};  // what the artist should know (a capped layout); sim never logs
     bool ok() const { return error.empty(); }
 };
 
@@ -138,12 +145,20 @@ public:
     // Wisps whose rest shapes the last build copied from `previous`, and built anew.
     std::size_t reusedWisps() const { return m_reused; }
     std::size_t builtWisps() const { return m_built; }
+    // Pore candidates behind the layouts the last build used (each at most maxPoreCandidates()).
+    std::size_t poreCandidates() const { return m_poreCandidates; }
+    // The cap on one layout's candidates: kMaxPoreCandidates unless a test lowers it to check the
+    // capping with little work. Changing it forgets the kept layouts.
+    void setMaxPoreCandidates(std::size_t cap);
+    std::size_t maxPoreCandidates() const { return m_maxPoreCandidates; }
 
 private:
     struct Cache;
     std::unique_ptr<Cache> m_cache;
     std::size_t m_reused = 0;
     std::size_t m_built = 0;
+    std::size_t m_poreCandidates = 0;
+    std::size_t m_maxPoreCandidates = kMaxPoreCandidates;
 };
 
 // `strand` resampled to `points` points evenly spaced along its arc length (the first and last

@@ -354,6 +354,7 @@ std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& region
         m_builder.build(m_head, inputs, groomSettingsFrom(values), m_sdf.get(), previous, m_bvh.get(), m_style.get());
     if (!result.ok())
         return result.error;
+    m_groomWarnings = std::move(result.warnings);
     out = std::move(result.groom);
     return {};
 }
@@ -446,6 +447,7 @@ std::string HairSimulation::setup(const TriangleMesh& head, std::span<const floa
     GroomResult groom = buildGroom(m_head, growthWeights, groomSettings, m_sdf.get());
     if (!groom.ok())
         return groom.error;
+    m_groomWarnings = std::move(groom.warnings);
     m_looks.clear();  // one region, in the viewport's own colours
     return start(std::move(groom.groom), values);
 }

@@ -47,6 +47,8 @@ public:
     std::size_t carriedStrands() const { return m_carried; }
     std::size_t startedStrands() const { return m_started; }
     const GroomBuilder& groomBuilder() const { return m_builder; }
+    // What the last groom built wants the artist to know (GroomResult::warnings).
+    const std::vector<std::string>& groomWarnings() const { return m_groomWarnings; }
 
     // How each groom region's hair looks (per entry of groom().regionIds).
     const std::vector<StrandLook>& looks() const { return m_looks; }
@@ -144,6 +146,7 @@ private:
     bool m_bodyOn = false;        // the solver and the drawn members collide with m_body
     Groom m_groom;
     GroomBuilder m_builder;
+    std::vector<std::string> m_groomWarnings;
     std::vector<StrandLook> m_looks;
     bool m_allStrands = false;
     std::size_t m_carried = 0;

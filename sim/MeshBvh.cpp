@@ -45,20 +45,22 @@ struct Box {
     }
 };
 
+// The bin of a centroid coordinate `c` in [lo, lo + extent]. Written as a ratio, not as
+// (c - lo) * (kBins / extent): for a subnormal extent kBins / extent is inf, and 0 * inf is NaN,
+// whose int conversion indexed bins[INT_MIN]. The ratio of two finite numbers with c - lo <=
+// extent is in [0, 1]; the clamp (NaN compares false, so it lands in bin 0) keeps every finite
+// input in range whatever rounding does.
+int binOf(float c, float lo, float extent)
+{
+    const float t = (c - lo) / extent * static_cast<float>(kBins);
+    if (!(t > 0.0f))
+        return 0;
+    return t >= static_cast<float>(kBins - 1) ? kBins - 1 : static_cast<int>(t);
+}
+
 bool finite(const glm::vec3& v)
 {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-// The bin (0 .. kBins-1) of a centroid coordinate, `scale` being kBins / the centroids' extent.
-// Guarded because the float division does not always give a usable scale: a subnormal extent
-// (a head flat to 1e-39 m along an axis) makes it infinite, and (centroid - lo) * inf is NaN or
-// infinite, which no int can hold (found by fuzz/fuzz_mesh). NaN lands in the last bin; the build
-// and the partition use this one function, so they always agree.
-int binOf(float centroid, float lo, float scale)
-{
-    const float bin = (centroid - lo) * scale;
-    return bin < static_cast<float>(kBins) ? (bin > 0.0f ? static_cast<int>(bin) : 0) : kBins - 1;
 }
 
 float boxDistance2(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi)
@@ -133,11 +135,10 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh)
         for (int axis = 0; axis < 3 && task.depth < kMaxSahDepth; ++axis) {
             if (!(extent[axis] > 0.0f))
                 continue;
-            const float scale = static_cast<float>(kBins) / extent[axis];
             Bin bins[kBins];
             for (std::uint32_t i = task.begin; i < task.end; ++i) {
                 const Ref& r = refs[i];
-                const int b = binOf(r.centroid[axis], centroidBounds.lo[axis], scale);
+                const int b = binOf(r.centroid[axis], centroidBounds.lo[axis], extent[axis]);
                 bins[b].box.grow(r.box);
                 ++bins[b].count;
             }
@@ -183,9 +184,9 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh)
             if (count <= kMaxLeafSize && splitCost >= static_cast<float>(count))
                 continue;
             const float lo = centroidBounds.lo[bestAxis];
-            const float scale = static_cast<float>(kBins) / extent[bestAxis];
+            const float axisExtent = extent[bestAxis];
             const Ref* middle = std::partition(refs.data() + task.begin, refs.data() + task.end, [&](const Ref& r) {
-                return binOf(r.centroid[bestAxis], lo, scale) < bestPlane;
+                return binOf(r.centroid[bestAxis], lo, axisExtent) < bestPlane;
             });
             mid = static_cast<std::uint32_t>(middle - refs.data());
             if (mid == task.begin || mid == task.end)

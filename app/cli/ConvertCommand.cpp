@@ -3,6 +3,7 @@
 
 #include "app/cli/CommandLine.h"
 #include "app/cli/Commands.h"
+#include "app/cli/OutputCheck.h"
 
 #include "io/HairFiles.h"
 #include "io/MeshReader.h"
@@ -45,8 +46,7 @@ int runConvert(int argc, char** argv)
         throw CliError{kUsage, "needs IN and OUT files (see --help)"};
     const std::string& in = args.positional()[0];
     const std::string& out = args.positional()[1];
-    if (!io::hairFormatForPath(out))
-        throw CliError{kBadInput, out + ": cannot write this format; Wisp writes " + joined(io::hairWriteExtensions())};
+    checkOutputPath(out, "OUT", io::hairWriteExtensions());
 
     io::Result<io::HairReadResult> hair = io::readHair(in);
     if (!hair)

@@ -25,6 +25,8 @@ LoadedHead loadHead(const std::string& path, std::optional<double> scale, std::o
     std::cout << path << ": " << io::describePlacement(head.placement) << "; " << head.placement.orientation << "\n";
     if (!head.placement.note.empty())
         std::cerr << "wisp-cli " << command << ": " << path << ": warning: " << head.placement.note << "\n";
+    if (std::string problem = io::checkPlacedHead(head.mesh); !problem.empty())
+        throw CliError{kBadInput, path + ": " + problem};
     return head;
 }
 

@@ -16,7 +16,8 @@ struct LoadedHead {
     io::HeadPlacement placement;
 };
 
-// Throws CliError{kBadInput} naming the file and the problem; prints the reader's warnings to
+// Refuses a head the groom and solver cannot use (io::checkPlacedHead: flat, or absurdly large
+// once placed). Throws CliError{kBadInput} naming the file and the problem; prints the reader's warnings to
 // stderr prefixed with `command`.
 // `up`: the file's up axis as given on the command line, or nullopt to find it from the shape.
 LoadedHead loadHead(const std::string& path, std::optional<double> scale, std::optional<io::Axis> up,

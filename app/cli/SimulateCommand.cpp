@@ -5,6 +5,7 @@
 #include "app/cli/StepTimer.h"
 
 #include "app/cli/HeadLoading.h"
+#include "app/cli/OutputCheck.h"
 #include "io/HairFiles.h"
 #include "io/MeshReader.h"
 #include "io/PresetFile.h"
@@ -69,6 +70,12 @@ int runSimulate(int argc, char** argv)
         std::cout << "usage: wisp-cli simulate [options]\n\n" << describeOptions(options);
         return kSuccess;
     }
+
+    // Outputs first: a bad path found after the simulation wastes the whole run.
+    if (const auto out = args.text("out"))
+        checkOutputPath(*out, "--out", {});
+    if (const auto out = args.text("export"))
+        checkOutputPath(*out, "--export", io::hairWriteExtensions());
 
     ParameterValues values;
     if (const auto path = args.text("preset")) {
@@ -157,10 +164,28 @@ int runSimulate(int argc, char** argv)
             std::cerr << "wisp-cli simulate: " << *hairPath << ": warning: " << placed.note << "\n";
         glm::vec3 lo(INFINITY), hi(-INFINITY);
         for (const glm::vec3& p : strands.positions) {
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                throw CliError{kBadInput, *hairPath + ": point " + std::to_string(&p - strands.positions.data()) +
+                                              " is not finite once placed (scale " + std::to_string(placed.scale) + ")"};
             lo = glm::min(lo, p);
             hi = glm::max(hi, p);
         }
         const Aabb box = boundsOf(head);
+        // Hair is rooted on the head and at most a few metres long: a point farther than this from
+        // the head's box is in other units or corrupt, and the solver would only reset it forever.
+        constexpr float kMaxHairDistanceMetres = 10.0f;
+        for (std::size_t i = 0; i < strands.positions.size(); ++i) {
+            const glm::vec3& p = strands.positions[i];
+            const glm::dvec3 outside = glm::max(glm::max(glm::dvec3(box.min - p), glm::dvec3(p - box.max)), glm::dvec3(0.0));
+            const double away = glm::length(outside);
+            if (!(away <= kMaxHairDistanceMetres)) {
+                char metres[32];
+                std::snprintf(metres, sizeof metres, "%.3g m", away);
+                throw CliError{kBadInput, *hairPath + ": point " + std::to_string(i) + " lies " + metres +
+                                              " from the head, more than 10 m: the strands must be in the head's "
+                                              "space, in metres (see --hair-scale)"};
+            }
+        }
         const float headExtent = glm::length(box.size()), hairExtent = glm::length(hi - lo);
         if (hairExtent > 5.0f * headExtent)
             std::cerr << "wisp-cli simulate: " << *hairPath << ": the strands span " << hairExtent << " m, the head "
@@ -172,6 +197,11 @@ int runSimulate(int argc, char** argv)
     }
     if (!error.empty())
         throw CliError{kBadInput, (args.has("head") ? *args.text("head") + ": " : std::string()) + error};
+    for (const std::string& warning : sim.groomWarnings())
+        std::cerr << "wisp-cli simulate: warning: " << warning << "\n";
+    if (args.has("hair") && sim.groom().strandCount() == 0)
+        throw CliError{kBadInput, *args.text("hair") + ": no strand could be rooted on the head (are they in its space "
+                                                         "and units? see --hair-scale)"};
 
     std::cout << "strands " << sim.groom().strandCount() << " (simulated " << sim.solver().strandCount() << ", particles "
               << sim.solver().particleCount() << "), threads " << sim.solver().threadCount() << ", steps " << steps << "\n";

@@ -9,6 +9,8 @@
 #include "io/MeshReader.h"
 #include "io/PresetFile.h"
 #include "io/ProjectFile.h"
+#include "sim/GrowthMap.h"
+#include "sim/HairSimulation.h"
 
 #include <glm/common.hpp>
 
@@ -54,19 +56,27 @@ void validateHead(const std::string& path)
     io::Result<io::MeshReadResult> read = io::readMesh(path);
     if (!read)
         throw CliError{kBadInput, read.error().toString()};
-    TriangleMesh mesh = std::move(read).value().mesh;
-    if (std::string problem = validateMesh(mesh); !problem.empty())
-        throw CliError{kBadInput, path + ": " + problem};
-    std::cout << path << ": head mesh, " << mesh.positions.size() << " vertices, " << mesh.triangles.size()
-              << " triangles, " << size(boundsOf(mesh)) << " file units\n";
+    const TriangleMesh& asRead = read.value().mesh;
+    std::cout << path << ": head mesh, " << asRead.positions.size() << " vertices, " << asRead.triangles.size()
+              << " triangles, " << size(boundsOf(asRead)) << " file units\n";
+    // The same steps as `simulate --head`: placed, checked (io::checkPlacedHead), then the groom and
+    // collider built with the default parameters, so what validate accepts simulate can use.
+    TriangleMesh placed = asRead;
     io::HeadPlacementSettings settings;  // as simulate and the editor place it
     if (io::formatFixesUpAxis(path))
         settings.up = io::Axis::PosY;
-    const io::HeadPlacement placement = io::placeHead(mesh, settings);
-    std::cout << "  " << io::describePlacement(placement) << " -> " << size(boundsOf(mesh)) << " m\n";
+    const io::HeadPlacement placement = io::placeHead(placed, settings);
+    std::cout << "  " << io::describePlacement(placement) << " -> " << size(boundsOf(placed)) << " m\n";
     if (!placement.note.empty())
         std::cout << "  check: " << placement.note << "\n";
+    if (std::string problem = io::checkPlacedHead(placed); !problem.empty())
+        throw CliError{kBadInput, path + ": " + problem};
+    HairSimulation sim(1);
+    if (std::string error = sim.setup(placed, scalpGrowth(placed), ParameterValues{}); !error.empty())
+        throw CliError{kBadInput, path + ": " + error};
+    std::cout << "  default groom: " << sim.groom().strandCount() << " strands\n";
     printWarnings(read.value().warnings);
+    printWarnings(sim.groomWarnings());
 }
 
 void validateHair(const std::string& path)

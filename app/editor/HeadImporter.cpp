@@ -71,7 +71,9 @@ bool HeadImporter::start(const QString& path, const io::HeadPlacementSettings& s
                 head->path = job->path;
                 for (const std::string& w : result.warnings)
                     head->warnings << QString::fromStdString(w);
-                if (std::string problem = validateMesh(head->mesh); !problem.empty())
+                // The same check as wisp-cli's: a flat or absurdly large head is refused here,
+                // before the BVH, the collider and the groom are built on it.
+                if (std::string problem = io::checkPlacedHead(head->mesh); !problem.empty())
                     job->error = job->path + QStringLiteral(": ") + QString::fromStdString(problem);
                 else
                     job->head = std::move(head);

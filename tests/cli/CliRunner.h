@@ -13,9 +13,11 @@ struct CliRun {
     std::string output;  // stdout and stderr together
 };
 
-inline CliRun cli(const std::string& arguments)
+// `timeoutSeconds` > 0 runs it under timeout(1): a run that blocks ends with status 124.
+inline CliRun cli(const std::string& arguments, int timeoutSeconds = 0)
 {
-    const std::string command = std::string(WISP_CLI_PATH) + " " + arguments + " 2>&1";
+    const std::string prefix = timeoutSeconds > 0 ? "timeout " + std::to_string(timeoutSeconds) + " " : std::string();
+    const std::string command = prefix + std::string(WISP_CLI_PATH) + " " + arguments + " 2>&1";
     CliRun r;
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe)

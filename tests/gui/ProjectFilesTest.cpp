@@ -20,6 +20,7 @@
 #include <QApplication>
 #include <QDir>
 #include <QMenu>
+#include <QFile>
 #include <QMessageBox>
 #include <QSignalSpy>
 #include <QStandardPaths>
@@ -466,4 +467,37 @@ TEST_F(ProjectFilesTest, HairImportedAfterItsHeadLandsOnItsScalp)
     EXPECT_FALSE(doc()->headPlacement().turned());
     doc()->undoStack()->undo();
     EXPECT_EQ(doc()->headPlacement().up, io::Axis::PosZ);
+}
+
+// Issue 12: a nearly flat OBJ (a subnormal extent in z) crashed File > Open Head in the BVH
+// build. It is refused on the worker thread, naming the file and why, and the head stays.
+TEST_F(ProjectFilesTest, AFlatHeadIsRefusedAndTheHeadStays)
+{
+    QString obj;
+    constexpr int n = 20;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            obj += QStringLiteral("v %1 %2 %3\n").arg(0.01 * i).arg(0.01 * j).arg(i == n - 1 ? QStringLiteral("1e-42") : QStringLiteral("0"));
+    for (int i = 0; i + 1 < n; ++i)
+        for (int j = 0; j + 1 < n; ++j) {
+            const int a = i * n + j + 1, b = a + 1, c = a + n, d = c + 1;
+            obj += QStringLiteral("f %1 %2 %3\nf %1 %3 %4\n").arg(a).arg(b).arg(d).arg(c);
+        }
+    const QString path = dir.filePath(QStringLiteral("flat.obj"));
+    {
+        QFile file(path);
+        ASSERT_TRUE(file.open(QIODevice::WriteOnly));
+        file.write(obj.toUtf8());
+    }
+    const std::size_t vertices = doc()->head().positions.size();
+    QSignalSpy headChanged(doc(), &Document::headChanged);
+    QSignalSpy refused(window->fileMenu()->headImporter(), &HeadImporter::failed);
+    ASSERT_TRUE(window->fileMenu()->openAny(path));
+    ASSERT_TRUE(waitUntil([&] { return headChanged.count() > 0 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
+    ASSERT_EQ(refused.count(), 1);
+    const QString message = refused.front().front().toString();
+    EXPECT_TRUE(message.contains(QStringLiteral("flat.obj"))) << message.toStdString();
+    EXPECT_TRUE(message.contains(QStringLiteral("flat along z"))) << message.toStdString();
+    EXPECT_EQ(headChanged.count(), 0);
+    EXPECT_EQ(doc()->head().positions.size(), vertices);
 }

@@ -754,3 +754,40 @@ TEST_F(HairFiles, CyHairRefusesStrandsItCannotHold)
     ASSERT_FALSE(writeHair((dir / "long.data").string(), longStrand).has_value());
     expectBitIdentical(longStrand, readOk(dir / "long.data"));
 }
+
+// Issue 12: a non-finite point in a strand the reader skips (a single point) was never looked
+// at, so a file with infinite coordinates was accepted. Any non-finite point refuses the file.
+TEST_F(HairFiles, NonFinitePointInASkippedStrandIsRefused)
+{
+    std::string data;
+    appendI32(data, 2);
+    appendI32(data, 1);
+    appendF32(data, std::numeric_limits<float>::infinity());
+    appendF32(data, 0.0f);
+    appendF32(data, 0.0f);
+    appendI32(data, 2);
+    for (int i = 0; i < 6; ++i)
+        appendF32(data, 0.1f * static_cast<float>(i));
+    spit(dir / "single-inf.data", data);
+    EXPECT_EQ((dir / "single-inf.data").string() + ": byte 8: point 0 (strand 0) is not finite",
+              errorText(dir / "single-inf.data"));
+
+    std::string hair("HAIR", 4);
+    appendI32(hair, 2);  // strands
+    appendI32(hair, 4);  // points
+    appendI32(hair, 3);  // flags: segments and points arrays
+    appendI32(hair, 0);  // default segments
+    for (int i = 0; i < 5; ++i)
+        appendF32(hair, 1.0f);  // default thickness, transparency, colour
+    hair.append(88, '\0');
+    ASSERT_EQ(hair.size(), 128u);
+    hair.append("\0\0\x02\0", 4);  // strand 0: 0 segments (1 point), strand 1: 2 segments
+    appendF32(hair, 0.0f);
+    appendF32(hair, -std::numeric_limits<float>::infinity());
+    appendF32(hair, 0.0f);
+    for (int i = 0; i < 9; ++i)
+        appendF32(hair, 0.1f * static_cast<float>(i));
+    spit(dir / "single-inf.hair", hair);
+    EXPECT_EQ((dir / "single-inf.hair").string() + ": byte 132: point 0 (strand 0) is not finite",
+              errorText(dir / "single-inf.hair"));
+}

@@ -388,3 +388,36 @@ TEST(HeadPlacement, ShapesThatAreNoHeadKeepTheirAxesAndSayWhy)
     EXPECT_FALSE(parseAxis("+"));
     EXPECT_FALSE(parseAxis("-w"));
 }
+
+// Issue 12: a nearly flat head (a subnormal extent on one axis) crashed the BVH build, and one
+// stray vertex 16,372 units away made the groom's work absurd. Both are refused once placed.
+TEST(HeadPlacement, CheckPlacedHeadRefusesFlatAndHugeHeads)
+{
+    TriangleMesh head = cube(0.2f, {-0.1f, -0.1f, -0.1f});
+    EXPECT_EQ(checkPlacedHead(head), "");
+
+    TriangleMesh flat = box({0.19f, 0.19f, 1e-42f});
+    placeHead(flat);
+    EXPECT_EQ(checkPlacedHead(flat).rfind("the placed head is 0.19 x 0.19 x 1.001e-42 m: flat along z (less than "
+                                          "0.01 m)",
+                                          0),
+              0u)
+        << checkPlacedHead(flat);
+
+    // A 0.3 m head with one vertex 16,372 units away, placed as the editor places it.
+    TriangleMesh stray = cube(0.3f);
+    stray.positions.push_back({16372.0f, 0.0f, 0.0f});
+    stray.triangles.push_back({1, 8, 3});
+    const HeadPlacement placed = placeHead(stray);
+    EXPECT_TRUE(placed.scaledToFit);
+    const std::string problem = checkPlacedHead(stray);
+    EXPECT_NE(problem.find("more than 3 m at its largest"), std::string::npos) << problem;
+
+    // Just inside both bounds is a head.
+    TriangleMesh wide = box({2.99f, 0.011f, 0.5f});
+    EXPECT_EQ(checkPlacedHead(wide), "");
+
+    TriangleMesh broken = cube(0.2f);
+    broken.positions[3].y = INFINITY;
+    EXPECT_EQ(checkPlacedHead(broken), "vertex 3 has a non-finite coordinate");
+}

@@ -463,3 +463,13 @@ TEST_F(PresetFileTest, TheBodyToggleRoundTrips)
     EXPECT_NE(half.error().toString().find("parameters.body: 0.5 is not true or false"), std::string::npos)
         << half.error().toString();
 }
+
+// Issue 12: a number that overflows a double surfaced nlohmann's raw text
+// ("[json.exception.out_of_range.406] number overflow parsing '1e999'") with no place.
+TEST(PresetFileErrors, NumberOverflowNamesTheLineAndColumn)
+{
+    const std::string text = "{\"format\": \"wisp-preset\", \"version\": 2,\n \"name\": \"1e999\",\n"
+                             " \"parameters\": {\"gravity\": -1e999}}";
+    EXPECT_EQ(errorOf(text), "test.json: line 3, column 28: the number -1e999 is too large to hold (it overflows a double)");
+    EXPECT_EQ(errorOf(text).find("json.exception"), std::string::npos);
+}

@@ -364,6 +364,7 @@ TEST_F(ProjectFileTest, ProjectMovedAloneFallsBackToTheHeadsAbsolutePathWithAWar
     Project project = smallProject();
     project.headEmbedded = false;
     project.headSource = headPath.string();
+    project.headImportScale = 1.0f;  // a 0.2 m head; smallProject's 0.001 would make it 0.2 mm, which is refused
     fs::create_directories(m_dir / "a" / "b");
     ASSERT_TRUE(writeProject((m_dir / "p.wisp").string(), project));
     fs::rename(m_dir / "p.wisp", m_dir / "a" / "b" / "p.wisp");
@@ -864,4 +865,26 @@ TEST_F(ProjectFileTest, TheHeadsImportAxesAreStoredAndOldZUpFilesStillRead)
     bad = validJson();
     bad["head"]["import_front"] = "-X";
     EXPECT_EQ(errorOf(bad.dump()), "head.import_front: -X is not perpendicular to head.import_up +X");
+}
+
+// Issue 12: nlohmann's raw "[json.exception.out_of_range.406]" text, with no place, is translated.
+TEST_F(ProjectFileTest, NumberOverflowNamesTheLineAndColumn)
+{
+    EXPECT_EQ(errorOf("{\"format\": \"wisp-project\",\n \"version\": 1e400}"),
+              "line 2, column 13: the number 1e400 is too large to hold (it overflows a double)");
+}
+
+// Issue 12: a project is a way to bring a head in too; a flat one (which crashed the BVH build)
+// is refused at load, with the same words as Open Head.
+TEST_F(ProjectFileTest, FlatEmbeddedHeadIsRefused)
+{
+    TriangleMesh flat = octahedron(0.1f);
+    for (glm::vec3& p : flat.positions)
+        p.z *= 1e-40f;
+    const fs::path path = m_dir / "flat.wisp";
+    ASSERT_TRUE(writeProject(path.string(), makeProject(flat, std::vector<float>(flat.vertexCount(), 0.5f))));
+    const Result<ProjectReadResult> read = readProject(path.string());
+    ASSERT_FALSE(read);
+    EXPECT_EQ(read.error().location, "head");
+    EXPECT_NE(read.error().message.find("flat along z"), std::string::npos) << read.error().toString();
 }

@@ -235,3 +235,45 @@ TEST(Groom, BadInputGivesAClearErrorNotACrash)
     broken.positions[0].x = NAN;
     EXPECT_NE(buildGroom(broken, weights, ok).error.find("non-finite"), std::string::npos);
 }
+
+// Issue 12: pore candidates scaled with the whole mesh's area with no cap (a stray vertex far
+// away: 12-34 s and 266 MB for two steps). Past the cap the layout is made evenly sparser, and
+// the result says so. Work is counted, not timed: the cap is lowered so the test stays cheap.
+TEST(Groom, PoreCandidatesAreCappedWithAWarning)
+{
+    // A closed 2 x 2 x 1 m box: 16 m², at 8 strands/cm² and 4 candidates a strand, 5.1 million.
+    TriangleMesh box;
+    for (int i = 0; i < 8; ++i)
+        box.positions.push_back(glm::vec3(2.0f * (i & 1), 2.0f * ((i >> 1) & 1), 1.0f * ((i >> 2) & 1)));
+    box.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                     {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    const GroomSettings settings = settingsWith({{Param::Density, 8.0}});
+    const std::vector<float> weights(box.positions.size(), 1.0f);
+    const GroomRegionInput region{0, weights, settings, 1.0f};
+    GroomBuilder builder;
+    EXPECT_EQ(builder.maxPoreCandidates(), kMaxPoreCandidates);
+    builder.setMaxPoreCandidates(20'000);
+    const GroomResult capped = builder.build(box, std::span(&region, 1), settings, nullptr);
+    ASSERT_TRUE(capped.ok()) << capped.error;
+    EXPECT_LE(builder.poreCandidates(), 20'000u);
+    EXPECT_GT(builder.poreCandidates(), 19'000u);
+    ASSERT_EQ(capped.warnings.size(), 1u);
+    EXPECT_NE(capped.warnings[0].find("on the head's 160000 cm² needs 5120000 pore candidates; capped at 20000"),
+              std::string::npos)
+        << capped.warnings[0];
+    // Sparser, evenly: about 20,000 / 4 pores' worth of strands over the whole box, not a corner.
+    EXPECT_GT(capped.groom.strandCount(), 3000u);
+    EXPECT_LT(capped.groom.strandCount(), 6000u);
+
+    // The real cap leaves the built-in head room at the highest density (200 strands/cm²).
+    double headAreaM2 = 0.0;
+    for (std::uint32_t t = 0; t < defaultHead().mesh.triangleCount(); ++t)
+        headAreaM2 += triangleArea(defaultHead().mesh, t);
+    EXPECT_LT(headAreaM2 * 200.0 * 1e4 * 4.0, static_cast<double>(kMaxPoreCandidates));
+    GroomBuilder normal;
+    const GroomRegionInput head{0, defaultHead().growthWeights, settings, 1.0f};
+    const GroomResult r = normal.build(defaultHead().mesh, std::span(&head, 1), settings, nullptr);
+    ASSERT_TRUE(r.ok()) << r.error;
+    EXPECT_TRUE(r.warnings.empty());
+    EXPECT_NEAR(static_cast<double>(normal.poreCandidates()), headAreaM2 * 8.0 * 1e4 * 4.0, 0.02 * headAreaM2 * 8e4 * 4.0);
+}

@@ -273,5 +273,33 @@ TEST(MeshBvh, LargeMeshQueriesAnswer)
     // Timings are printed, not asserted: shared machines are noisy (see the README's figures).
 }
 
+// A nearly flat mesh whose triangle centroids span a subnormal, non-zero extent in z: kBins /
+// extent was inf there, (c - lo) * inf NaN, and int(NaN) indexed bins[INT_MIN] (SIGSEGV on
+// File > Open Head and wisp-cli). The BVH must build and answer like brute force.
+TEST(MeshBvh, SubnormalCentroidExtentBuildsAndAnswers)
+{
+    TriangleMesh flat;
+    constexpr int n = 20;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            flat.positions.push_back({0.01f * static_cast<float>(i), 0.01f * static_cast<float>(j), i == n - 1 ? 1e-42f : 0.0f});
+    for (std::uint32_t i = 0; i + 1 < n; ++i)
+        for (std::uint32_t j = 0; j + 1 < n; ++j) {
+            const std::uint32_t a = i * n + j, b = a + 1, c = a + n, d = c + 1;
+            flat.triangles.push_back({a, b, d});
+            flat.triangles.push_back({a, d, c});
+        }
+    ASSERT_GT(boundsOf(flat).size().z, 0.0f);
+    ASSERT_TRUE(std::isinf(16.0f / (0.5f * 1e-42f)));  // the case the old binning could not take
+    expectClosestMatchesBruteForce(flat, 200, 0.05f, 3);
+    // Finite coordinates whose extent overflows to inf (-3e38 .. 3e38): the build still ends.
+    TriangleMesh wide = flat;
+    for (glm::vec3& p : wide.positions)
+        p = glm::vec3((p.x / 0.095f - 1.0f) * 3e38f, (p.y / 0.095f - 1.0f) * 3e38f, p.z);
+    ASSERT_TRUE(std::isinf(boundsOf(wide).size().x));
+    const MeshBvh bvh(wide);
+    EXPECT_FALSE(bvh.empty());
+}
+
 }  // namespace
 }  // namespace wisp

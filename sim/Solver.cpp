@@ -287,6 +287,9 @@ constexpr float kStaticOverKineticFriction = 1.25f;
 // Looks at the head per contact: turns onto the tangent plane, then looks again from there (a
 // nose or an ear is not its tangent plane); the last pushes what the segment cannot reach.
 constexpr int kHeadContactPasses = 3;
+// Steps of the bisection along the arc from a stuck particle toward its parent's outward normal
+// (the first clear point to within 1/64 of the arc).
+constexpr int kArcBisections = 6;
 // Gusts are sampled at every this many particles along a strand and interpolated between (their
 // shortest wavelength is 2π / 14 ≈ 0.45 m; a 28 cm strand of 15 segments samples every 7.5 cm).
 constexpr std::uint32_t kGustStride = 4;
@@ -295,6 +298,10 @@ struct ContactFriction {
     Lane kinetic;  // μk
     Lane statik;   // μs
 };
+
+// Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below).
+inline void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& oldPosition,
+                          const V3& position, V3& previous);
 
 inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
                            Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous,
@@ -318,7 +325,12 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
     const Lane slack = select(length < band * 2.0f, band, splat(0.0f));  // only for segments that short
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
+    applyFriction(inside, depth, normal, mu, oldPosition, position, previous);
+}
 
+inline void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& oldPosition,
+                          const V3& position, V3& previous)
+{
     const V3 move = position - oldPosition;
     const Lane normalPart = dot(move, normal);
     const V3 sliding = move - normal * normalPart;
@@ -481,14 +493,45 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 // there, and only then push what the segment cannot reach.
                 resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous, false,
                                splat(c.offset));
-                for (int pass = 1; pass < kHeadContactPasses; ++pass) {
+                for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
                     const SdfSample next = sampleHead(position);
                     const Lane nextDepth = splat(c.offset) - next.distance;
                     const Mask stillInside = nextDepth > splat(0.0f);
                     if (!anyOf(stillInside))
                         break;
-                    resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before, position,
-                                   previous, pass + 1 == kHeadContactPasses, splat(c.offset));
+                    if (pass < kHeadContactPasses) {
+                        resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before, position,
+                                       previous, false, splat(c.offset));
+                        continue;
+                    }
+                    // Turning did not converge (a crevice by an ear, where the normal flips from
+                    // wall to wall): turn along the arc toward the parent's outward normal and take
+                    // its first clear point, keeping the length. Only lanes that no turn gets out
+                    // (the parent itself too deep) are pushed, and their length gives way.
+                    const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.0f));
+                    const Mask stuck = stillInside & (nextDepth > slack);
+                    if (!anyOf(stuck))
+                        break;
+                    const V3 from = (position - parent) * inverseLength;
+                    const V3 to = sampleHead(parent).normal;
+                    auto onArc = [&](Lane t) {
+                        const V3 v = from + (to - from) * t;
+                        return parent + v * (length * lrsqrt(lmax(dot(v, v), splat(1e-12f))));
+                    };
+                    const Mask arcClears = stuck & (splat(c.offset) - sampleHead(onArc(splat(1.0f))).distance <= slack);
+                    if (anyOf(arcClears)) {
+                        Lane lo = splat(0.0f), hi = splat(1.0f);
+                        for (int b = 0; b < kArcBisections; ++b) {
+                            const Lane mid = (lo + hi) * 0.5f;
+                            const Mask clear = splat(c.offset) - sampleHead(onArc(mid)).distance <= slack;
+                            hi = select(clear, mid, hi);
+                            lo = select(clear, lo, mid);
+                        }
+                        position = select(arcClears, onArc(hi), position);
+                        applyFriction(arcClears, nextDepth, next.normal, mu, before, position, previous);
+                    }
+                    resolveContact(stuck & ~arcClears, nextDepth, next.normal, mu, parent, length, inverseLength, before,
+                                   position, previous, true, splat(c.offset));
                 }
             }
             // A moving head moves the field under the particles: no bound survives that.

@@ -508,7 +508,9 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                     // wall to wall): turn along the arc toward the parent's outward normal and take
                     // its first clear point, keeping the length. Only lanes that no turn gets out
                     // (the parent itself too deep) are pushed, and their length gives way.
-                    const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.0f));
+                    // Left alone within half the offset (still clear of the skin): turning it far
+                    // along the arc for that little would shake stiff hair lying on the head.
+                    const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
                     const Mask stuck = stillInside & (nextDepth > slack);
                     if (!anyOf(stuck))
                         break;

@@ -493,27 +493,29 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 // there, and only then push what the segment cannot reach.
                 resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous, false,
                                splat(c.offset));
+                // What is left within half the offset (still clear of the skin) stays: turning it
+                // far along the arc below for that little would shake stiff hair lying on the head.
+                const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
                 for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
                     const SdfSample next = sampleHead(position);
                     const Lane nextDepth = splat(c.offset) - next.distance;
                     const Mask stillInside = nextDepth > splat(0.0f);
-                    if (!anyOf(stillInside))
+                    const Mask stuck = stillInside & (nextDepth > slack);
+                    if (!anyOf(pass < kHeadContactPasses ? stillInside : stuck))
                         break;
                     if (pass < kHeadContactPasses) {
                         resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before, position,
                                        previous, false, splat(c.offset));
+                        // Turning converges fast on a smooth surface: look once more only where a
+                        // lane was still that deep before this last turn.
+                        if (pass + 1 == kHeadContactPasses && !anyOf(stuck))
+                            break;
                         continue;
                     }
                     // Turning did not converge (a crevice by an ear, where the normal flips from
                     // wall to wall): turn along the arc toward the parent's outward normal and take
                     // its first clear point, keeping the length. Only lanes that no turn gets out
                     // (the parent itself too deep) are pushed, and their length gives way.
-                    // Left alone within half the offset (still clear of the skin): turning it far
-                    // along the arc for that little would shake stiff hair lying on the head.
-                    const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
-                    const Mask stuck = stillInside & (nextDepth > slack);
-                    if (!anyOf(stuck))
-                        break;
                     const V3 from = (position - parent) * inverseLength;
                     const V3 to = sampleHead(parent).normal;
                     auto onArc = [&](Lane t) {

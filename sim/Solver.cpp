@@ -507,8 +507,9 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                         resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before, position,
                                        previous, false, splat(c.offset));
                         // Turning converges fast on a smooth surface: look once more only where a
-                        // lane was still that deep before this last turn.
-                        if (pass + 1 == kHeadContactPasses && !anyOf(stuck))
+                        // lane was still a quarter of the offset deep before this last turn (in a
+                        // crevice the last turn may put it deeper on the other wall).
+                        if (pass + 1 == kHeadContactPasses && !anyOf(stillInside & (nextDepth > slack * 0.5f)))
                             break;
                         continue;
                     }

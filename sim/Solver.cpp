@@ -285,7 +285,8 @@ struct SdfSample {
 // and hair-on-skin coefficients differ by about this much).
 constexpr float kStaticOverKineticFriction = 1.25f;
 // Looks at the head per contact: turns onto the tangent plane, then looks again from there (a
-// nose or an ear is not its tangent plane); the last pushes what the segment cannot reach.
+// nose or an ear is not its tangent plane); one more look takes what is still stuck along the arc
+// toward its parent's normal, and pushes only what no turn gets out.
 constexpr int kHeadContactPasses = 3;
 // Steps of the bisection along the arc from a stuck particle toward its parent's outward normal
 // (the first clear point to within 1/64 of the arc).

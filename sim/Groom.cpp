@@ -922,10 +922,22 @@ glm::vec3 turnedOut(const glm::vec3& parent, const glm::vec3& p, const glm::vec3
 void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& contact, std::span<glm::vec3> points)
 {
     constexpr int kMemberContactPasses = 4;
+    constexpr int kArcBisections = 6;
+    // Signed distance above the kept offset (negative: too close or inside) and the outward unit
+    // normal, both in frame space.
+    auto clearanceAt = [&](const glm::vec3& p) {
+        const glm::vec3 local = glm::transpose(contact.headRotation) * (p - contact.headTranslation);
+        return contact.head->distance(local) - contact.offsetMetres;
+    };
+    auto normalAt = [&](const glm::vec3& p) {
+        const glm::vec3 local = glm::transpose(contact.headRotation) * (p - contact.headTranslation);
+        const glm::vec3 n = contact.headRotation * contact.head->gradient(local);
+        const float nl = glm::length(n);
+        return nl > 1e-9f ? n / nl : glm::vec3(0, 1, 0);
+    };
     // Follow the leader along the member's own guide (Müller et al. 2012): each point at its rest
     // length from the one before, toward where the key put it; then out of the head and the body,
-    // turned about the point before so the length holds, pushed only by what the segment cannot
-    // reach (a segment shorter than twice the hair offset only out of the skin itself).
+    // turned about the point before so the length holds.
     for (std::size_t j = 1; j < points.size() && j < rest.size(); ++j) {
         const float length = glm::distance(rest[j], rest[j - 1]);
         const float slack = length < 2.0f * contact.offsetMetres ? contact.offsetMetres : 0.0f;
@@ -933,17 +945,45 @@ void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& conta
         const glm::vec3 d = points[j] - parent;
         const float dl = glm::length(d);
         glm::vec3 p = parent + (dl > 1e-9f ? d / dl : glm::normalize(rest[j] - rest[j - 1])) * length;
-        // A curved surface (a nose, an ear) is not its tangent plane: look again from where the
-        // turn put it, a few times; only the last pass pushes.
-        for (int pass = 0; contact.head && pass < kMemberContactPasses; ++pass) {
-            const glm::vec3 local = glm::transpose(contact.headRotation) * (p - contact.headTranslation);
-            const float depth = contact.offsetMetres - contact.head->distance(local);
-            if (depth <= 0.0f)
-                break;
-            glm::vec3 n = contact.headRotation * contact.head->gradient(local);
-            const float nl = glm::length(n);
-            n = nl > 1e-9f ? n / nl : glm::vec3(0, 1, 0);
-            p = turnedOut(parent, p, n, depth, length, pass + 1 == kMemberContactPasses, slack);
+        if (contact.head) {
+            // Newton on the sphere of radius `length` about the parent: turn onto the tangent plane,
+            // look again from there (a nose, an ear is not its tangent plane), a few times.
+            float clearance = clearanceAt(p);
+            for (int pass = 0; clearance < 0.0f && pass < kMemberContactPasses; ++pass) {
+                p = turnedOut(parent, p, normalAt(p), -clearance, length, false, 0.0f);
+                clearance = clearanceAt(p);
+            }
+            // Where that does not converge (a crevice between an ear and the skull, where the
+            // normal flips from wall to wall), turn along the great circle from where the point
+            // is toward the parent's own outward normal, and take the first clear point on that
+            // arc (bisection): the length still holds. Only a point that no turn gets out of the
+            // skin itself (its parent is too deep) is pushed out and the segment gives way.
+            if (clearance < -slack) {
+                const glm::vec3 from = (p - parent) / length;
+                const glm::vec3 to = normalAt(parent);
+                auto onArc = [&](float t) {
+                    const glm::vec3 v = glm::mix(from, to, t);
+                    const float vl = glm::length(v);
+                    return parent + (vl > 1e-6f ? v / vl : to) * length;
+                };
+                const glm::vec3 end = onArc(1.0f);
+                const float endClearance = clearanceAt(end);
+                if (endClearance >= -slack) {
+                    float lo = 0.0f, hi = 1.0f;
+                    for (int b = 0; b < kArcBisections; ++b) {
+                        const float mid = 0.5f * (lo + hi);
+                        (clearanceAt(onArc(mid)) >= -slack ? hi : lo) = mid;
+                    }
+                    p = onArc(hi);
+                } else {
+                    if (endClearance > clearance) {
+                        p = end;
+                        clearance = endClearance;
+                    }
+                    if (clearance < -contact.offsetMetres)
+                        p += normalAt(p) * (-contact.offsetMetres - clearance);
+                }
+            }
         }
         // The body's capsules are exact: one look each.
         for (const Capsule& capsule : contact.body) {

@@ -285,8 +285,12 @@ struct SdfSample {
 // and hair-on-skin coefficients differ by about this much).
 constexpr float kStaticOverKineticFriction = 1.25f;
 // Looks at the head per contact: turns onto the tangent plane, then looks again from there (a
-// nose or an ear is not its tangent plane); the last pushes what the segment cannot reach.
+// nose or an ear is not its tangent plane); one more look takes what is still stuck along the arc
+// toward its parent's normal, and pushes only what no turn gets out.
 constexpr int kHeadContactPasses = 3;
+// Steps of the bisection along the arc from a stuck particle toward its parent's outward normal
+// (the first clear point to within 1/64 of the arc).
+constexpr int kArcBisections = 6;
 // Gusts are sampled at every this many particles along a strand and interpolated between (their
 // shortest wavelength is 2π / 14 ≈ 0.45 m; a 28 cm strand of 15 segments samples every 7.5 cm).
 constexpr std::uint32_t kGustStride = 4;
@@ -295,6 +299,10 @@ struct ContactFriction {
     Lane kinetic;  // μk
     Lane statik;   // μs
 };
+
+// Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below).
+inline void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& oldPosition,
+                          const V3& position, V3& previous);
 
 inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
                            Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous,
@@ -318,7 +326,12 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
     const Lane slack = select(length < band * 2.0f, band, splat(0.0f));  // only for segments that short
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
+    applyFriction(inside, depth, normal, mu, oldPosition, position, previous);
+}
 
+inline void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& oldPosition,
+                          const V3& position, V3& previous)
+{
     const V3 move = position - oldPosition;
     const Lane normalPart = dot(move, normal);
     const V3 sliding = move - normal * normalPart;
@@ -481,14 +494,50 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 // there, and only then push what the segment cannot reach.
                 resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous, false,
                                splat(c.offset));
-                for (int pass = 1; pass < kHeadContactPasses; ++pass) {
+                // What is left within half the offset (still clear of the skin) stays: turning it
+                // far along the arc below for that little would shake stiff hair lying on the head.
+                const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
+                for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
                     const SdfSample next = sampleHead(position);
                     const Lane nextDepth = splat(c.offset) - next.distance;
                     const Mask stillInside = nextDepth > splat(0.0f);
-                    if (!anyOf(stillInside))
+                    const Mask stuck = stillInside & (nextDepth > slack);
+                    if (!anyOf(pass < kHeadContactPasses ? stillInside : stuck))
                         break;
-                    resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before, position,
-                                   previous, pass + 1 == kHeadContactPasses, splat(c.offset));
+                    if (pass < kHeadContactPasses) {
+                        resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before, position,
+                                       previous, false, splat(c.offset));
+                        // Turning converges fast on a smooth surface: look once more only where a
+                        // lane was still a quarter of the offset deep before this last turn (in a
+                        // crevice the last turn may put it deeper on the other wall).
+                        if (pass + 1 == kHeadContactPasses && !anyOf(stillInside & (nextDepth > slack * 0.5f)))
+                            break;
+                        continue;
+                    }
+                    // Turning did not converge (a crevice by an ear, where the normal flips from
+                    // wall to wall): turn along the arc toward the parent's outward normal and take
+                    // its first clear point, keeping the length. Only lanes that no turn gets out
+                    // (the parent itself too deep) are pushed, and their length gives way.
+                    const V3 from = (position - parent) * inverseLength;
+                    const V3 to = sampleHead(parent).normal;
+                    auto onArc = [&](Lane t) {
+                        const V3 v = from + (to - from) * t;
+                        return parent + v * (length * lrsqrt(lmax(dot(v, v), splat(1e-12f))));
+                    };
+                    const Mask arcClears = stuck & (splat(c.offset) - sampleHead(onArc(splat(1.0f))).distance <= slack);
+                    if (anyOf(arcClears)) {
+                        Lane lo = splat(0.0f), hi = splat(1.0f);
+                        for (int b = 0; b < kArcBisections; ++b) {
+                            const Lane mid = (lo + hi) * 0.5f;
+                            const Mask clear = splat(c.offset) - sampleHead(onArc(mid)).distance <= slack;
+                            hi = select(clear, mid, hi);
+                            lo = select(clear, lo, mid);
+                        }
+                        position = select(arcClears, onArc(hi), position);
+                        applyFriction(arcClears, nextDepth, next.normal, mu, before, position, previous);
+                    }
+                    resolveContact(stuck & ~arcClears, nextDepth, next.normal, mu, parent, length, inverseLength, before,
+                                   position, previous, true, splat(c.offset));
                 }
             }
             // A moving head moves the field under the particles: no bound survives that.

@@ -178,12 +178,10 @@ struct DrawnCase {
     float windSpeed;     // m/s
     float windAzimuth;   // degrees
     bool curly;
-    // The bars: issue 11 asks 1 % and 1 mm everywhere. Under 30 m/s side wind the head's
-    // 96-cell field misses the built-in head's nose and ears by up to 1.1 mm, and on Max Planck
-    // (decimated, open at the neck, which its field closes badly) strands blown against the bust
-    // stretch up to 20-35 % and end up to 2-5 mm inside where no point at their length is outside
-    // the field: those bars are what is reached today (the old solver: 99 % and 17 mm), not what
-    // is wanted.
+    // The bars of issue 11, for every case. Max Planck under 30 m/s side wind used to reach 16-30 %
+    // and 1-5 mm: strands blown into the crevice by the ear, where turning onto the tangent plane
+    // flips from wall to wall, were pushed out along the normal and stretched (now they turn
+    // along the arc toward the parent's normal, which keeps the length).
     double maxStretch = 0.01;
     double maxDepthMetres = 0.001;
 };
@@ -209,8 +207,8 @@ TEST_P(DrawnStrands, KeepTheirLengthAndStayOutOfTheHead)
     ASSERT_EQ(sim.setup(head, weights, v), "");
     const MeshBvh bvh(head);
     DrawnMeasure worst;
-    for (int k = 0; k < 4; ++k) {  // while it moves, not only once settled
-        run(sim, 60);
+    for (int k = 0; k < 8; ++k) {  // while it moves, not only once settled
+        run(sim, 30);
         const DrawnMeasure m = measureDrawn(sim, bvh);
         if (m.worstStretch > worst.worstStretch) {
             worst.worstStretch = m.worstStretch;
@@ -230,10 +228,9 @@ TEST_P(DrawnStrands, KeepTheirLengthAndStayOutOfTheHead)
 
 INSTANTIATE_TEST_SUITE_P(HeadsAndWinds, DrawnStrands,
                          testing::Values(DrawnCase{false, 0.0f, 0.0f, false}, DrawnCase{false, 30.0f, 0.0f, false},
-                                         DrawnCase{false, 30.0f, 180.0f, false, 0.01, 0.0012},
+                                         DrawnCase{false, 30.0f, 180.0f, false},
                                          DrawnCase{false, 0.0f, 0.0f, true}, DrawnCase{true, 0.0f, 0.0f, false},
-                                         DrawnCase{true, 30.0f, 0.0f, false, 0.50, 0.008},
-                                         DrawnCase{true, 30.0f, 180.0f, false, 0.50, 0.008},
+                                         DrawnCase{true, 30.0f, 0.0f, false}, DrawnCase{true, 30.0f, 180.0f, false},
                                          DrawnCase{false, 30.0f, 0.0f, true}));
 
 TEST(Stability, StrongDragAtTheLongestTimeStepDoesNotGainEnergy)

@@ -75,7 +75,9 @@ Result<HairCurves> readStrandText(const std::string& path)
             return IoError{path, at(), "the file ends after " + std::to_string(s) + " of " + std::to_string(strands) + " strands"};
         std::istringstream row(line);
         std::size_t n = 0;
-        if (!(row >> n) || n < 1 || curves.pointCount() + n > points)
+        // Compared with what is left, not as pointCount() + n > points: "-2" reads as 2^64 - 2,
+        // and that sum wraps around (found by fuzz/fuzz_hair).
+        if (!(row >> n) || n < 1 || n > points - curves.pointCount())
             return IoError{path, at(), "a strand's point count is missing or exceeds the header's total"};
         const std::size_t index = curves.addStrand(static_cast<std::uint32_t>(n));
         for (glm::vec3& p : curves.strandForWrite(index)) {

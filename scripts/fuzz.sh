@@ -54,12 +54,12 @@ for t in "${targets[@]}"; do
     -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build-fuzz/findings/"$t"- ${WISP_FUZZ_ARGS:-} > "$log" 2>&1 || status=$?
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
-  corp=$(grep -o 'corp: [0-9]*/[0-9]*[a-zA-Z]*' "$log" | tail -1)
-  echo "   ${runs:-?} executions, ${rate:-?} a second, $(grep -o 'cov: [0-9]*' "$log" | tail -1), ${corp:-corp: ?} (inputs/bytes)"
+  corp=$(grep -a -o 'corp: [0-9]*/[0-9]*[a-zA-Z]*' "$log" | tail -1)
+  echo "   ${runs:-?} executions, ${rate:-?} a second, $(grep -a -o 'cov: [0-9]*' "$log" | tail -1), ${corp:-corp: ?} (inputs/bytes)"
   if ((status != 0)); then
     failed+=("$t")
     echo "!! fuzz_$t found a problem (exit $status); the end of its log ($log):"
-    grep -v '^#[0-9]' "$log" | tail -40
+    grep -a -v '^#[0-9]' "$log" | tail -40
     for a in $(sed -n 's/.*Test unit written to //p' "$log"); do
       echo "!! the input, $a ($(stat -c %s "$a") bytes; replay: build-fuzz/fuzz/fuzz_$t $a):"
       head -c 2048 "$a" | od -A d -c | head -40

@@ -80,9 +80,9 @@ void exerciseHead(const TriangleMesh& mesh)
             fail("validateMesh accepted a non-finite vertex");
 
     const MeshBvh bvh(mesh);
-    const std::vector<float> growth = upperHeadGrowth(mesh);
+    const std::vector<float> growth = scalpGrowth(mesh);
     if (growth.size() != mesh.vertexCount())
-        fail("upperHeadGrowth gave " + std::to_string(growth.size()) + " weights for " +
+        fail("scalpGrowth gave " + std::to_string(growth.size()) + " weights for " +
              std::to_string(mesh.vertexCount()) + " vertices");
     (void)defaultBody(mesh);
     (void)vertexNormals(mesh);

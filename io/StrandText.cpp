@@ -15,7 +15,7 @@ std::string writeStrandText(const std::string& path, const HairCurves& curves)
     return writeFileAtomically(path, [&](std::ostream& out) {
         out << "wisp-strands 1\n";
         out << "strands " << curves.strandCount() << " points " << curves.pointCount() << "\n";
-        char number[48];
+        char number[64];  // three of " -1.23456789e+38" (16 characters each) and the NUL
         std::string line;
         for (std::size_t s = 0; s < curves.strandCount(); ++s) {
             line = std::to_string(curves.pointsIn(s));

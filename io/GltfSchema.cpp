@@ -276,7 +276,7 @@ void checkAll(const Json& root, const fs::path& folder)
                                            "samplers", "scene",    "scenes",     "skins",     "textures"};
     for (const auto& [key, value] : root.items()) {
         (void)value;
-        if (std::find_if(std::begin(topLevel), std::end(topLevel), [&](const char* k) { return key == k; }) !=
+        if (std::find_if(std::begin(topLevel), std::end(topLevel), [&name = key](const char* k) { return name == k; }) !=
             std::end(topLevel))
             continue;
         std::string nearest;

@@ -166,7 +166,7 @@ int runSimulate(int argc, char** argv)
         for (const glm::vec3& p : strands.positions) {
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                 throw CliError{kBadInput, *hairPath + ": point " + std::to_string(&p - strands.positions.data()) +
-                                              " is not finite once placed (scale " + std::to_string(placed.scale) + ")"};
+                                              " is not finite once placed (" + placed.description + ")"};
             lo = glm::min(lo, p);
             hi = glm::max(hi, p);
         }

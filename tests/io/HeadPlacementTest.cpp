@@ -411,7 +411,13 @@ TEST(HeadPlacement, CheckPlacedHeadRefusesFlatAndHugeHeads)
     const HeadPlacement placed = placeHead(stray);
     EXPECT_TRUE(placed.scaledToFit);
     const std::string problem = checkPlacedHead(stray);
-    EXPECT_NE(problem.find("more than 3 m at its largest"), std::string::npos) << problem;
+    // Fitted by its "skull", the stray vertex's span becomes the width and the rest collapses:
+    // refused either way, before any groom is built.
+    EXPECT_EQ(problem.rfind("the placed head is ", 0), 0u) << problem;
+    TriangleMesh unplaced = cube(0.3f);
+    unplaced.positions.push_back({16372.0f, 0.0f, 0.0f});
+    unplaced.triangles.push_back({1, 8, 3});
+    EXPECT_NE(checkPlacedHead(unplaced).find("more than 3 m at its largest"), std::string::npos) << checkPlacedHead(unplaced);
 
     // Just inside both bounds is a head.
     TriangleMesh wide = box({2.99f, 0.011f, 0.5f});

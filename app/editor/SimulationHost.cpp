@@ -100,8 +100,13 @@ public:
     }
 
 private:
-    // Thread: simulation. Seconds since the loop started (the pacer's clock).
-    double now() const { return std::chrono::duration<double>(Clock::now() - m_epoch).count(); }
+    // Thread: simulation. The pacer's clock: seconds since the loop started, or the injected clock's.
+    double now() const
+    {
+        if (m_host.m_clock)
+            return m_host.m_clock();
+        return std::chrono::duration<double>(Clock::now() - m_epoch).count();
+    }
 
     // Thread: simulation. Sleeps until a request arrives or, while playing, the next step is due;
     // then moves the requests out (the lock is held only for that). False when the host stops.
@@ -115,13 +120,20 @@ private:
         taken.dryers.reset();
         taken.held.reset();
         taken.wettings.clear();
+        // Read before taking the lock: an injected clock may be slow to answer (a test holds it), and
+        // the GUI thread's requests must never wait for it.
+        const bool injectedStepDue = m_host.m_clock && m_playing && m_sim && now() >= m_pacer.dueSeconds();
         std::unique_lock lock(m_host.m_mutex);
         Inbox& inbox = m_host.m_inbox;
         const auto ready = [&] {
             return inbox.stopping || inbox.scene || inbox.parameters || inbox.regions || !inbox.actions.empty() ||
                    inbox.style || inbox.dryers || inbox.held || !inbox.wettings.empty() || inbox.playing != m_playing;
         };
-        if (m_playing && m_sim) {
+        if (m_playing && m_sim && m_host.m_clock) {
+            // An injected clock moves on its own terms: look again soon, unless a step is due now.
+            if (!injectedStepDue)
+                m_host.m_wake.wait_for(lock, std::chrono::milliseconds(kInjectedClockPollMs), ready);
+        } else if (m_playing && m_sim) {
             const auto due = m_epoch + std::chrono::duration_cast<Clock::duration>(
                                            std::chrono::duration<double>(m_pacer.dueSeconds()));
             m_host.m_wake.wait_until(lock, due, ready);
@@ -378,8 +390,10 @@ private:
     double m_simulatedSeconds = 0.0;  // since the groom or the last reset
 };
 
-SimulationHost::SimulationHost(QObject* parent)
-    : QObject(parent), m_solverThreads(solverThreadsFor(std::thread::hardware_concurrency()))
+SimulationHost::SimulationHost(QObject* parent) : SimulationHost(SecondsClock{}, parent) {}
+
+SimulationHost::SimulationHost(SecondsClock clock, QObject* parent)
+    : QObject(parent), m_solverThreads(solverThreadsFor(std::thread::hardware_concurrency())), m_clock(std::move(clock))
 {
     m_thread = std::thread([this] {
         nameThisThread("wisp-sim");

@@ -33,6 +33,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -44,8 +45,19 @@ namespace wisp {
 class SimulationHost : public QObject {
     Q_OBJECT
 public:
+    // The pacer's clock: seconds on any fixed origin, read only by the simulation thread. The
+    // default is the steady clock; tests pass a clock they move themselves, so that step costs,
+    // slow motion and substep shedding are decided by numbers the test chose, not by how busy the
+    // machine is. Thread: simulation (the function is called there, and must be safe to call there).
+    using SecondsClock = std::function<double()>;
+
     // Thread: GUI. Starts the simulation thread, idle until the first scene arrives.
     explicit SimulationHost(QObject* parent = nullptr);
+    // Thread: GUI. As above, paced by `clock` instead of the steady clock (see SecondsClock).
+    // With such a clock the simulation thread cannot sleep until a step is due, so while playing
+    // it looks at the clock every kInjectedClockPollMs of real time.
+    SimulationHost(SecondsClock clock, QObject* parent = nullptr);
+    static constexpr int kInjectedClockPollMs = 1;
     // Thread: GUI. Stops and joins the simulation thread: at once when it is waiting or stepping,
     // after the groom when it is regrooming (a default-scene groom takes a fraction of a second);
     // queued work that has not started is dropped.
@@ -167,6 +179,7 @@ private:
     void postSceneReady();
 
     const int m_solverThreads;
+    const SecondsClock m_clock;  // empty: the steady clock
     mutable std::mutex m_mutex;
     std::condition_variable m_wake;
     Inbox m_inbox;

@@ -261,7 +261,7 @@ TEST_F(EditorTest, NewAndResetWhilePausedShowTheHairHangingAtRest)
               << " of strands; reset: " << afterReset.meanTipDrop << " m, " << afterReset.loweredShare << std::endl;
 }
 
-TEST(Editor, ClosingWhileSimulatingExitsWithinASecondAndLeavesNoThread)
+TEST(Editor, ClosingWhileSimulatingJoinsTheSimulationThread)
 {
     QStandardPaths::setTestModeEnabled(true);
     EXPECT_EQ(wispThreads(), 0);
@@ -270,11 +270,12 @@ TEST(Editor, ClosingWhileSimulatingExitsWithinASecondAndLeavesNoThread)
     ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
     ASSERT_TRUE(waitForFrames(*window->simulation(), 10));
     EXPECT_GE(wispThreads(), 1);  // the simulation thread is really there, and named
+    // Closing does not wait for simulation work: the thread is joined (counted below). The timer is
+    // only a hang guard (30 s, times the sanitizer factor), far above what a healthy close takes.
     QElapsedTimer timer;
     timer.start();
     window->close();
     window.reset();
-    EXPECT_LT(timer.elapsed(), 1000 * WISP_SLOW_BUILD_FACTOR);
-    QTest::qWait(50);
-    EXPECT_EQ(wispThreads(), 0);
+    EXPECT_LT(timer.elapsed(), 30000 * WISP_SLOW_BUILD_FACTOR);
+    EXPECT_TRUE(waitUntil([] { return wispThreads() == 0; }));
 }

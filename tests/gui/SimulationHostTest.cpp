@@ -8,7 +8,6 @@
 #include "sim/DefaultHead.h"
 #include "sim/SolverSettings.h"
 
-#include <QElapsedTimer>
 #include <QSignalSpy>
 #include <QTest>
 
@@ -16,6 +15,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
@@ -78,11 +80,92 @@ long threadCount()
                                            std::filesystem::directory_iterator()));
 }
 
+// The pacer's clock, moved by the test (SimulationHost::SecondsClock). Each read returns the time
+// and then adds perRead: a paced step reads it at its start, after the solver and after building
+// its frame, so perRead sets what every step costs in the host's eyes, whatever the machine does.
+// hold() makes the next read wait until release(): the simulation thread is then stuck mid-work,
+// which shows that a GUI-thread call returns without waiting for it.
+class TestClock {
+public:
+    double read()
+    {
+        std::unique_lock lock(m_mutex);
+        if (m_holding) {
+            m_held = true;
+            m_changed.notify_all();
+            m_changed.wait(lock, [&] { return !m_holding; });
+            m_held = false;
+        }
+        const double t = m_seconds;
+        m_seconds += m_perRead;
+        return t;
+    }
+    void advance(double seconds)
+    {
+        std::lock_guard lock(m_mutex);
+        m_seconds += seconds;
+    }
+    void setPerRead(double seconds)
+    {
+        std::lock_guard lock(m_mutex);
+        m_perRead = seconds;
+    }
+    void hold()
+    {
+        std::lock_guard lock(m_mutex);
+        m_holding = true;
+    }
+    // Thread: GUI. True once the simulation thread waits in read(); bounded by a hang guard only.
+    bool waitUntilHeld()
+    {
+        std::unique_lock lock(m_mutex);
+        return m_changed.wait_for(lock, std::chrono::seconds(30 * WISP_SLOW_BUILD_FACTOR), [&] { return m_held; });
+    }
+    bool isHeld()
+    {
+        std::lock_guard lock(m_mutex);
+        return m_held;
+    }
+    void release()
+    {
+        {
+            std::lock_guard lock(m_mutex);
+            m_holding = false;
+        }
+        m_changed.notify_all();
+    }
+
+private:
+    std::mutex m_mutex;
+    std::condition_variable m_changed;
+    double m_seconds = 0.0;
+    double m_perRead = 0.0;
+    bool m_holding = false;
+    bool m_held = false;
+};
+
+// Releases a held clock when a test leaves early, so that the host's destructor can join.
+struct ReleaseOnExit {
+    TestClock& clock;
+    ~ReleaseOnExit() { clock.release(); }
+};
+
+// Generous bounds for waits that only catch a hang (the sanitizer build is ~10x slower).
+constexpr int kSceneWaitMs = 120000 * WISP_SLOW_BUILD_FACTOR;
+
 double processCpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 class SimulationHostTest : public ::testing::Test {
 protected:
     void SetUp() override { host = std::make_unique<SimulationHost>(); }
+
+    // Replaces the host by one paced by `clock` (which then outlives it).
+    void useTestClock()
+    {
+        clock = std::make_shared<TestClock>();
+        host.reset();
+        host = std::make_unique<SimulationHost>([c = clock] { return c->read(); });
+    }
 
     // Grooms the default head on the simulation thread and waits for its step-0 frame.
     ::testing::AssertionResult startScene(const ParameterValues& values)
@@ -90,8 +173,8 @@ protected:
         QSignalSpy ready(host.get(), &SimulationHost::sceneReady);
         QSignalSpy refused(host.get(), &SimulationHost::errorOccurred);
         host->setScene(defaultHead().mesh, defaultHead().growthWeights, values);
-        if (!waitUntil([&] { return ready.count() > 0 || refused.count() > 0; }, 20000))
-            return ::testing::AssertionFailure() << "no sceneReady within 20 s";
+        if (!waitUntil([&] { return ready.count() > 0 || refused.count() > 0; }, kSceneWaitMs))
+            return ::testing::AssertionFailure() << "no sceneReady within " << kSceneWaitMs << " ms";
         if (refused.count() > 0)
             return ::testing::AssertionFailure() << refused.front().front().toString().toStdString();
         return ::testing::AssertionSuccess();
@@ -112,6 +195,7 @@ protected:
         return sum;
     }
 
+    std::shared_ptr<TestClock> clock;  // before host: destroyed after it
     std::unique_ptr<SimulationHost> host;
 };
 
@@ -160,20 +244,27 @@ TEST_F(SimulationHostTest, PublishesARestFrameAfterSetSceneAndFramesOncePlaying)
 
 TEST_F(SimulationHostTest, KeepsRealTimeWithoutRunningAhead)
 {
+    // One step per time step of the pacer's clock, counted: a clock that stands still gets no more
+    // steps than the one due at once, and each time step it moves on buys exactly one more.
+    useTestClock();
     ASSERT_TRUE(startScene(lightValues()));
+    const double timeStep = solverSettingsFrom(lightValues()).timeStepSeconds;  // a float, as the solver has it
+    const std::uint64_t groomed = host->publishedFrames();
     host->play();
-    ASSERT_TRUE(waitForFrames(*host, 10));
-    const FramePtr first = host->latestFrame();
-    QElapsedTimer wall;
-    wall.start();
-    QTest::qWait(1000);
+    ASSERT_TRUE(waitUntil([&] { return host->latestFrame()->step >= 1; }));
+    QTest::qWait(100);  // time for the simulation thread to run ahead, would it
+    EXPECT_EQ(host->latestFrame()->step, 1u);
+    for (std::uint64_t expected = 2; expected <= 6; ++expected) {
+        clock->advance(timeStep);
+        ASSERT_TRUE(waitUntil([&] { return host->latestFrame()->step >= expected; }));
+        QTest::qWait(20);
+        EXPECT_EQ(host->latestFrame()->step, expected);
+    }
+    EXPECT_EQ(host->publishedFrames(), groomed + 6);
     const FramePtr last = host->latestFrame();
-    const double simulated = last->simulatedSeconds - first->simulatedSeconds;
-    const double elapsed = static_cast<double>(wall.elapsed()) / 1000.0;
-    // One step per 1/60 s of wall clock: neither faster (no catching up past real time) nor much slower.
-    EXPECT_LT(simulated / elapsed, 1.1);
-    EXPECT_GT(simulated / elapsed, 0.7);
-    EXPECT_FALSE(last->fallingBehind && last->timeScale < 0.5) << "a light groom should keep up";
+    EXPECT_NEAR(last->simulatedSeconds, 6.0 * timeStep, 1e-9);
+    EXPECT_FALSE(last->fallingBehind) << "steps that cost nothing keep real time";
+    EXPECT_EQ(last->timeScale, 1.0);
 }
 
 TEST_F(SimulationHostTest, HeavierGravityThroughSetParametersLowersTheTipsWithoutRegrooming)
@@ -184,10 +275,7 @@ TEST_F(SimulationHostTest, HeavierGravityThroughSetParametersLowersTheTipsWithou
     host->play();
     const float lightTip = settledEnds().tip.y;
 
-    QElapsedTimer call;
-    call.start();
     host->setParameters(with(lightValues(), {{Param::Stiffness, 0.6}, {Param::Gravity, 20.0}}));
-    EXPECT_LT(call.elapsed(), 50) << "setParameters must not wait for the solver";
     EXPECT_TRUE(host->isPlaying());
     const float heavyTip = settledEnds().tip.y;
     EXPECT_LT(heavyTip, lightTip - 0.003f);
@@ -223,13 +311,39 @@ TEST_F(SimulationHostTest, OnlyTheNewestParametersMatter)
     ASSERT_TRUE(startScene(lightValues()));
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 3));
-    QElapsedTimer calls;
-    calls.start();
     for (int i = 1; i <= 200; ++i)  // a slider dragged faster than the solver steps
         host->setParameters(with(lightValues(), {{Param::WindSpeed, 0.1 * i}, {Param::WindAzimuth, 0.0}}));
-    EXPECT_LT(calls.elapsed(), 100);
     ASSERT_TRUE(waitForFrames(*host, 3));
     EXPECT_NEAR(host->latestFrame()->wind.x, 20.0f, 1e-3f);
+}
+
+TEST_F(SimulationHostTest, GuiThreadCallsReturnWhileTheSimulationThreadIsStuck)
+{
+    // Instead of timing the calls: the simulation thread is held inside a read of the pacer's
+    // clock, and every request still returns (were one to wait for the solver, this test would hang).
+    useTestClock();
+    ASSERT_TRUE(startScene(lightValues()));
+    host->play();
+    ASSERT_TRUE(waitUntil([&] { return host->latestFrame()->step >= 1; }));
+    QSignalSpy ready(host.get(), &SimulationHost::sceneReady);
+    {
+        const ReleaseOnExit releaseOnExit{*clock};
+        clock->hold();
+        ASSERT_TRUE(clock->waitUntilHeld());
+        for (int i = 1; i <= 200; ++i)
+            host->setParameters(with(lightValues(), {{Param::WindSpeed, 0.1 * i}, {Param::WindAzimuth, 0.0}}));
+        host->setParameters(with(lightValues(), {{Param::WindSpeed, 20.0}, {Param::WindAzimuth, 0.0}, {Param::Segments, 7.0}}));
+        host->pause();
+        host->stepOnce();
+        EXPECT_TRUE(clock->isHeld()) << "the simulation thread moved on: the calls may have waited for it";
+        EXPECT_EQ(ready.count(), 0);
+    }
+    // Released: the newest parameters (a regroom) and the step follow.
+    ASSERT_TRUE(waitUntil([&] { return ready.count() > 0; }, kSceneWaitMs));
+    ASSERT_TRUE(waitUntil([&] { return host->latestFrame()->groomVersion == 2; }));
+    EXPECT_EQ(host->latestFrame()->strands.pointsIn(0), 8u);
+    EXPECT_NEAR(host->latestFrame()->wind.x, 20.0f, 1e-3f);
+    EXPECT_FALSE(host->isPlaying());
 }
 
 TEST_F(SimulationHostTest, PauseStopsFramesAndStepOnceAddsExactlyOne)
@@ -323,12 +437,10 @@ TEST_F(SimulationHostTest, GroomParameterRegroomsOnTheSimulationThreadKeepingThe
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 10));
     QSignalSpy ready(host.get(), &SimulationHost::sceneReady);
-    QElapsedTimer call;
-    call.start();
-    host->setParameters(with(lightValues(), {{Param::Segments, 7.0}}));
-    EXPECT_LT(call.elapsed(), 50) << "a regroom must not block the GUI thread";
-    // Until the new groom is ready the previous frames stay visible, each whole.
-    while (ready.count() == 0 && call.elapsed() < 20000) {
+    host->setParameters(with(lightValues(), {{Param::Segments, 7.0}}));  // returns at once: see GuiThreadCalls...
+    // Until the new groom is ready the previous frames stay visible, each whole (a bounded loop: 2 ms
+    // per look, a hang guard of kSceneWaitMs).
+    for (int look = 0; ready.count() == 0 && look < kSceneWaitMs / 2; ++look) {
         const FramePtr frame = host->latestFrame();
         ASSERT_TRUE(isWhole(frame));
         if (frame->groomVersion == 1) {
@@ -347,7 +459,7 @@ TEST_F(SimulationHostTest, GroomParameterRegroomsOnTheSimulationThreadKeepingThe
 
     // simulate_all_strands regrooms as well: every drawn strand is simulated.
     host->setParameters(with(lightValues(), {{Param::Segments, 7.0}, {Param::SimulateAllStrands, 1.0}}));
-    ASSERT_TRUE(ready.wait(20000));
+    ASSERT_TRUE(ready.wait(kSceneWaitMs));
     ASSERT_TRUE(waitForFrames(*host, 2));
     EXPECT_EQ(host->latestFrame()->groomVersion, 3u);
     EXPECT_EQ(host->latestFrame()->simulatedStrands, host->latestFrame()->strands.strandCount());
@@ -364,7 +476,7 @@ TEST_F(SimulationHostTest, RefusedSceneReportsAnErrorAndThePreviousSceneKeepsPub
 
     // A growth map painted all zero grows no hair.
     host->setScene(defaultHead().mesh, std::vector<float>(defaultHead().growthWeights.size(), 0.0f), lightValues());
-    ASSERT_TRUE(errors.wait(20000));
+    ASSERT_TRUE(errors.wait(kSceneWaitMs));
     EXPECT_NE(errors.front().front().toString().indexOf(QStringLiteral("growth map")), -1)
         << errors.front().front().toString().toStdString();
     ASSERT_TRUE(waitForFrames(*host, 10));
@@ -373,7 +485,7 @@ TEST_F(SimulationHostTest, RefusedSceneReportsAnErrorAndThePreviousSceneKeepsPub
 
     // A head without triangles cannot be groomed either.
     host->setScene(TriangleMesh{}, {}, lightValues());
-    ASSERT_TRUE(errors.wait(20000));
+    ASSERT_TRUE(errors.wait(kSceneWaitMs));
     EXPECT_EQ(errors.count(), 2);
     EXPECT_NE(errors.at(1).front().toString().indexOf(QStringLiteral("head")), -1);
     ASSERT_TRUE(waitForFrames(*host, 10));
@@ -383,7 +495,7 @@ TEST_F(SimulationHostTest, RefusedSceneReportsAnErrorAndThePreviousSceneKeepsPub
 
     // The previous scene still takes parameter changes, regrooms included (on the previous head).
     host->setParameters(with(lightValues(), {{Param::Segments, 5.0}}));
-    ASSERT_TRUE(ready.wait(20000));
+    ASSERT_TRUE(ready.wait(kSceneWaitMs));
     EXPECT_EQ(host->latestFrame()->groomVersion, 2u);
     EXPECT_EQ(host->latestFrame()->strands.strandCount(), strands);
     EXPECT_EQ(host->latestFrame()->strands.pointsIn(0), 6u);
@@ -411,13 +523,12 @@ TEST_F(SimulationHostTest, FramesAreNeverHalfBuilt)
             ++readerFrames;
         }
     });
-    QElapsedTimer timer;
-    timer.start();
+    // At least 300 looks (one every millisecond or more) and two completed regrooms (they take
+    // longer under the sanitizers); a new request every 50 looks. The bound only catches a hang.
     int round = 0;
-    // At least 1.5 s and two completed regrooms (they take longer under the sanitizers).
     const auto regroomedTwice = [&] { return host->latestFrame()->groomVersion >= 3; };
-    while ((timer.elapsed() < 1500 || !regroomedTwice()) && timer.elapsed() < 20000) {
-        if (timer.elapsed() > round * 250) {
+    for (int look = 0; (look < 300 || !regroomedTwice()) && look < kSceneWaitMs; ++look) {
+        if (look >= round * 50) {
             ++round;
             host->setParameters(with(lightValues(), {{Param::Segments, 6.0 + round % 3}, {Param::Gravity, round}}));
             if (round % 2 == 0)
@@ -434,10 +545,44 @@ TEST_F(SimulationHostTest, FramesAreNeverHalfBuilt)
     EXPECT_GE(host->latestFrame()->groomVersion, 3u);
 }
 
-TEST_F(SimulationHostTest, FallingBehindRunsInSlowMotionThenLowersTheSubsteps)
+TEST_F(SimulationHostTest, SlowStepsRunInSlowMotionShedSubstepsAndGetThemBackWhenCheap)
 {
-    // Every strand of the default density simulated at 32 substeps, and 1 ms time steps: no machine
-    // steps that in real time, so the host must fall behind, say so, and shed substeps.
+    // Step costs chosen by the test, through the pacer's clock: every read costs one time step, so a
+    // paced step (three reads) costs two time steps of which one is the solver's.
+    const double kTimeStep = solverSettingsFrom(lightValues()).timeStepSeconds;
+    useTestClock();
+    ASSERT_TRUE(startScene(with(lightValues(), {{Param::Substeps, 8.0}})));
+    ASSERT_EQ(host->effectiveSubsteps(), 8);
+    clock->setPerRead(kTimeStep);
+    host->play();
+    ASSERT_TRUE(waitUntil([&] { return host->effectiveSubsteps() < 8; }));
+    // After kReduceAfterSteps steps over budget: a solver that takes the whole time step at 8
+    // substeps leaves no room for even one within kBudgetShare, so the floor of 1 is taken.
+    EXPECT_EQ(host->effectiveSubsteps(), 1);
+    ASSERT_TRUE(waitForFrames(*host, 3));
+    const FramePtr slow = host->latestFrame();
+    EXPECT_GE(slow->step, static_cast<std::uint64_t>(SimulationHostPacer::kReduceAfterSteps));
+    EXPECT_TRUE(slow->fallingBehind);
+    // At least four reads of one time step each between step starts: a quarter of real time or less.
+    EXPECT_GT(slow->timeScale, 0.0);
+    EXPECT_LE(slow->timeScale, 0.25 + 1e-9);
+
+    // Cheap steps (a tenth of a time step per read) keep real time with room to spare: the substeps
+    // come back one every kRestoreAfterSteps steps up to the request, and the frames say all is well.
+    clock->setPerRead(kTimeStep / 10.0);
+    const std::uint64_t cheapFrom = host->latestFrame()->step;
+    ASSERT_TRUE(waitUntil([&] { return host->effectiveSubsteps() == 8; }, kSceneWaitMs));
+    EXPECT_GE(host->latestFrame()->step, cheapFrom + 7 * SimulationHostPacer::kRestoreAfterSteps);
+    ASSERT_TRUE(waitUntil([&] { return !host->latestFrame()->fallingBehind; }, kSceneWaitMs));
+    EXPECT_EQ(host->latestFrame()->timeScale, 1.0);
+    EXPECT_EQ(host->effectiveSubsteps(), 8);
+}
+
+TEST_F(SimulationHostTest, FallingBehindOnTheRealClockShedsSubsteps)
+{
+    // End to end on the steady clock: every strand of the default density at 32 substeps and 1 ms
+    // time steps is more than any machine steps in real time. Only the outcome is checked, with
+    // waits that catch a hang (the decisions themselves are counted in the tests above and below).
     const ParameterValues heavy = with(lightValues(), {{Param::Density, 8.0},
                                                        {Param::SimulateAllStrands, 1.0},
                                                        {Param::Substeps, 32.0},
@@ -445,31 +590,22 @@ TEST_F(SimulationHostTest, FallingBehindRunsInSlowMotionThenLowersTheSubsteps)
     ASSERT_TRUE(startScene(heavy));
     EXPECT_EQ(host->effectiveSubsteps(), 32);
     host->play();
-    ASSERT_TRUE(waitForFrames(*host, 3, 20000));
-    const FramePtr early = host->latestFrame();
-    EXPECT_TRUE(early->fallingBehind);
-    EXPECT_LT(early->timeScale, 1.0);
-    EXPECT_GT(early->timeScale, 0.0);
-
-    ASSERT_TRUE(waitUntil([&] { return host->effectiveSubsteps() < 32; }, 30000));
+    ASSERT_TRUE(waitUntil([&] { return host->effectiveSubsteps() < 32; }, kSceneWaitMs));
     EXPECT_GE(host->effectiveSubsteps(), 1);
-    ASSERT_TRUE(waitForFrames(*host, 5, 20000));
-    // Fewer substeps: simulated time runs faster than before, the frames still say they are behind
-    // (fewer substeps than asked), and timeScale is what the frames' own clocks say.
-    const FramePtr first = host->latestFrame();
-    QElapsedTimer wall;
-    wall.start();
-    QTest::qWait(1000);
-    const FramePtr last = host->latestFrame();
-    ASSERT_TRUE(isWhole(last));
-    EXPECT_TRUE(last->fallingBehind);
-    const double measured = (last->simulatedSeconds - first->simulatedSeconds) / (wall.elapsed() / 1000.0);
-    EXPECT_GT(measured, 1.5 * early->timeScale);
-    EXPECT_LE(last->timeScale, 1.0);
-    EXPECT_NEAR(last->timeScale, std::min(measured, 1.0), 0.3 * measured);
+    ASSERT_TRUE(waitForFrames(*host, 2, kSceneWaitMs));
+    const FramePtr frame = host->latestFrame();
+    ASSERT_TRUE(isWhole(frame));
+    EXPECT_TRUE(frame->fallingBehind) << "fewer substeps than asked";
+    EXPECT_GT(frame->timeScale, 0.0);
+    EXPECT_LE(frame->timeScale, 1.0);
 }
 
-TEST_F(SimulationHostTest, DestroyingWhilePlayingReturnsWithinASecondAndLeavesNoThread)
+// The two tests below check that destruction does not wait for work in flight: the thread is gone
+// afterwards (counted), and the timer is only a hang guard (30 s, times the sanitizer factor), far
+// above anything a healthy host takes however loaded the machine.
+constexpr int kHangGuardMs = 30000 * WISP_SLOW_BUILD_FACTOR;
+
+TEST_F(SimulationHostTest, DestroyingWhilePlayingJoinsTheThread)
 {
     host.reset();
     const long before = threadCount();
@@ -478,25 +614,28 @@ TEST_F(SimulationHostTest, DestroyingWhilePlayingReturnsWithinASecondAndLeavesNo
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 10));
     EXPECT_GT(threadCount(), before);
-    QElapsedTimer timer;
-    timer.start();
+    const auto start = std::chrono::steady_clock::now();
     host.reset();
-    EXPECT_LT(timer.elapsed(), 1000 * WISP_SLOW_BUILD_FACTOR);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(kHangGuardMs));
     EXPECT_LE(threadCount(), before);
 }
 
-TEST_F(SimulationHostTest, DestroyingMidRegroomOfTheDefaultSceneReturnsWithinASecond)
+TEST_F(SimulationHostTest, DestroyingMidRegroomDropsQueuedWorkAndJoins)
 {
+    host.reset();
+    const long before = threadCount();
+    host = std::make_unique<SimulationHost>();
     ASSERT_TRUE(startScene(lightValues()));
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 5));
+    QSignalSpy ready(host.get(), &SimulationHost::sceneReady);
     host->setScene(defaultHead().mesh, defaultHead().growthWeights, ParameterValues{});  // the default groom
     QTest::qWait(20);  // let the simulation thread start grooming
     host->setParameters(with(ParameterValues{}, {{Param::Segments, 20.0}}));  // queued behind it, dropped
-    QElapsedTimer timer;
-    timer.start();
+    const auto start = std::chrono::steady_clock::now();
     host.reset();
-    EXPECT_LT(timer.elapsed(), 1000 * WISP_SLOW_BUILD_FACTOR);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(kHangGuardMs));
+    EXPECT_LE(threadCount(), before);
 }
 
 TEST_F(SimulationHostTest, RequestsBeforeAnySceneAreHarmless)

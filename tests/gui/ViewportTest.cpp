@@ -1,6 +1,7 @@
 // The 3D viewport, checked on its pixels: the real widget on a real GL context (Mesa llvmpipe under
 // Xvfb in CI), the default head, and hand-made strands at known places, located in the image by
 // projecting them with the viewport's own camera.
+#include "GuiTestSupport.h"
 #include "widgets/Viewport.h"
 #include "sim/DefaultHead.h"
 #include "sim/Frame.h"
@@ -903,7 +904,7 @@ TEST_F(ViewportTest, GrowthOverlayTintsTheWeightedHalfOfTheHead)
     viewport->setGrowthOverlay(std::vector<float>(10, 1.0f));
     EXPECT_EQ(differingPixels(grab(), plain), 0);
 
-    // A brush stroke sends new weights many times a second: time it on this head.
+    // A brush stroke sends new weights many times a second: time it on this head (printed only).
     QElapsedTimer timer;
     timer.start();
     constexpr int kUpdates = 20;
@@ -1033,26 +1034,48 @@ TEST_F(ViewportTest, OverlayBrushAndLooksSurviveANewContext)
     viewport->setParent(nullptr);
 }
 
-// Paints per second as the editor drives the viewport: a new frame arrives through the event loop
-// whenever the last one was taken, and the widget repaints on its own schedule.
-double paintRate(Viewport& viewport, const std::vector<FramePtr>& frames, int milliseconds)
+// What a run of paints did, counted: paints and the strands they drew (as a share of all of them,
+// summed over the paints). The seconds are only printed, never asserted (machines are shared).
+struct PaintRun {
+    int paints = 0;
+    double drawnFractionSum = 0.0;
+    int fullPaints = 0;  // paints that drew every strand
+    double seconds = 0.0;
+    double perSecond() const { return seconds > 0.0 ? paints / seconds : 0.0; }
+    double meanDrawnFraction() const { return paints > 0 ? drawnFractionSum / paints : 0.0; }
+};
+
+// `paints` paints as the editor drives the viewport: a new frame arrives through the event loop
+// whenever the last one was taken, and the widget repaints on its own schedule. Bounded by a hang
+// guard (kWaitMs), not by a time window.
+PaintRun paintFrames(Viewport& viewport, const std::vector<FramePtr>& frames, int paints)
 {
     std::size_t next = 0;
     QTimer feeder;
     feeder.setInterval(0);
     QObject::connect(&feeder, &QTimer::timeout, [&] { viewport.setFrame(frames[next++ % frames.size()]); });
-    const std::uint64_t before = viewport.paintCount();
+    PaintRun run;
+    std::uint64_t seen = viewport.paintCount();
     QElapsedTimer timer;
     timer.start();
     feeder.start();
-    while (timer.elapsed() < milliseconds)
+    while (run.paints < paints && timer.elapsed() < wisp::test::kWaitMs) {
         QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+        if (viewport.paintCount() != seen) {  // one look per paint or more: the last paint's share
+            run.paints += static_cast<int>(viewport.paintCount() - seen);
+            seen = viewport.paintCount();
+            run.drawnFractionSum += viewport.lastDrawnFraction();
+            run.fullPaints += viewport.lastDrawnFraction() == 1.0f ? 1 : 0;
+        }
+    }
     feeder.stop();
-    return static_cast<double>(viewport.paintCount() - before) / (static_cast<double>(timer.nsecsElapsed()) * 1e-9);
+    run.seconds = static_cast<double>(timer.nsecsElapsed()) * 1e-9;
+    return run;
 }
 
 // The editor's default scene is ~4,600 strands of 16 points, new every frame. Prints the rates
-// (llvmpipe in CI), and checks what the level of detail promises rather than a machine's speed.
+// (llvmpipe in CI) and checks counts: paints keep coming, every strand is drawn without level of
+// detail, and the level of detail never draws more than that.
 TEST_F(ViewportTest, DrawRateWithTheDefaultSceneSize)
 {
     std::vector<FramePtr> frames;
@@ -1061,30 +1084,31 @@ TEST_F(ViewportTest, DrawRateWithTheDefaultSceneSize)
     viewport->setLevelOfDetail(false);
     viewport->setFrame(frames[0]);
     grab(); // the first paint builds the layout
-    const double full = paintRate(*viewport, frames, 1200);
+    constexpr int kPaints = 12;
+    const PaintRun full = paintFrames(*viewport, frames, kPaints);
     const double fullMs = viewport->lastPaintMilliseconds();
+    ASSERT_GE(full.paints, kPaints);
+    EXPECT_EQ(full.meanDrawnFraction(), 1.0);
     EXPECT_EQ(viewport->lastDrawnFraction(), 1.0f);
 
     viewport->setLevelOfDetail(true);
-    const double adaptive = paintRate(*viewport, frames, 1500);
+    const PaintRun adaptive = paintFrames(*viewport, frames, kPaints);
     std::printf("[ viewport ] 4600 strands x 16 points, 640x480, %d samples, %s: every strand %.1f fps "
                 "(%.1f ms GL), level of detail %.1f fps (%.0f%% strands, %.1f ms GL)\n",
-        viewport->samples(), viewport->softwareRenderer() ? "software GL" : "hardware GL", full, fullMs, adaptive,
-        100.0 * viewport->lastDrawnFraction(), viewport->lastPaintMilliseconds());
-    RecordProperty("fps_full", static_cast<int>(std::lround(full)));
-    RecordProperty("fps_level_of_detail", static_cast<int>(std::lround(adaptive)));
-    EXPECT_GT(full, 1.0);
-    EXPECT_GE(adaptive, full * 0.9); // never worse than drawing everything (allowing noise)
+        viewport->samples(), viewport->softwareRenderer() ? "software GL" : "hardware GL", full.perSecond(), fullMs,
+        adaptive.perSecond(), 100.0 * viewport->lastDrawnFraction(), viewport->lastPaintMilliseconds());
+    RecordProperty("fps_full", static_cast<int>(std::lround(full.perSecond())));
+    RecordProperty("fps_level_of_detail", static_cast<int>(std::lround(adaptive.perSecond())));
+    ASSERT_GE(adaptive.paints, kPaints);
+    EXPECT_GT(adaptive.meanDrawnFraction(), 0.0);
+    EXPECT_LE(adaptive.meanDrawnFraction(), full.meanDrawnFraction()); // never more work than everything
+    EXPECT_EQ(adaptive.fullPaints < adaptive.paints, adaptive.meanDrawnFraction() < 1.0);
 
     if (viewport->lastPaintWasPreview()) {
-        // Once frames stop coming, one full-detail paint follows on its own.
+        // Once frames stop coming, one full-detail paint follows on its own (a bounded wait).
         EXPECT_TRUE(viewport->hudText().contains(QStringLiteral("preview")));
         const std::uint64_t paints = viewport->paintCount();
-        QElapsedTimer timer;
-        timer.start();
-        while (viewport->lastPaintWasPreview() && timer.elapsed() < 3000)
-            QTest::qWait(20);
-        EXPECT_FALSE(viewport->lastPaintWasPreview());
+        EXPECT_TRUE(wisp::test::waitUntil([&] { return !viewport->lastPaintWasPreview(); }));
         EXPECT_GT(viewport->paintCount(), paints);
         EXPECT_EQ(viewport->lastDrawnFraction(), 1.0f);
     }
@@ -1282,14 +1306,16 @@ TEST_F(ViewportTest, DrawRateBetweenDocksInTheEditorsWindowSize)
     ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
     viewport->setFrame(frames[0]);
     grab(); // the first paint builds the layout
-    const double rate = paintRate(*viewport, frames, 1500);
+    const PaintRun run = paintFrames(*viewport, frames, 12);
+    const double rate = run.perSecond();
     std::printf("[ viewport ] 4600 strands x 16 points, %dx%d between docks of a %dx%d window, %s: level of detail "
                 "%.1f fps (%.0f%% strands, %.1f ms GL)\n",
         viewport->width(), viewport->height(), window.width(), window.height(),
         viewport->softwareRenderer() ? "software GL" : "hardware GL", rate, 100.0 * viewport->lastDrawnFraction(),
         viewport->lastPaintMilliseconds());
     RecordProperty("fps_editor_window", static_cast<int>(std::lround(rate)));
-    EXPECT_GT(rate, 1.0);
+    EXPECT_GE(run.paints, 12); // frames keep being drawn between the docks
+    EXPECT_GT(run.meanDrawnFraction(), 0.0);
     window.takeCentralWidget();
     viewport->setParent(nullptr);
 }

@@ -462,9 +462,10 @@ TEST_F(HairFiles, CyHairClaimingMorePointsThanItHoldsIsRefused)
     std::string huge = bytes;
     putU32(huge, 8, 0xffffffffu);
     spit(dir / "huge.hair", huge);
-    const auto start = std::chrono::steady_clock::now();
+    // "At once" is shown by the message, not a stopwatch: it compares the header's claim with the
+    // file's size, so nothing was allocated or read for the claimed points (under ASan a 4-billion-point
+    // allocation would abort the test).
     const std::string message = errorText(dir / "huge.hair");
-    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(250 * WISP_SLOW_BUILD_FACTOR));
     EXPECT_NE(std::string::npos, message.find("huge.hair")) << message;
     EXPECT_NE(std::string::npos, message.find("4294967295 points but the file holds only 1165")) << message;
 
@@ -542,9 +543,8 @@ TEST_F(HairFiles, UscDataClaimingTwoBillionStrandsIsRefusedAtOnce)
     appendI32(tiny, 2);
     appendF32(tiny, 0.0f);
     spit(dir / "tiny.data", tiny);
-    const auto start = std::chrono::steady_clock::now();
+    // Refused from the header and the file's size (the message says so), before any allocation.
     const std::string message = errorText(dir / "tiny.data");
-    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(250 * WISP_SLOW_BUILD_FACTOR));
     EXPECT_EQ((dir / "tiny.data").string() + ": byte 0: the header claims 2147483647 strands but the 12-byte file can hold at most 2", message);
 
     // One strand claiming a billion points.

@@ -378,7 +378,7 @@ TEST(SignedDistanceField, HeadBakeTime)
         ASSERT_FALSE(field.empty()) << error;
         std::printf("[ timing   ] SDF bake, %zu triangles, %d x %d x %d samples at 2.5 mm: %.1f ms\n", mesh->triangleCount(),
                     field.dims().x, field.dims().y, field.dims().z, ms);
-        EXPECT_LT(ms, 20000.0);  // loose: sanitizer and debug builds run this too
+        // Printed only: speed is a figure, not a test (machines are shared and noisy).
     }
 }
 

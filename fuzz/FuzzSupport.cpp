@@ -64,7 +64,8 @@ std::string writeInput(const std::string& name, const std::uint8_t* data, std::s
 void placeAndExerciseHead(TriangleMesh mesh, bool zUp)
 {
     io::HeadPlacementSettings settings;
-    settings.zUp = zUp;
+    if (zUp)
+        settings.up = io::Axis::PosZ;  // the artist's choice; otherwise found from the shape
     const io::HeadPlacement placement = io::placeHead(mesh, settings);
     (void)io::describePlacement(placement);
     exerciseHead(mesh);

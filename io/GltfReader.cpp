@@ -351,27 +351,13 @@ std::string canonicalGlb(const std::string& json, std::string_view bin)
 std::size_t tooDeepAt(std::string_view text, std::size_t limit)
 {
     std::size_t depth = 0;
-    bool inString = false;
-    bool escaped = false;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (inString) {
-            if (escaped)
-                escaped = false;
-            else if (c == '\\')
-                escaped = true;
-            else if (c == '"')
-                inString = false;
-        } else if (c == '"') {
-            inString = true;
-        } else if (c == '[' || c == '{') {
-            if (++depth > limit)
-                return i;
-        } else if ((c == ']' || c == '}') && depth > 0) {
+    return findOutsideJsonStrings(text, [&](std::size_t, char c) {
+        if (c == '[' || c == '{')
+            return ++depth > limit;
+        if ((c == ']' || c == '}') && depth > 0)
             --depth;
-        }
-    }
-    return std::string_view::npos;
+        return false;
+    });
 }
 
 // Where byte `offset` of the JSON is, as the artist would find it: a line and column in a text

@@ -41,23 +41,10 @@ JsonFailure describeJsonFailure(std::string_view text, const nlohmann::json::exc
         const std::size_t start = at + marker.size();
         const std::string number = failure.message.substr(start, failure.message.rfind('\'') - start);
         failure.message = "the number " + number + " is too large to hold (it overflows a double)";
-        bool inString = false, escaped = false;
-        for (std::size_t i = 0; i < text.size(); ++i) {
-            const char c = text[i];
-            if (inString) {
-                if (escaped)
-                    escaped = false;
-                else if (c == '\\')
-                    escaped = true;
-                else if (c == '"')
-                    inString = false;
-            } else if (c == '"') {
-                inString = true;
-            } else if (text.substr(i, number.size()) == number) {
-                failure.place = lineAndColumn(text, i);
-                break;
-            }
-        }
+        const std::size_t where = findOutsideJsonStrings(
+            text, [&](std::size_t i, char) { return text.substr(i, number.size()) == number; });
+        if (where != std::string_view::npos)
+            failure.place = lineAndColumn(text, where);
     }
     return failure;
 }

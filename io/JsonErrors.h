@@ -21,6 +21,31 @@ JsonFailure describeJsonFailure(std::string_view text, const nlohmann::json::exc
 // nlohmann's text without its "[json.exception.type.id] " prefix (and "parse error at ...: ").
 std::string withoutJsonPrefix(const std::string& what);
 
+// The first offset of `text` outside JSON strings (string quotes included in the string) at
+// which `found(offset, byte)` is true, or npos. Shared by the readers that scan JSON text before
+// or after nlohmann: the glTF nesting guard and the overflowing-number search.
+template <class Found>
+std::size_t findOutsideJsonStrings(std::string_view text, Found found)
+{
+    bool inString = false, escaped = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (inString) {
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (found(i, c)) {
+            return i;
+        }
+    }
+    return std::string_view::npos;
+}
+
 // "line L, column C" of byte `offset` (0-based) of `text`.
 std::string lineAndColumn(std::string_view text, std::size_t offset);
 

@@ -43,4 +43,16 @@ TEST(StrandText, RefusesANegativeOrOversizedPointCount)
     }
 }
 
+// Found by fuzz_hair in CI: a header on the last line, with no newline after it, left the stream
+// at its end, its size read as the largest number, and a claim of a trillion points was reserved.
+TEST(StrandText, AHeaderWithoutANewlineCannotClaimMorePointsThanTheFileHolds)
+{
+    for (const char* text : {"wisp-strands 1\nstrands 1 points 1000000000000", "wisp-strands 1\nstrands 1 points 1000000000000\n"}) {
+        const Result<HairCurves> read = readText(text);
+        ASSERT_FALSE(read);
+        EXPECT_EQ(read.error().location, "line 2");
+        EXPECT_NE(read.error().message.find("more than a file of"), std::string::npos) << read.error().toString();
+    }
+}
+
 }  // namespace

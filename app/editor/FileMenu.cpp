@@ -6,6 +6,7 @@
 #include "app/editor/ProjectController.h"
 #include "app/editor/SimulationHost.h"
 #include "io/HairFiles.h"
+#include "io/HeadPlacement.h"
 #include "io/MeshReader.h"
 #include "io/StrandPlacement.h"
 #include "sim/GrowthMap.h"
@@ -186,6 +187,15 @@ bool FileMenu::placeAgain(float scale, std::optional<io::Axis> up)
     head->chosenUp = up;
     settings.up = io::formatFixesUpAxis(head->path.toStdString()) ? std::optional(io::Axis::PosY) : up;
     head->placement = io::placeHead(head->mesh, settings);
+    // The same check as Open Head: a scale that makes the head flat or kilometres wide is refused
+    // and the head stays as it was.
+    if (std::string problem = io::checkPlacedHead(head->mesh); !problem.empty()) {
+        const QString text = tr("%1: %2").arg(QFileInfo(head->path).fileName(), QString::fromStdString(problem));
+        emit message(text);
+        if (m_interactive)
+            QMessageBox::warning(m_window, tr("Head Scale"), text);
+        return false;
+    }
     takeHead(head);
     return true;
 }

@@ -377,6 +377,15 @@ TEST_F(ProjectFilesTest, AHeadOpensOnAWorkerThreadAtItsUnitAndTheWindowKeepsDraw
     doc()->undoStack()->undo();
     doc()->undoStack()->undo();
     EXPECT_NEAR(boundsOf(doc()->head()).size().y, height, 1e-5f);
+    // A scale that makes the head 0.2 mm tall is refused like such a file, and the head stays.
+    {
+        QSignalSpy scaleSaid(window->fileMenu(), &FileMenu::message);
+        EXPECT_FALSE(window->fileMenu()->placeAgain(1e-6f, std::nullopt));
+        ASSERT_EQ(scaleSaid.count(), 1);
+        const QString text = scaleSaid.front().front().toString();
+        EXPECT_TRUE(text.contains(QStringLiteral("max_planck_decimated.obj: the placed head is"))) << text.toStdString();
+        EXPECT_NEAR(boundsOf(doc()->head()).size().y, height, 1e-5f);
+    }
 
     // A file that is not a head says so, naming it, and the head stays.
     QSignalSpy said(window->fileMenu(), &FileMenu::message);

@@ -367,24 +367,7 @@ std::string jsonPlace(std::string_view text, std::size_t offset, bool binary, st
     offset = std::min(offset, text.size());
     if (binary)
         return byteAt(jsonOffset + offset);
-    const std::size_t line = 1
-        + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
-    const std::size_t lineStart = offset == 0 ? std::string_view::npos : text.rfind('\n', offset - 1);
-    const std::size_t column = lineStart == std::string_view::npos ? offset + 1 : offset - lineStart;
-    return "line " + std::to_string(line) + ", column " + std::to_string(column);
-}
-
-// nlohmann's message without its "[json.exception.parse_error.101] parse error at line 1,
-// column 2: " prefix, which IoError's location already says better.
-std::string jsonProblem(const std::string& what)
-{
-    std::string text = what;
-    if (const std::size_t close = text.find("] "); !text.empty() && text.front() == '[' && close != std::string::npos)
-        text.erase(0, close + 2);
-    if (text.rfind("parse error", 0) == 0)
-        if (const std::size_t colon = text.find(": "); colon != std::string::npos)
-            text.erase(0, colon + 2);
-    return text;
+    return lineAndColumn(text, offset);
 }
 
 // Required extensions that change only how a surface looks, or that this reader handles
@@ -444,7 +427,7 @@ std::string geometryJson(std::string_view text, bool binary, std::size_t jsonOff
         root = Json::parse(text.begin(), text.end());
     } catch (const Json::parse_error& e) {
         fail(jsonPlace(text, e.byte == 0 ? 0 : e.byte - 1, binary, jsonOffset),
-            "invalid JSON: " + jsonProblem(e.what()));
+            "invalid JSON: " + withoutJsonPrefix(e.what()));
     } catch (const Json::exception& e) { // out_of_range.406: a number that overflows a double
         const JsonFailure failure = describeJsonFailure(text, e);
         fail(binary ? std::string() : failure.place, "invalid JSON: " + failure.message);

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <mutex>
 #include <new>
 #include <thread>
 
@@ -530,11 +531,43 @@ SignedDistanceField SignedDistanceField::bake(const TriangleMesh& mesh, float ce
         field.m_dims = grid.dims;
         field.m_origin = grid.origin;
         field.m_cellSize = grid.h;
+        field.m_normalCache = std::make_shared<NormalCache>();
         return field;
     } catch (const std::bad_alloc&) {
         return fail("not enough memory for a " + std::to_string(dims.x) + " x " + std::to_string(dims.y) + " x " +
                     std::to_string(dims.z) + " collider grid");
     }
+}
+
+struct SignedDistanceField::NormalCache {
+    std::once_flag built;
+    std::vector<glm::vec4> samples;
+};
+
+const std::vector<glm::vec4>& SignedDistanceField::samplesWithNormals() const
+{
+    static const std::vector<glm::vec4> kNone;
+    if (!m_normalCache)
+        return kNone;
+    std::call_once(m_normalCache->built, [this] {
+        std::vector<glm::vec4>& out = m_normalCache->samples;
+        out.resize(m_values.size());
+        const glm::ivec3 dims = m_dims;
+        auto at = [&](int x, int y, int z) {
+            return sample(std::clamp(x, 0, dims.x - 1), std::clamp(y, 0, dims.y - 1), std::clamp(z, 0, dims.z - 1));
+        };
+        for (int k = 0; k < dims.z; ++k)
+            for (int j = 0; j < dims.y; ++j)
+                for (int i = 0; i < dims.x; ++i) {
+                    glm::vec3 g(at(i + 1, j, k) - at(i - 1, j, k), at(i, j + 1, k) - at(i, j - 1, k),
+                                at(i, j, k + 1) - at(i, j, k - 1));
+                    const float len = glm::length(g);
+                    g = len > 1e-12f ? g / len : glm::vec3(0.0f, 1.0f, 0.0f);
+                    out[static_cast<std::size_t>(i) + static_cast<std::size_t>(dims.x) * (j + static_cast<std::size_t>(dims.y) * k)] =
+                        glm::vec4(at(i, j, k), g);
+                }
+    });
+    return m_normalCache->samples;
 }
 
 Aabb SignedDistanceField::bounds() const

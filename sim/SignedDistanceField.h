@@ -6,7 +6,9 @@
 #include "sim/TriangleMesh.h"
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -60,8 +62,17 @@ public:
                         static_cast<std::size_t>(m_dims.x) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(m_dims.y) * static_cast<std::size_t>(k))];
     }
 
+    // Every sample's distance and unit outward normal, (distance, normal), laid out as data(): the
+    // solver's nearest-sample lookups (Solver.cpp). The normal is the central difference of the
+    // neighbouring samples (clamped at the grid's faces), +Y where that is flat. Built on first use
+    // and kept with the field (copies share it), so every solver that collides with this head
+    // reuses one table instead of building its own. Safe to call from any number of threads.
+    const std::vector<glm::vec4>& samplesWithNormals() const;
+
 private:
+    struct NormalCache;
     std::vector<float> m_values;
+    std::shared_ptr<NormalCache> m_normalCache;  // made by bake; empty fields have none
     glm::ivec3 m_dims{0};
     glm::vec3 m_origin{0.0f};
     float m_cellSize = 0.0f;

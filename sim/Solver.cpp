@@ -206,34 +206,21 @@ V3 gust(const V3& p, double time)
 }  // namespace
 
 // The head as the solver reads it: for every node of the baked signed-distance grid, the distance
-// and the unit outward normal there (central differences). A lookup takes the nearest node and
+// and the unit outward normal there (SignedDistanceField::samplesWithNormals, built once per head
+// and shared by every solver colliding with it: a comb release's rest solve and regroom no longer
+// rebuild it, which was most of their cost). A lookup takes the nearest node and
 // extends it to first order, d(p) = d_n + n . (p - x_n): one 16-byte load per particle instead of
 // the eight scattered loads of trilinear interpolation, which dominated the step. The error is
 // about h^2 / (2 R) for a surface of curvature radius R (0.03 mm for a 2.5 mm grid on a head).
 struct Solver::CollisionField {
-    std::vector<glm::vec4> nodes;  // (distance, normal) per node, metres
+    const glm::vec4* nodes = nullptr;  // (distance, normal) per node, metres: the field's own table
     glm::ivec3 dims{0};
     glm::vec3 origin{0.0f};
     float cellSize = 0.0f;
 
     explicit CollisionField(const SignedDistanceField& sdf)
-        : nodes(static_cast<std::size_t>(sdf.dims().x) * sdf.dims().y * sdf.dims().z), dims(sdf.dims()),
-          origin(sdf.origin()), cellSize(sdf.cellSize())
+        : nodes(sdf.samplesWithNormals().data()), dims(sdf.dims()), origin(sdf.origin()), cellSize(sdf.cellSize())
     {
-        for (int k = 0; k < dims.z; ++k)
-            for (int j = 0; j < dims.y; ++j)
-                for (int i = 0; i < dims.x; ++i) {
-                    auto at = [&](int x, int y, int z) {
-                        return sdf.sample(std::clamp(x, 0, dims.x - 1), std::clamp(y, 0, dims.y - 1),
-                                          std::clamp(z, 0, dims.z - 1));
-                    };
-                    glm::vec3 g(at(i + 1, j, k) - at(i - 1, j, k), at(i, j + 1, k) - at(i, j - 1, k),
-                                at(i, j, k + 1) - at(i, j, k - 1));
-                    const float len = glm::length(g);
-                    g = len > 1e-12f ? g / len : glm::vec3(0.0f, 1.0f, 0.0f);
-                    nodes[static_cast<std::size_t>(i) + static_cast<std::size_t>(dims.x) * (j + static_cast<std::size_t>(dims.y) * k)] =
-                        glm::vec4(at(i, j, k), g);
-                }
     }
 };
 

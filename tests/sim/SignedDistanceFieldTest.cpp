@@ -327,6 +327,38 @@ TEST(SignedDistanceField, HugeGridIsCappedByGrowingTheCell)
     EXPECT_NEAR(field.distance(glm::vec3(0.105f, 0, 0)), 0.005f, 0.001f);
 }
 
+// The solver's lookup table: each sample's distance and its outward unit normal, built once per
+// field and shared by its copies (every solver colliding with a head reads the same table; a comb
+// release no longer builds its own twice).
+TEST(SignedDistanceField, SamplesWithNormalsAreOneSharedTableOfOutwardNormals)
+{
+    const float radius = 0.1f, h = 0.005f;
+    const SignedDistanceField field = SignedDistanceField::bake(makeIcosphere(radius, 4), h, 0.02f);
+    ASSERT_FALSE(field.empty());
+    const std::vector<glm::vec4>& table = field.samplesWithNormals();
+    const glm::ivec3 n = field.dims();
+    ASSERT_EQ(table.size(), static_cast<std::size_t>(n.x) * n.y * n.z);
+    const SignedDistanceField copy = field;
+    EXPECT_EQ(copy.samplesWithNormals().data(), table.data());
+    EXPECT_EQ(field.samplesWithNormals().data(), table.data());
+    int nearSurface = 0;
+    for (int k = 0; k < n.z; k += 3)
+        for (int j = 0; j < n.y; j += 3)
+            for (int i = 0; i < n.x; i += 3) {
+                const glm::vec4 node = table[static_cast<std::size_t>(i) + static_cast<std::size_t>(n.x) * (j + static_cast<std::size_t>(n.y) * k)];
+                ASSERT_EQ(node.x, field.sample(i, j, k));
+                const glm::vec3 normal(node.y, node.z, node.w);
+                ASSERT_NEAR(glm::length(normal), 1.0f, 1e-5f);
+                const glm::vec3 at = field.origin() + glm::vec3(i, j, k) * h;
+                if (std::abs(glm::length(at) - radius) < 0.01f) {
+                    ++nearSurface;
+                    EXPECT_GT(glm::dot(normal, glm::normalize(at)), 0.95f) << "at " << at.x << " " << at.y << " " << at.z;
+                }
+            }
+    EXPECT_GT(nearSurface, 500);
+    EXPECT_TRUE(SignedDistanceField{}.samplesWithNormals().empty());
+}
+
 TEST(SignedDistanceField, GradientIsNeverNaN)
 {
     const SignedDistanceField field = SignedDistanceField::bake(makeIcosphere(0.1f, 2), 0.01f, 0.02f);

@@ -29,8 +29,61 @@ namespace {
 
 inline Lane splat(float v) { return Lane{} + v; }
 inline Lane select(Mask m, Lane a, Lane b) { return m ? a : b; }
+
+// min, max, |a| and "any lane set" as single instructions per register. GCC lowers the portable
+// forms (a < b ? a : b, a reduction loop) to compare-and-blend, or, for a 16-lane vector on an
+// AVX2 machine, to scalar code lane by lane. minps/maxps return their second operand when the
+// first comparison fails (NaN included), exactly as a < b ? a : b does, so results are unchanged.
+#if defined(__AVX512F__)
+static_assert(sizeof(Lane) == sizeof(__m512));
+// (The zero-masked forms: the plain ones start from an undefined register GCC 12 warns about.)
+inline Lane lmin(Lane a, Lane b)
+{
+    return reinterpret_cast<Lane>(_mm512_maskz_min_ps(0xFFFF, reinterpret_cast<__m512>(a), reinterpret_cast<__m512>(b)));
+}
+inline Lane lmax(Lane a, Lane b)
+{
+    return reinterpret_cast<Lane>(_mm512_maskz_max_ps(0xFFFF, reinterpret_cast<__m512>(a), reinterpret_cast<__m512>(b)));
+}
+inline bool anyOf(Mask m)
+{
+    const __m512i v = reinterpret_cast<__m512i>(m);
+    return _mm512_test_epi32_mask(v, v) != 0;
+}
+#elif defined(__AVX__)
+template <typename Op>
+inline Lane byHalves(Lane a, Lane b, Op op)
+{
+    Lane r;
+    for (int i = 0; i < kLanes; i += 8) {
+        __m256 x, y;
+        std::memcpy(&x, reinterpret_cast<const float*>(&a) + i, sizeof x);
+        std::memcpy(&y, reinterpret_cast<const float*>(&b) + i, sizeof y);
+        x = op(x, y);
+        std::memcpy(reinterpret_cast<float*>(&r) + i, &x, sizeof x);
+    }
+    return r;
+}
+inline Lane lmin(Lane a, Lane b) { return byHalves(a, b, [](__m256 x, __m256 y) { return _mm256_min_ps(x, y); }); }
+inline Lane lmax(Lane a, Lane b) { return byHalves(a, b, [](__m256 x, __m256 y) { return _mm256_max_ps(x, y); }); }
+inline bool anyOf(Mask m)
+{
+    __m256 lo, hi;  // comparison masks: every lane all ones or all zeros, so the sign bits say it
+    std::memcpy(&lo, &m, sizeof lo);
+    std::memcpy(&hi, reinterpret_cast<const int*>(&m) + 8, sizeof hi);
+    return !_mm256_testz_ps(_mm256_or_ps(lo, hi), _mm256_or_ps(lo, hi));
+}
+#else
 inline Lane lmin(Lane a, Lane b) { return a < b ? a : b; }
 inline Lane lmax(Lane a, Lane b) { return a > b ? a : b; }
+inline bool anyOf(Mask m)
+{
+    int any = 0;
+    for (int i = 0; i < kLanes; ++i)
+        any |= m[i];
+    return any != 0;
+}
+#endif
 inline Lane lsqrt(Lane a)
 {
     Lane r;
@@ -85,14 +138,6 @@ inline Lane lrcp(Lane a)
 #endif
 }
 
-inline bool anyOf(Mask m)
-{
-    int any = 0;
-    for (int i = 0; i < kLanes; ++i)
-        any |= m[i];
-    return any != 0;
-}
-
 struct V3 {
     Lane x, y, z;
 };
@@ -100,7 +145,8 @@ inline V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.
 inline V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline V3 operator*(const V3& a, Lane s) { return {a.x * s, a.y * s, a.z * s}; }
 inline Lane dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline Lane labs(Lane a) { return a < 0.0f ? -a : a; }
+// |a| by clearing the sign bit (one and; -0 becomes +0, which no comparison tells apart).
+inline Lane labs(Lane a) { return reinterpret_cast<Lane>(reinterpret_cast<Mask>(a) & 0x7fffffff); }
 inline Lane l1Length(const V3& a) { return labs(a.x) + labs(a.y) + labs(a.z); }
 inline V3 cross(const V3& a, const V3& b)
 {
@@ -124,10 +170,10 @@ struct Solver::ParticleRow {
     // cannot be touched and its lookup is skipped. Negative means unknown.
     Lane clearance;
 };
-// Rest shape, head space. Row 0: the root position. Row j > 0: unit direction from particle j-1
-// to j, the segment's rest length (metres) and the shares of its bend error each end takes per substep.
+// Rest shape, head space, as a step reads it: row j > 0 holds the segment from particle j-1 to j
+// (row 0 the follicle's frame). The rest directions themselves (ShapeRow) are kept apart: a step
+// reads only the first two rows of them, and every byte a step streams costs time on a large groom.
 struct Solver::RestRow {
-    Lane x, y, z;
     Lane length;
     Lane inverseLength;  // 1 / length, kept off the strand's serial chain
     // Bending (BendingModel.h): the shares of this segment's bend error t_j - x_j added to
@@ -140,9 +186,14 @@ struct Solver::RestRow {
     // binormal; see advanceBlock). Row 0: the follicle frame's normal, head space.
     Lane lx, ly, lz;
 };
+// Row 0: the root position. Row j > 0: unit direction from particle j-1 to j. Head space.
+struct Solver::ShapeRow {
+    Lane x, y, z;
+};
 
 using ParticleRow = Solver::ParticleRow;
 using RestRow = Solver::RestRow;
+using ShapeRow = Solver::ShapeRow;
 
 struct Solver::Block {
     std::uint32_t points = 0;
@@ -155,6 +206,7 @@ struct Solver::Block {
     // a thread streams through memory in one sequential run that the prefetcher can follow.
     std::span<ParticleRow> state;
     std::span<RestRow> rest;
+    std::span<ShapeRow> shape;
 };
 
 struct StepConstants {
@@ -195,9 +247,9 @@ inline Lane lsin(Lane x)
 
 // Gusts: a few travelling sine waves in space and time per axis, evaluated at the strand's root;
 // smooth, cheap, deterministic, and different across the head. Amplitude about 1.
-V3 gust(const V3& p, double time)
+// t: the time in seconds modulo 1000 (gustTime).
+V3 gust(const V3& p, float t)
 {
-    const float t = static_cast<float>(std::fmod(time, 1000.0));
     return {0.6f * lsin(13.0f * p.x + 7.0f * p.z + 2.3f * t) + 0.4f * lsin(-9.0f * p.y + 11.0f * p.z + 3.7f * t + 1.0f),
             0.6f * lsin(11.0f * p.y - 8.0f * p.x + 1.9f * t + 2.0f) + 0.4f * lsin(14.0f * p.z + 5.3f * t + 4.0f),
             0.6f * lsin(12.0f * p.z + 6.0f * p.y + 2.9f * t + 3.0f) + 0.4f * lsin(-10.0f * p.x + 4.1f * t + 5.0f)};
@@ -337,7 +389,8 @@ inline void applyFriction(Mask inside, Lane depth, const V3& normal, const Conta
 void storeRestFrames(Solver::Block& block, int lane)
 {
     RestRow* rest = block.rest.data();
-    auto dir = [&](std::uint32_t j) { return glm::vec3(rest[j].x[lane], rest[j].y[lane], rest[j].z[lane]); };
+    const ShapeRow* shape = block.shape.data();
+    auto dir = [&](std::uint32_t j) { return glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]); };
     glm::vec3 d = dir(1);
     const glm::vec3 helper = std::abs(d.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
     glm::vec3 e = glm::normalize(glm::cross(d, helper));
@@ -363,11 +416,12 @@ void storeRestFrames(Solver::Block& block, int lane)
 void placeLaneAtRest(Solver::Block& block, int lane, const glm::mat3& rotation, const glm::vec3& translation)
 {
     const RestRow* rest = block.rest.data();
+    const ShapeRow* shape = block.shape.data();
     ParticleRow* row = block.state.data();
-    glm::vec3 p = rotation * glm::vec3(rest[0].x[lane], rest[0].y[lane], rest[0].z[lane]) + translation;
+    glm::vec3 p = rotation * glm::vec3(shape[0].x[lane], shape[0].y[lane], shape[0].z[lane]) + translation;
     for (std::uint32_t j = 0; j < block.points; ++j) {
         if (j > 0)
-            p += rotation * glm::vec3(rest[j].x[lane], rest[j].y[lane], rest[j].z[lane]) * rest[j].length[lane];
+            p += rotation * glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]) * rest[j].length[lane];
         row[j].x[lane] = row[j].px[lane] = p.x;
         row[j].y[lane] = row[j].py[lane] = p.y;
         row[j].z[lane] = row[j].pz[lane] = p.z;
@@ -383,7 +437,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
     const RestRow* rest = block.rest.data();
 
     // Roots in world space at the start and the end of this step; substeps interpolate between them.
-    const V3 rootHead{rest[0].x, rest[0].y, rest[0].z};
+    const V3 rootHead{block.shape[0].x, block.shape[0].y, block.shape[0].z};
     const V3 rootEnd = Transformed ? transform(c.rotation, rootHead) + splat(c.translation) : rootHead;
     const V3 rootStart =
         Transformed ? transform(c.previousRotation, rootHead) + splat(c.previousTranslation) : rootHead;
@@ -394,6 +448,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
     const float windSpeed = glm::length(c.wind);
     const bool gusty = c.turbulence > 0.0f && windSpeed > 0.0f;
     const Lane gustAmplitude = splat(c.turbulence * windSpeed);
+    const float gustTime = static_cast<float>(std::fmod(c.time, 1000.0));
 
     const V3 gravityStep = splat(c.gravity * (c.dt * c.dt));
     const Lane dt = splat(c.dt), keep = splat(c.keep);
@@ -448,16 +503,18 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
     // at `parent`: follow the leader (Müller et al. 2012) puts it at rest length from its parent,
     // then the head field and the capsules push it out (keeping that length where they can), and
     // the DFTL velocity correction (eq. 9: v_{i-1} -= s d_i / dt, in Verlet form the parent's
-    // previous position moves by s d_i) damps what the length projection added. Returns its
-    // final position.
-    auto finish = [&](std::uint32_t i, const V3& bent, const V3& parent) {
+    // previous position moves by s d_i) damps what the length projection added. `reach` is the
+    // bent position less the parent's, `before` the particle's position at the start of the
+    // substep, `kick` the bend's reaction on the parent (added to its previous position with the
+    // DFTL correction, one write). Returns its final position.
+    auto finish = [&](std::uint32_t i, const V3& before, const V3& reach, const V3& parent, const V3& kick) {
         ParticleRow& p = row[i];
-        const V3 before{p.px, p.py, p.pz};  // its position at the start of the substep
         V3 previous = before;
         const Lane length = rest[i].length, inverseLength = rest[i].inverseLength;
-        const V3 d = bent - parent;
-        V3 position = parent + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-24f))));
-        const V3 correction = position - bent;
+        const Lane scale = length * lrsqrt(lmax(dot(reach, reach), splat(1e-24f)));
+        V3 position = parent + reach * scale;
+        const V3 correction = reach * (scale - 1.0f);  // position - bent
+        bool looked = false;  // whether contact may have moved it (else `checked` is final)
 
         // The field lookup is most of a step's cost (memory latency), so it is skipped while the
         // clearance bound says no lane can touch: the bound shrinks by each move's L1 length,
@@ -529,6 +586,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             }
             // A moving head moves the field under the particles: no bound survives that.
             clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));
+            looked = true;
         }
         for (std::size_t k = 0; k < capsulesToCheck; ++k) {
             const Capsule& capsule = capsuleAt(k);
@@ -546,15 +604,17 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
                 resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous, true,
                                splat(c.offset));
+                looked = true;
             }
         }
         if (i > 1) {
             ParticleRow& q = row[i - 1];
-            q.px += velocityCorrection * correction.x;
-            q.py += velocityCorrection * correction.y;
-            q.pz += velocityCorrection * correction.z;
+            q.px += kick.x + velocityCorrection * correction.x;
+            q.py += kick.y + velocityCorrection * correction.y;
+            q.pz += kick.z + velocityCorrection * correction.z;
         }
-        p.clearance = clearance - l1Length(position - checked);
+        // (Where nothing looked, position is `checked` and the bound stands as it is.)
+        p.clearance = looked ? clearance - l1Length(position - checked) : clearance;
         p.x = position.x;
         p.y = position.y;
         p.z = position.z;
@@ -583,16 +643,25 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
         // from the follicle's frame, which turns with the head. The rest shape is stored in the
         // same frames of the rest strand, so turning a piece of strand rigidly turns its targets
         // with it: only bending costs.
+        //
+        // The strand is a serial chain (each particle waits for its parent's final position), so
+        // the work is arranged to keep that chain short: everything that does not depend on the
+        // parent's final position (the prediction, the bend's other terms, the next target's part
+        // across the parent's direction) is computed beside it.
         V3 parent = root;  // final position of particle j-1
         V3 parentStart = parentBefore;  // particle j-1 at the start of the substep
         V3 gustFrom{}, gustTo{};        // gusts at the samples either side of particle j
         Lane gustSpan = splat(1.0f);
-        V3 frameD{rest[1].x, rest[1].y, rest[1].z};   // the follicle's frame: the root segment's rest
+        V3 frameD{block.shape[1].x, block.shape[1].y, block.shape[1].z};  // the follicle's frame: the root segment's rest
         V3 frameE{rest[0].lx, rest[0].ly, rest[0].lz}; // direction and a normal to it
         if (Transformed) {
             frameD = transform(c.rotation, frameD);
             frameE = transform(c.rotation, frameE);
         }
+        V3 frameB = cross(frameD, frameE);
+        // The target direction of segment j: its rest direction's coordinates in the parent's rest
+        // frame, laid on the parent's frame now.
+        V3 turned = frameD * rest[1].lx + frameE * rest[1].ly + frameB * rest[1].lz;
         for (std::uint32_t j = 1; j < n; ++j) {
             ParticleRow& p = row[j];
             const RestRow& r = rest[j];
@@ -604,40 +673,45 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 const std::uint32_t k = (j - 1) % kGustStride;
                 if (k == 0) {
                     const std::uint32_t ahead = std::min(j + kGustStride, n - 1);
-                    gustFrom = j == 1 ? gust(x, c.time) : gustTo;
-                    gustTo = ahead == j ? gustFrom : gust(V3{row[ahead].x, row[ahead].y, row[ahead].z}, c.time);
+                    gustFrom = j == 1 ? gust(x, gustTime) : gustTo;
+                    gustTo = ahead == j ? gustFrom : gust(V3{row[ahead].x, row[ahead].y, row[ahead].z}, gustTime);
                     gustSpan = splat(1.0f / static_cast<float>(std::max<std::uint32_t>(ahead - j, 1)));
                 }
                 gustHere = gustFrom + (gustTo - gustFrom) * (splat(static_cast<float>(k)) * gustSpan);
             }
             const V3 predicted = predict(x, V3{p.px, p.py, p.pz}, parentBefore, gustHere);
-            p.px = x.x;  // kept here until finish() reads it as the start of the substep
-            p.py = x.y;
-            p.pz = x.z;
             parentBefore = x;
 
-            // The target direction: the rest direction's coordinates in the parent's rest frame,
-            // laid on the parent's frame now.
-            const V3 turned = frameD * r.lx + frameE * r.ly + cross(frameD, frameE) * r.lz;
-            // Spring toward the target, and damper on the particle's motion relative to its parent.
-            const V3 relativeMove = (predicted - x) - (parent - parentStart);
-            const V3 move = (parent + turned * r.length - predicted) * r.bendChild - relativeMove * r.bendDamping;  // Δx_j
-            if (j > 1) {  // the parent's equal and opposite momentum, as a velocity (DFTL's way)
-                ParticleRow& q = row[j - 1];
-                q.px += move.x * r.bendParentRatio;
-                q.py += move.y * r.bendParentRatio;
-                q.pz += move.z * r.bendParentRatio;
-            }
+            // Spring toward the target and damper on the particle's motion relative to its parent:
+            //   Δx_j = (parent + turned L - predicted) child - ((predicted - x) - (parent - parentStart)) damping,
+            // and the bent position less the parent's, written so that only `turned` and `parent`
+            // wait on the chain:
+            //   bent - parent = [predicted (1 - child) - (predicted - x) damping - parentStart damping]
+            //                   + parent (damping + child - 1) + turned (L child).
+            const Lane child = r.bendChild, damping = r.bendDamping;
+            const V3 besideChain = predicted * (1.0f - child) - (predicted - x) * damping - parentStart * damping;
+            const V3 reach = besideChain + parent * (damping + child - 1.0f) + turned * (r.length * child);
+            // The parent's equal and opposite momentum, as a velocity (DFTL's way): Δx_j m_j / m_{j-1}.
+            const V3 kick = (parent + reach - predicted) * r.bendParentRatio;
             parentStart = x;
-            const V3 position = finish(j, predicted + move, parent);
-            // Transport the frame onto this segment's direction now.
-            const V3 d = (position - parent) * r.inverseLength;
-            const V3 axis = cross(frameD, d);
-            const Lane cosine = dot(frameD, d);
-            // (Rodrigues keeps e unit and across d to float precision: no renormalisation on the
-            // serial chain; the reciprocal estimate is one Newton step from exact.)
-            frameE = frameE * cosine + cross(axis, frameE) + axis * (dot(axis, frameE) * lrcp(lmax(splat(1.0f) + cosine, splat(1e-2f))));
-            frameD = d;
+            const V3 position = finish(j, x, reach, parent, kick);
+            if (j + 1 < n) {
+                // Transport the frame onto this segment's direction d now: the shortest rotation
+                // from D to d takes a vector v across D to v - (d.v) / (1 + D.d) (D + d), which
+                // keeps it unit and across d; E, B and the next target's part across D, w, are
+                // such vectors. So the next target d lx + w - (d.w) / (1 + D.d) (D + d) waits only
+                // for d, not for the new frame. (The reciprocal estimate is one Newton step from
+                // exact; no renormalisation on the chain.)
+                const RestRow& next = rest[j + 1];
+                const V3 w = frameE * next.ly + frameB * next.lz;
+                const V3 d = (position - parent) * r.inverseLength;
+                const Lane inverse = lrcp(lmax(splat(1.0f) + dot(frameD, d), splat(1e-2f)));
+                const V3 sum = frameD + d;
+                turned = d * next.lx + w - sum * (dot(d, w) * inverse);
+                frameE = frameE - sum * (dot(d, frameE) * inverse);
+                frameB = frameB - sum * (dot(d, frameB) * inverse);
+                frameD = d;
+            }
             parent = position;
         }
     }
@@ -699,6 +773,7 @@ std::string Solver::setStrands(const HairCurves& rest)
         rows += count * ((strands.size() + kLanes - 1) / kLanes);
     std::vector<ParticleRow> stateRows(rows);
     std::vector<RestRow> restRows(rows);
+    std::vector<ShapeRow> shapeRows(rows);
     std::vector<Block> blocks;
     std::size_t particles = 0;
     std::size_t nextRow = 0;
@@ -708,6 +783,7 @@ std::string Solver::setStrands(const HairCurves& rest)
             b.points = count;
             b.state = std::span<ParticleRow>(stateRows.data() + nextRow, count);
             b.rest = std::span<RestRow>(restRows.data() + nextRow, count);
+            b.shape = std::span<ShapeRow>(shapeRows.data() + nextRow, count);
             nextRow += count;
             for (int l = 0; l < kLanes; ++l) {
                 // Padding lanes repeat the block's first strand and are never copied out.
@@ -718,18 +794,19 @@ std::string Solver::setStrands(const HairCurves& rest)
                 float total = 0.0f;
                 for (std::uint32_t j = 0; j < count; ++j) {
                     RestRow& r = b.rest[j];
+                    ShapeRow& q = b.shape[j];
                     if (j == 0) {
-                        r.x[l] = s[0].x;
-                        r.y[l] = s[0].y;
-                        r.z[l] = s[0].z;
+                        q.x[l] = s[0].x;
+                        q.y[l] = s[0].y;
+                        q.z[l] = s[0].z;
                         r.length[l] = 0.0f;
                         r.inverseLength[l] = 0.0f;
                     } else {
                         const glm::vec3 d = s[j] - s[j - 1];
                         const float len = glm::length(d);
-                        r.x[l] = d.x / len;
-                        r.y[l] = d.y / len;
-                        r.z[l] = d.z / len;
+                        q.x[l] = d.x / len;
+                        q.y[l] = d.y / len;
+                        q.z[l] = d.z / len;
                         r.length[l] = len;
                         r.inverseLength[l] = 1.0f / len;
                         total += len;
@@ -747,6 +824,7 @@ std::string Solver::setStrands(const HairCurves& rest)
     m_blocks = std::move(blocks);
     m_stateRows = std::move(stateRows);  // moving keeps the buffers, so the blocks' views stay valid
     m_restRows = std::move(restRows);
+    m_shapeRows = std::move(shapeRows);
     m_slotOfStrand.assign(rest.strandCount(), {});
     for (std::uint32_t i = 0; i < m_blocks.size(); ++i)
         for (std::uint32_t l = 0; l < kLanes; ++l)
@@ -973,7 +1051,7 @@ bool Solver::setStrandRestDirections(std::size_t strand, std::span<const glm::ve
     if (restShape.size() != b.points)
         return false;
     const int l = static_cast<int>(slot.lane);
-    if (glm::distance(restShape[0], glm::vec3(b.rest[0].x[l], b.rest[0].y[l], b.rest[0].z[l])) > 1e-6f)
+    if (glm::distance(restShape[0], glm::vec3(b.shape[0].x[l], b.shape[0].y[l], b.shape[0].z[l])) > 1e-6f)
         return false;
     for (std::uint32_t j = 1; j < b.points; ++j) {
         const float length = glm::distance(restShape[j], restShape[j - 1]);
@@ -982,9 +1060,9 @@ bool Solver::setStrandRestDirections(std::size_t strand, std::span<const glm::ve
     }
     for (std::uint32_t j = 1; j < b.points; ++j) {
         const glm::vec3 d = glm::normalize(restShape[j] - restShape[j - 1]);
-        b.rest[j].x[l] = d.x;
-        b.rest[j].y[l] = d.y;
-        b.rest[j].z[l] = d.z;
+        b.shape[j].x[l] = d.x;
+        b.shape[j].y[l] = d.y;
+        b.shape[j].z[l] = d.z;
     }
     storeRestFrames(b, l);
     return true;
@@ -1011,7 +1089,7 @@ std::size_t Solver::memoryBytes() const
 {
     return m_restOffsets.capacity() * sizeof(std::uint32_t) + m_blocks.capacity() * sizeof(Block) +
            m_slotOfStrand.capacity() * sizeof(Slot) + m_stateRows.capacity() * sizeof(ParticleRow) +
-           m_restRows.capacity() * sizeof(RestRow);
+           m_restRows.capacity() * sizeof(RestRow) + m_shapeRows.capacity() * sizeof(ShapeRow);
 }
 
 }  // namespace wisp

@@ -103,6 +103,7 @@ public:
     struct CollisionField;  // the head's distances and normals, laid out for lookups (Solver.cpp)
     struct ParticleRow;
     struct RestRow;
+    struct ShapeRow;
     struct Block;  // 16 strands of equal particle count, interleaved (defined in Solver.cpp)
 
 private:
@@ -119,6 +120,7 @@ private:
     std::vector<Block> m_blocks;
     std::vector<ParticleRow> m_stateRows;
     std::vector<RestRow> m_restRows;
+    std::vector<ShapeRow> m_shapeRows;
     std::vector<std::uint32_t> m_restOffsets;  // layout of the caller's curves
     struct Slot {
         std::uint32_t block;

@@ -174,8 +174,7 @@ struct Solver::ParticleRow {
 // (row 0 the follicle's frame). The rest directions themselves (ShapeRow) are kept apart: a step
 // reads only the first two rows of them, and every byte a step streams costs time on a large groom.
 struct Solver::RestRow {
-    Lane length;
-    Lane inverseLength;  // 1 / length, kept off the strand's serial chain
+    Lane length;  // (its reciprocal is divided out beside the chain: four fewer bytes to stream)
     // Bending (BendingModel.h): the shares of this segment's bend error t_j - x_j added to
     // particle j, taken from its parent j-1 and added to j-2, for this substep (they sum to zero
     // momentum).
@@ -297,6 +296,26 @@ struct SdfSample {
     const Mask index = ix + iy * field.dims.x + iz * (field.dims.x * field.dims.y);
     SdfSample s;
     Lane d;
+#if defined(__AVX512F__)
+    // The 16 nodes' (distance, normal) as four 4x4 transposes: register k of (a, b, c, e) holds
+    // nodes 4k, 4k+1, 4k+2, 4k+3 in its 128-bit block k, so the unpacks and shuffles leave lane
+    // m of each result with node m (a few shuffles instead of moving 64 floats one by one). (The
+    // zero-masked unpacks: the plain ones start from an undefined register GCC 12 warns about.)
+    auto load = [&](int l) { return _mm_loadu_ps(&field.nodes[static_cast<std::size_t>(index[l])].x); };
+    auto gather4 = [&](int first) {
+        __m512 r = _mm512_castps128_ps512(load(first));
+        r = _mm512_insertf32x4(r, load(first + 4), 1);
+        r = _mm512_insertf32x4(r, load(first + 8), 2);
+        return _mm512_insertf32x4(r, load(first + 12), 3);
+    };
+    const __m512 a = gather4(0), b = gather4(1), cc = gather4(2), e = gather4(3);
+    const __m512 ab0 = _mm512_maskz_unpacklo_ps(0xFFFF, a, b), ab1 = _mm512_maskz_unpackhi_ps(0xFFFF, a, b);
+    const __m512 ce0 = _mm512_maskz_unpacklo_ps(0xFFFF, cc, e), ce1 = _mm512_maskz_unpackhi_ps(0xFFFF, cc, e);
+    d = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab0, ce0, 0x44));
+    s.normal.x = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab0, ce0, 0xEE));
+    s.normal.y = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab1, ce1, 0x44));
+    s.normal.z = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab1, ce1, 0xEE));
+#else
     for (int l = 0; l < kLanes; ++l) {
         const glm::vec4 node = field.nodes[static_cast<std::size_t>(index[l])];
         d[l] = node.x;
@@ -304,6 +323,7 @@ struct SdfSample {
         s.normal.y[l] = node.z;
         s.normal.z[l] = node.w;
     }
+#endif
     const V3 nodePosition{__builtin_convertvector(ix, Lane) * field.cellSize + field.origin.x,
                           __builtin_convertvector(iy, Lane) * field.cellSize + field.origin.y,
                           __builtin_convertvector(iz, Lane) * field.cellSize + field.origin.z};
@@ -429,6 +449,20 @@ void placeLaneAtRest(Solver::Block& block, int lane, const glm::mat3& rotation, 
     }
 }
 
+// Asks for row j of the block that follows this one in memory (blocks are laid out one after
+// another and a thread runs a contiguous range of them): its first touches would otherwise stall
+// the next block's serial chain on memory. A prefetch past the arrays' end is harmless.
+inline void prefetchRows(const Solver::Block& block, std::uint32_t j)
+{
+    const auto ahead = [&](const auto* rows) {
+        const char* at = reinterpret_cast<const char*>(rows) + (block.points + j) * sizeof(*rows);
+        for (std::size_t byte = 0; byte < sizeof(*rows); byte += 64)
+            __builtin_prefetch(at + byte);
+    };
+    ahead(block.state.data());
+    ahead(block.rest.data());
+}
+
 template <bool Transformed>
 void advanceBlock(Solver::Block& block, const StepConstants& c)
 {
@@ -507,10 +541,11 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
     // bent position less the parent's, `before` the particle's position at the start of the
     // substep, `kick` the bend's reaction on the parent (added to its previous position with the
     // DFTL correction, one write). Returns its final position.
-    auto finish = [&](std::uint32_t i, const V3& before, const V3& reach, const V3& parent, const V3& kick) {
+    auto finish = [&](std::uint32_t i, const V3& before, const V3& reach, const V3& parent, const V3& kick,
+                      Lane inverseLength) {
         ParticleRow& p = row[i];
         V3 previous = before;
-        const Lane length = rest[i].length, inverseLength = rest[i].inverseLength;
+        const Lane length = rest[i].length;
         const Lane scale = length * lrsqrt(lmax(dot(reach, reach), splat(1e-24f)));
         V3 position = parent + reach * scale;
         const V3 correction = reach * (scale - 1.0f);  // position - bent
@@ -665,6 +700,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
         for (std::uint32_t j = 1; j < n; ++j) {
             ParticleRow& p = row[j];
             const RestRow& r = rest[j];
+            if (s == 0)  // the next block's rows (the next in memory, which this thread most likely runs next)
+                prefetchRows(block, j);
             const V3 x{p.x, p.y, p.z};
             // Gusts are smooth over tens of centimetres: sampled at every kGustStride-th particle
             // (where the particles were at the start of the substep) and interpolated between.
@@ -694,7 +731,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             // The parent's equal and opposite momentum, as a velocity (DFTL's way): Δx_j m_j / m_{j-1}.
             const V3 kick = (parent + reach - predicted) * r.bendParentRatio;
             parentStart = x;
-            const V3 position = finish(j, x, reach, parent, kick);
+            const Lane inverseLength = 1.0f / r.length;
+            const V3 position = finish(j, x, reach, parent, kick, inverseLength);
             if (j + 1 < n) {
                 // Transport the frame onto this segment's direction d now: the shortest rotation
                 // from D to d takes a vector v across D to v - (d.v) / (1 + D.d) (D + d), which
@@ -704,7 +742,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 // exact; no renormalisation on the chain.)
                 const RestRow& next = rest[j + 1];
                 const V3 w = frameE * next.ly + frameB * next.lz;
-                const V3 d = (position - parent) * r.inverseLength;
+                const V3 d = (position - parent) * inverseLength;
                 const Lane inverse = lrcp(lmax(splat(1.0f) + dot(frameD, d), splat(1e-2f)));
                 const V3 sum = frameD + d;
                 turned = d * next.lx + w - sum * (dot(d, w) * inverse);
@@ -800,7 +838,6 @@ std::string Solver::setStrands(const HairCurves& rest)
                         q.y[l] = s[0].y;
                         q.z[l] = s[0].z;
                         r.length[l] = 0.0f;
-                        r.inverseLength[l] = 0.0f;
                     } else {
                         const glm::vec3 d = s[j] - s[j - 1];
                         const float len = glm::length(d);
@@ -808,7 +845,6 @@ std::string Solver::setStrands(const HairCurves& rest)
                         q.y[l] = d.y / len;
                         q.z[l] = d.z / len;
                         r.length[l] = len;
-                        r.inverseLength[l] = 1.0f / len;
                         total += len;
                     }
                 }

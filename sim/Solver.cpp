@@ -315,6 +315,21 @@ struct SdfSample {
     s.normal.x = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab0, ce0, 0xEE));
     s.normal.y = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab1, ce1, 0x44));
     s.normal.z = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab1, ce1, 0xEE));
+#elif defined(__AVX__)
+    // The same transposes, eight nodes to a pair of 128-bit blocks per register.
+    auto load = [&](int l) { return _mm_loadu_ps(&field.nodes[static_cast<std::size_t>(index[l])].x); };
+    for (int half = 0; half < kLanes; half += 8) {
+        auto gather2 = [&](int first) { return _mm256_insertf128_ps(_mm256_castps128_ps256(load(half + first)), load(half + first + 4), 1); };
+        const __m256 a = gather2(0), b = gather2(1), cc = gather2(2), e = gather2(3);
+        const __m256 ab0 = _mm256_unpacklo_ps(a, b), ab1 = _mm256_unpackhi_ps(a, b);
+        const __m256 ce0 = _mm256_unpacklo_ps(cc, e), ce1 = _mm256_unpackhi_ps(cc, e);
+        const __m256 parts[4] = {_mm256_shuffle_ps(ab0, ce0, 0x44), _mm256_shuffle_ps(ab0, ce0, 0xEE),
+                                 _mm256_shuffle_ps(ab1, ce1, 0x44), _mm256_shuffle_ps(ab1, ce1, 0xEE)};
+        std::memcpy(reinterpret_cast<float*>(&d) + half, &parts[0], sizeof parts[0]);
+        std::memcpy(reinterpret_cast<float*>(&s.normal.x) + half, &parts[1], sizeof parts[1]);
+        std::memcpy(reinterpret_cast<float*>(&s.normal.y) + half, &parts[2], sizeof parts[2]);
+        std::memcpy(reinterpret_cast<float*>(&s.normal.z) + half, &parts[3], sizeof parts[3]);
+    }
 #else
     for (int l = 0; l < kLanes; ++l) {
         const glm::vec4 node = field.nodes[static_cast<std::size_t>(index[l])];

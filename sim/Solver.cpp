@@ -294,6 +294,9 @@ constexpr int kArcBisections = 6;
 // Gusts are sampled at every this many particles along a strand and interpolated between (their
 // shortest wavelength is 2π / 14 ≈ 0.45 m; a 28 cm strand of 15 segments samples every 7.5 cm).
 constexpr std::uint32_t kGustStride = 4;
+// The largest factor by which a bend reaction is raised to make up for the damping and drag of
+// the velocity that carries it (advanceBlock): defaults at one substep need 1.03.
+constexpr float kMaxKickGain = 1.1f;
 
 struct ContactFriction {
     Lane kinetic;  // μk
@@ -412,6 +415,14 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
     const Lane dt = splat(c.dt), keep = splat(c.keep);
     const Lane drag = splat(c.drag) * block.dragScale;
     const Lane velocityCorrection = splat(c.velocityCorrection);
+    // The bend's reaction on the parent (below) carries force up the strand through the parent's
+    // Verlet velocity, which the next substep's predict damps (keep) and drags (1 / (1 + k dt)) as
+    // if it were motion. Of the force that holds a resting lock up that takes a share which grows
+    // with the substep, so a combed lock rested lower at fewer substeps than at more (issue 11: its
+    // rest shape is solved at one substep count and the editor's pacer may run another). The
+    // reaction is divided by that share here; capped, so strong drag or damping at a long substep
+    // (where the share is no small correction) never amplifies it much.
+    const Lane kickGain = lmin((splat(1.0f) + drag * dt) * splat(1.0f / c.keep), splat(kMaxKickGain));
     const ContactFriction mu{splat(c.friction), splat(c.friction * kStaticOverKineticFriction)};
 
     // The capsules any particle of this block can reach this step: none farther from its root than
@@ -637,9 +648,10 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             const V3 move = (parent + turned * r.length - predicted) * r.bendChild - relativeMove * r.bendDamping;  // Δx_j
             if (j > 1) {  // the parent's equal and opposite momentum, as a velocity (DFTL's way)
                 ParticleRow& q = row[j - 1];
-                q.px += move.x * r.bendParentRatio;
-                q.py += move.y * r.bendParentRatio;
-                q.pz += move.z * r.bendParentRatio;
+                const Lane ratio = r.bendParentRatio * kickGain;
+                q.px += move.x * ratio;
+                q.py += move.y * ratio;
+                q.pz += move.z * ratio;
             }
             parentStart = x;
             const V3 position = finish(j, predicted + move, parent);

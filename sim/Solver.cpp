@@ -141,8 +141,16 @@ struct Solver::RestRow {
     Lane lx, ly, lz;
 };
 
+// Global shape (pullTowardGlobalShape), only while it is on: particle j's rest position (head
+// space) and the share of the way to it this particle moves per substep.
+struct Solver::GlobalShapeRow {
+    Lane x, y, z;
+    Lane share;
+};
+
 using ParticleRow = Solver::ParticleRow;
 using RestRow = Solver::RestRow;
+using GlobalShapeRow = Solver::GlobalShapeRow;
 
 struct Solver::Block {
     std::uint32_t points = 0;
@@ -155,6 +163,7 @@ struct Solver::Block {
     // a thread streams through memory in one sequential run that the prefetcher can follow.
     std::span<ParticleRow> state;
     std::span<RestRow> rest;
+    std::span<const GlobalShapeRow> globalShape;  // empty while the global shape is off
 };
 
 struct StepConstants {
@@ -294,9 +303,14 @@ constexpr int kArcBisections = 6;
 // Gusts are sampled at every this many particles along a strand and interpolated between (their
 // shortest wavelength is 2π / 14 ≈ 0.45 m; a 28 cm strand of 15 segments samples every 7.5 cm).
 constexpr std::uint32_t kGustStride = 4;
+// Global shape (pullTowardGlobalShape): its share is given per step of this length, and fades from
+// full at the root to none at this fraction of the strand's rest length (TressFX's "effective
+// range"; the tips stay free to move, the part near the root keeps the groom).
 // The largest factor by which a bend reaction is raised to make up for the damping and drag of
 // the velocity that carries it (advanceBlock): defaults at one substep need 1.03.
 constexpr float kMaxKickGain = 1.1f;
+constexpr float kGlobalShapeStepSeconds = 1.0f / 60.0f;
+constexpr float kGlobalShapeReach = 0.75f;
 
 struct ContactFriction {
     Lane kinetic;  // μk
@@ -347,6 +361,22 @@ inline void applyFriction(Mask inside, Lane depth, const V3& normal, const Conta
     previous = select(inside, position - kept, previous);
 }
 
+// Global shape matching (Han & Harada 2012, "Real-time hair simulation with efficient hair style
+// preservation", sec. 3.2, as AMD TressFX's global shape constraints): after the bending and before
+// length and contact, particle j moves g.share of the way toward its rest position as the head
+// carries it now (the root as it is this substep, the head's rotation). Only the position moves, as
+// TressFX does: a projection x += s (t - x) each substep leaves an oscillation about t a factor
+// sqrt(1 - s) per substep, so it adds no energy. The share is set per particle by
+// Solver::updateGlobalShape: full at the root, fading along the strand, the same per second at any
+// substep count.
+template <bool Transformed>
+V3 pullTowardGlobalShape(const V3& bent, const GlobalShapeRow& g, const V3& root, const V3& rootHead, const glm::mat3& rotation)
+{
+    const V3 restHead{g.x, g.y, g.z};
+    const V3 target = Transformed ? root + transform(rotation, restHead - rootHead) : restHead;
+    return bent + (target - bent) * g.share;
+}
+
 // The rest shape's parallel-transported frames (advanceBlock): the follicle's normal (any unit
 // vector across the root segment, chosen the same way every time) into row 0, and each rest
 // direction's coordinates in its parent segment's frame into rows j > 0.
@@ -391,12 +421,13 @@ void placeLaneAtRest(Solver::Block& block, int lane, const glm::mat3& rotation, 
     }
 }
 
-template <bool Transformed>
+template <bool Transformed, bool GlobalShape>
 void advanceBlock(Solver::Block& block, const StepConstants& c)
 {
     const std::uint32_t n = block.points;
     ParticleRow* row = block.state.data();
     const RestRow* rest = block.rest.data();
+    const GlobalShapeRow* globalShape = block.globalShape.data();  // null while it is off
 
     // Roots in world space at the start and the end of this step; substeps interpolate between them.
     const V3 rootHead{rest[0].x, rest[0].y, rest[0].z};
@@ -654,7 +685,10 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
                 q.pz += move.z * ratio;
             }
             parentStart = x;
-            const V3 position = finish(j, predicted + move, parent);
+            V3 bent = predicted + move;
+            if constexpr (GlobalShape)
+                bent = pullTowardGlobalShape<Transformed>(bent, globalShape[j], root, rootHead, c.rotation);
+            const V3 position = finish(j, bent, parent);
             // Transport the frame onto this segment's direction now.
             const V3 d = (position - parent) * r.inverseLength;
             const V3 axis = cross(frameD, d);
@@ -779,6 +813,8 @@ std::string Solver::setStrands(const HairCurves& rest)
                 m_slotOfStrand[static_cast<std::size_t>(m_blocks[i].strand[l])] = {i, l};
     m_restOffsets = rest.offsets;
     m_bendSharesStale = true;
+    m_globalShapeStale = true;
+    m_globalShapeRows.clear();
     m_strandCount = rest.strandCount();
     m_particleCount = particles;
     resetToRest();
@@ -852,6 +888,54 @@ void Solver::updateBendShares(float substepSeconds)
     });
 }
 
+// The global shape's rows for a substep of `substepSeconds` (pullTowardGlobalShape): each
+// particle's rest position, and its share s_j = 1 - (1 - g f_j)^(dt / kGlobalShapeStepSeconds),
+// which moves as far per second at any substep count (as damping's exp(-k dt) does), with
+// f_j = max(0, 1 - u_j / kGlobalShapeReach) at u_j, the rest arc length from the root over the
+// strand's. None while the global shape is 0: the step then reads nothing more.
+void Solver::updateGlobalShape(float substepSeconds)
+{
+    const float g = m_settings.globalShape;
+    if (!(g > 0.0f)) {
+        if (!m_globalShapeRows.empty()) {
+            m_globalShapeRows = {};
+            for (Block& b : m_blocks)
+                b.globalShape = {};
+        }
+        return;
+    }
+    if (!m_globalShapeStale && m_globalShapeFor == glm::vec2(g, substepSeconds) && !m_globalShapeRows.empty())
+        return;
+    m_globalShapeFor = {g, substepSeconds};
+    m_globalShapeStale = false;
+    m_globalShapeRows.resize(m_restRows.size());
+    const float exponent = substepSeconds / kGlobalShapeStepSeconds;
+    m_pool->parallelFor(m_blocks.size(), 16, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            Block& b = m_blocks[i];
+            GlobalShapeRow* rows = m_globalShapeRows.data() + (b.rest.data() - m_restRows.data());
+            b.globalShape = std::span<const GlobalShapeRow>(rows, b.points);
+            for (int l = 0; l < kLanes; ++l) {
+                glm::vec3 p(b.rest[0].x[l], b.rest[0].y[l], b.rest[0].z[l]);
+                float arc = 0.0f;
+                for (std::uint32_t j = 0; j < b.points; ++j) {
+                    const RestRow& r = b.rest[j];
+                    if (j > 0) {
+                        p += glm::vec3(r.x[l], r.y[l], r.z[l]) * r.length[l];
+                        arc += r.length[l];
+                    }
+                    const float fade = std::max(0.0f, 1.0f - arc / (kGlobalShapeReach * b.strandLength[l]));
+                    const float perStep = std::min(1.0f, g * fade);
+                    rows[j].x[l] = p.x;
+                    rows[j].y[l] = p.y;
+                    rows[j].z[l] = p.z;
+                    rows[j].share[l] = j == 0 ? 0.0f : 1.0f - std::pow(1.0f - perStep, exponent);
+                }
+            }
+        }
+    });
+}
+
 void Solver::step()
 {
     StepConstants c;
@@ -860,6 +944,7 @@ void Solver::step()
     c.dt = s.timeStepSeconds / static_cast<float>(s.substeps);
     c.keep = std::exp(-s.dampingPerSecond * c.dt);
     updateBendShares(c.dt);
+    updateGlobalShape(c.dt);
     c.friction = s.friction;
     c.offset = s.hairOffsetMetres;
     c.velocityCorrection = s.velocityCorrection;
@@ -879,12 +964,13 @@ void Solver::step()
     c.resetCounter = &m_strandsReset;
 
     // Blocks are independent, so any split over threads gives the same bits.
+    const bool globalShape = !m_globalShapeRows.empty();
     m_pool->parallelFor(m_blocks.size(), 4, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
             if (c.transformed)
-                advanceBlock<true>(m_blocks[i], c);
+                globalShape ? advanceBlock<true, true>(m_blocks[i], c) : advanceBlock<true, false>(m_blocks[i], c);
             else
-                advanceBlock<false>(m_blocks[i], c);
+                globalShape ? advanceBlock<false, true>(m_blocks[i], c) : advanceBlock<false, false>(m_blocks[i], c);
         }
     });
     m_previousHeadToWorld = m_headToWorld;
@@ -1012,6 +1098,7 @@ bool Solver::setStrandRestDirections(std::size_t strand, std::span<const glm::ve
         b.rest[j].z[l] = d.z;
     }
     storeRestFrames(b, l);
+    m_globalShapeStale = true;
     return true;
 }
 
@@ -1036,7 +1123,7 @@ std::size_t Solver::memoryBytes() const
 {
     return m_restOffsets.capacity() * sizeof(std::uint32_t) + m_blocks.capacity() * sizeof(Block) +
            m_slotOfStrand.capacity() * sizeof(Slot) + m_stateRows.capacity() * sizeof(ParticleRow) +
-           m_restRows.capacity() * sizeof(RestRow);
+           m_restRows.capacity() * sizeof(RestRow) + m_globalShapeRows.capacity() * sizeof(GlobalShapeRow);
 }
 
 }  // namespace wisp

@@ -303,12 +303,12 @@ constexpr int kArcBisections = 6;
 // Gusts are sampled at every this many particles along a strand and interpolated between (their
 // shortest wavelength is 2π / 14 ≈ 0.45 m; a 28 cm strand of 15 segments samples every 7.5 cm).
 constexpr std::uint32_t kGustStride = 4;
-// Global shape (pullTowardGlobalShape): its share is given per step of this length, and fades from
-// full at the root to none at this fraction of the strand's rest length (TressFX's "effective
-// range"; the tips stay free to move, the part near the root keeps the groom).
 // The largest factor by which a bend reaction is raised to make up for the damping and drag of
 // the velocity that carries it (advanceBlock): defaults at one substep need 1.03.
 constexpr float kMaxKickGain = 1.1f;
+// Global shape (pullTowardGlobalShape): its share is given per step of this length, and fades from
+// full at the root to none at this fraction of the strand's rest length (TressFX's "effective
+// range"; the tips stay free to move, the part near the root keeps the groom).
 constexpr float kGlobalShapeStepSeconds = 1.0f / 60.0f;
 constexpr float kGlobalShapeReach = 0.75f;
 

@@ -128,6 +128,7 @@ void HairSimulation::solveCombedRest(const Groom& groom, const ParameterValues& 
         hash.add(settings.dampingPerSecond);
         hash.add(settings.dragPerSecond);
         hash.add(settings.velocityCorrection);
+        hash.add(settings.globalShape);
         const std::uint64_t key = hash.value;
         if (const auto cached = m_restCache.find(identity);
             cached != m_restCache.end() && cached->second.key == key && cached->second.rest.size() == target.size()) {

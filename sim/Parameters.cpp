@@ -61,6 +61,9 @@ constexpr std::array<ParameterInfo, kParamCount> kParameters{{
     {Stiffness, "stiffness", "Stiffness", "", G::Solver, K::Real, 0.0, 1.0, 0.25,
      "Bending stiffness, 0 limp to 1 rigid (four decades of rigidity); the same look at any substep or "
      "segment count. 0.25 hangs; about 0.5 holds a combed lock; curls hold from about 0.3", S::Linear},
+    {GlobalShape, "global_shape", "Global shape", "", G::Solver, K::Real, 0.0, 1.0, 0.0,
+     "Pull toward the groomed rest pose as the head carries it: this share per 1/60 s at the root, fading "
+     "to none at 3/4 of the strand (Han & Harada 2012, as AMD TressFX); 0 is off", S::Linear},
     {Friction, "friction", "Friction", "", G::Solver, K::Real, 0.0, 1.0, 0.3,
      "Coulomb friction coefficient of hair on skin and the body: sliding slows by this times the "
      "contact's push (static up to 1.25 times it)", S::Linear},

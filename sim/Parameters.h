@@ -39,6 +39,7 @@ enum class Param : int {
     DryingTime,
     // Hair material and solver
     Stiffness,
+    GlobalShape,
     Friction,
     HairOffset,
     TimeStep,

@@ -190,9 +190,17 @@ struct Solver::ShapeRow {
     Lane x, y, z;
 };
 
+// Global shape (pullTowardGlobalShape), only while it is on: particle j's rest position (head
+// space) and the share of the way to it this particle moves per substep.
+struct Solver::GlobalShapeRow {
+    Lane x, y, z;
+    Lane share;
+};
+
 using ParticleRow = Solver::ParticleRow;
 using RestRow = Solver::RestRow;
 using ShapeRow = Solver::ShapeRow;
+using GlobalShapeRow = Solver::GlobalShapeRow;
 
 struct Solver::Block {
     std::uint32_t points = 0;
@@ -206,6 +214,7 @@ struct Solver::Block {
     std::span<ParticleRow> state;
     std::span<RestRow> rest;
     std::span<ShapeRow> shape;
+    std::span<const GlobalShapeRow> globalShape;  // empty while the global shape is off
 };
 
 struct StepConstants {
@@ -368,6 +377,14 @@ constexpr int kArcBisections = 6;
 // Gusts are sampled at every this many particles along a strand and interpolated between (their
 // shortest wavelength is 2π / 14 ≈ 0.45 m; a 28 cm strand of 15 segments samples every 7.5 cm).
 constexpr std::uint32_t kGustStride = 4;
+// The largest factor by which a bend reaction is raised to make up for the damping and drag of
+// the velocity that carries it (advanceBlock): defaults at one substep need 1.03.
+constexpr float kMaxKickGain = 1.1f;
+// Global shape (pullTowardGlobalShape): its share is given per step of this length, and fades from
+// full at the root to none at this fraction of the strand's rest length (TressFX's "effective
+// range"; the tips stay free to move, the part near the root keeps the groom).
+constexpr float kGlobalShapeStepSeconds = 1.0f / 60.0f;
+constexpr float kGlobalShapeReach = 0.75f;
 
 struct ContactFriction {
     Lane kinetic;  // μk
@@ -416,6 +433,22 @@ inline void applyFriction(Mask inside, Lane depth, const V3& normal, const Conta
     const Lane keptShare = select(sticks, splat(0.0f), lmax(splat(1.0f) - mu.kinetic * depth * invSlide, splat(0.0f)));
     const V3 kept = sliding * keptShare + normal * lmax(normalPart, splat(0.0f));
     previous = select(inside, position - kept, previous);
+}
+
+// Global shape matching (Han & Harada 2012, "Real-time hair simulation with efficient hair style
+// preservation", sec. 3.2, as AMD TressFX's global shape constraints): after the bending and before
+// length and contact, particle j moves g.share of the way toward its rest position as the head
+// carries it now (the root as it is this substep, the head's rotation). Only the position moves, as
+// TressFX does: a projection x += s (t - x) each substep leaves an oscillation about t a factor
+// sqrt(1 - s) per substep, so it adds no energy. The share is set per particle by
+// Solver::updateGlobalShape: full at the root, fading along the strand, the same per second at any
+// substep count.
+template <bool Transformed>
+V3 pullTowardGlobalShape(const V3& bent, const GlobalShapeRow& g, const V3& root, const V3& rootHead, const glm::mat3& rotation)
+{
+    const V3 restHead{g.x, g.y, g.z};
+    const V3 target = Transformed ? root + transform(rotation, restHead - rootHead) : restHead;
+    return bent + (target - bent) * g.share;
 }
 
 // The rest shape's parallel-transported frames (advanceBlock): the follicle's normal (any unit
@@ -478,12 +511,13 @@ inline void prefetchRows(const Solver::Block& block, std::uint32_t j)
     ahead(block.rest.data());
 }
 
-template <bool Transformed>
+template <bool Transformed, bool GlobalShape>
 void advanceBlock(Solver::Block& block, const StepConstants& c)
 {
     const std::uint32_t n = block.points;
     ParticleRow* row = block.state.data();
     const RestRow* rest = block.rest.data();
+    const GlobalShapeRow* globalShape = block.globalShape.data();  // null while it is off
 
     // Roots in world space at the start and the end of this step; substeps interpolate between them.
     const V3 rootHead{block.shape[0].x, block.shape[0].y, block.shape[0].z};
@@ -503,6 +537,14 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
     const Lane dt = splat(c.dt), keep = splat(c.keep);
     const Lane drag = splat(c.drag) * block.dragScale;
     const Lane velocityCorrection = splat(c.velocityCorrection);
+    // The bend's reaction on the parent (below) carries force up the strand through the parent's
+    // Verlet velocity, which the next substep's predict damps (keep) and drags (1 / (1 + k dt)) as
+    // if it were motion. Of the force that holds a resting lock up that takes a share which grows
+    // with the substep, so a combed lock rested lower at fewer substeps than at more (issue 11: its
+    // rest shape is solved at one substep count and the editor's pacer may run another). The
+    // reaction is divided by that share here; capped, so strong drag or damping at a long substep
+    // (where the share is no small correction) never amplifies it much.
+    const Lane kickGain = lmin((splat(1.0f) + drag * dt) * splat(1.0f / c.keep), splat(kMaxKickGain));
     const ContactFriction mu{splat(c.friction), splat(c.friction * kStaticOverKineticFriction)};
 
     // The capsules any particle of this block can reach this step: none farther from its root than
@@ -742,9 +784,12 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
             //                   + parent (damping + child - 1) + turned (L child).
             const Lane child = r.bendChild, damping = r.bendDamping;
             const V3 besideChain = predicted * (1.0f - child) - (predicted - x) * damping - parentStart * damping;
-            const V3 reach = besideChain + parent * (damping + child - 1.0f) + turned * (r.length * child);
-            // The parent's equal and opposite momentum, as a velocity (DFTL's way): Δx_j m_j / m_{j-1}.
-            const V3 kick = (parent + reach - predicted) * r.bendParentRatio;
+            V3 reach = besideChain + parent * (damping + child - 1.0f) + turned * (r.length * child);
+            // The parent's equal and opposite momentum, as a velocity (DFTL's way): Δx_j m_j / m_{j-1},
+            // made up for the damping and drag that the next substep applies to it (kickGain).
+            const V3 kick = (parent + reach - predicted) * (r.bendParentRatio * kickGain);
+            if constexpr (GlobalShape)
+                reach = pullTowardGlobalShape<Transformed>(parent + reach, globalShape[j], root, rootHead, c.rotation) - parent;
             parentStart = x;
             const Lane inverseLength = 1.0f / r.length;
             const V3 position = finish(j, x, reach, parent, kick, inverseLength);
@@ -883,6 +928,8 @@ std::string Solver::setStrands(const HairCurves& rest)
                 m_slotOfStrand[static_cast<std::size_t>(m_blocks[i].strand[l])] = {i, l};
     m_restOffsets = rest.offsets;
     m_bendSharesStale = true;
+    m_globalShapeStale = true;
+    m_globalShapeRows.clear();
     m_strandCount = rest.strandCount();
     m_particleCount = particles;
     resetToRest();
@@ -956,6 +1003,55 @@ void Solver::updateBendShares(float substepSeconds)
     });
 }
 
+// The global shape's rows for a substep of `substepSeconds` (pullTowardGlobalShape): each
+// particle's rest position, and its share s_j = 1 - (1 - g f_j)^(dt / kGlobalShapeStepSeconds),
+// which moves as far per second at any substep count (as damping's exp(-k dt) does), with
+// f_j = max(0, 1 - u_j / kGlobalShapeReach) at u_j, the rest arc length from the root over the
+// strand's. None while the global shape is 0: the step then reads nothing more.
+void Solver::updateGlobalShape(float substepSeconds)
+{
+    const float g = m_settings.globalShape;
+    if (!(g > 0.0f)) {
+        if (!m_globalShapeRows.empty()) {
+            m_globalShapeRows = {};
+            for (Block& b : m_blocks)
+                b.globalShape = {};
+        }
+        return;
+    }
+    if (!m_globalShapeStale && m_globalShapeFor == glm::vec2(g, substepSeconds) && !m_globalShapeRows.empty())
+        return;
+    m_globalShapeFor = {g, substepSeconds};
+    m_globalShapeStale = false;
+    m_globalShapeRows.resize(m_restRows.size());
+    const float exponent = substepSeconds / kGlobalShapeStepSeconds;
+    m_pool->parallelFor(m_blocks.size(), 16, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            Block& b = m_blocks[i];
+            GlobalShapeRow* rows = m_globalShapeRows.data() + (b.rest.data() - m_restRows.data());
+            b.globalShape = std::span<const GlobalShapeRow>(rows, b.points);
+            for (int l = 0; l < kLanes; ++l) {
+                glm::vec3 p(b.shape[0].x[l], b.shape[0].y[l], b.shape[0].z[l]);
+                float arc = 0.0f;
+                for (std::uint32_t j = 0; j < b.points; ++j) {
+                    if (j > 0) {
+                        const ShapeRow& d = b.shape[j];
+                        const float length = b.rest[j].length[l];
+                        p += glm::vec3(d.x[l], d.y[l], d.z[l]) * length;
+                        arc += length;
+                    }
+                    const float fade = std::max(0.0f, 1.0f - arc / (kGlobalShapeReach * b.strandLength[l]));
+                    const float perStep = std::min(1.0f, g * fade);
+                    rows[j].x[l] = p.x;
+                    rows[j].y[l] = p.y;
+                    rows[j].z[l] = p.z;
+                    rows[j].share[l] = j == 0 ? 0.0f : 1.0f - std::pow(1.0f - perStep, exponent);
+                }
+            }
+        }
+    });
+}
+
 void Solver::step()
 {
     StepConstants c;
@@ -964,6 +1060,7 @@ void Solver::step()
     c.dt = s.timeStepSeconds / static_cast<float>(s.substeps);
     c.keep = std::exp(-s.dampingPerSecond * c.dt);
     updateBendShares(c.dt);
+    updateGlobalShape(c.dt);
     c.friction = s.friction;
     c.offset = s.hairOffsetMetres;
     c.velocityCorrection = s.velocityCorrection;
@@ -983,12 +1080,13 @@ void Solver::step()
     c.resetCounter = &m_strandsReset;
 
     // Blocks are independent, so any split over threads gives the same bits.
+    const bool globalShape = !m_globalShapeRows.empty();
     m_pool->parallelFor(m_blocks.size(), 4, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
             if (c.transformed)
-                advanceBlock<true>(m_blocks[i], c);
+                globalShape ? advanceBlock<true, true>(m_blocks[i], c) : advanceBlock<true, false>(m_blocks[i], c);
             else
-                advanceBlock<false>(m_blocks[i], c);
+                globalShape ? advanceBlock<false, true>(m_blocks[i], c) : advanceBlock<false, false>(m_blocks[i], c);
         }
     });
     m_previousHeadToWorld = m_headToWorld;
@@ -1116,6 +1214,7 @@ bool Solver::setStrandRestDirections(std::size_t strand, std::span<const glm::ve
         b.shape[j].z[l] = d.z;
     }
     storeRestFrames(b, l);
+    m_globalShapeStale = true;
     return true;
 }
 
@@ -1140,7 +1239,8 @@ std::size_t Solver::memoryBytes() const
 {
     return m_restOffsets.capacity() * sizeof(std::uint32_t) + m_blocks.capacity() * sizeof(Block) +
            m_slotOfStrand.capacity() * sizeof(Slot) + m_stateRows.capacity() * sizeof(ParticleRow) +
-           m_restRows.capacity() * sizeof(RestRow) + m_shapeRows.capacity() * sizeof(ShapeRow);
+           m_restRows.capacity() * sizeof(RestRow) + m_shapeRows.capacity() * sizeof(ShapeRow) +
+           m_globalShapeRows.capacity() * sizeof(GlobalShapeRow);
 }
 
 }  // namespace wisp

@@ -105,9 +105,11 @@ public:
     struct RestRow;
     struct ShapeRow;
     struct Block;  // 16 strands of equal particle count, interleaved (defined in Solver.cpp)
+    struct GlobalShapeRow;  // a particle's rest position and its global shape share (Solver.cpp)
 
 private:
     void updateBendShares(float substepSeconds);
+    void updateGlobalShape(float substepSeconds);
 
 
     std::unique_ptr<ThreadPool> m_pool;
@@ -121,6 +123,9 @@ private:
     std::vector<ParticleRow> m_stateRows;
     std::vector<RestRow> m_restRows;
     std::vector<ShapeRow> m_shapeRows;
+    // In the layout of m_restRows, only while settings().globalShape > 0 (empty otherwise, so the
+    // step reads nothing more when it is off).
+    std::vector<GlobalShapeRow> m_globalShapeRows;
     std::vector<std::uint32_t> m_restOffsets;  // layout of the caller's curves
     struct Slot {
         std::uint32_t block;
@@ -133,6 +138,8 @@ private:
     std::uint64_t m_strandsReset = 0;
     glm::vec2 m_bendSharesFor{-1.0f};  // (stiffness, substep) the rest rows' bend shares were computed for
     bool m_bendSharesStale = true;
+    glm::vec2 m_globalShapeFor{-1.0f};  // (global shape, substep) m_globalShapeRows were computed for
+    bool m_globalShapeStale = true;     // the rest shape changed since
 };
 
 }  // namespace wisp

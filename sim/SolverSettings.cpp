@@ -25,6 +25,7 @@ SolverSettings solverSettingsFrom(const ParameterValues& v)
     s.dragPerSecond = v.getFloat(Param::Drag);
     s.dampingPerSecond = v.getFloat(Param::Damping);
     s.stiffness = v.getFloat(Param::Stiffness);
+    s.globalShape = v.getFloat(Param::GlobalShape);
     s.friction = v.getFloat(Param::Friction);
     s.hairOffsetMetres = v.getFloat(Param::HairOffset);
     return s;
@@ -41,6 +42,7 @@ std::string validateSolverSettings(const SolverSettings& s)
         {Param::Turbulence, s.turbulence},     {Param::Drag, s.dragPerSecond},
         {Param::Damping, s.dampingPerSecond},  {Param::Stiffness, s.stiffness},
         {Param::Friction, s.friction},         {Param::HairOffset, s.hairOffsetMetres},
+        {Param::GlobalShape, s.globalShape},
     });
     if (!rangeError.empty())
         return rangeError;

@@ -73,6 +73,24 @@ public:
     // pixels, opaque; null when there is no usable GL.
     QImage grabFramebuffer();
 
+    // An image of the scene as this view draws it, `pixels` big (device pixels), at full detail
+    // and without the heads-up line, the gizmo, the wind arrow or the brush: File ▸ Render Image,
+    // the turntable, `wisp --render` and the presets' thumbnails all come through here. The camera
+    // is this view's, framed for the image's aspect while the artist has not moved it, turned by
+    // `turnRadians` about the vertical through its pivot (a turntable's frames). A transparent
+    // background leaves the background and the grid out: alpha 0 there, the image premultiplied.
+    // Null when there is no usable GL or no framebuffer of that size. The next frame of the view
+    // is drawn as before.
+    struct ImageOptions {
+        bool transparentBackground = false;
+        float turnRadians = 0.0f;
+    };
+    QImage renderImage(QSize pixels, const ImageOptions& options);
+    QImage renderImage(QSize pixels) { return renderImage(pixels, ImageOptions{}); }
+    // The largest image side renderImage() is asked for (the editor's and the command line's limit;
+    // software rasterisers allocate 4 samples per pixel).
+    static constexpr int kMaxImageSide = 8192;
+
     // Copies the head; uploads it on the next paint. Until the artist moves the camera, the view
     // follows the head (start-up 3/4 view, framed).
     void setHead(const TriangleMesh& head);
@@ -176,6 +194,8 @@ private:
     void initializeGL();
     void paintGL(bool framebuffersRemade);
     void drawBackdrop(const RenderView& view);
+    void paintImage(const RenderView& view); // paintGL's work for renderImage()
+    void uploadFrameIfChanged(); // streams m_frame's strands to the hair renderer once per frame
     void updateOverlays(const RenderView& view);
     void glUnavailable(const QString& why);
     void releaseGl();
@@ -187,6 +207,14 @@ private:
     void paintUnavailable();
     void updateBrushRings(const RenderView& view);
     float metresPerPixelAt(const RenderView& view, const glm::vec3& worldMetres) const;
+
+    // While renderImage() draws: its size, camera and background.
+    struct ImageRender {
+        QSize pixels;
+        OrbitCamera camera;
+        bool transparent = false;
+    };
+    std::optional<ImageRender> m_image;
 
     OrbitCamera m_camera;
     bool m_cameraTouched = false; // the artist moved it: stop following head and window changes

@@ -4,7 +4,6 @@
 
 #include <QBuffer>
 #include <QByteArray>
-#include <QDir>
 #include <QFileInfo>
 #include <QRegularExpression>
 
@@ -35,7 +34,7 @@ QString turntableFramePath(const QString& path, int index, int frames)
                              .arg(info.completeBaseName())
                              .arg(index + 1, digits, 10, QLatin1Char('0'))
                              .arg(info.suffix().isEmpty() ? QStringLiteral("png") : info.suffix());
-    return info.dir().filePath(name);
+    return path.left(path.lastIndexOf(QLatin1Char('/')) + 1) + name; // the folder exactly as given
 }
 
 QString checkPngOutput(const QString& path)

@@ -481,7 +481,9 @@ QImage Viewport::renderImage(QSize pixels, const ImageOptions& options)
         return {};
     ImageRender render{ pixels, m_camera, options.transparentBackground };
     const float imageAspect = static_cast<float>(pixels.width()) / static_cast<float>(pixels.height());
-    if (!m_cameraTouched)
+    if (options.frameBounds && finiteBounds(*options.frameBounds))
+        render.camera.reset(*options.frameBounds, imageAspect);
+    else if (!m_cameraTouched)
         render.camera.reset(m_headBounds, imageAspect);
     render.camera.setOrientation(render.camera.yaw() + options.turnRadians, render.camera.pitch());
     m_image = render;

@@ -84,6 +84,7 @@ public:
     struct ImageOptions {
         bool transparentBackground = false;
         float turnRadians = 0.0f;
+        std::optional<Aabb> frameBounds; // framed instead of the head (thumbnails frame the hair)
     };
     QImage renderImage(QSize pixels, const ImageOptions& options);
     QImage renderImage(QSize pixels) { return renderImage(pixels, ImageOptions{}); }

@@ -30,6 +30,7 @@
 #include "widgets/GlCanvas.h"
 #include "widgets/GlSupport.h"
 #include "widgets/GuideRenderer.h"
+#include "widgets/HairChildren.h"
 #include "widgets/HairDetail.h"
 #include "widgets/HairRenderer.h"
 #include "sim/Solver.h"
@@ -85,6 +86,9 @@ public:
         bool transparentBackground = false;
         float turnRadians = 0.0f;
         std::optional<Aabb> frameBounds; // framed instead of the head (thumbnails frame the hair)
+        // Below 1: the preview the view draws while things move (that fraction of the strands,
+        // widened, coarse curves), for comparing it with full detail.
+        float previewFraction = 1.0f;
     };
     QImage renderImage(QSize pixels, const ImageOptions& options);
     QImage renderImage(QSize pixels) { return renderImage(pixels, ImageOptions{}); }
@@ -141,6 +145,14 @@ public:
     bool levelOfDetail() const { return m_levelOfDetail; }
     float lastDrawnFraction() const { return m_lastFraction; } // of the strands, in the last paint
     bool lastPaintWasPreview() const { return m_lastPreview; }
+    std::size_t lastDrawnStrands() const { return m_hair.lastDrawnStrands(); } // parents and children
+
+    // Drawn density (HairChildren): `density` times the frame's strands are drawn, 0.25..4. Above 1
+    // render-time children are interpolated between neighbouring strands, each drawn thinner by the
+    // square root of the density, so the hair looks finer and fuller; below 1 an even sample is
+    // drawn, widened to keep the coverage. The preview while things move draws a fraction of these, widened to keep the coverage.
+    void setDisplayDensity(float density);
+    float displayDensity() const { return m_displayDensity; }
     double lastPaintMilliseconds() const { return m_lastPaintMs; } // GL work of the last paint
     bool softwareRenderer() const { return m_softwareGl; }
 
@@ -214,6 +226,7 @@ private:
         QSize pixels;
         OrbitCamera camera;
         bool transparent = false;
+        float previewFraction = 1.0f;
     };
     std::optional<ImageRender> m_image;
 
@@ -261,6 +274,13 @@ private:
     Drag m_drag = Drag::None;
     Qt::MouseButton m_dragButton = Qt::NoButton;
     QPointF m_lastMouse;
+
+    HairChildren m_children;
+    float m_displayDensity = 1.0f;
+    HairCurves m_drawnStrands; // the frame's strands and their children (when the density is above 1)
+    std::vector<std::uint16_t> m_drawnLooks;
+    std::vector<float> m_drawnWetness;
+    HairStyle drawnStyle() const; // m_hairStyle, thinner by the density above 1
 
     HairDetail m_detail;
     bool m_levelOfDetail = true;

@@ -4,13 +4,19 @@
 #include "GuiTestSupport.h"
 
 #include "app/editor/Document.h"
+#include "app/editor/ProjectController.h"
+#include "io/ProjectFile.h"
 #include "app/editor/SettledScene.h"
 #include "sim/Body.h"
 #include "widgets/HairChildren.h"
 #include "widgets/HairDetail.h"
 #include "widgets/Viewport.h"
 
+#include <QAction>
 #include <QElapsedTimer>
+#include <QFile>
+#include <QMenu>
+#include <QTemporaryDir>
 #include <QImage>
 
 #include <cstdio>
@@ -204,6 +210,54 @@ TEST_F(DisplayDensityTest, PausedOrbitRateAtFourTimesTheDensity)
             viewport->softwareRenderer() ? "software GL" : "hardware GL", kPaints / seconds,
             viewport->lastPaintMilliseconds());
     }
+}
+
+} // namespace
+} // namespace wisp
+
+namespace wisp {
+namespace {
+
+TEST(DisplayDensityInTheEditor, TheViewMenuSetsItAndTheProjectKeepsIt)
+{
+    auto window = test::openEditor();
+    window->fileMenu()->projects()->setInteractive(false);
+    QMenu* menu = window->displayDensityMenu();
+    ASSERT_NE(menu, nullptr);
+    const auto action = [menu](const QString& text) {
+        for (QAction* a : menu->actions())
+            if (a->text() == text)
+                return a;
+        return static_cast<QAction*>(nullptr);
+    };
+    ASSERT_NE(action(QStringLiteral("4×")), nullptr);
+    EXPECT_EQ(window->viewport()->displayDensity(), 1.0f);
+    action(QStringLiteral("4×"))->trigger();
+    EXPECT_EQ(window->viewport()->displayDensity(), 4.0f);
+    ASSERT_TRUE(test::waitUntil([&] {
+        const FramePtr frame = window->viewport()->frame();
+        return frame && window->viewport()->lastDrawnStrands() == 4 * frame->strands.strandCount();
+    }));
+
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("dense.wisp"));
+    ASSERT_TRUE(window->fileMenu()->projects()->saveAs(path));
+    action(QStringLiteral("1×"))->trigger();
+    EXPECT_EQ(window->viewport()->displayDensity(), 1.0f);
+    ASSERT_TRUE(window->fileMenu()->projects()->open(path));
+    EXPECT_EQ(window->viewport()->displayDensity(), 4.0f);
+    emit menu->aboutToShow();
+    EXPECT_TRUE(action(QStringLiteral("4×"))->isChecked());
+
+    // Out of range in a file: refused, named.
+    QFile file(path);
+    ASSERT_TRUE(file.open(QIODevice::ReadOnly));
+    QString text = QString::fromUtf8(file.readAll());
+    ASSERT_TRUE(text.contains(QStringLiteral("\"display_density\": 4")));
+    text.replace(QStringLiteral("\"display_density\": 4"), QStringLiteral("\"display_density\": 9"));
+    const auto read = io::parseProject(text.toStdString(), path.toStdString());
+    ASSERT_FALSE(read);
+    EXPECT_NE(read.error().toString().find("display_density"), std::string::npos) << read.error().toString();
 }
 
 } // namespace

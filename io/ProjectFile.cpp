@@ -106,6 +106,8 @@ void checkProject(const Project& project)
     if (project.soloRegion != kNoSolo && !indexOfId.contains(project.soloRegion))
         throw Refusal{"solo_region", std::to_string(project.soloRegion) + " is the id of no region"};
 
+    if (!(project.displayDensity >= kMinDisplayDensity && project.displayDensity <= kMaxDisplayDensity))
+        throw Refusal{"display_density", "the display density must be 0.25 to 4"};
     const CameraState& camera = project.camera;
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(camera.pivot[i]))
@@ -447,7 +449,7 @@ Project readProjectJson(const json& root, const std::string& projectPath, const 
                         Warnings& warnings)
 {
     checkFormatAndVersion(root, "wisp-project", "project", kProjectVersion, "wisp-preset", "a Wisp preset");
-    warnUnknownKeys(root, "", {"format", "version", "head", "parameters", "regions", "solo_region", "camera", "style"},
+    warnUnknownKeys(root, "", {"format", "version", "head", "parameters", "regions", "solo_region", "camera", "display_density", "style"},
                     warnings);
     Project project;
     readHead(root, projectPath, projectFolder(projectPath), loadHead, project, warnings);
@@ -473,6 +475,8 @@ Project readProjectJson(const json& root, const std::string& projectPath, const 
         project.soloRegion = static_cast<std::uint32_t>(readWhole(*solo, "solo_region", 0xffffffffu));
     if (const json* camera = find(root, "camera"))
         readCamera(*camera, project.camera, warnings);
+    if (const json* density = find(root, "display_density"))
+        project.displayDensity = readFloat(*density, "display_density");
     if (const json* style = find(root, "style"))
         readStyle(*style, project.style, warnings);
     checkProject(project);
@@ -561,6 +565,7 @@ std::string projectToJson(const Project& project, const std::string& projectPath
     camera["distance_metres"] = shortestDoubleForFloat(project.camera.distanceMetres);
     camera["fov_y_degrees"] = shortestDoubleForFloat(project.camera.fovYDegrees);
     root["camera"] = std::move(camera);
+    root["display_density"] = shortestDoubleForFloat(project.displayDensity);
 
     // Only what the artist changed: default entries, and default fields of an entry, are left out.
     // Compared by bits, so that -0 travels as -0.

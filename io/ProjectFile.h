@@ -78,6 +78,9 @@ struct CameraState {
     bool operator==(const CameraState&) const = default;
 };
 
+inline constexpr float kMinDisplayDensity = 0.25f;
+inline constexpr float kMaxDisplayDensity = 4.0f;
+
 struct Project {
     TriangleMesh head;  // metres, as groomed: the source file's coordinates times headImportScale
     // The file the head came from: "" for the built-in head. In memory an absolute path (readProject
@@ -99,6 +102,9 @@ struct Project {
     std::vector<GrowthRegion> regions;
     std::uint32_t soloRegion = kNoSolo;  // a region's id, or kNoSolo
     CameraState camera;
+    // How many strands the viewport draws per simulated/groomed strand (render-time children,
+    // widgets/HairChildren.h): kMinDisplayDensity..kMaxDisplayDensity. Older files: 1.
+    float displayDensity = 1.0f;
     // The salon edits (cut, comb, perm, hairspray, wet brush) per strand identity; entries must pass
     // validateStrandStyle. Default entries (isDefault) are not saved.
     StyleEdits style;

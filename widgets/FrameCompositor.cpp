@@ -92,7 +92,7 @@ void FrameCompositor::drawRect(QRect rect, QSize pixels, QOpenGLShaderProgram& p
     m_gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
-void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels)
+void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels, Finish finish)
 {
     if (!m_composite || pixels.isEmpty())
         return;
@@ -108,6 +108,7 @@ void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels)
     // The frame, resolved: every pixel of the target.
     m_composite->bind();
     setUniform(*m_composite, "u_samples", std::max(samples, 0));
+    setUniform(*m_composite, "u_keepAlpha", finish == Finish::ImageWithAlpha ? 1 : 0);
     const GLenum kind = samples > 0 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
     gl->glActiveTexture(samples > 0 ? GL_TEXTURE0 : GL_TEXTURE1);
     gl->glBindTexture(kind, frameTexture);
@@ -115,6 +116,11 @@ void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels)
     gl->glBindTexture(kind, 0);
     gl->glActiveTexture(GL_TEXTURE0);
 
+    if (finish != Finish::Screen) {
+        gl->glBindVertexArray(0);
+        checkGlErrors(gl, "FrameCompositor::draw");
+        return;
+    }
     // The overlays over it, placed from the top left as QPainter painted them.
     gl->glEnable(GL_BLEND);
     gl->glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA); // premultiplied

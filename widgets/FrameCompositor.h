@@ -43,8 +43,10 @@ public:
     void setOverlay(Slot slot, const QImage& image, QPoint topLeftPixels);
     // Resolves `frameTexture` (GL_TEXTURE_2D_MULTISAMPLE with `samples` samples, or GL_TEXTURE_2D
     // when `samples` is 0; `pixels` big) into the bound framebuffer, which must be as big, then
-    // draws the overlays over it.
-    void draw(GLuint frameTexture, int samples, QSize pixels);
+    // draws the overlays over it. A rendered image (Viewport::renderImage) has no overlays and may
+    // keep the frame's alpha (premultiplied) for a transparent background.
+    enum class Finish { Screen, Image, ImageWithAlpha };
+    void draw(GLuint frameTexture, int samples, QSize pixels, Finish finish = Finish::Screen);
 
 private:
     // A rectangle of the target (pixels, origin at the bottom left as GL counts them).

@@ -210,16 +210,18 @@ void GlCanvas::bindGrab()
     m_gl->glBindFramebuffer(GL_FRAMEBUFFER, m_grab.framebuffer);
 }
 
-QImage GlCanvas::readGrab()
+QImage GlCanvas::readGrab(bool keepAlpha)
 {
     if (!m_grab.framebuffer)
         return {};
     GlFunctions* gl = m_gl;
-    QImage image(m_size, QImage::Format_RGBX8888);
+    QImage image(m_size, keepAlpha ? QImage::Format_RGBA8888_Premultiplied : QImage::Format_RGBX8888);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, m_grab.framebuffer);
     gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
     gl->glReadPixels(0, 0, image.width(), image.height(), GL_RGBA, GL_UNSIGNED_BYTE, image.bits());
     bindWindow();
+    if (keepAlpha)
+        return image.mirrored();
     // The composite pass writes opaque pixels; make sure of it, as the screen ignores alpha.
     for (int y = 0; y < image.height(); ++y) {
         uchar* row = image.scanLine(y);

@@ -53,9 +53,10 @@ public:
     // The window's back buffer, the target of the composite pass.
     void bindWindow();
     void swap(QWindow* window);
-    // The grab framebuffer, as a target; readGrab() then returns its pixels, top row first, opaque.
+    // The grab framebuffer, as a target; readGrab() then returns its pixels, top row first, opaque
+    // (or with their alpha, premultiplied, when `keepAlpha`).
     void bindGrab();
-    QImage readGrab();
+    QImage readGrab(bool keepAlpha = false);
     void releaseFramebuffers();
 
 private:

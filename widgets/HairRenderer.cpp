@@ -253,22 +253,21 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     const std::size_t total = m_layout.drawnStrands;
     const float wanted = std::isfinite(fraction) ? std::clamp(fraction, 0.0f, 1.0f) : 1.0f;
     const std::size_t drawn = std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(wanted * total)), 1, total);
-    // Each drawn strand stands for total / drawn strands. Widening it by as much would keep the
-    // hair's density but turn a preview into a few thick ribbons; the square root keeps most of
-    // the density (thin strands are faint, so widening them mostly adds coverage) and the look.
-    const float widthScale = std::sqrt(static_cast<float>(total) / static_cast<float>(drawn));
+    // Each drawn strand stands for total / drawn strands and is widened by as much, so a preview
+    // (or a display density below 1) covers the head as the whole hair does: the same coverage,
+    // never a balding subset (issue 14; the square root used before left 13-17 % of the strands
+    // covering about half of what the whole hair covers).
+    const float widthScale = static_cast<float>(total) / static_cast<float>(drawn);
 
     // Lines while even the nearest hair is at most about a pixel wide (a line is one pixel wide;
     // half a pixel more is not worth twice the primitives). The nearest hair is at most a head's
     // radius and a half in front of the head's centre.
     const float nearestDepth = std::max(-view.headCentreView.z - 1.5f * view.headRadiusMetres, 1e-3f);
     const float pixelsPerMetre = view.projection[1][1] * 0.5f * view.viewportPixels.y / nearestDepth;
-    // A preview (coarse) takes lines up to a few pixels: speed is what it is for. On a software
-    // rasteriser with 4x MSAA a ribbon segment costs about twice a line segment, and the widening
-    // above pushed the editor's default view over 3 pixels at the fewest strands a preview draws,
-    // so those previews cost twice what they would as lines (measured: 33 vs 19 ms of CPU).
     const float rootPixels = style.rootWidthMetres * widthScale * pixelsPerMetre;
-    const bool lines = rootPixels <= style.minWidthPixels + (coarse ? 4.0f : 0.5f);
+    // A line is one pixel wide whatever its width: a wider strand drawn as a line would lose the
+    // coverage the widening above gave it, so previews take ribbons past a pixel too.
+    const bool lines = rootPixels <= style.minWidthPixels + 0.5f;
     // Samples per segment: enough to keep chords about pixelsPerSample long at the head's depth.
     const float centreDepth = std::max(-view.headCentreView.z, 1e-3f);
     const float segmentPixels = m_segmentMetres * view.projection[1][1] * 0.5f * view.viewportPixels.y / centreDepth;

@@ -30,6 +30,7 @@
 #include "widgets/GlCanvas.h"
 #include "widgets/GlSupport.h"
 #include "widgets/GuideRenderer.h"
+#include "widgets/HairChildren.h"
 #include "widgets/HairDetail.h"
 #include "widgets/HairRenderer.h"
 #include "sim/Solver.h"
@@ -72,6 +73,28 @@ public:
     // Draws a frame of the current state (without showing it) and returns its pixels, device
     // pixels, opaque; null when there is no usable GL.
     QImage grabFramebuffer();
+
+    // An image of the scene as this view draws it, `pixels` big (device pixels), at full detail
+    // and without the heads-up line, the gizmo, the wind arrow or the brush: File ▸ Render Image,
+    // the turntable, `wisp --render` and the presets' thumbnails all come through here. The camera
+    // is this view's, framed for the image's aspect while the artist has not moved it, turned by
+    // `turnRadians` about the vertical through its pivot (a turntable's frames). A transparent
+    // background leaves the background and the grid out: alpha 0 there, the image premultiplied.
+    // Null when there is no usable GL or no framebuffer of that size. The next frame of the view
+    // is drawn as before.
+    struct ImageOptions {
+        bool transparentBackground = false;
+        float turnRadians = 0.0f;
+        std::optional<Aabb> frameBounds; // framed instead of the head (thumbnails frame the hair)
+        // Below 1: the preview the view draws while things move (that fraction of the strands,
+        // widened, coarse curves), for comparing it with full detail.
+        float previewFraction = 1.0f;
+    };
+    QImage renderImage(QSize pixels, const ImageOptions& options);
+    QImage renderImage(QSize pixels) { return renderImage(pixels, ImageOptions{}); }
+    // The largest image side renderImage() is asked for (the editor's and the command line's limit;
+    // software rasterisers allocate 4 samples per pixel).
+    static constexpr int kMaxImageSide = 8192;
 
     // Copies the head; uploads it on the next paint. Until the artist moves the camera, the view
     // follows the head (start-up 3/4 view, framed).
@@ -122,6 +145,14 @@ public:
     bool levelOfDetail() const { return m_levelOfDetail; }
     float lastDrawnFraction() const { return m_lastFraction; } // of the strands, in the last paint
     bool lastPaintWasPreview() const { return m_lastPreview; }
+    std::size_t lastDrawnStrands() const { return m_hair.lastDrawnStrands(); } // parents and children
+
+    // Drawn density (HairChildren): `density` times the frame's strands are drawn, 0.25..4. Above 1
+    // render-time children are interpolated between neighbouring strands, each drawn thinner by the
+    // square root of the density, so the hair looks finer and fuller; below 1 an even sample is
+    // drawn, widened to keep the coverage. The preview while things move draws a fraction of these, widened to keep the coverage.
+    void setDisplayDensity(float density);
+    float displayDensity() const { return m_displayDensity; }
     double lastPaintMilliseconds() const { return m_lastPaintMs; } // GL work of the last paint
     bool softwareRenderer() const { return m_softwareGl; }
 
@@ -176,6 +207,8 @@ private:
     void initializeGL();
     void paintGL(bool framebuffersRemade);
     void drawBackdrop(const RenderView& view);
+    void paintImage(const RenderView& view); // paintGL's work for renderImage()
+    void uploadFrameIfChanged(); // streams m_frame's strands to the hair renderer once per frame
     void updateOverlays(const RenderView& view);
     void glUnavailable(const QString& why);
     void releaseGl();
@@ -187,6 +220,15 @@ private:
     void paintUnavailable();
     void updateBrushRings(const RenderView& view);
     float metresPerPixelAt(const RenderView& view, const glm::vec3& worldMetres) const;
+
+    // While renderImage() draws: its size, camera and background.
+    struct ImageRender {
+        QSize pixels;
+        OrbitCamera camera;
+        bool transparent = false;
+        float previewFraction = 1.0f;
+    };
+    std::optional<ImageRender> m_image;
 
     OrbitCamera m_camera;
     bool m_cameraTouched = false; // the artist moved it: stop following head and window changes
@@ -232,6 +274,13 @@ private:
     Drag m_drag = Drag::None;
     Qt::MouseButton m_dragButton = Qt::NoButton;
     QPointF m_lastMouse;
+
+    HairChildren m_children;
+    float m_displayDensity = 1.0f;
+    HairCurves m_drawnStrands; // the frame's strands and their children (when the density is above 1)
+    std::vector<std::uint16_t> m_drawnLooks;
+    std::vector<float> m_drawnWetness;
+    HairStyle drawnStyle() const; // m_hairStyle, thinner by the density above 1
 
     HairDetail m_detail;
     bool m_levelOfDetail = true;

@@ -4,6 +4,7 @@
 #include "app/editor/ExportHairDialog.h"
 #include "app/editor/HeadImporter.h"
 #include "app/editor/ProjectController.h"
+#include "app/editor/RenderActions.h"
 #include "app/editor/SimulationHost.h"
 #include "io/HairFiles.h"
 #include "io/HeadPlacement.h"
@@ -113,6 +114,9 @@ void FileMenu::buildMenu()
         if (const QString error = exportHair(dialog.path(), choice.restPose, choice.keysOnly); !error.isEmpty())
             QMessageBox::warning(m_window, tr("Cannot export hair"), error);
     });
+    m_menu->addSeparator();
+    m_render = new RenderActions(m_window, m_viewport, m_menu);
+    connect(m_render, &RenderActions::message, this, &FileMenu::message);
     m_menu->addSeparator();
     m_menu->addAction(tr("&Quit"), QKeySequence::Quit, m_window, &QWidget::close);
 }

@@ -2,7 +2,7 @@
 // The File menu and what it does: projects (new, open, recent, save, save as, autosave and
 // recovery through ProjectController), heads (open on a worker thread with HeadImporter, change
 // the import scale), hair (import cyHair / USC .data as a region of strands, export the frame or
-// the rest pose), and quit.
+// the rest pose), images (RenderActions: Render Image, Render Turntable), and quit.
 //
 // Thread: GUI.
 
@@ -24,6 +24,7 @@ namespace wisp {
 class Document;
 class HeadImporter;
 class ProjectController;
+class RenderActions;
 class SimulationHost;
 class Viewport;
 struct ImportedHead;
@@ -38,6 +39,7 @@ public:
     ProjectController* projects() const { return m_projects; }
     HeadImporter* headImporter() const { return m_importer; }
     QAction* saveAsAction() const { return m_saveAs; }  // Ctrl+Shift+S
+    RenderActions* renderActions() const { return m_render; }  // Render Image…, Render Turntable…
 
     // Opens whatever `path` is: a project (.wisp), else a head mesh. For `wisp FILE` and drops.
     bool openAny(const QString& path);
@@ -80,6 +82,7 @@ private:
     QMenu* m_menu = nullptr;
     QMenu* m_recentMenu = nullptr;
     QAction* m_saveAs = nullptr;
+    RenderActions* m_render = nullptr;
     QMenu* m_upMenu = nullptr;  // Head Up Axis: "From Its Shape", then +Y, +Z, -Z, +X, -X, -Y
     std::shared_ptr<const ImportedHead> m_lastHead;  // as read, to place again at another scale
     bool m_interactive = true;

@@ -28,6 +28,7 @@
 #include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QMenu>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QScrollArea>
@@ -121,6 +122,26 @@ void MainWindow::createActions()
     grid->setCheckable(true);
     grid->setChecked(m_viewport->showGrid());
     connect(grid, &QAction::toggled, m_viewport, &Viewport::setShowGrid);
+    // Drawn strands per simulated one (render-time children); saved in the project.
+    m_densityMenu = m_viewMenu->addMenu(tr("Display &Density"));
+    m_densityMenu->setToolTipsVisible(true);
+    auto* densities = new QActionGroup(m_densityMenu);
+    for (const float density : {0.25f, 0.5f, 1.0f, 2.0f, 4.0f}) {
+        QAction* action = m_densityMenu->addAction(QStringLiteral("%1×").arg(static_cast<double>(density)));
+        action->setCheckable(true);
+        action->setData(static_cast<double>(density));
+        action->setToolTip(density > 1.0f ? tr("Draw %1 strands for every simulated strand, interpolated between neighbours")
+                                                .arg(static_cast<double>(density))
+                                          : tr("Draw an even share of the strands, widened to keep the coverage"));
+        densities->addAction(action);
+        connect(action, &QAction::triggered, this, [this, density] { m_viewport->setDisplayDensity(density); });
+    }
+    const auto showDensity = [this] {  // a project may have brought another density
+        for (QAction* action : m_densityMenu->actions())
+            action->setChecked(action->data().toFloat() == m_viewport->displayDensity());
+    };
+    connect(m_densityMenu, &QMenu::aboutToShow, this, showDensity);
+    showDensity();
     m_viewMenu->addSeparator();
 
     QMenu* toolsMenu = menuBar()->addMenu(tr("&Tools"));

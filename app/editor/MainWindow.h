@@ -55,6 +55,7 @@ public:
     WispPanel* wispPanel() const { return m_wispPanel; }
     BrushPanel* brushPanel() const { return m_brushPanel; }
     PresetBrowser* presetBrowser() const { return m_presetBrowser; }
+    QMenu* displayDensityMenu() const { return m_densityMenu; }
 
     FileMenu* fileMenu() const { return m_fileMenu; }
 
@@ -96,6 +97,7 @@ private:
     QAction* m_step = nullptr;
     QAction* m_reset = nullptr;
     QMenu* m_viewMenu = nullptr;
+    QMenu* m_densityMenu = nullptr;  // View ▸ Display Density
     QMenu* m_editMenu = nullptr;
     FileMenu* m_fileMenu = nullptr;
     bool m_recoveryOffered = false;

@@ -1,6 +1,7 @@
 #include "app/editor/PresetBrowser.h"
 
 #include "app/editor/Document.h"
+#include "app/editor/PresetThumbnails.h"
 
 #include <QDesktopServices>
 #include <QDir>
@@ -36,7 +37,8 @@ namespace wisp {
 
 namespace {
 
-constexpr int kMarkSizePx = 16;          // the list's default icon size
+constexpr int kMarkSizePx = 16;          // the bundled mark
+constexpr int kIconSizePx = 48;          // the list's icons: thumbnails, or the mark until they come
 constexpr int kMaxFileStemChars = 64;    // file names stay short whatever the preset's name
 
 // The "bundled" mark: a small filled square in `colour`. User presets get a blank icon of the
@@ -89,6 +91,9 @@ PresetBrowser::PresetBrowser(Document* document, QWidget* parent) : QWidget(pare
 
     m_list = new QListWidget(this);
     m_list->setSelectionMode(QAbstractItemView::SingleSelection);
+    m_list->setIconSize(QSize(kIconSizePx, kIconSizePx));
+    m_thumbnails = new PresetThumbnails(this);
+    connect(m_thumbnails, &PresetThumbnails::ready, this, &PresetBrowser::showThumbnail);
     m_apply = new QPushButton(tr("Apply"), this);
     m_apply->setToolTip(tr("Apply the selected preset to the hair (undoable)"));
     m_save = new QPushButton(tr("Save Current…"), this);
@@ -214,10 +219,41 @@ void PresetBrowser::addRow(const Entry& entry)
         item->setToolTip(tr("Cannot be applied: %1").arg(entry.error));
         return;
     }
+    QFile file(entry.path);
+    if (file.open(QIODevice::ReadOnly))
+        m_thumbnails->request(entry.path, file.readAll());
     QString tip = QString::fromStdString(entry.preset->description);
     tip += (tip.isEmpty() ? QString() : QStringLiteral("\n")) +
            (entry.bundled ? tr("Bundled with Wisp") : QDir::toNativeSeparators(entry.path));
     item->setToolTip(tip);
+}
+
+void PresetBrowser::showThumbnail(const QString& path, const QImage& thumbnail)
+{
+    for (int row = 0; row < m_list->count(); ++row) {
+        QListWidgetItem* item = m_list->item(row);
+        if (item->data(kPathRole).toString() != path)
+            continue;
+        item->setData(kThumbnailRole, thumbnail);
+        QPixmap pixmap = QPixmap::fromImage(thumbnail);
+        if (item->data(kBundledRole).toBool()) {  // the bundled mark in its corner
+            QPainter painter(&pixmap);
+            bundledMark(m_list->palette().color(QPalette::Highlight)).paint(&painter, 0, 0, kMarkSizePx, kMarkSizePx);
+        }
+        item->setIcon(QIcon(pixmap));
+    }
+}
+
+void PresetBrowser::showEvent(QShowEvent* event)
+{
+    QWidget::showEvent(event);
+    m_thumbnails->setEnabled(true);
+}
+
+void PresetBrowser::hideEvent(QHideEvent* event)
+{
+    QWidget::hideEvent(event);
+    m_thumbnails->setEnabled(false);
 }
 
 void PresetBrowser::updateButtons()

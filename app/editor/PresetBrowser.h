@@ -9,6 +9,10 @@
 // be applied (a user one can still be deleted). Loading warnings (unknown keys, …) are reported
 // through message() when the preset is applied.
 //
+// Each preset that loads shows a thumbnail (PresetThumbnails: rendered as `wisp --render` renders,
+// cached on disk by the file's content, so saving a preset anew refreshes its thumbnail); they are
+// made one at a time while the browser is on screen, and a row shows its mark until its arrives.
+//
 // The buttons ask their questions (name, overwrite?, delete?) in dialogs and then call the public
 // methods below, which never block: tests call those directly.
 //
@@ -29,6 +33,7 @@ class QPushButton;
 namespace wisp {
 
 class Document;
+class PresetThumbnails;
 
 class PresetBrowser : public QWidget {
     Q_OBJECT
@@ -39,6 +44,7 @@ public:
     static constexpr int kPathRole = Qt::UserRole;           // QString: ":/presets/x.json" or the user file
     static constexpr int kBundledRole = Qt::UserRole + 1;    // bool
     static constexpr int kErrorRole = Qt::UserRole + 2;      // QString: why it did not load; empty if it did
+    static constexpr int kThumbnailRole = Qt::UserRole + 3;  // QImage: its thumbnail, once made
 
     // Where the artist's presets live: <per-user app data>/presets (it may not exist yet).
     static QString userFolder();
@@ -63,10 +69,15 @@ public:
     QPushButton* deleteButton() const { return m_delete; }
     QPushButton* refreshButton() const { return m_refresh; }
     QPushButton* showFolderButton() const { return m_showFolder; }
+    PresetThumbnails* thumbnails() const { return m_thumbnails; }
 
 signals:
     // For the status bar: what was applied, saved or deleted, loading warnings, failures.
     void message(const QString& text);
+
+protected:
+    void showEvent(QShowEvent* event) override;  // thumbnails are made while it is on screen
+    void hideEvent(QHideEvent* event) override;
 
 private:
     // One row: where it came from and what loading it gave.
@@ -82,6 +93,7 @@ private:
     static Entry load(const QString& path, bool bundled);
     void addRow(const Entry& entry);
     void updateButtons();
+    void showThumbnail(const QString& path, const QImage& thumbnail);
 
     // Button handlers: ask, then call the methods above.
     void applyClicked();
@@ -97,6 +109,7 @@ private:
     QPushButton* m_delete = nullptr;
     QPushButton* m_refresh = nullptr;
     QPushButton* m_showFolder = nullptr;
+    PresetThumbnails* m_thumbnails = nullptr;
 };
 
 }  // namespace wisp

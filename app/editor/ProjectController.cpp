@@ -157,6 +157,7 @@ io::Project ProjectController::snapshot() const
 {
     io::Project project = m_document->toProject();
     project.camera = cameraOf(m_viewport->camera());
+    project.displayDensity = m_viewport->displayDensity();
     return project;
 }
 
@@ -258,6 +259,7 @@ bool ProjectController::load(const QString& path, bool asRecovered, const QStrin
     }
     io::ProjectReadResult result = std::move(read).value();
     const io::CameraState camera = result.project.camera;
+    const float displayDensity = result.project.displayDensity;
     m_document->loadProject(std::move(result.project));
     setPath(projectPath);
     OrbitCamera& view = m_viewport->camera();
@@ -265,6 +267,7 @@ bool ProjectController::load(const QString& path, bool asRecovered, const QStrin
     view.setOrientation(camera.yawRadians, camera.pitchRadians);
     view.setDistance(camera.distanceMetres);
     view.setFovYDegrees(camera.fovYDegrees);
+    m_viewport->setDisplayDensity(displayDensity);
     m_viewport->update();
     for (const std::string& warning : result.warnings)
         emit message(QString::fromStdString(warning));

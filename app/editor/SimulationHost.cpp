@@ -1,5 +1,7 @@
 #include "app/editor/SimulationHost.h"
 
+#include "app/editor/SettledScene.h"
+
 #include "app/editor/SimulationHostPacer.h"
 #include "sim/HairSimulation.h"
 #include "sim/SolverSettings.h"
@@ -341,8 +343,6 @@ private:
             m_pacer.restart(now());  // the drape's duration is not the solver falling behind
         m_host.publish(makeFrame());
     }
-    // A drape is done when no particle moves more than this over 10 steps (metres).
-    static constexpr float kDrapeStillMetres = 2e-4f;
 
     // Thread: simulation. A frame of the solver's current state; not yet shared with anyone.
     std::shared_ptr<Frame> makeFrame() const
@@ -351,16 +351,8 @@ private:
         frame->step = m_step;
         frame->groomVersion = m_groomVersion;
         frame->simulatedSeconds = m_simulatedSeconds;
-        m_sim->buildFrame(frame->strands);
+        fillFrame(*m_sim, m_values, *frame);
         frame->groomShape = m_groomShape;
-        frame->looks = m_sim->looks();
-        if (!frame->looks.empty())
-            frame->lookOfStrand = m_sim->groom().regionOfStrand;
-        frame->simulatedStrands = m_sim->solver().strandCount();
-        frame->simulatedParticles = m_sim->solver().particleCount();
-        frame->wind = solverSettingsFrom(m_values).wind;
-        if (m_sim->anyWet())
-            m_sim->strandWetness(frame->wetness);
         frame->fallingBehind = m_pacer.substeps() < m_pacer.requestedSubsteps();
         return frame;
     }

@@ -238,6 +238,24 @@ void Viewport::rebuildGuides()
     ++m_backdropRevision;
 }
 
+void Viewport::setShadowsEnabled(bool enabled)
+{
+    if (enabled == m_shadowsEnabled)
+        return;
+    m_shadowsEnabled = enabled;
+    ++m_backdropRevision; // the head shows the hair's shadow
+    scheduleFrame();
+}
+
+void Viewport::setLightFollowsCamera(bool follows)
+{
+    if (follows == m_lightFollowsCamera)
+        return;
+    m_lightFollowsCamera = follows;
+    ++m_backdropRevision;
+    scheduleFrame();
+}
+
 void Viewport::setShowGrid(bool show)
 {
     if (show == m_showGrid)

@@ -109,6 +109,15 @@ public:
     void setShowGrowthOverlay(bool show);
     bool showGrowthOverlay() const { return m_showGrowthOverlay; }
 
+    // Hair shadows (deep opacity map from the key light, see ShadowMap): hair shades hair, hair
+    // shadows the head and the head shadows the hair. On by default.
+    void setShadowsEnabled(bool enabled);
+    bool shadowsEnabled() const { return m_shadowsEnabled; }
+    // The key light is fixed to the head by default (orbiting a paused scene reuses the shadows);
+    // following the camera keeps the head lit from the artist's side, at a shadow pass per orbit step.
+    void setLightFollowsCamera(bool follows);
+    bool lightFollowsCamera() const { return m_lightFollowsCamera; }
+
     bool showGrid() const { return m_showGrid; }
     void setHairColours(const QColor& root, const QColor& tip);
     QColor hairRootColour() const;
@@ -202,7 +211,9 @@ private:
     bool m_brushDirty = false; // rings not rebuilt since the cursor changed
     float m_brushBandMetres = 0.0f; // of the rings last built (they keep a constant width on screen)
     float m_mirrorBandMetres = 0.0f;
-    bool m_showGrowthOverlay = true;
+    bool m_showGrowthOverlay = false;
+    bool m_shadowsEnabled = true;
+    bool m_lightFollowsCamera = false;
 
     ViewportWindow* m_window = nullptr; // owned by m_container
     QWidget* m_container = nullptr;

@@ -121,6 +121,18 @@ void MainWindow::createActions()
     grid->setCheckable(true);
     grid->setChecked(m_viewport->showGrid());
     connect(grid, &QAction::toggled, m_viewport, &Viewport::setShowGrid);
+    QAction* shadows = m_viewMenu->addAction(tr("Show &Shadows"));
+    shadows->setObjectName(QStringLiteral("showShadowsAction"));
+    shadows->setCheckable(true);
+    shadows->setChecked(m_viewport->shadowsEnabled());
+    shadows->setToolTip(tr("Hair shades hair and the head, and the head shades the hair"));
+    connect(shadows, &QAction::toggled, m_viewport, &Viewport::setShadowsEnabled);
+    QAction* followLight = m_viewMenu->addAction(tr("Light &Follows Camera"));
+    followLight->setObjectName(QStringLiteral("lightFollowsCameraAction"));
+    followLight->setCheckable(true);
+    followLight->setChecked(m_viewport->lightFollowsCamera());
+    followLight->setToolTip(tr("Off: the key light is fixed to the head, so orbiting shows its lit and shaded sides"));
+    connect(followLight, &QAction::toggled, m_viewport, &Viewport::setLightFollowsCamera);
     m_viewMenu->addSeparator();
 
     QMenu* toolsMenu = menuBar()->addMenu(tr("&Tools"));
@@ -149,9 +161,11 @@ void MainWindow::createActions()
     });
     m_overlayAction = m_viewMenu->addAction(tr("Show Growth &Weights"));
     m_overlayAction->setCheckable(true);
-    m_overlayAction->setChecked(true);
+    // Off at first: the tint is a painting aid; the head shows the hair's root colour instead.
+    m_overlayAction->setChecked(false);
     m_overlayAction->setShortcut(QKeySequence(tr("Shift+W")));
-    connect(m_overlayAction, &QAction::toggled, m_viewport, &Viewport::setShowGrowthOverlay);
+    connect(m_overlayAction, &QAction::toggled, this, &MainWindow::showGrowthTint);
+    connect(m_paintTool, &PaintTool::activeChanged, this, &MainWindow::showGrowthTint);
 
     QMenu* sim = menuBar()->addMenu(tr("&Simulation"));
     m_play = sim->addAction(tr("&Play"));
@@ -248,8 +262,7 @@ void MainWindow::createDocks()
     connect(m_styleTool, &StyleTool::brushChanged, this, [this, styling](std::optional<StyleBrush> b) {
         if (b)
             styling->raise();
-        // The growth weights' tint is for painting: styling shows the head as it is.
-        m_viewport->setShowGrowthOverlay(!b && m_overlayAction->isChecked());
+        showGrowthTint();
     });
     connect(m_brushPanel, &BrushPanel::showOverlayToggled, m_overlayAction, &QAction::setChecked);
     connect(m_overlayAction, &QAction::toggled, m_brushPanel->overlayBox(), &QCheckBox::setChecked);
@@ -306,6 +319,14 @@ void MainWindow::showBody()
 {
     m_viewport->setBody(m_document->parameters().get(Param::Body) != 0.0 ? defaultBody(m_document->head())
                                                                           : std::vector<Capsule>{});
+}
+
+// The growth weights' tint is for painting: it shows while the paint tool is up or when asked for
+// (View > Show Growth Weights), never while a styling tool is (styling shows the head as it is).
+void MainWindow::showGrowthTint()
+{
+    const bool styling = m_styleTool->brush().has_value();
+    m_viewport->setShowGrowthOverlay(!styling && (m_paintTool->isActive() || m_overlayAction->isChecked()));
 }
 
 void MainWindow::showGrowthOverlay()

@@ -887,8 +887,11 @@ TEST_F(ViewportTest, GrowthOverlayTintsTheWeightedHalfOfTheHead)
     ASSERT_EQ(countPixels(plain, isSkin, upperArea), 9);
     ASSERT_EQ(countPixels(plain, isSkin, lowerArea), 9);
 
-    EXPECT_TRUE(viewport->showGrowthOverlay());
+    // The tint is a painting aid: off until asked for (the editor asks while painting).
+    EXPECT_FALSE(viewport->showGrowthOverlay());
     viewport->setGrowthOverlay(weights);
+    EXPECT_EQ(differingPixels(grab(), plain), 0);
+    viewport->setShowGrowthOverlay(true);
     const QImage tinted = grab();
     saveScreenshot(tinted, "viewport-growth-overlay.png");
     EXPECT_EQ(countPixels(tinted, isGrowthTint, upperArea), 9);
@@ -935,6 +938,7 @@ TEST_F(ViewportTest, GrowthOverlayAndBrushOnTheDefaultScalp)
     });
     ASSERT_TRUE(scalp);
     viewport->setGrowthOverlay(weights);
+    viewport->setShowGrowthOverlay(true);
     viewport->setBrushCursor(cursor);
     const QImage image = grab();
     saveScreenshot(image, "viewport-scalp-overlay-and-brush.png");
@@ -1006,6 +1010,7 @@ TEST_F(ViewportTest, OverlayBrushAndLooksSurviveANewContext)
     });
     ASSERT_TRUE(scalp);
     viewport->setGrowthOverlay(weights);
+    viewport->setShowGrowthOverlay(true);
     viewport->setBrushCursor(cursor);
     auto frame = lockFrame(head);
     StrandLook red;

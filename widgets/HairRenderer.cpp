@@ -1,5 +1,7 @@
 #include "widgets/HairRenderer.h"
 
+#include "widgets/HairShadowMap.h"
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
@@ -8,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace wisp {
 namespace {
@@ -202,6 +205,8 @@ void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16
     // One pass per strand: first find out whether it is finite, then copy it with the verdict (and
     // its look) in w.
     m_skippedStrands = 0;
+    glm::vec3 low(std::numeric_limits<float>::max());
+    glm::vec3 high(-std::numeric_limits<float>::max());
     const glm::vec3* points = strands.positions.data();
     const bool withLooks = lookOfStrand.size() == strands.strandCount() && !m_looks.empty();
     for (std::size_t s = 0; s < strands.strandCount(); ++s) {
@@ -220,9 +225,13 @@ void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16
         // Wet hair (sim/HairDryer.h) is drawn darker: its wetness rides in the tag's fraction.
         const float wet = wetness.size() == strands.strandCount() ? std::clamp(wetness[s], 0.0f, 1.0f) : 0.0f;
         const float tag = (hasLook ? kFirstLookTag + static_cast<float>(lookOfStrand[s]) : kStyleTag) + kWetTagScale * wet;
-        for (std::uint32_t i = begin; i < end; ++i)
+        for (std::uint32_t i = begin; i < end; ++i) {
             out[i] = glm::vec4(points[i], tag);
+            low = glm::min(low, points[i]);
+            high = glm::max(high, points[i]);
+        }
     }
+    m_bounds = low.x <= high.x ? Aabb{ low, high } : Aabb{};
     m_gl->glUnmapBuffer(GL_TEXTURE_BUFFER);
     // A typical segment length (from up to 256 strands' first segments), to pick how finely the
     // curves are sampled for the zoom.
@@ -305,6 +314,7 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     setUniform(program, "u_fillLightView", view.fillLightView);
     setUniform(program, "u_headCentreView", view.headCentreView);
     setUniform(program, "u_tipFade", std::clamp(style.tipFade, 0.0f, 1.0f));
+    bindShadowLookup(gl, program, view.shadow);
 
     gl->glActiveTexture(GL_TEXTURE1);
     gl->glBindTexture(GL_TEXTURE_BUFFER, m_lookTexture);
@@ -322,6 +332,7 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     gl->glActiveTexture(GL_TEXTURE1);
     gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
     gl->glActiveTexture(GL_TEXTURE0);
+    unbindShadowLookup(gl);
     program.release();
 
     gl->glDisable(GL_BLEND);
@@ -330,6 +341,26 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     m_lastSamplesPerSegment
         = static_cast<int>(HairStripLayout::kSamplesPerSegment / HairStripLayout::kSampleSteps[stepIndex]);
     checkGlErrors(gl, "HairRenderer::draw");
+}
+
+void HairRenderer::drawPoints(QOpenGLShaderProgram&)
+{
+    if (!m_program || m_vertexCount == 0 || m_layout.drawnStrands == 0)
+        return;
+    GlFunctions* gl = m_gl;
+    constexpr std::size_t kCoarse = 2; // HairStripLayout::kSampleSteps[2]: the points themselves
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
+    gl->glBindVertexArray(m_vao);
+    gl->glEnable(GL_PRIMITIVE_RESTART);
+    gl->glPrimitiveRestartIndex(HairStripLayout::kRestart);
+    const HairStripLayout::IndexList& list = m_layout.indices(HairStripLayout::Primitive::Lines, kCoarse);
+    gl->glDrawElements(GL_LINE_STRIP, static_cast<GLsizei>(list.prefix[m_layout.drawnStrands]), GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(m_indexOffsets[0][kCoarse]));
+    gl->glDisable(GL_PRIMITIVE_RESTART);
+    gl->glBindVertexArray(0);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    checkGlErrors(gl, "HairRenderer::drawPoints");
 }
 
 } // namespace wisp

@@ -19,6 +19,7 @@
 
 #include "sim/Frame.h"
 #include "sim/HairCurves.h"
+#include "sim/TriangleMesh.h"
 #include "widgets/GlSupport.h"
 #include "widgets/HairStripLayout.h"
 #include "widgets/RenderView.h"
@@ -71,6 +72,13 @@ public:
     // rest; `coarse` draws one sample per segment (the points themselves) whatever the zoom.
     void draw(const RenderView& view, const HairStyle& style, float fraction = 1.0f, bool coarse = false);
 
+    // Every strand as a line strip through its points (no subdivision), with another program,
+    // already bound, that reads the points as hair.vert does (unit 0) from attribute 0 (the shadow
+    // map's passes).
+    void drawPoints(QOpenGLShaderProgram& program);
+    // The box around the last upload's finite points (empty before any).
+    const Aabb& bounds() const { return m_bounds; }
+
     QString error() const { return m_error; }
     std::size_t strandCount() const { return m_vertexCount > 0 ? m_layout.drawnStrands : 0; } // drawable
     std::size_t skippedStrands() const { return m_skippedStrands; } // had non-finite points
@@ -97,6 +105,7 @@ private:
     HairStripLayout m_layout;
     // Byte offset of each index list in m_indexBuffer: [primitive][step].
     std::array<std::array<std::size_t, 3>, 2> m_indexOffsets{};
+    Aabb m_bounds;
     float m_segmentMetres = 0.0f; // typical segment length of the last frame
     GLsizei m_vertexCount = 0; // 0: nothing to draw
     std::size_t m_skippedStrands = 0;

@@ -1,5 +1,7 @@
 #include "widgets/HeadRenderer.h"
 
+#include "widgets/HairShadowMap.h"
+
 #include <QOpenGLShaderProgram>
 
 #include <algorithm>
@@ -141,12 +143,29 @@ void HeadRenderer::draw(const RenderView& view, bool showGrowthOverlay)
     setUniform(program, "u_keyLightView", view.keyLightView);
     setUniform(program, "u_fillLightView", view.fillLightView);
     setUniform(program, "u_growthOverlay", showGrowthOverlay && hasGrowthOverlay() ? 1.0f : 0.0f);
+    bindShadowLookup(gl, program, view.shadow);
     gl->glBindVertexArray(m_vao);
     gl->glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);
     gl->glBindVertexArray(0);
+    unbindShadowLookup(gl);
     program.release();
     gl->glDisable(GL_CULL_FACE);
     checkGlErrors(gl, "HeadRenderer::draw");
+}
+
+void HeadRenderer::drawWith(QOpenGLShaderProgram&)
+{
+    if (!m_program)
+        return;
+    if (m_dirty)
+        uploadPending();
+    if (m_indexCount == 0)
+        return;
+    // Both faces: a shadow map wants the nearest surface whichever way it faces.
+    m_gl->glBindVertexArray(m_vao);
+    m_gl->glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);
+    m_gl->glBindVertexArray(0);
+    checkGlErrors(m_gl, "HeadRenderer::drawWith");
 }
 
 } // namespace wisp

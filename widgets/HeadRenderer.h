@@ -41,6 +41,10 @@ public:
     // `showGrowthOverlay`: tint by the weights, if there are usable ones; else plain skin.
     void draw(const RenderView& view, bool showGrowthOverlay = false);
 
+    // The mesh's triangles with another program, already bound, whose attribute 0 is the position
+    // (the shadow map's depth pass).
+    void drawWith(QOpenGLShaderProgram& program);
+
     // The colour it is shaded in, sRGB 0..1 (the skin tone unless set).
     void setColour(const glm::vec3& srgb) { m_colourSrgb = srgb; }
 

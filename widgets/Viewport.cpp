@@ -36,6 +36,10 @@ static void initialiseWidgetResources()
 namespace wisp {
 namespace {
 
+// How much of the key light a strand crossing a shadow-map texel takes, per unit of its width over
+// the texel's: above 1, since a drawn strand stands for a lock whose hairs also scatter light away.
+constexpr float kStrandShadowOpacity = 1.5f;
+
 // A plausible adult head with neck, for framing before any head is set (metres).
 constexpr Aabb kFallbackHeadBounds{ { -0.09f, -0.23f, -0.11f }, { 0.09f, 0.14f, 0.12f } };
 
@@ -145,6 +149,7 @@ void Viewport::releaseGl()
         m_compositor.release();
         m_guides.release();
         m_hair.release();
+        m_shadowMap.release();
         m_head.release();
         m_body.release();
         m_background.release();
@@ -160,6 +165,7 @@ void Viewport::setHead(const TriangleMesh& head)
 {
     m_head.setMesh(head);
     ++m_backdropRevision;
+    m_shadowMap.invalidate();
     const bool usable = validateMesh(head).empty();
     const Aabb bounds = usable ? boundsOf(head) : kFallbackHeadBounds;
     m_hasHead = usable;
@@ -181,6 +187,7 @@ void Viewport::setBody(const std::vector<Capsule>& capsules)
     m_bodyCapsules = capsules;
     m_body.setMesh(capsuleMesh(m_bodyCapsules));
     ++m_backdropRevision;
+    m_shadowMap.invalidate();
     scheduleFrame();
 }
 
@@ -243,6 +250,7 @@ void Viewport::setShadowsEnabled(bool enabled)
     if (enabled == m_shadowsEnabled)
         return;
     m_shadowsEnabled = enabled;
+    m_shadowMap.invalidate();
     ++m_backdropRevision; // the head shows the hair's shadow
     scheduleFrame();
 }
@@ -252,6 +260,7 @@ void Viewport::setLightFollowsCamera(bool follows)
     if (follows == m_lightFollowsCamera)
         return;
     m_lightFollowsCamera = follows;
+    m_shadowMap.invalidate();
     ++m_backdropRevision;
     scheduleFrame();
 }
@@ -593,6 +602,9 @@ void Viewport::initializeGL()
     m_body.setColour({ 0.80f, 0.61f, 0.52f }); // the skin a little darker, so the head stands out
     if (!m_hair.initialize(m_gl))
         errors << m_hair.error();
+    // Without shadows (a driver without float framebuffers) the hair is still drawn, lit.
+    if (!m_shadowMap.initialize(m_gl))
+        qWarning("Viewport: %s", qPrintable(m_shadowMap.error()));
     if (!m_guides.initialize(m_gl))
         errors << m_guides.error();
     if (!m_compositor.initialize(m_gl))
@@ -616,9 +628,12 @@ RenderView Viewport::renderView() const
     view.view = m_camera.view();
     view.projection = m_camera.projection(aspect());
     view.viewProjection = view.projection * view.view;
-    // Key from the upper left and in front, fill low from the right: the classic portrait setup.
-    view.keyLightView = glm::normalize(glm::vec3(-0.45f, 0.65f, 0.60f));
+    // Key from the upper left and in front, fill low from the right: the classic portrait setup. The
+    // fill follows the camera; the key stays with the head unless asked to follow (keyLightWorld).
+    view.keyLightView = glm::normalize(glm::mat3(view.view) * keyLightWorld());
     view.fillLightView = glm::normalize(glm::vec3(0.70f, -0.15f, 0.45f));
+    if (m_shadowsEnabled && m_shadowMap.valid())
+        view.shadow = m_shadowMap.lookup();
     // The cranium's centre, not the box's (which the neck pulls down): hair wraps around it.
     const glm::vec3 cranium{ m_headBounds.center().x, m_headBounds.max.y - 0.3f * m_headBounds.size().y,
         m_headBounds.center().z };
@@ -626,6 +641,44 @@ RenderView Viewport::renderView() const
     view.headRadiusMetres = 0.5f * std::max(m_headBounds.size().x, m_headBounds.size().z);
     view.samples = m_samples;
     return view;
+}
+
+glm::vec3 Viewport::keyLightWorld() const
+{
+    // Where the portrait key (upper left, in front) is seen from the start-up view, or from the
+    // camera now when the light follows it.
+    const glm::vec3 keyView = glm::normalize(glm::vec3(-0.45f, 0.65f, 0.60f));
+    OrbitCamera startUp;
+    const glm::mat3 turn(m_lightFollowsCamera ? m_camera.view() : startUp.view());
+    return glm::normalize(glm::transpose(turn) * keyView);
+}
+
+void Viewport::updateShadows()
+{
+    const bool wanted = m_shadowsEnabled && m_frame && m_hair.strandCount() > 0;
+    if (!wanted) {
+        if (m_shadowMap.valid()) {
+            m_shadowMap.invalidate();
+            ++m_backdropRevision; // the head loses the hair's shadow
+        }
+        return;
+    }
+    const glm::vec3 light = keyLightWorld();
+    if (m_shadowMap.valid() && !m_hairMoved && light == m_shadowLight)
+        return;
+    m_hairMoved = false;
+    m_shadowLight = light;
+    // Everything that can cast or take a shadow: the hair and the head (with a little margin).
+    Aabb box = m_headBounds;
+    const Aabb& hair = m_hair.bounds();
+    box.min = glm::min(box.min, hair.min);
+    box.max = glm::max(box.max, hair.max);
+    const float radius = 0.5f * glm::length(box.size()) + 0.01f;
+    // What one strand takes of the light crossing a texel: its width over the texel's (capped).
+    const float texelMetres = 2.0f * radius / static_cast<float>(HairShadowMap::kPixels);
+    const float opacity = std::clamp(kStrandShadowOpacity * m_hairStyle.rootWidthMetres / texelMetres, 0.02f, 1.0f);
+    m_shadowMap.render(m_hair, m_head, m_body, light, box.center(), radius, opacity);
+    ++m_backdropRevision; // the head shows the new shadow
 }
 
 void Viewport::measureFrameRate()
@@ -714,11 +767,14 @@ void Viewport::paintGL(bool framebuffersRemade)
         if (m_frame) {
             m_hair.setLooks(m_frame->looks);
             m_hair.upload(m_frame->strands, m_frame->lookOfStrand, m_frame->wetness);
+            m_hairMoved = true;
         } else {
             m_hair.clear();
         }
     }
 
+    if (m_shadowMap.valid() || m_shadowsEnabled)
+        updateShadows();
     m_samples = m_canvas.samples() > 1 ? m_canvas.samples() : 0;
     const RenderView view = renderView();
 

@@ -32,6 +32,7 @@
 #include "widgets/GuideRenderer.h"
 #include "widgets/HairDetail.h"
 #include "widgets/HairRenderer.h"
+#include "widgets/HairShadowMap.h"
 #include "sim/Solver.h"
 #include "widgets/HeadRenderer.h"
 #include "widgets/OrbitCamera.h"
@@ -140,6 +141,7 @@ public:
     // counted as slow drawing.
     double framesPerSecond() const { return m_fps; }
     std::uint64_t paintCount() const { return m_paintCount; } // paintGL calls so far
+    std::uint64_t shadowPassCount() const { return m_shadowMap.passCount(); } // shadow maps rendered so far
     // The background at a height of the view: 0 is the top edge, 1 the bottom.
     static QColor backgroundColour(double heightFraction);
     // Empty when GL is ready; otherwise why nothing 3D is drawn (no 3.3 context, a shader error).
@@ -196,6 +198,8 @@ private:
     void paintUnavailable();
     void updateBrushRings(const RenderView& view);
     float metresPerPixelAt(const RenderView& view, const glm::vec3& worldMetres) const;
+    glm::vec3 keyLightWorld() const; // unit, toward the key light
+    void updateShadows(); // renders the shadow map again if the hair, head or light moved
 
     OrbitCamera m_camera;
     bool m_cameraTouched = false; // the artist moved it: stop following head and window changes
@@ -238,6 +242,9 @@ private:
     HeadRenderer m_body; // the body's capsules as one mesh
     std::vector<Capsule> m_bodyCapsules;
     HairRenderer m_hair;
+    HairShadowMap m_shadowMap;
+    bool m_hairMoved = false; // points uploaded since the shadow map was rendered
+    glm::vec3 m_shadowLight{ 0.0f }; // the light the shadow map was rendered for
     GuideRenderer m_guides;
 
     Drag m_drag = Drag::None;

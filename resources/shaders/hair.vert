@@ -27,6 +27,8 @@ uniform vec3 u_fillLightView;
 uniform vec3 u_headCentreView;
 uniform float u_tipFade;  // how much the strand fades out toward the tip, 0..1
 
+#include "shadow_lookup.glsl"
+
 // Shaded here, per vertex, not per fragment: a software rasteriser pays setup work for every
 // interpolated value of each of the ~200k thin primitives, and across a strand a pixel or two wide
 // the shading is constant anyway. Along the strand, samples are a few pixels apart.
@@ -44,7 +46,9 @@ float kajiyaKaySpecular(vec3 tangent, vec3 halfVector, float exponent)
 // Scheuermann's practical take on Marschner's model: a whitish one shifted toward the tip and a
 // broader one tinted with the hair's colour shifted toward the root. The head gives the hair a
 // volume normal, so hair on the side away from the light falls into shadow.
-vec3 shadeHair(vec3 positionView, vec3 T, float along, vec3 rootColour, vec3 tipColour)
+// `keyShadow`: the key light that reaches the point (the deep opacity map), `ambient`: what the hair
+// around it leaves of the ambient light; both 1 without shadows.
+vec3 shadeHair(vec3 positionView, vec3 T, float along, vec3 rootColour, vec3 tipColour, float keyShadow, float ambient)
 {
     vec3 V = normalize(-positionView);
     vec3 L = u_keyLightView;
@@ -59,15 +63,17 @@ vec3 shadeHair(vec3 positionView, vec3 T, float along, vec3 rootColour, vec3 tip
     vec3 volumeNormal = normalize(positionView - u_headCentreView + vec3(1e-6));
     float keyWrap = clamp((dot(volumeNormal, L) + 0.5) / 1.5, 0.0, 1.0);
     float fillWrap = clamp((dot(volumeNormal, u_fillLightView) + 0.5) / 1.5, 0.0, 1.0);
-    // Hair near the scalp sits under the hair above it.
-    float occlusion = mix(0.45, 1.0, smoothstep(0.0, 0.4, along));
+    // Hair near the scalp sits under the hair above it: without the maps, a guess from the position
+    // along the strand; with them, the hair's density around the point.
+    float occlusion = u_shadows > 0.5 ? mix(0.3, 1.0, ambient) : mix(0.45, 1.0, smoothstep(0.0, 0.4, along));
 
     vec3 H = normalize(L + V);
     float primary = kajiyaKaySpecular(normalize(T + 0.08 * N), H, 90.0);
     float secondary = kajiyaKaySpecular(normalize(T - 0.12 * N), H, 22.0);
 
-    vec3 colour = base * (0.18 + 0.95 * diffuse * keyWrap + 0.25 * fillWrap) * occlusion;
-    colour += keyWrap * occlusion * (0.28 * primary * vec3(1.0, 0.97, 0.92) + 0.35 * secondary * base);
+    float key = keyWrap * keyShadow;
+    vec3 colour = base * ((0.18 + 0.25 * fillWrap) * occlusion + 0.95 * diffuse * key);
+    colour += key * (0.28 * primary * vec3(1.0, 0.97, 0.92) + 0.35 * secondary * base);
     return pow(clamp(colour, 0.0, 1.0), vec3(1.0 / 2.2));
 }
 
@@ -143,5 +149,7 @@ void main()
     float wetness = clamp((q1.w - float(look + 2)) / 0.45, 0.0, 1.0);
     rootColour *= 1.0 - 0.5 * wetness;
     tipColour *= 1.0 - 0.5 * wetness;
-    v_colour = vec4(shadeHair(positionView.xyz, tangentView, along, rootColour, tipColour), alpha);
+    float ambient;
+    float keyShadow = keyLight(position, 0.002, ambient);
+    v_colour = vec4(shadeHair(positionView.xyz, tangentView, along, rootColour, tipColour, keyShadow, ambient), alpha);
 }

@@ -5,6 +5,8 @@
 // With the growth overlay on, the skin's albedo is tinted by the painted weight (before lighting,
 // so the head keeps its shape): a heat ramp from orange to magenta, colours no skin tone has.
 
+in vec3 v_positionWorld;
+in vec3 v_normalWorld;
 in vec3 v_positionView;
 in vec3 v_normalView;
 in float v_growthWeight;
@@ -15,6 +17,8 @@ uniform vec3 u_fillLightView;
 uniform float u_growthOverlay;  // 1: tint by v_growthWeight; 0: plain skin (the weights may be unset)
 
 out vec4 fragColour;
+
+#include "shadow_lookup.glsl"
 
 // Linear RGB. Weight 0 is plain skin; a little weight already shows clearly (orange), full weight
 // is a saturated magenta.
@@ -44,12 +48,17 @@ void main()
     float hemisphere = 0.5 + 0.5 * N.y;
     vec3 ambient = mix(vec3(0.10, 0.09, 0.09), vec3(0.22, 0.23, 0.26), hemisphere);
 
-    vec3 colour = albedo * (vec3(1.0, 0.97, 0.93) * 0.95 * key + vec3(0.55, 0.6, 0.7) * 0.22 * fill + ambient);
-    colour += albedo * vec3(0.45, 0.08, 0.02) * scatter;
+    // The hair's shadow and the head's own (looked up a little off the surface, so the skin does not
+    // shadow itself where the map's texels are coarse), and the hair's density over the skin.
+    float hairAmbient;
+    float shadow = keyLightFiltered(v_positionWorld + 0.004 * normalize(v_normalWorld), 0.004, hairAmbient);
+    ambient *= mix(0.35, 1.0, hairAmbient);
+    vec3 colour = albedo * (vec3(1.0, 0.97, 0.93) * 0.95 * key * shadow + vec3(0.55, 0.6, 0.7) * 0.22 * fill * hairAmbient + ambient);
+    colour += albedo * vec3(0.45, 0.08, 0.02) * scatter * shadow;
     float rim = pow(1.0 - max(dot(N, V), 0.0), 3.0);
     colour += vec3(0.30, 0.33, 0.38) * 0.35 * rim;
     vec3 H = normalize(L + V);
-    colour += vec3(0.04) * pow(max(dot(N, H), 0.0), 24.0);
+    colour += vec3(0.04) * pow(max(dot(N, H), 0.0), 24.0) * shadow;
 
     fragColour = vec4(pow(clamp(colour, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 }

@@ -39,6 +39,8 @@ namespace {
 // How much of the key light a strand crossing a shadow-map texel takes, per unit of its width over
 // the texel's: above 1, since a drawn strand stands for a lock whose hairs also scatter light away.
 constexpr float kStrandShadowOpacity = 1.5f;
+// While the hair moves, its shadows are rendered again every this many paints.
+constexpr std::uint64_t kShadowPaintInterval = 2;
 
 // A plausible adult head with neck, for framing before any head is set (metres).
 constexpr Aabb kFallbackHeadBounds{ { -0.09f, -0.23f, -0.11f }, { 0.09f, 0.14f, 0.12f } };
@@ -666,6 +668,14 @@ void Viewport::updateShadows()
     const glm::vec3 light = keyLightWorld();
     if (m_shadowMap.valid() && !m_hairMoved && light == m_shadowLight)
         return;
+    // While the hair moves, every other paint: a shadow a frame late does not show, and the passes
+    // (and the head drawn again under the new shadow) cost a software rasteriser much of a frame.
+    // The paint after the last skipped one catches up, so a still scene's shadows are its own.
+    if (m_shadowMap.valid() && light == m_shadowLight && m_paintCount < m_shadowPaint + kShadowPaintInterval) {
+        scheduleFrame();
+        return;
+    }
+    m_shadowPaint = m_paintCount;
     m_hairMoved = false;
     m_shadowLight = light;
     // Everything that can cast or take a shadow: the hair and the head (with a little margin).

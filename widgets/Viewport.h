@@ -245,6 +245,7 @@ private:
     HairShadowMap m_shadowMap;
     bool m_hairMoved = false; // points uploaded since the shadow map was rendered
     glm::vec3 m_shadowLight{ 0.0f }; // the light the shadow map was rendered for
+    std::uint64_t m_shadowPaint = 0; // m_paintCount when it was rendered
     GuideRenderer m_guides;
 
     Drag m_drag = Drag::None;

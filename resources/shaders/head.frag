@@ -5,8 +5,8 @@
 // With the growth overlay on, the skin's albedo is tinted by the painted weight (before lighting,
 // so the head keeps its shape): a heat ramp from orange to magenta, colours no skin tone has.
 
-in vec3 v_positionWorld;
-in vec3 v_normalWorld;
+in float v_keyShadow;
+in float v_hairAmbient;
 in vec3 v_positionView;
 in vec3 v_normalView;
 in float v_growthWeight;
@@ -17,8 +17,6 @@ uniform vec3 u_fillLightView;
 uniform float u_growthOverlay;  // 1: tint by v_growthWeight; 0: plain skin (the weights may be unset)
 
 out vec4 fragColour;
-
-#include "shadow_lookup.glsl"
 
 // Linear RGB. Weight 0 is plain skin; a little weight already shows clearly (orange), full weight
 // is a saturated magenta.
@@ -50,8 +48,8 @@ void main()
 
     // The hair's shadow and the head's own (looked up a little off the surface, so the skin does not
     // shadow itself where the map's texels are coarse), and the hair's density over the skin.
-    float hairAmbient;
-    float shadow = keyLightFiltered(v_positionWorld + 0.004 * normalize(v_normalWorld), 0.004, hairAmbient);
+    float hairAmbient = v_hairAmbient;
+    float shadow = v_keyShadow;
     ambient *= mix(0.35, 1.0, hairAmbient);
     vec3 colour = albedo * (vec3(1.0, 0.97, 0.93) * 0.95 * key * shadow + vec3(0.55, 0.6, 0.7) * 0.22 * fill * hairAmbient + ambient);
     colour += albedo * vec3(0.45, 0.08, 0.02) * scatter * shadow;

@@ -6,11 +6,13 @@ layout(location = 2) in float a_growthWeight;  // 0..1, the painted growth map
 uniform mat4 u_view;
 uniform mat4 u_viewProjection;
 
-out vec3 v_positionWorld;
-out vec3 v_normalWorld;
+out float v_keyShadow;   // the key light reaching the vertex (1: no shadow)
+out float v_hairAmbient; // the ambient light the hair around it leaves
 out vec3 v_positionView;
 out vec3 v_normalView;
 out float v_growthWeight;
+
+#include "shadow_lookup.glsl"
 
 void main()
 {
@@ -18,7 +20,8 @@ void main()
     v_positionView = (u_view * vec4(a_position, 1.0)).xyz;
     v_normalView = mat3(u_view) * a_normal;
     v_growthWeight = a_growthWeight;
-    v_positionWorld = a_position;
-    v_normalWorld = a_normal;
+    // Per vertex, not per pixel: the head's vertices are a few millimetres apart, finer than the
+    // shadow map's texels, and a software rasteriser pays per pixel for every texture read.
+    v_keyShadow = keyLightFiltered(a_position + 0.004 * normalize(a_normal), 0.004, v_hairAmbient);
     gl_Position = u_viewProjection * vec4(a_position, 1.0);
 }

@@ -54,7 +54,7 @@ float keyLightFiltered(vec3 worldPosition, float biasMetres, out float ambient)
                       mix(keyLightThroughTexel(base + ivec2(0, 1), s.z, biasMetres), keyLightThroughTexel(base + ivec2(1, 1), s.z, biasMetres), f.x),
                       f.y);
     float nearest = textureLod(u_shadowDepth, s.xy, 0.0).r;
-    ambient = exp(-0.35 * opacityInFront(s.xy, s.z - biasMetres - nearest, 2.5));
+    ambient = exp(-0.35 * opacityInFront(s.xy, s.z - biasMetres - nearest, 2.0));
     return light;
 }
 
@@ -73,7 +73,7 @@ float keyLight(vec3 worldPosition, float biasMetres, out float ambient)
     vec2 nearest = textureLod(u_shadowDepth, s.xy, 0.0).rg;
     float behind = s.z - biasMetres - nearest.r;
     float opacity = opacityInFront(s.xy, behind, 0.0);
-    ambient = exp(-0.35 * opacityInFront(s.xy, behind, 2.5));
+    ambient = exp(-0.35 * opacityInFront(s.xy, behind, 2.0));
     float head = smoothstep(0.006, 0.02, s.z - biasMetres - nearest.g);
     return exp(-opacity) * (1.0 - head);
 }

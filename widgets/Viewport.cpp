@@ -198,9 +198,7 @@ void Viewport::setFrame(FramePtr frame)
     m_frame = std::move(frame);
     m_frameDirty = true;
     if (m_frame && m_frame->wind != m_wind) {
-        m_wind = m_frame->wind;
-        m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
-        ++m_backdropRevision;
+        m_wind = m_frame->wind; // shown beside the axis gizmo (updateOverlays)
     }
     scheduleFrame();
 }
@@ -209,9 +207,7 @@ void Viewport::setWind(const glm::vec3& windMetresPerSecond)
 {
     if (windMetresPerSecond == m_wind)
         return;
-    m_wind = windMetresPerSecond;
-    m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
-    ++m_backdropRevision;
+    m_wind = windMetresPerSecond; // shown beside the axis gizmo (updateOverlays)
     scheduleFrame();
 }
 
@@ -245,6 +241,14 @@ void Viewport::rebuildGuides()
     m_guides.setGrid(buildGroundGrid(m_headBounds));
     m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
     ++m_backdropRevision;
+}
+
+void Viewport::setPaused(bool paused)
+{
+    if (paused == m_paused)
+        return;
+    m_paused = paused;
+    scheduleFrame(); // the HUD says so
 }
 
 void Viewport::setShadowsEnabled(bool enabled)
@@ -306,7 +310,7 @@ QColor Viewport::backgroundColour(double heightFraction)
 
 QString Viewport::hudText() const
 {
-    return composeHudText(m_frame.get(), m_fps, m_lastPreview ? m_lastFraction : 1.0, m_lastPreview);
+    return composeHudText(m_frame.get(), m_fps, m_lastPreview ? m_lastFraction : 1.0, m_lastPreview, m_paused);
 }
 
 void Viewport::setLevelOfDetail(bool enabled)
@@ -493,7 +497,10 @@ void Viewport::presentFrame()
 
 QImage Viewport::grabFramebuffer()
 {
-    if (!drawFrame())
+    m_grabbing = true;
+    const bool drawn = drawFrame();
+    m_grabbing = false;
+    if (!drawn)
         return {};
     m_canvas.bindGrab();
     m_compositor.draw(m_canvas.frameColourTexture(), m_canvas.samples(), m_canvas.size());
@@ -671,7 +678,9 @@ void Viewport::updateShadows()
     // While the hair moves, every other paint: a shadow a frame late does not show, and the passes
     // (and the head drawn again under the new shadow) cost a software rasteriser much of a frame.
     // The paint after the last skipped one catches up, so a still scene's shadows are its own.
-    if (m_shadowMap.valid() && light == m_shadowLight && m_paintCount < m_shadowPaint + kShadowPaintInterval) {
+    // Grabbed frames (tests, rendered images) always have their own.
+    if (!m_grabbing && m_shadowMap.valid() && light == m_shadowLight
+        && m_paintCount < m_shadowPaint + kShadowPaintInterval) {
         scheduleFrame();
         return;
     }
@@ -760,7 +769,6 @@ void Viewport::drawBackdrop(const RenderView& view)
     m_background.draw(kBackgroundTop, kBackgroundBottom);
     m_head.draw(view, m_showGrowthOverlay);
     m_body.draw(view);
-    m_guides.drawWindArrow(view);
     if (m_showGrid)
         m_guides.drawGrid(view); // translucent and writing no depth: the hair is drawn over it
 }
@@ -854,10 +862,12 @@ void Viewport::updateOverlays(const RenderView& view)
         m_compositor.setOverlay(FrameCompositor::Slot::Hud, paintHudImage(hud, ratio), QPoint(0, 0));
     }
     const glm::mat3 turn(view.view);
-    if (!m_gizmoShown || *m_gizmoShown != turn || ratio != m_overlayRatio || pixels.height() != m_gizmoTargetHeight) {
+    if (!m_gizmoShown || *m_gizmoShown != turn || ratio != m_overlayRatio || pixels.height() != m_gizmoTargetHeight
+        || m_gizmoWind != m_wind) {
         m_gizmoShown = turn;
+        m_gizmoWind = m_wind;
         m_gizmoTargetHeight = pixels.height();
-        const QImage gizmo = paintGizmoImage(view.view, ratio);
+        const QImage gizmo = paintGizmoImage(view.view, ratio, m_wind);
         m_compositor.setOverlay(FrameCompositor::Slot::Gizmo, gizmo, QPoint(0, pixels.height() - gizmo.height()));
     }
     m_overlayRatio = ratio;

@@ -84,7 +84,8 @@ public:
     // and schedules a repaint; the points are streamed to the GPU in that paint.
     void setFrame(FramePtr frame);
     FramePtr frame() const { return m_frame; }
-    // For the wind arrow. Frames carry their wind too; whichever arrived last is shown.
+    // For the wind indicator beside the axis gizmo (bottom left, never over the model). Frames
+    // carry their wind too; whichever arrived last is shown.
     void setWind(const glm::vec3& windMetresPerSecond);
     glm::vec3 wind() const { return m_wind; }
 
@@ -137,6 +138,10 @@ public:
 
     // The heads-up line as it is drawn (composed from the current frame and frame rate).
     QString hudText() const;
+    // The simulation is paused: the HUD says so instead of a frame rate and solver time that
+    // would be the last measured before the pause.
+    void setPaused(bool paused);
+    bool paused() const { return m_paused; }
     // Paints per second, smoothed; pauses of more than half a second (nothing to draw) are not
     // counted as slow drawing.
     double framesPerSecond() const { return m_fps; }
@@ -217,6 +222,7 @@ private:
     float m_mirrorBandMetres = 0.0f;
     bool m_showGrowthOverlay = false;
     bool m_shadowsEnabled = true;
+    bool m_paused = false;
     bool m_lightFollowsCamera = false;
 
     ViewportWindow* m_window = nullptr; // owned by m_container
@@ -229,6 +235,7 @@ private:
     std::optional<BackdropKey> m_lastBackdropKey; // what the last frame's backdrop was to show
     QString m_hudShown; // what the compositor's overlays show
     std::optional<glm::mat3> m_gizmoShown;
+    glm::vec3 m_gizmoWind{ 0.0f }; // the wind the gizmo's image shows
     int m_gizmoTargetHeight = 0;
     double m_overlayRatio = 0.0;
     QTimer m_frameTimer; // a frame at the next turn of the event loop
@@ -246,6 +253,7 @@ private:
     bool m_hairMoved = false; // points uploaded since the shadow map was rendered
     glm::vec3 m_shadowLight{ 0.0f }; // the light the shadow map was rendered for
     std::uint64_t m_shadowPaint = 0; // m_paintCount when it was rendered
+    bool m_grabbing = false; // drawing for grabFramebuffer: shadows never a paint late
     GuideRenderer m_guides;
 
     Drag m_drag = Drag::None;

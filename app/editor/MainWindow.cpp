@@ -346,6 +346,7 @@ void MainWindow::connectSimulation()
 
 void MainWindow::updatePlayAction(bool playing)
 {
+    m_viewport->setPaused(!playing);
     m_play->setChecked(playing);
     m_play->setText(playing ? tr("&Pause") : tr("&Play"));
     m_play->setToolTip(playing ? tr("Pause the simulation (Space)") : tr("Play the simulation (Space)"));

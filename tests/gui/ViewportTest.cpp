@@ -502,6 +502,9 @@ TEST(ViewportOverlayTest, HudLine)
     frame.fallingBehind = false;
     EXPECT_TRUE(composeHudText(&frame, 30.0, 0.4, true).endsWith(QStringLiteral("particles · preview 40%")));
     EXPECT_TRUE(composeHudText(&frame, 30.0, 1.0, true).endsWith(QStringLiteral("particles · preview")));
+    // Paused: no stale frame rate or solver time.
+    EXPECT_EQ(composeHudText(&frame, 30.0, 1.0, false, true), QStringLiteral("paused · 3 strands · 7632 particles"));
+    EXPECT_EQ(composeHudText(nullptr, 30.0, 1.0, false, true), QStringLiteral("paused · no hair"));
 }
 
 TEST(GuideGeometryTest, WindArrowPointsAtTheHeadFromUpwindAndScalesWithSpeed)
@@ -758,15 +761,21 @@ TEST_F(ViewportTest, GridAndWindArrowAreShownAndHidden)
     // The top of the view, above the head, shows sky: no grid there.
     EXPECT_EQ(differingPixels(withGrid.copy(0, 0, 640, 110), withoutGrid.copy(0, 0, 640, 110)), 0);
 
-    // Wind blowing toward -X (from the +X side, which the camera faces): the arrow is upwind.
+    // The wind is a small indicator right of the axis gizmo, in the bottom-left corner: nothing else
+    // of the view changes with it, so it never covers the head or the hair.
     const glm::vec3 wind{ -8.0f, 0.0f, 0.0f };
     viewport->setWind(wind);
     const QImage withWind = grab();
-    const WindArrow arrow = buildWindArrow(head, wind);
-    ASSERT_TRUE(arrow.visible);
-    const glm::vec2 middle = viewport->project(0.5f * (arrow.tail + arrow.tip));
-    EXPECT_GE(countPixels(withWind, isWindBlue, around(middle, 1)), 3) << middle.x << ", " << middle.y;
-    EXPECT_EQ(countPixels(withoutGrid, isWindBlue, around(middle, 1)), 0);
+    const QRect corner(kGizmoImageSize, 480 - kGizmoImageSize, kWindIndicatorWidth, kGizmoImageSize);
+    EXPECT_GE(countPixels(withWind, isWindBlue, corner), 30);
+    EXPECT_EQ(countPixels(withoutGrid, isWindBlue, corner), 0);
+    QImage outside = withWind;
+    QImage outsideBefore = withoutGrid;
+    for (QImage* image : { &outside, &outsideBefore })
+        for (int y = corner.top(); y <= corner.bottom(); ++y)
+            for (int x = 0; x <= corner.right(); ++x)
+                image->setPixelColor(x, y, Qt::black);
+    EXPECT_EQ(differingPixels(outside, outsideBefore), 0);
 
     // Still air hides it; a frame's wind shows it again.
     viewport->setWind(glm::vec3(0.0f));
@@ -774,7 +783,26 @@ TEST_F(ViewportTest, GridAndWindArrowAreShownAndHidden)
     auto frame = std::make_shared<Frame>();
     frame->wind = wind;
     viewport->setFrame(frame);
-    EXPECT_GE(countPixels(grab(), isWindBlue, around(middle, 1)), 3);
+    EXPECT_GE(countPixels(grab(), isWindBlue, corner), 30);
+}
+
+TEST_F(ViewportTest, HudSaysPausedWhilePaused)
+{
+    viewport->setFrame(lockFrame(head));
+    grab();
+    EXPECT_TRUE(viewport->hudText().startsWith(QStringLiteral("fps ")));
+    viewport->setPaused(true);
+    const QImage paused = grab();
+    EXPECT_EQ(viewport->hudText(), QStringLiteral("paused · 120 strands · 1920 particles"));
+    viewport->setPaused(false);
+    const QImage playing = grab();
+    EXPECT_TRUE(viewport->hudText().startsWith(QStringLiteral("fps ")));
+    // What the HUD shows is what it says: its pixels change with it.
+    int changed = 0;
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 400; ++x)
+            changed += near(paused.pixelColor(x, y), playing.pixelColor(x, y), 8) ? 0 : 1;
+    EXPECT_GT(changed, 50);
 }
 
 TEST_F(ViewportTest, RayAtIsTheInverseOfProject)

@@ -34,7 +34,7 @@ bool offsetsUsable(const HairCurves& strands)
 bool sameLooks(std::span<const StrandLook> a, std::span<const StrandLook> b)
 {
     return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const StrandLook& x, const StrandLook& y) {
-        return x.rootColour == y.rootColour && x.tipColour == y.tipColour;
+        return x.rootColour == y.rootColour && x.tipColour == y.tipColour && x.rootThicknessMetres == y.rootThicknessMetres;
     });
 }
 
@@ -152,9 +152,13 @@ void HairRenderer::setLooks(std::span<const StrandLook> looks)
 void HairRenderer::uploadLooks()
 {
     // At least one look's worth of texels, so the texture always has storage.
+    // The root texel's alpha carries the look's hair thickness (0: the style's).
     std::vector<glm::vec4> texels(2 * std::max<std::size_t>(m_looks.size(), 1), glm::vec4(0.0f));
+    m_thickestLookMetres = 0.0f;
     for (std::size_t k = 0; k < m_looks.size(); ++k) {
-        texels[2 * k] = glm::vec4(linearFromSrgb(m_looks[k].rootColour), 1.0f);
+        const float thickness = std::isfinite(m_looks[k].rootThicknessMetres) ? std::clamp(m_looks[k].rootThicknessMetres, 0.0f, 0.01f) : 0.0f;
+        m_thickestLookMetres = std::max(m_thickestLookMetres, thickness);
+        texels[2 * k] = glm::vec4(linearFromSrgb(m_looks[k].rootColour), thickness);
         texels[2 * k + 1] = glm::vec4(linearFromSrgb(m_looks[k].tipColour), 1.0f);
     }
     m_gl->glBindBuffer(GL_TEXTURE_BUFFER, m_lookBuffer);
@@ -276,7 +280,8 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     // rasteriser with 4x MSAA a ribbon segment costs about twice a line segment, and the widening
     // above pushed the editor's default view over 3 pixels at the fewest strands a preview draws,
     // so those previews cost twice what they would as lines (measured: 33 vs 19 ms of CPU).
-    const float rootPixels = style.rootWidthMetres * widthScale * pixelsPerMetre;
+    const float thickest = std::max(style.hairThicknessMetres, m_thickestLookMetres);
+    const float rootPixels = thickest * style.lockWidthScale * widthScale * pixelsPerMetre;
     const bool lines = rootPixels <= style.minWidthPixels + (coarse ? 4.0f : 0.5f);
     // Samples per segment: enough to keep chords about pixelsPerSample long at the head's depth.
     const float centreDepth = std::max(-view.headCentreView.z, 1e-3f);
@@ -305,8 +310,9 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     setUniform(program, "u_viewportPixels", view.viewportPixels);
     setUniform(program, "u_samplesPerSegment", static_cast<float>(HairStripLayout::kSamplesPerSegment));
     setUniform(program, "u_ribbon", lines ? 0.0f : 1.0f);
-    setUniform(program, "u_rootWidthMetres", style.rootWidthMetres * widthScale);
-    setUniform(program, "u_tipWidthMetres", style.tipWidthMetres * widthScale);
+    setUniform(program, "u_hairThicknessMetres", style.hairThicknessMetres);
+    setUniform(program, "u_widthScale", style.lockWidthScale * widthScale);
+    setUniform(program, "u_tipThicknessRatio", std::clamp(style.tipThicknessRatio, 0.0f, 1.0f));
     setUniform(program, "u_minWidthPixels", std::max(style.minWidthPixels, 0.01f));
     setUniform(program, "u_rootColour", linearFromSrgb(style.rootColour));
     setUniform(program, "u_tipColour", linearFromSrgb(style.tipColour));

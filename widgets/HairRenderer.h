@@ -39,8 +39,14 @@ namespace wisp {
 struct HairStyle {
     glm::vec3 rootColour{ 0.14f, 0.085f, 0.05f }; // sRGB 0..1
     glm::vec3 tipColour{ 0.50f, 0.33f, 0.19f }; // sRGB 0..1
-    float rootWidthMetres = 0.0006f; // a drawn strand stands for a lock of ~20 hairs
-    float tipWidthMetres = 0.00012f;
+    // One hair's thickness at the root (Param::HairThickness's default; a look's own wins), and
+    // at the tip as a fraction of it (io/HairFiles.h exports 80 and 20 µm).
+    float hairThicknessMetres = 80e-6f;
+    float tipThicknessRatio = 0.25f;
+    // A drawn strand stands for a lock of hairs (~20 that overlap): it is drawn this many hair
+    // thicknesses wide (0.6 mm at the default thickness), so the hair covers the scalp.
+    float lockWidthScale = 7.5f;
+    float rootWidthMetres() const { return hairThicknessMetres * lockWidthScale; } // the style's drawn width
     float minWidthPixels = 1.0f; // narrower strands are drawn this wide, fainter
     float tipFade = 0.6f; // how far the tip fades out, 0..1
     // Curves get as many Catmull-Rom samples per segment (1, 2 or 4) as keep the chords about
@@ -100,6 +106,7 @@ private:
     GLuint m_lookBuffer = 0; // two linear-RGBA texels per look: root, tip
     GLuint m_lookTexture = 0;
     std::vector<StrandLook> m_looks; // as last given (sRGB); m_lookBuffer holds them
+    float m_thickestLookMetres = 0.0f; // the largest rootThicknessMetres of m_looks
     std::size_t m_pointCapacity = 0; // points m_pointBuffer can hold
     GLint m_maxTexels = 0; // GL_MAX_TEXTURE_BUFFER_SIZE: frames with more points are not drawn
     HairStripLayout m_layout;

@@ -243,6 +243,13 @@ void Viewport::rebuildGuides()
     ++m_backdropRevision;
 }
 
+void Viewport::setScalpCoverage(std::vector<glm::vec4> coverage)
+{
+    m_head.setScalpCoverage(std::move(coverage));
+    ++m_backdropRevision;
+    scheduleFrame();
+}
+
 void Viewport::setPaused(bool paused)
 {
     if (paused == m_paused)
@@ -695,7 +702,7 @@ void Viewport::updateShadows()
     const float radius = 0.5f * glm::length(box.size()) + 0.01f;
     // What one strand takes of the light crossing a texel: its width over the texel's (capped).
     const float texelMetres = 2.0f * radius / static_cast<float>(HairShadowMap::kPixels);
-    const float opacity = std::clamp(kStrandShadowOpacity * m_hairStyle.rootWidthMetres / texelMetres, 0.02f, 1.0f);
+    const float opacity = std::clamp(kStrandShadowOpacity * m_hairStyle.rootWidthMetres() / texelMetres, 0.02f, 1.0f);
     m_shadowMap.render(m_hair, m_head, m_body, light, box.center(), radius, opacity);
     ++m_backdropRevision; // the head shows the new shadow
 }

@@ -109,6 +109,9 @@ public:
     // to the GPU in the next paint.
     void setGrowthOverlay(std::vector<float> weights);
     void setShowGrowthOverlay(bool show);
+    // The scalp under the hair, per head vertex (scalpCoverage in sim/GrowthRegion.h): the skin is
+    // tinted toward the hair's root colour there.
+    void setScalpCoverage(std::vector<glm::vec4> coverage);
     bool showGrowthOverlay() const { return m_showGrowthOverlay; }
 
     // Hair shadows (deep opacity map from the key light, see ShadowMap): hair shades hair, hair

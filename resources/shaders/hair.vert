@@ -10,14 +10,16 @@ layout(location = 0) in uvec2 a_ref;
 // colours (u_rootColour, u_tipColour), 2 + k for look k of u_looks; plus 0.45 times the strand's
 // wetness (wet hair is darker).
 uniform samplerBuffer u_points;
-uniform samplerBuffer u_looks;   // look k: texel 2k its root colour, 2k + 1 its tip colour (linear RGB)
+uniform samplerBuffer u_looks;   // look k: texel 2k its root colour (alpha: its hair thickness, metres, or 0),
+                                 // 2k + 1 its tip colour (linear RGB)
 uniform mat4 u_view;
 uniform mat4 u_projection;
 uniform vec2 u_viewportPixels;
 uniform float u_samplesPerSegment;
 uniform float u_ribbon;           // 1: camera-facing ribbon; 0: line (no sideways offset)
-uniform float u_rootWidthMetres;  // a drawn strand stands for a lock of hairs, so it is wider than one hair
-uniform float u_tipWidthMetres;
+uniform float u_hairThicknessMetres;  // one hair at the root, for strands without a look (or whose look has none)
+uniform float u_widthScale;          // a drawn strand stands for a lock of hairs, so it is wider than one hair
+uniform float u_tipThicknessRatio;   // the tip's thickness over the root's
 uniform float u_minWidthPixels;   // narrower strands are drawn this wide and fainter (coverage)
 
 uniform vec3 u_rootColour;  // linear RGB, for strands without a look
@@ -117,7 +119,10 @@ void main()
 
     float along = (float(segment) + u) / float(max(segments, 1));
     float depth = max(-positionView.z, 1e-4);
-    float widthMetres = mix(u_rootWidthMetres, u_tipWidthMetres, along);
+    int look = int(q1.w + 0.5) - 2;
+    vec4 lookRoot = look >= 0 ? texelFetch(u_looks, 2 * look) : vec4(u_rootColour, 0.0);
+    float rootWidthMetres = (lookRoot.a > 0.0 ? lookRoot.a : u_hairThicknessMetres) * u_widthScale;
+    float widthMetres = rootWidthMetres * mix(1.0, u_tipThicknessRatio, along);
     // Pixels per metre at this depth: projection[1][1] = 1 / tan(fovY / 2).
     float widthPixels = widthMetres * u_projection[1][1] * 0.5 * u_viewportPixels.y / depth;
     float drawnPixels = max(widthPixels, u_minWidthPixels);
@@ -141,8 +146,7 @@ void main()
 
     float coverage = min(widthPixels / drawnPixels, 1.0);
     float alpha = coverage * (1.0 - u_tipFade * smoothstep(0.55, 1.0, along));
-    int look = int(q1.w + 0.5) - 2;
-    vec3 rootColour = look >= 0 ? texelFetch(u_looks, 2 * look).rgb : u_rootColour;
+    vec3 rootColour = lookRoot.rgb;
     vec3 tipColour = look >= 0 ? texelFetch(u_looks, 2 * look + 1).rgb : u_tipColour;
     // Water fills the gaps between the cuticle scales: wet hair reflects less diffusely and looks
     // darker (about half as bright soaked).

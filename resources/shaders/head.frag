@@ -10,6 +10,7 @@ in float v_hairAmbient;
 in vec3 v_positionView;
 in vec3 v_normalView;
 in float v_growthWeight;
+in vec4 v_scalp;
 
 uniform vec3 u_skinColour;  // linear RGB
 uniform vec3 u_keyLightView;
@@ -28,7 +29,9 @@ vec3 growthTinted(vec3 skin, float weight)
 
 void main()
 {
-    vec3 albedo = u_skinColour;
+    // The scalp under the hair takes on the roots' colour (dyed scalp, as real grooms have), so the
+    // parting and the crown read as hair, not as bare skin.
+    vec3 albedo = mix(u_skinColour, v_scalp.rgb, 0.8 * smoothstep(0.0, 0.6, v_scalp.a));
     if (u_growthOverlay > 0.5)
         albedo = growthTinted(u_skinColour, clamp(v_growthWeight, 0.0, 1.0));
 

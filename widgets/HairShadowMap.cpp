@@ -19,8 +19,8 @@ GLuint makeTexture(GlFunctions* gl, GLint internalFormat, GLenum format, bool mi
     GLuint texture = 0;
     gl->glGenTextures(1, &texture);
     gl->glBindTexture(GL_TEXTURE_2D, texture);
-    gl->glTexImage2D(GL_TEXTURE_2D, 0, internalFormat, HairShadowMap::kPixels, HairShadowMap::kPixels, 0, format,
-        GL_FLOAT, nullptr);
+    gl->glTexImage2D(
+        GL_TEXTURE_2D, 0, internalFormat, HairShadowMap::kPixels, HairShadowMap::kPixels, 0, format, GL_FLOAT, nullptr);
     gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, mipmapped ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST);
     gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, mipmapped ? GL_LINEAR : GL_NEAREST);
     gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -139,8 +139,8 @@ void HairShadowMap::render(HairRenderer& hair, HeadRenderer& head, HeadRenderer&
     setUniform(*m_hairProgram, "u_worldToShadow", m_worldToShadow);
     setUniform(*m_hairProgram, "u_pass", 0);
     setUniform(*m_hairProgram, "u_strandOpacity", strandOpacity);
-    setUniform(*m_hairProgram, "u_layerMetres",
-        glm::vec4(kLayerMetres[0], kLayerMetres[1], kLayerMetres[2], kLayerMetres[3]));
+    setUniform(
+        *m_hairProgram, "u_layerMetres", glm::vec4(kLayerMetres[0], kLayerMetres[1], kLayerMetres[2], kLayerMetres[3]));
     hair.drawPoints(*m_hairProgram);
 
     // Pass 2: opacity per layer, reading pass 1.

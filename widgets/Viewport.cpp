@@ -703,8 +703,10 @@ void Viewport::updateShadows()
     // What one strand takes of the light crossing a texel: its width over the texel's (capped).
     const float texelMetres = 2.0f * radius / static_cast<float>(HairShadowMap::kPixels);
     const float opacity = std::clamp(kStrandShadowOpacity * m_hairStyle.rootWidthMetres() / texelMetres, 0.02f, 1.0f);
+    const std::uint64_t before = m_shadowMap.passCount();
     m_shadowMap.render(m_hair, m_head, m_body, light, box.center(), radius, opacity);
-    ++m_backdropRevision; // the head shows the new shadow
+    if (m_shadowMap.passCount() != before)
+        ++m_backdropRevision; // the head shows the new shadow (none drawn: no GL for it, nothing new)
 }
 
 void Viewport::measureFrameRate()

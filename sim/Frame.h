@@ -13,10 +13,11 @@
 
 namespace wisp {
 
-// How a region's hair looks: sRGB 0..1 at the root and the tip.
+// How a region's hair looks: sRGB 0..1 at the root and the tip, and how thick it is.
 struct StrandLook {
     glm::vec3 rootColour{0.0f};
     glm::vec3 tipColour{0.0f};
+    float rootThicknessMetres = 0.0f;  // one hair's, at the root (Param::HairThickness); 0: the viewport's own
 };
 
 // The groom behind a frame, shared by every frame of one groom: the rest pose of every drawn

@@ -1,5 +1,6 @@
 #include "sim/GrowthRegion.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace wisp {
@@ -41,6 +42,22 @@ std::string validateRegion(const GrowthRegion& region, std::size_t vertexCount)
             if (!(c[k] >= 0.0f && c[k] <= 1.0f))
                 return where + "colour component " + std::to_string(c[k]) + " is outside 0..1";
     return {};
+}
+
+std::vector<glm::vec4> scalpCoverage(const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
+                                     std::size_t vertexCount)
+{
+    std::vector<glm::vec4> out(vertexCount, glm::vec4(0.0f));
+    for (const GrowthRegion* region : growingRegions(regions, soloId)) {
+        if (region->weights.size() != vertexCount)
+            continue;
+        for (std::size_t i = 0; i < vertexCount; ++i) {
+            const float w = region->weights[i];
+            if (std::isfinite(w) && w > out[i].w)
+                out[i] = glm::vec4(region->rootColour, std::min(w, 1.0f));
+        }
+    }
+    return out;
 }
 
 }  // namespace wisp

@@ -10,6 +10,7 @@
 #include "sim/Parameters.h"
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -38,6 +39,13 @@ struct GrowthRegion {
 // visible one.
 std::vector<const GrowthRegion*> growingRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId);
 constexpr std::uint32_t kNoSolo = 0xffffffffu;
+
+// What the scalp looks like under the hair, one entry per head vertex: rgb the root colour (sRGB)
+// of the growing region that grows most there, a its weight (0: bare skin). Regions' weights of
+// another count than `vertexCount` (imported strands) are skipped; real grooms tint the skin under
+// the hair toward its colour so the parting and the crown do not show as bare skin.
+std::vector<glm::vec4> scalpCoverage(const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
+                                     std::size_t vertexCount);
 
 // Empty when usable; otherwise names the region and the problem
 // ("region 'Fringe': weight 12 is not a finite number", "region 'Top': clump_degree: 3 is outside -1..1").

@@ -349,7 +349,7 @@ std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& region
             return error;
         inputs.push_back({r->id, r->weights, groomSettingsFrom(r->values), r->values.getFloat(Param::StiffnessScale),
                           r->importedStrands.get()});
-        looks.push_back({r->rootColour, r->tipColour});
+        looks.push_back({r->rootColour, r->tipColour, r->values.getFloat(Param::HairThickness)});
     }
     GroomResult result =
         m_builder.build(m_head, inputs, groomSettingsFrom(values), m_sdf.get(), previous, m_bvh.get(), m_style.get());

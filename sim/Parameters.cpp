@@ -38,6 +38,9 @@ constexpr std::array<ParameterInfo, kParamCount> kParameters{{
      "Turns of the curl per metre of hair (along the hair, not its axis); waves are a few, ringlets 20 or more; at most 0.95 / (2π × Curl radius)", S::Log},
     {StiffnessScale, "stiffness_scale", "Stiffness scale", "×", G::Wisp, K::Real, 0.0, 4.0, 1.0,
      "Multiplies the solver's Stiffness for this region's hair (hairspray raises it); the product is capped at 1", S::Linear},
+    {HairThickness, "hair_thickness", "Hair thickness", "m", G::Wisp, K::Real, 20e-6, 500e-6, 80e-6,
+     "Thickness of one hair at its root (80 µm is typical; it tapers to a quarter at the tip); the viewport draws "
+     "each strand as a lock of hairs, this many times wider", S::Log},
     {Seed, "seed", "Seed", "", G::Groom, K::Integer, 0, 2147483647, 1,
      "Random seed for root placement and variation; the same seed gives the same groom", S::Linear},
 

@@ -26,6 +26,7 @@ enum class Param : int {
     CurlRadius,
     CurlTurns,
     StiffnessScale,
+    HairThickness,
     // Groom: the whole groom
     Seed,
     // Forces

@@ -1,6 +1,7 @@
 #include "widgets/GlSupport.h"
 
 #include <QDebug>
+#include <QFile>
 #include <QMatrix4x4>
 #include <QOpenGLShaderProgram>
 
@@ -9,13 +10,41 @@
 
 namespace wisp {
 
+namespace {
+
+// A shader's text with each line `#include "FILE"` replaced by :/shaders/FILE (GLSL 3.30 has no
+// includes; shadow_lookup.glsl is shared by the hair and the head). Empty if a file is missing.
+QByteArray shaderSource(const QString& path)
+{
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly))
+        return {};
+    QByteArray out;
+    for (const QByteArray& line : file.readAll().split('\n')) {
+        const QByteArray trimmed = line.trimmed();
+        if (trimmed.startsWith("#include \"") && trimmed.endsWith('"')) {
+            const QByteArray included = shaderSource(QStringLiteral(":/shaders/") + QString::fromUtf8(trimmed.mid(10, trimmed.size() - 11)));
+            if (included.isEmpty())
+                return {};
+            out += included;
+        } else {
+            out += line;
+        }
+        out += '\n';
+    }
+    return out;
+}
+
+} // namespace
+
 std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(const QString& name, QString* error)
 {
     auto program = std::make_unique<QOpenGLShaderProgram>();
     const QString base = QStringLiteral(":/shaders/") + name;
-    if (!program->addShaderFromSourceFile(QOpenGLShader::Vertex, base + QStringLiteral(".vert"))
-        || !program->addShaderFromSourceFile(QOpenGLShader::Fragment, base + QStringLiteral(".frag"))
-        || !program->link()) {
+    const QByteArray vertex = shaderSource(base + QStringLiteral(".vert"));
+    const QByteArray fragment = shaderSource(base + QStringLiteral(".frag"));
+    if (vertex.isEmpty() || fragment.isEmpty() || !program->addShaderFromSourceCode(QOpenGLShader::Vertex, vertex)
+        || !program->addShaderFromSourceCode(QOpenGLShader::Fragment, fragment) || !program->link()) {
         if (error)
             *error = name + QStringLiteral(": ") + program->log();
         return nullptr;

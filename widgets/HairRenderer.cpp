@@ -1,5 +1,7 @@
 #include "widgets/HairRenderer.h"
 
+#include "widgets/HairShadowMap.h"
+
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
@@ -8,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace wisp {
 namespace {
@@ -31,7 +34,7 @@ bool offsetsUsable(const HairCurves& strands)
 bool sameLooks(std::span<const StrandLook> a, std::span<const StrandLook> b)
 {
     return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const StrandLook& x, const StrandLook& y) {
-        return x.rootColour == y.rootColour && x.tipColour == y.tipColour;
+        return x.rootColour == y.rootColour && x.tipColour == y.tipColour && x.rootThicknessMetres == y.rootThicknessMetres;
     });
 }
 
@@ -149,9 +152,13 @@ void HairRenderer::setLooks(std::span<const StrandLook> looks)
 void HairRenderer::uploadLooks()
 {
     // At least one look's worth of texels, so the texture always has storage.
+    // The root texel's alpha carries the look's hair thickness (0: the style's).
     std::vector<glm::vec4> texels(2 * std::max<std::size_t>(m_looks.size(), 1), glm::vec4(0.0f));
+    m_thickestLookMetres = 0.0f;
     for (std::size_t k = 0; k < m_looks.size(); ++k) {
-        texels[2 * k] = glm::vec4(linearFromSrgb(m_looks[k].rootColour), 1.0f);
+        const float thickness = std::isfinite(m_looks[k].rootThicknessMetres) ? std::clamp(m_looks[k].rootThicknessMetres, 0.0f, 0.01f) : 0.0f;
+        m_thickestLookMetres = std::max(m_thickestLookMetres, thickness);
+        texels[2 * k] = glm::vec4(linearFromSrgb(m_looks[k].rootColour), thickness);
         texels[2 * k + 1] = glm::vec4(linearFromSrgb(m_looks[k].tipColour), 1.0f);
     }
     m_gl->glBindBuffer(GL_TEXTURE_BUFFER, m_lookBuffer);
@@ -202,6 +209,8 @@ void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16
     // One pass per strand: first find out whether it is finite, then copy it with the verdict (and
     // its look) in w.
     m_skippedStrands = 0;
+    glm::vec3 low(std::numeric_limits<float>::max());
+    glm::vec3 high(-std::numeric_limits<float>::max());
     const glm::vec3* points = strands.positions.data();
     const bool withLooks = lookOfStrand.size() == strands.strandCount() && !m_looks.empty();
     for (std::size_t s = 0; s < strands.strandCount(); ++s) {
@@ -220,9 +229,13 @@ void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16
         // Wet hair (sim/HairDryer.h) is drawn darker: its wetness rides in the tag's fraction.
         const float wet = wetness.size() == strands.strandCount() ? std::clamp(wetness[s], 0.0f, 1.0f) : 0.0f;
         const float tag = (hasLook ? kFirstLookTag + static_cast<float>(lookOfStrand[s]) : kStyleTag) + kWetTagScale * wet;
-        for (std::uint32_t i = begin; i < end; ++i)
+        for (std::uint32_t i = begin; i < end; ++i) {
             out[i] = glm::vec4(points[i], tag);
+            low = glm::min(low, points[i]);
+            high = glm::max(high, points[i]);
+        }
     }
+    m_bounds = low.x <= high.x ? Aabb{ low, high } : Aabb{};
     m_gl->glUnmapBuffer(GL_TEXTURE_BUFFER);
     // A typical segment length (from up to 256 strands' first segments), to pick how finely the
     // curves are sampled for the zoom.
@@ -264,9 +277,11 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     // radius and a half in front of the head's centre.
     const float nearestDepth = std::max(-view.headCentreView.z - 1.5f * view.headRadiusMetres, 1e-3f);
     const float pixelsPerMetre = view.projection[1][1] * 0.5f * view.viewportPixels.y / nearestDepth;
-    const float rootPixels = style.rootWidthMetres * widthScale * pixelsPerMetre;
     // A line is one pixel wide whatever its width: a wider strand drawn as a line would lose the
-    // coverage the widening above gave it, so previews take ribbons past a pixel too.
+    // coverage the widening above gave it, so previews take ribbons past a pixel too (the preview
+    // keeps the look's coverage; DisplayDensityTest checks it).
+    const float thickest = std::max(style.hairThicknessMetres, m_thickestLookMetres);
+    const float rootPixels = thickest * style.lockWidthScale * widthScale * pixelsPerMetre;
     const bool lines = rootPixels <= style.minWidthPixels + 0.5f;
     // Samples per segment: enough to keep chords about pixelsPerSample long at the head's depth.
     const float centreDepth = std::max(-view.headCentreView.z, 1e-3f);
@@ -295,8 +310,9 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     setUniform(program, "u_viewportPixels", view.viewportPixels);
     setUniform(program, "u_samplesPerSegment", static_cast<float>(HairStripLayout::kSamplesPerSegment));
     setUniform(program, "u_ribbon", lines ? 0.0f : 1.0f);
-    setUniform(program, "u_rootWidthMetres", style.rootWidthMetres * widthScale);
-    setUniform(program, "u_tipWidthMetres", style.tipWidthMetres * widthScale);
+    setUniform(program, "u_hairThicknessMetres", style.hairThicknessMetres);
+    setUniform(program, "u_widthScale", style.lockWidthScale * widthScale);
+    setUniform(program, "u_tipThicknessRatio", std::clamp(style.tipThicknessRatio, 0.0f, 1.0f));
     setUniform(program, "u_minWidthPixels", std::max(style.minWidthPixels, 0.01f));
     setUniform(program, "u_rootColour", linearFromSrgb(style.rootColour));
     setUniform(program, "u_tipColour", linearFromSrgb(style.tipColour));
@@ -304,6 +320,7 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     setUniform(program, "u_fillLightView", view.fillLightView);
     setUniform(program, "u_headCentreView", view.headCentreView);
     setUniform(program, "u_tipFade", std::clamp(style.tipFade, 0.0f, 1.0f));
+    bindShadowLookup(gl, program, view.shadow);
 
     gl->glActiveTexture(GL_TEXTURE1);
     gl->glBindTexture(GL_TEXTURE_BUFFER, m_lookTexture);
@@ -321,6 +338,7 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     gl->glActiveTexture(GL_TEXTURE1);
     gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
     gl->glActiveTexture(GL_TEXTURE0);
+    unbindShadowLookup(gl);
     program.release();
 
     gl->glDisable(GL_BLEND);
@@ -329,6 +347,26 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     m_lastSamplesPerSegment
         = static_cast<int>(HairStripLayout::kSamplesPerSegment / HairStripLayout::kSampleSteps[stepIndex]);
     checkGlErrors(gl, "HairRenderer::draw");
+}
+
+void HairRenderer::drawPoints(QOpenGLShaderProgram&)
+{
+    if (!m_program || m_vertexCount == 0 || m_layout.drawnStrands == 0)
+        return;
+    GlFunctions* gl = m_gl;
+    constexpr std::size_t kCoarse = 2; // HairStripLayout::kSampleSteps[2]: the points themselves
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
+    gl->glBindVertexArray(m_vao);
+    gl->glEnable(GL_PRIMITIVE_RESTART);
+    gl->glPrimitiveRestartIndex(HairStripLayout::kRestart);
+    const HairStripLayout::IndexList& list = m_layout.indices(HairStripLayout::Primitive::Lines, kCoarse);
+    gl->glDrawElements(GL_LINE_STRIP, static_cast<GLsizei>(list.prefix[m_layout.drawnStrands]), GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(m_indexOffsets[0][kCoarse]));
+    gl->glDisable(GL_PRIMITIVE_RESTART);
+    gl->glBindVertexArray(0);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    checkGlErrors(gl, "HairRenderer::drawPoints");
 }
 
 } // namespace wisp

@@ -19,6 +19,7 @@
 
 #include "sim/Frame.h"
 #include "sim/HairCurves.h"
+#include "sim/TriangleMesh.h"
 #include "widgets/GlSupport.h"
 #include "widgets/HairStripLayout.h"
 #include "widgets/RenderView.h"
@@ -38,8 +39,14 @@ namespace wisp {
 struct HairStyle {
     glm::vec3 rootColour{ 0.14f, 0.085f, 0.05f }; // sRGB 0..1
     glm::vec3 tipColour{ 0.50f, 0.33f, 0.19f }; // sRGB 0..1
-    float rootWidthMetres = 0.0006f; // a drawn strand stands for a lock of ~20 hairs
-    float tipWidthMetres = 0.00012f;
+    // One hair's thickness at the root (Param::HairThickness's default; a look's own wins), and
+    // at the tip as a fraction of it (io/HairFiles.h exports 80 and 20 µm).
+    float hairThicknessMetres = 80e-6f;
+    float tipThicknessRatio = 0.25f;
+    // A drawn strand stands for a lock of hairs (~20 that overlap): it is drawn this many hair
+    // thicknesses wide (0.6 mm at the default thickness), so the hair covers the scalp.
+    float lockWidthScale = 7.5f;
+    float rootWidthMetres() const { return hairThicknessMetres * lockWidthScale; } // the style's drawn width
     float minWidthPixels = 1.0f; // narrower strands are drawn this wide, fainter
     float tipFade = 0.6f; // how far the tip fades out, 0..1
     // Curves get as many Catmull-Rom samples per segment (1, 2 or 4) as keep the chords about
@@ -71,6 +78,13 @@ public:
     // rest; `coarse` draws one sample per segment (the points themselves) whatever the zoom.
     void draw(const RenderView& view, const HairStyle& style, float fraction = 1.0f, bool coarse = false);
 
+    // Every strand as a line strip through its points (no subdivision), with another program,
+    // already bound, that reads the points as hair.vert does (unit 0) from attribute 0 (the shadow
+    // map's passes).
+    void drawPoints(QOpenGLShaderProgram& program);
+    // The box around the last upload's finite points (empty before any).
+    const Aabb& bounds() const { return m_bounds; }
+
     QString error() const { return m_error; }
     std::size_t strandCount() const { return m_vertexCount > 0 ? m_layout.drawnStrands : 0; } // drawable
     std::size_t skippedStrands() const { return m_skippedStrands; } // had non-finite points
@@ -92,11 +106,13 @@ private:
     GLuint m_lookBuffer = 0; // two linear-RGBA texels per look: root, tip
     GLuint m_lookTexture = 0;
     std::vector<StrandLook> m_looks; // as last given (sRGB); m_lookBuffer holds them
+    float m_thickestLookMetres = 0.0f; // the largest rootThicknessMetres of m_looks
     std::size_t m_pointCapacity = 0; // points m_pointBuffer can hold
     GLint m_maxTexels = 0; // GL_MAX_TEXTURE_BUFFER_SIZE: frames with more points are not drawn
     HairStripLayout m_layout;
     // Byte offset of each index list in m_indexBuffer: [primitive][step].
     std::array<std::array<std::size_t, 3>, 2> m_indexOffsets{};
+    Aabb m_bounds;
     float m_segmentMetres = 0.0f; // typical segment length of the last frame
     GLsizei m_vertexCount = 0; // 0: nothing to draw
     std::size_t m_skippedStrands = 0;

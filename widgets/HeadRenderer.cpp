@@ -1,11 +1,15 @@
 #include "widgets/HeadRenderer.h"
 
+#include "widgets/HairShadowMap.h"
+
 #include <QOpenGLShaderProgram>
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <utility>
+
+#include <glm/common.hpp>
 
 namespace wisp {
 
@@ -20,6 +24,7 @@ bool HeadRenderer::initialize(GlFunctions* gl)
     gl->glGenVertexArrays(1, &m_vao);
     gl->glGenBuffers(1, &m_vertexBuffer);
     gl->glGenBuffers(1, &m_weightBuffer);
+    gl->glGenBuffers(1, &m_coverageBuffer);
     gl->glGenBuffers(1, &m_indexBuffer);
     gl->glBindVertexArray(m_vao);
     gl->glBindBuffer(GL_ARRAY_BUFFER, m_vertexBuffer);
@@ -33,6 +38,9 @@ bool HeadRenderer::initialize(GlFunctions* gl)
     gl->glBindBuffer(GL_ARRAY_BUFFER, m_weightBuffer);
     gl->glEnableVertexAttribArray(2);
     gl->glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, sizeof(float), nullptr);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, m_coverageBuffer);
+    gl->glEnableVertexAttribArray(3);
+    gl->glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(glm::vec4), nullptr);
     gl->glBindVertexArray(0);
     gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
     m_indexCount = 0;
@@ -47,6 +55,8 @@ void HeadRenderer::release()
         return;
     m_gl->glDeleteBuffers(1, &m_indexBuffer);
     m_gl->glDeleteBuffers(1, &m_weightBuffer);
+    m_gl->glDeleteBuffers(1, &m_coverageBuffer);
+    m_coverageBuffer = 0;
     m_gl->glDeleteBuffers(1, &m_vertexBuffer);
     m_gl->glDeleteVertexArrays(1, &m_vao);
     m_indexBuffer = m_weightBuffer = m_vertexBuffer = m_vao = 0;
@@ -90,6 +100,10 @@ void HeadRenderer::uploadPending()
     m_gl->glBufferData(
         GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(float)), nullptr, GL_DYNAMIC_DRAW);
     m_weightsDirty = true;
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, m_coverageBuffer);
+    m_gl->glBufferData(
+        GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_DRAW);
+    m_coverageDirty = true;
     m_gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
     // The element buffer binding is VAO state: bind the VAO to touch it.
     m_gl->glBindVertexArray(m_vao);
@@ -98,6 +112,29 @@ void HeadRenderer::uploadPending()
     m_gl->glBindVertexArray(0);
     m_indexCount = static_cast<GLsizei>(m_triangles.size() * 3);
     checkGlErrors(m_gl, "HeadRenderer::uploadPending");
+}
+
+void HeadRenderer::setScalpCoverage(std::vector<glm::vec4> coverage)
+{
+    m_coverage = std::move(coverage);
+    m_coverageDirty = true;
+}
+
+void HeadRenderer::uploadCoverage()
+{
+    m_coverageDirty = false;
+    // Linear colours for the shader; zero weight where the count does not match the mesh.
+    std::vector<glm::vec4> linear(m_vertices.size(), glm::vec4(0.0f));
+    if (m_coverage.size() == m_vertices.size())
+        for (std::size_t i = 0; i < linear.size(); ++i) {
+            const glm::vec4& c = m_coverage[i];
+            const float w = std::isfinite(c.w) ? std::clamp(c.w, 0.0f, 1.0f) : 0.0f;
+            linear[i] = glm::vec4(linearFromSrgb(glm::clamp(glm::vec3(c), 0.0f, 1.0f)), w);
+        }
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, m_coverageBuffer);
+    m_gl->glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(linear.size() * sizeof(glm::vec4)), linear.data());
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
+    checkGlErrors(m_gl, "HeadRenderer::uploadCoverage");
 }
 
 void HeadRenderer::uploadWeights()
@@ -121,6 +158,8 @@ void HeadRenderer::draw(const RenderView& view, bool showGrowthOverlay)
         uploadPending();
     if (m_weightsDirty)
         uploadWeights();
+    if (m_coverageDirty && !m_vertices.empty())
+        uploadCoverage();
     if (m_indexCount == 0)
         return;
 
@@ -141,12 +180,29 @@ void HeadRenderer::draw(const RenderView& view, bool showGrowthOverlay)
     setUniform(program, "u_keyLightView", view.keyLightView);
     setUniform(program, "u_fillLightView", view.fillLightView);
     setUniform(program, "u_growthOverlay", showGrowthOverlay && hasGrowthOverlay() ? 1.0f : 0.0f);
+    bindShadowLookup(gl, program, view.shadow);
     gl->glBindVertexArray(m_vao);
     gl->glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);
     gl->glBindVertexArray(0);
+    unbindShadowLookup(gl);
     program.release();
     gl->glDisable(GL_CULL_FACE);
     checkGlErrors(gl, "HeadRenderer::draw");
+}
+
+void HeadRenderer::drawWith(QOpenGLShaderProgram&)
+{
+    if (!m_program)
+        return;
+    if (m_dirty)
+        uploadPending();
+    if (m_indexCount == 0)
+        return;
+    // Both faces: a shadow map wants the nearest surface whichever way it faces.
+    m_gl->glBindVertexArray(m_vao);
+    m_gl->glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);
+    m_gl->glBindVertexArray(0);
+    checkGlErrors(m_gl, "HeadRenderer::drawWith");
 }
 
 } // namespace wisp

@@ -37,9 +37,17 @@ public:
     // their count, but shown only while it equals the mesh's vertex count, so the head and its
     // weights may arrive in either order.
     void setGrowthWeights(std::vector<float> weights);
+    // Per vertex: sRGB root colour of the hair growing there and its weight (scalpCoverage in
+    // sim/GrowthRegion.h); the skin is tinted toward it (the scalp under the hair). Shown while
+    // its count equals the mesh's vertices.
+    void setScalpCoverage(std::vector<glm::vec4> coverage);
     bool hasGrowthOverlay() const { return !m_weights.empty() && m_weights.size() == m_vertices.size(); }
     // `showGrowthOverlay`: tint by the weights, if there are usable ones; else plain skin.
     void draw(const RenderView& view, bool showGrowthOverlay = false);
+
+    // The mesh's triangles with another program, already bound, whose attribute 0 is the position
+    // (the shadow map's depth pass).
+    void drawWith(QOpenGLShaderProgram& program);
 
     // The colour it is shaded in, sRGB 0..1 (the skin tone unless set).
     void setColour(const glm::vec3& srgb) { m_colourSrgb = srgb; }
@@ -54,21 +62,25 @@ private:
     };
     void uploadPending();
     void uploadWeights();
+    void uploadCoverage();
 
     GlFunctions* m_gl = nullptr;
     std::unique_ptr<QOpenGLShaderProgram> m_program;
     GLuint m_vao = 0;
     GLuint m_vertexBuffer = 0;
     GLuint m_weightBuffer = 0; // one float per vertex, sized with the mesh
+    GLuint m_coverageBuffer = 0; // one vec4 per vertex (linear RGB, weight), sized with the mesh
     GLuint m_indexBuffer = 0;
     GLsizei m_indexCount = 0;
     // Kept after uploading: a new context (the widget moved to another window) needs them again.
     std::vector<Vertex> m_vertices;
     std::vector<glm::uvec3> m_triangles;
     std::vector<float> m_weights;
+    std::vector<glm::vec4> m_coverage; // as given: sRGB, weight
     glm::vec3 m_colourSrgb{ kSkinSrgb[0], kSkinSrgb[1], kSkinSrgb[2] };
     bool m_dirty = false;
     bool m_weightsDirty = false;
+    bool m_coverageDirty = false;
     QString m_error;
 };
 

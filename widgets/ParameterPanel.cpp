@@ -19,6 +19,9 @@ int decimalsFor(const ParameterInfo& p)
     if (p.kind != ParamKind::Real)
         return 0;
     const double span = p.maximum - p.minimum;
+    // Tiny ranges (hair thickness, in metres) need a hundredth of their span to show.
+    if (span <= 0.001)
+        return 6;
     return span <= 0.1 ? 4 : span <= 2.0 ? 3 : 2;
 }
 

@@ -5,21 +5,33 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 namespace wisp {
+
+// The key light's deep opacity map (HairShadowMap), as receivers read it.
+struct ShadowLookup {
+    bool enabled = false;
+    // World point -> (u, v) in the map (0..1) and z = its distance from the light, metres.
+    glm::mat4 worldToShadow{ 1.0f };
+    unsigned depthTexture = 0; // r: nearest hair or head, g: nearest head (metres from the light)
+    unsigned opacityTexture = 0; // opacity in front of the end of each of the four layers
+    glm::vec4 layerMetres{ 0.0f }; // where the layers end, behind the depth in r
+};
 
 struct RenderView {
     glm::mat4 view{ 1.0f };
     glm::mat4 projection{ 1.0f };
     glm::mat4 viewProjection{ 1.0f };
     glm::vec2 viewportPixels{ 1.0f }; // framebuffer size in device pixels
-    // Lighting is a head-lamp rig fixed to the camera (as DCC viewports do), so the key light
-    // always models what the artist looks at. Unit vectors toward the lights, view space.
+    // The key light is fixed to the head (or to the camera, on request: see Viewport); the fill is
+    // a head-lamp fixed to the camera. Unit vectors toward the lights, view space.
     glm::vec3 keyLightView{ 0.0f, 0.0f, 1.0f };
     glm::vec3 fillLightView{ 0.0f, 0.0f, 1.0f };
     glm::vec3 headCentreView{ 0.0f }; // the head's centre in view space, metres (hair's volume normals)
     float headRadiusMetres = 0.1f;
     int samples = 0; // MSAA samples of the target framebuffer (0 or 1: none)
+    ShadowLookup shadow;
 };
 
 } // namespace wisp

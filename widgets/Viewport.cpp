@@ -36,6 +36,12 @@ static void initialiseWidgetResources()
 namespace wisp {
 namespace {
 
+// How much of the key light a strand crossing a shadow-map texel takes, per unit of its width over
+// the texel's: above 1, since a drawn strand stands for a lock whose hairs also scatter light away.
+constexpr float kStrandShadowOpacity = 1.5f;
+// While the hair moves, its shadows are rendered again every this many paints.
+constexpr std::uint64_t kShadowPaintInterval = 2;
+
 // A plausible adult head with neck, for framing before any head is set (metres).
 constexpr Aabb kFallbackHeadBounds{ { -0.09f, -0.23f, -0.11f }, { 0.09f, 0.14f, 0.12f } };
 
@@ -145,6 +151,7 @@ void Viewport::releaseGl()
         m_compositor.release();
         m_guides.release();
         m_hair.release();
+        m_shadowMap.release();
         m_head.release();
         m_body.release();
         m_background.release();
@@ -160,6 +167,7 @@ void Viewport::setHead(const TriangleMesh& head)
 {
     m_head.setMesh(head);
     ++m_backdropRevision;
+    m_shadowMap.invalidate();
     const bool usable = validateMesh(head).empty();
     const Aabb bounds = usable ? boundsOf(head) : kFallbackHeadBounds;
     m_hasHead = usable;
@@ -181,6 +189,7 @@ void Viewport::setBody(const std::vector<Capsule>& capsules)
     m_bodyCapsules = capsules;
     m_body.setMesh(capsuleMesh(m_bodyCapsules));
     ++m_backdropRevision;
+    m_shadowMap.invalidate();
     scheduleFrame();
 }
 
@@ -189,9 +198,7 @@ void Viewport::setFrame(FramePtr frame)
     m_frame = std::move(frame);
     m_frameDirty = true;
     if (m_frame && m_frame->wind != m_wind) {
-        m_wind = m_frame->wind;
-        m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
-        ++m_backdropRevision;
+        m_wind = m_frame->wind; // shown beside the axis gizmo (updateOverlays)
     }
     scheduleFrame();
 }
@@ -200,9 +207,7 @@ void Viewport::setWind(const glm::vec3& windMetresPerSecond)
 {
     if (windMetresPerSecond == m_wind)
         return;
-    m_wind = windMetresPerSecond;
-    m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
-    ++m_backdropRevision;
+    m_wind = windMetresPerSecond; // shown beside the axis gizmo (updateOverlays)
     scheduleFrame();
 }
 
@@ -236,6 +241,41 @@ void Viewport::rebuildGuides()
     m_guides.setGrid(buildGroundGrid(m_headBounds));
     m_guides.setWindArrow(buildWindArrow(m_headBounds, m_wind));
     ++m_backdropRevision;
+}
+
+void Viewport::setScalpCoverage(std::vector<glm::vec4> coverage)
+{
+    m_head.setScalpCoverage(std::move(coverage));
+    ++m_backdropRevision;
+    scheduleFrame();
+}
+
+void Viewport::setPaused(bool paused)
+{
+    if (paused == m_paused)
+        return;
+    m_paused = paused;
+    scheduleFrame(); // the HUD says so
+}
+
+void Viewport::setShadowsEnabled(bool enabled)
+{
+    if (enabled == m_shadowsEnabled)
+        return;
+    m_shadowsEnabled = enabled;
+    m_shadowMap.invalidate();
+    ++m_backdropRevision; // the head shows the hair's shadow
+    scheduleFrame();
+}
+
+void Viewport::setLightFollowsCamera(bool follows)
+{
+    if (follows == m_lightFollowsCamera)
+        return;
+    m_lightFollowsCamera = follows;
+    m_shadowMap.invalidate();
+    ++m_backdropRevision;
+    scheduleFrame();
 }
 
 void Viewport::setShowGrid(bool show)
@@ -277,7 +317,7 @@ QColor Viewport::backgroundColour(double heightFraction)
 
 QString Viewport::hudText() const
 {
-    return composeHudText(m_frame.get(), m_fps, m_lastPreview ? m_lastFraction : 1.0, m_lastPreview);
+    return composeHudText(m_frame.get(), m_fps, m_lastPreview ? m_lastFraction : 1.0, m_lastPreview, m_paused);
 }
 
 void Viewport::setLevelOfDetail(bool enabled)
@@ -466,7 +506,10 @@ void Viewport::presentFrame()
 
 QImage Viewport::grabFramebuffer()
 {
-    if (!drawFrame())
+    m_grabbing = true;
+    const bool drawn = drawFrame();
+    m_grabbing = false;
+    if (!drawn)
         return {};
     m_canvas.bindGrab();
     m_compositor.draw(m_canvas.frameColourTexture(), m_canvas.samples(), m_canvas.size());
@@ -603,6 +646,9 @@ void Viewport::initializeGL()
     m_body.setColour({ 0.80f, 0.61f, 0.52f }); // the skin a little darker, so the head stands out
     if (!m_hair.initialize(m_gl))
         errors << m_hair.error();
+    // Without shadows (a driver without float framebuffers) the hair is still drawn, lit.
+    if (!m_shadowMap.initialize(m_gl))
+        qWarning("Viewport: %s", qPrintable(m_shadowMap.error()));
     if (!m_guides.initialize(m_gl))
         errors << m_guides.error();
     if (!m_compositor.initialize(m_gl))
@@ -627,9 +673,12 @@ RenderView Viewport::renderView() const
     view.view = camera.view();
     view.projection = camera.projection(aspect());
     view.viewProjection = view.projection * view.view;
-    // Key from the upper left and in front, fill low from the right: the classic portrait setup.
-    view.keyLightView = glm::normalize(glm::vec3(-0.45f, 0.65f, 0.60f));
+    // Key from the upper left and in front, fill low from the right: the classic portrait setup. The
+    // fill follows the camera; the key stays with the head unless asked to follow (keyLightWorld).
+    view.keyLightView = glm::normalize(glm::mat3(view.view) * keyLightWorld());
     view.fillLightView = glm::normalize(glm::vec3(0.70f, -0.15f, 0.45f));
+    if (m_shadowsEnabled && m_shadowMap.valid())
+        view.shadow = m_shadowMap.lookup();
     // The cranium's centre, not the box's (which the neck pulls down): hair wraps around it.
     const glm::vec3 cranium{ m_headBounds.center().x, m_headBounds.max.y - 0.3f * m_headBounds.size().y,
         m_headBounds.center().z };
@@ -637,6 +686,56 @@ RenderView Viewport::renderView() const
     view.headRadiusMetres = 0.5f * std::max(m_headBounds.size().x, m_headBounds.size().z);
     view.samples = m_samples;
     return view;
+}
+
+glm::vec3 Viewport::keyLightWorld() const
+{
+    // Where the portrait key (upper left, in front) is seen from the start-up view, or from the
+    // camera now when the light follows it.
+    const glm::vec3 keyView = glm::normalize(glm::vec3(-0.45f, 0.65f, 0.60f));
+    OrbitCamera startUp;
+    const glm::mat3 turn(m_lightFollowsCamera ? m_camera.view() : startUp.view());
+    return glm::normalize(glm::transpose(turn) * keyView);
+}
+
+void Viewport::updateShadows()
+{
+    const bool wanted = m_shadowsEnabled && m_frame && m_hair.strandCount() > 0;
+    if (!wanted) {
+        if (m_shadowMap.valid()) {
+            m_shadowMap.invalidate();
+            ++m_backdropRevision; // the head loses the hair's shadow
+        }
+        return;
+    }
+    const glm::vec3 light = keyLightWorld();
+    if (m_shadowMap.valid() && !m_hairMoved && light == m_shadowLight)
+        return;
+    // While the hair moves, every other paint: a shadow a frame late does not show, and the passes
+    // (and the head drawn again under the new shadow) cost a software rasteriser much of a frame.
+    // The paint after the last skipped one catches up, so a still scene's shadows are its own.
+    // Grabbed frames (tests, rendered images) always have their own.
+    if (!m_grabbing && m_shadowMap.valid() && light == m_shadowLight
+        && m_paintCount < m_shadowPaint + kShadowPaintInterval) {
+        scheduleFrame();
+        return;
+    }
+    m_shadowPaint = m_paintCount;
+    m_hairMoved = false;
+    m_shadowLight = light;
+    // Everything that can cast or take a shadow: the hair and the head (with a little margin).
+    Aabb box = m_headBounds;
+    const Aabb& hair = m_hair.bounds();
+    box.min = glm::min(box.min, hair.min);
+    box.max = glm::max(box.max, hair.max);
+    const float radius = 0.5f * glm::length(box.size()) + 0.01f;
+    // What one strand takes of the light crossing a texel: its width over the texel's (capped).
+    const float texelMetres = 2.0f * radius / static_cast<float>(HairShadowMap::kPixels);
+    const float opacity = std::clamp(kStrandShadowOpacity * m_hairStyle.rootWidthMetres() / texelMetres, 0.02f, 1.0f);
+    const std::uint64_t before = m_shadowMap.passCount();
+    m_shadowMap.render(m_hair, m_head, m_body, light, box.center(), radius, opacity);
+    if (m_shadowMap.passCount() != before)
+        ++m_backdropRevision; // the head shows the new shadow (none drawn: no GL for it, nothing new)
 }
 
 void Viewport::measureFrameRate()
@@ -713,8 +812,6 @@ void Viewport::drawBackdrop(const RenderView& view)
         m_background.draw(kBackgroundTop, kBackgroundBottom);
     m_head.draw(view, m_showGrowthOverlay);
     m_body.draw(view);
-    if (!m_image)
-        m_guides.drawWindArrow(view);
     if (m_showGrid && !transparent)
         m_guides.drawGrid(view); // translucent and writing no depth: the hair is drawn over it
 }
@@ -722,6 +819,14 @@ void Viewport::drawBackdrop(const RenderView& view)
 void Viewport::paintGL(bool framebuffersRemade)
 {
     if (m_image) {
+        // An image always has its own, up-to-date shadows (drawn before the frame is bound: the
+        // map has framebuffers of its own).
+        uploadFrameIfChanged();
+        const bool grabbing = m_grabbing;
+        m_grabbing = true;
+        if (m_shadowMap.valid() || m_shadowsEnabled)
+            updateShadows();
+        m_grabbing = grabbing;
         paintImage(renderView());
         return;
     }
@@ -731,6 +836,8 @@ void Viewport::paintGL(bool framebuffersRemade)
     paintClock.start();
     uploadFrameIfChanged();
 
+    if (m_shadowMap.valid() || m_shadowsEnabled)
+        updateShadows();
     m_samples = m_canvas.samples() > 1 ? m_canvas.samples() : 0;
     const RenderView view = renderView();
 
@@ -800,9 +907,11 @@ void Viewport::uploadFrameIfChanged()
             m_drawnWetness);
         m_hair.setLooks(m_frame->looks);
         m_hair.upload(m_drawnStrands, m_drawnLooks, m_drawnWetness);
+        m_hairMoved = true;
     } else if (m_frame) {
         m_hair.setLooks(m_frame->looks);
         m_hair.upload(m_frame->strands, m_frame->lookOfStrand, m_frame->wetness);
+        m_hairMoved = true;
     } else {
         m_hair.clear();
     }
@@ -846,7 +955,6 @@ void Viewport::paintImage(const RenderView& view)
     drawBackdrop(imageView);
     m_gl->glViewport(
         0, 0, static_cast<GLsizei>(imageView.viewportPixels.x), static_cast<GLsizei>(imageView.viewportPixels.y));
-    // SHADOWS: the look helper's setShadowsEnabled(bool) applies here as in paintGL (wired at merge).
     const float preview = std::clamp(m_image->previewFraction, 0.0f, 1.0f);
     m_hair.draw(imageView, drawnStyle(), std::min(m_displayDensity, 1.0f) * preview, preview < 1.0f);
     m_gl->glDisable(GL_DEPTH_TEST);
@@ -864,10 +972,12 @@ void Viewport::updateOverlays(const RenderView& view)
         m_compositor.setOverlay(FrameCompositor::Slot::Hud, paintHudImage(hud, ratio), QPoint(0, 0));
     }
     const glm::mat3 turn(view.view);
-    if (!m_gizmoShown || *m_gizmoShown != turn || ratio != m_overlayRatio || pixels.height() != m_gizmoTargetHeight) {
+    if (!m_gizmoShown || *m_gizmoShown != turn || ratio != m_overlayRatio || pixels.height() != m_gizmoTargetHeight
+        || m_gizmoWind != m_wind) {
         m_gizmoShown = turn;
+        m_gizmoWind = m_wind;
         m_gizmoTargetHeight = pixels.height();
-        const QImage gizmo = paintGizmoImage(view.view, ratio);
+        const QImage gizmo = paintGizmoImage(view.view, ratio, m_wind);
         m_compositor.setOverlay(FrameCompositor::Slot::Gizmo, gizmo, QPoint(0, pixels.height() - gizmo.height()));
     }
     m_overlayRatio = ratio;

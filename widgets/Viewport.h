@@ -33,6 +33,7 @@
 #include "widgets/HairChildren.h"
 #include "widgets/HairDetail.h"
 #include "widgets/HairRenderer.h"
+#include "widgets/HairShadowMap.h"
 #include "sim/Solver.h"
 #include "widgets/HeadRenderer.h"
 #include "widgets/OrbitCamera.h"
@@ -106,7 +107,8 @@ public:
     // and schedules a repaint; the points are streamed to the GPU in that paint.
     void setFrame(FramePtr frame);
     FramePtr frame() const { return m_frame; }
-    // For the wind arrow. Frames carry their wind too; whichever arrived last is shown.
+    // For the wind indicator beside the axis gizmo (bottom left, never over the model). Frames
+    // carry their wind too; whichever arrived last is shown.
     void setWind(const glm::vec3& windMetresPerSecond);
     glm::vec3 wind() const { return m_wind; }
 
@@ -130,7 +132,19 @@ public:
     // to the GPU in the next paint.
     void setGrowthOverlay(std::vector<float> weights);
     void setShowGrowthOverlay(bool show);
+    // The scalp under the hair, per head vertex (scalpCoverage in sim/GrowthRegion.h): the skin is
+    // tinted toward the hair's root colour there.
+    void setScalpCoverage(std::vector<glm::vec4> coverage);
     bool showGrowthOverlay() const { return m_showGrowthOverlay; }
+
+    // Hair shadows (deep opacity map from the key light, see ShadowMap): hair shades hair, hair
+    // shadows the head and the head shadows the hair. On by default.
+    void setShadowsEnabled(bool enabled);
+    bool shadowsEnabled() const { return m_shadowsEnabled; }
+    // The key light is fixed to the head by default (orbiting a paused scene reuses the shadows);
+    // following the camera keeps the head lit from the artist's side, at a shadow pass per orbit step.
+    void setLightFollowsCamera(bool follows);
+    bool lightFollowsCamera() const { return m_lightFollowsCamera; }
 
     bool showGrid() const { return m_showGrid; }
     void setHairColours(const QColor& root, const QColor& tip);
@@ -158,10 +172,15 @@ public:
 
     // The heads-up line as it is drawn (composed from the current frame and frame rate).
     QString hudText() const;
+    // The simulation is paused: the HUD says so instead of a frame rate and solver time that
+    // would be the last measured before the pause.
+    void setPaused(bool paused);
+    bool paused() const { return m_paused; }
     // Paints per second, smoothed; pauses of more than half a second (nothing to draw) are not
     // counted as slow drawing.
     double framesPerSecond() const { return m_fps; }
     std::uint64_t paintCount() const { return m_paintCount; } // paintGL calls so far
+    std::uint64_t shadowPassCount() const { return m_shadowMap.passCount(); } // shadow maps rendered so far
     // The background at a height of the view: 0 is the top edge, 1 the bottom.
     static QColor backgroundColour(double heightFraction);
     // Empty when GL is ready; otherwise why nothing 3D is drawn (no 3.3 context, a shader error).
@@ -220,6 +239,8 @@ private:
     void paintUnavailable();
     void updateBrushRings(const RenderView& view);
     float metresPerPixelAt(const RenderView& view, const glm::vec3& worldMetres) const;
+    glm::vec3 keyLightWorld() const; // unit, toward the key light
+    void updateShadows(); // renders the shadow map again if the hair, head or light moved
 
     // While renderImage() draws: its size, camera and background.
     struct ImageRender {
@@ -244,7 +265,10 @@ private:
     bool m_brushDirty = false; // rings not rebuilt since the cursor changed
     float m_brushBandMetres = 0.0f; // of the rings last built (they keep a constant width on screen)
     float m_mirrorBandMetres = 0.0f;
-    bool m_showGrowthOverlay = true;
+    bool m_showGrowthOverlay = false;
+    bool m_shadowsEnabled = true;
+    bool m_paused = false;
+    bool m_lightFollowsCamera = false;
 
     ViewportWindow* m_window = nullptr; // owned by m_container
     QWidget* m_container = nullptr;
@@ -256,6 +280,7 @@ private:
     std::optional<BackdropKey> m_lastBackdropKey; // what the last frame's backdrop was to show
     QString m_hudShown; // what the compositor's overlays show
     std::optional<glm::mat3> m_gizmoShown;
+    glm::vec3 m_gizmoWind{ 0.0f }; // the wind the gizmo's image shows
     int m_gizmoTargetHeight = 0;
     double m_overlayRatio = 0.0;
     QTimer m_frameTimer; // a frame at the next turn of the event loop
@@ -269,6 +294,11 @@ private:
     HeadRenderer m_body; // the body's capsules as one mesh
     std::vector<Capsule> m_bodyCapsules;
     HairRenderer m_hair;
+    HairShadowMap m_shadowMap;
+    bool m_hairMoved = false; // points uploaded since the shadow map was rendered
+    glm::vec3 m_shadowLight{ 0.0f }; // the light the shadow map was rendered for
+    std::uint64_t m_shadowPaint = 0; // m_paintCount when it was rendered
+    bool m_grabbing = false; // drawing for grabFramebuffer: shadows never a paint late
     GuideRenderer m_guides;
 
     Drag m_drag = Drag::None;

@@ -5,6 +5,10 @@
 #include <QFontMetricsF>
 #include <QPainter>
 #include <QPainterPath>
+#include <QPolygonF>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 
 #include <algorithm>
 #include <array>
@@ -12,8 +16,15 @@
 
 namespace wisp {
 
-QString composeHudText(const Frame* frame, double framesPerSecond, double drawnFraction, bool preview)
+QString composeHudText(const Frame* frame, double framesPerSecond, double drawnFraction, bool preview, bool paused)
 {
+    if (paused) {
+        if (!frame)
+            return QStringLiteral("paused · no hair");
+        return QStringLiteral("paused · %1 strands · %2 particles")
+            .arg(frame->strands.strandCount())
+            .arg(frame->simulatedParticles);
+    }
     const double fps = std::isfinite(framesPerSecond) ? std::max(framesPerSecond, 0.0) : 0.0;
     QString text = QStringLiteral("fps %1").arg(std::lround(fps));
     if (!frame)
@@ -129,14 +140,62 @@ QImage paintHudImage(const QString& text, double ratio)
     return image;
 }
 
-QImage paintGizmoImage(const glm::mat4& view, double ratio)
+QImage paintGizmoImage(const glm::mat4& view, double ratio, const glm::vec3& windMetresPerSecond)
 {
     const double size = kGizmoImageSize;
-    QImage image = transparentImage(QSizeF(size, size), ratio);
+    const float speed = glm::length(windMetresPerSecond);
+    const bool wind = std::isfinite(speed) && speed > 1e-3f;
+    QImage image = transparentImage(QSizeF(size + (wind ? kWindIndicatorWidth : 0), size), ratio);
     QPainter painter(&image);
     const double margin = 8.0;
     drawAxisGizmo(painter, QRectF(margin, margin, size - 2.0 * margin, size - 2.0 * margin), view);
+    if (wind)
+        drawWindIndicator(painter, QRectF(size, margin, kWindIndicatorWidth - margin, size - 2.0 * margin), view,
+            windMetresPerSecond);
     return image;
+}
+
+void drawWindIndicator(QPainter& painter, const QRectF& area, const glm::mat4& view, const glm::vec3& windMetresPerSecond)
+{
+    const float speed = glm::length(windMetresPerSecond);
+    if (!std::isfinite(speed) || speed <= 1e-3f)
+        return;
+    painter.save();
+    painter.setRenderHint(QPainter::Antialiasing, true);
+    const QColor blue(70, 150, 245);
+    const double radius = 0.5 * std::min(area.width(), area.height() - 14.0);
+    const QPointF centre(area.center().x(), area.top() + radius);
+    painter.setPen(Qt::NoPen);
+    painter.setBrush(QColor(0, 0, 0, 50));
+    painter.drawEllipse(centre, radius, radius);
+    // The wind's direction in view space; the painter's y runs down. Toward or away from the viewer
+    // it shrinks on screen, as the axes do.
+    const glm::vec3 direction = glm::mat3(view) * (windMetresPerSecond / speed);
+    const QPointF half = QPointF(direction.x, -direction.y) * (radius - 6.0);
+    const QPointF tail = centre - half;
+    const QPointF tip = centre + half;
+    painter.setPen(QPen(direction.z < 0.0f ? blue.darker(140) : blue, 3.0, Qt::SolidLine, Qt::RoundCap));
+    painter.drawLine(tail, tip);
+    const double length = std::hypot(half.x(), half.y());
+    if (length > 2.0) {
+        const QPointF along = half / length;
+        const QPointF across(-along.y(), along.x());
+        const QPolygonF head{ tip + along * 3.0, tip - along * 7.0 + across * 5.0, tip - along * 7.0 - across * 5.0 };
+        painter.setPen(Qt::NoPen);
+        painter.setBrush(blue);
+        painter.drawPolygon(head);
+    } else {
+        painter.setPen(Qt::NoPen);
+        painter.setBrush(blue);
+        painter.drawEllipse(centre, 4.0, 4.0); // straight along the view
+    }
+    QFont font = painter.font();
+    font.setPixelSize(10);
+    painter.setFont(font);
+    painter.setPen(QColor(225, 228, 235));
+    painter.drawText(QRectF(area.left(), area.bottom() - 12.0, area.width(), 14.0), Qt::AlignCenter,
+        QStringLiteral("%1 m/s").arg(static_cast<double>(speed), 0, 'g', 3));
+    painter.restore();
 }
 
 } // namespace wisp

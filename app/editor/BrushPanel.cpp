@@ -64,8 +64,8 @@ BrushPanel::BrushPanel(PaintTool* tool, QWidget* parent) : QWidget(parent), m_to
     m_mirror->setToolTip(tr("Paint both sides of the head at once (symmetry across the head's mid-plane)"));
     form->addRow(m_mirror);
     m_overlay = new QCheckBox(tr("Show growth weights"));
-    m_overlay->setToolTip(tr("Tint the head by the current region's painted weights"));
-    m_overlay->setChecked(true);
+    m_overlay->setToolTip(tr("Tint the head by the current region's painted weights even when not painting"));
+    m_overlay->setChecked(false); // the tint shows while painting anyway
     form->addRow(m_overlay);
 
     connect(m_paint, &QPushButton::toggled, m_tool, &PaintTool::setActive);

@@ -142,6 +142,18 @@ void MainWindow::createActions()
     };
     connect(m_densityMenu, &QMenu::aboutToShow, this, showDensity);
     showDensity();
+    QAction* shadows = m_viewMenu->addAction(tr("Show &Shadows"));
+    shadows->setObjectName(QStringLiteral("showShadowsAction"));
+    shadows->setCheckable(true);
+    shadows->setChecked(m_viewport->shadowsEnabled());
+    shadows->setToolTip(tr("Hair shades hair and the head, and the head shades the hair"));
+    connect(shadows, &QAction::toggled, m_viewport, &Viewport::setShadowsEnabled);
+    QAction* followLight = m_viewMenu->addAction(tr("Light &Follows Camera"));
+    followLight->setObjectName(QStringLiteral("lightFollowsCameraAction"));
+    followLight->setCheckable(true);
+    followLight->setChecked(m_viewport->lightFollowsCamera());
+    followLight->setToolTip(tr("Off: the key light is fixed to the head, so orbiting shows its lit and shaded sides"));
+    connect(followLight, &QAction::toggled, m_viewport, &Viewport::setLightFollowsCamera);
     m_viewMenu->addSeparator();
 
     QMenu* toolsMenu = menuBar()->addMenu(tr("&Tools"));
@@ -170,9 +182,11 @@ void MainWindow::createActions()
     });
     m_overlayAction = m_viewMenu->addAction(tr("Show Growth &Weights"));
     m_overlayAction->setCheckable(true);
-    m_overlayAction->setChecked(true);
+    // Off at first: the tint is a painting aid; the head shows the hair's root colour instead.
+    m_overlayAction->setChecked(false);
     m_overlayAction->setShortcut(QKeySequence(tr("Shift+W")));
-    connect(m_overlayAction, &QAction::toggled, m_viewport, &Viewport::setShowGrowthOverlay);
+    connect(m_overlayAction, &QAction::toggled, this, &MainWindow::showGrowthTint);
+    connect(m_paintTool, &PaintTool::activeChanged, this, &MainWindow::showGrowthTint);
 
     QMenu* sim = menuBar()->addMenu(tr("&Simulation"));
     m_play = sim->addAction(tr("&Play"));
@@ -269,8 +283,7 @@ void MainWindow::createDocks()
     connect(m_styleTool, &StyleTool::brushChanged, this, [this, styling](std::optional<StyleBrush> b) {
         if (b)
             styling->raise();
-        // The growth weights' tint is for painting: styling shows the head as it is.
-        m_viewport->setShowGrowthOverlay(!b && m_overlayAction->isChecked());
+        showGrowthTint();
     });
     connect(m_brushPanel, &BrushPanel::showOverlayToggled, m_overlayAction, &QAction::setChecked);
     connect(m_overlayAction, &QAction::toggled, m_brushPanel->overlayBox(), &QCheckBox::setChecked);
@@ -329,10 +342,20 @@ void MainWindow::showBody()
                                                                           : std::vector<Capsule>{});
 }
 
+// The growth weights' tint is for painting: it shows while the paint tool is up or when asked for
+// (View > Show Growth Weights), never while a styling tool is (styling shows the head as it is).
+void MainWindow::showGrowthTint()
+{
+    const bool styling = m_styleTool->brush().has_value();
+    m_viewport->setShowGrowthOverlay(!styling && (m_paintTool->isActive() || m_overlayAction->isChecked()));
+}
+
 void MainWindow::showGrowthOverlay()
 {
     const int current = m_document->currentRegion();
     m_viewport->setGrowthOverlay(current >= 0 ? m_document->region(current).weights : std::vector<float>{});
+    m_viewport->setScalpCoverage(
+        scalpCoverage(m_document->regions(), m_document->soloRegion(), m_document->head().positions.size()));
 }
 
 void MainWindow::connectSimulation()
@@ -346,6 +369,7 @@ void MainWindow::connectSimulation()
 
 void MainWindow::updatePlayAction(bool playing)
 {
+    m_viewport->setPaused(!playing);
     m_play->setChecked(playing);
     m_play->setText(playing ? tr("&Pause") : tr("&Play"));
     m_play->setToolTip(playing ? tr("Pause the simulation (Space)") : tr("Play the simulation (Space)"));

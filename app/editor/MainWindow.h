@@ -71,6 +71,7 @@ private:
     void saveSettings() const;
     void updatePlayAction(bool playing);
     void showGrowthOverlay();  // the current region's weights on the head
+    void showGrowthTint();     // whether the viewport shows them
     void showBody();
     void updateTitle();        // the project's name, and * while it has unsaved changes
     QDockWidget* addPanelDock(const QString& title, const QString& objectName, QWidget* panel, Qt::DockWidgetArea area);

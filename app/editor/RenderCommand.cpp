@@ -227,8 +227,7 @@ int runRenderCommand(const RenderRequest& request, QTextStream& out, QTextStream
     viewport.setBody(document.parameters().get(Param::Body) != 0.0 ? defaultBody(document.head()) : std::vector<Capsule>{});
     viewport.setShowGrowthOverlay(false);
     viewport.setFrame(settled.frame);
-    // SHADOWS: the look helper's Viewport::setShadowsEnabled(bool) is wired here at merge:
-    //   viewport.setShadowsEnabled(request.shadows);
+    viewport.setShadowsEnabled(request.shadows);
     const int images = std::max(request.turntableFrames, 1);
     for (int i = 0; i < images; ++i) {
         Viewport::ImageOptions options;

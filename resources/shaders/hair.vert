@@ -10,14 +10,16 @@ layout(location = 0) in uvec2 a_ref;
 // colours (u_rootColour, u_tipColour), 2 + k for look k of u_looks; plus 0.45 times the strand's
 // wetness (wet hair is darker).
 uniform samplerBuffer u_points;
-uniform samplerBuffer u_looks;   // look k: texel 2k its root colour, 2k + 1 its tip colour (linear RGB)
+uniform samplerBuffer u_looks;   // look k: texel 2k its root colour (alpha: its hair thickness, metres, or 0),
+                                 // 2k + 1 its tip colour (linear RGB)
 uniform mat4 u_view;
 uniform mat4 u_projection;
 uniform vec2 u_viewportPixels;
 uniform float u_samplesPerSegment;
 uniform float u_ribbon;           // 1: camera-facing ribbon; 0: line (no sideways offset)
-uniform float u_rootWidthMetres;  // a drawn strand stands for a lock of hairs, so it is wider than one hair
-uniform float u_tipWidthMetres;
+uniform float u_hairThicknessMetres;  // one hair at the root, for strands without a look (or whose look has none)
+uniform float u_widthScale;          // a drawn strand stands for a lock of hairs, so it is wider than one hair
+uniform float u_tipThicknessRatio;   // the tip's thickness over the root's
 uniform float u_minWidthPixels;   // narrower strands are drawn this wide and fainter (coverage)
 
 uniform vec3 u_rootColour;  // linear RGB, for strands without a look
@@ -26,6 +28,8 @@ uniform vec3 u_keyLightView;
 uniform vec3 u_fillLightView;
 uniform vec3 u_headCentreView;
 uniform float u_tipFade;  // how much the strand fades out toward the tip, 0..1
+
+#include "shadow_lookup.glsl"
 
 // Shaded here, per vertex, not per fragment: a software rasteriser pays setup work for every
 // interpolated value of each of the ~200k thin primitives, and across a strand a pixel or two wide
@@ -44,7 +48,9 @@ float kajiyaKaySpecular(vec3 tangent, vec3 halfVector, float exponent)
 // Scheuermann's practical take on Marschner's model: a whitish one shifted toward the tip and a
 // broader one tinted with the hair's colour shifted toward the root. The head gives the hair a
 // volume normal, so hair on the side away from the light falls into shadow.
-vec3 shadeHair(vec3 positionView, vec3 T, float along, vec3 rootColour, vec3 tipColour)
+// `keyShadow`: the key light that reaches the point (the deep opacity map), `ambient`: what the hair
+// around it leaves of the ambient light; both 1 without shadows.
+vec3 shadeHair(vec3 positionView, vec3 T, float along, vec3 rootColour, vec3 tipColour, float keyShadow, float ambient)
 {
     vec3 V = normalize(-positionView);
     vec3 L = u_keyLightView;
@@ -59,15 +65,17 @@ vec3 shadeHair(vec3 positionView, vec3 T, float along, vec3 rootColour, vec3 tip
     vec3 volumeNormal = normalize(positionView - u_headCentreView + vec3(1e-6));
     float keyWrap = clamp((dot(volumeNormal, L) + 0.5) / 1.5, 0.0, 1.0);
     float fillWrap = clamp((dot(volumeNormal, u_fillLightView) + 0.5) / 1.5, 0.0, 1.0);
-    // Hair near the scalp sits under the hair above it.
-    float occlusion = mix(0.45, 1.0, smoothstep(0.0, 0.4, along));
+    // Hair near the scalp sits under the hair above it: without the maps, a guess from the position
+    // along the strand; with them, the hair's density around the point.
+    float occlusion = u_shadows > 0.5 ? mix(0.3, 1.0, ambient) : mix(0.45, 1.0, smoothstep(0.0, 0.4, along));
 
     vec3 H = normalize(L + V);
     float primary = kajiyaKaySpecular(normalize(T + 0.08 * N), H, 90.0);
     float secondary = kajiyaKaySpecular(normalize(T - 0.12 * N), H, 22.0);
 
-    vec3 colour = base * (0.18 + 0.95 * diffuse * keyWrap + 0.25 * fillWrap) * occlusion;
-    colour += keyWrap * occlusion * (0.28 * primary * vec3(1.0, 0.97, 0.92) + 0.35 * secondary * base);
+    float key = keyWrap * keyShadow;
+    vec3 colour = base * ((0.18 + 0.25 * fillWrap) * occlusion + 0.95 * diffuse * key);
+    colour += key * (0.28 * primary * vec3(1.0, 0.97, 0.92) + 0.35 * secondary * base);
     return pow(clamp(colour, 0.0, 1.0), vec3(1.0 / 2.2));
 }
 
@@ -111,7 +119,10 @@ void main()
 
     float along = (float(segment) + u) / float(max(segments, 1));
     float depth = max(-positionView.z, 1e-4);
-    float widthMetres = mix(u_rootWidthMetres, u_tipWidthMetres, along);
+    int look = int(q1.w + 0.5) - 2;
+    vec4 lookRoot = look >= 0 ? texelFetch(u_looks, 2 * look) : vec4(u_rootColour, 0.0);
+    float rootWidthMetres = (lookRoot.a > 0.0 ? lookRoot.a : u_hairThicknessMetres) * u_widthScale;
+    float widthMetres = rootWidthMetres * mix(1.0, u_tipThicknessRatio, along);
     // Pixels per metre at this depth: projection[1][1] = 1 / tan(fovY / 2).
     float widthPixels = widthMetres * u_projection[1][1] * 0.5 * u_viewportPixels.y / depth;
     float drawnPixels = max(widthPixels, u_minWidthPixels);
@@ -135,13 +146,14 @@ void main()
 
     float coverage = min(widthPixels / drawnPixels, 1.0);
     float alpha = coverage * (1.0 - u_tipFade * smoothstep(0.55, 1.0, along));
-    int look = int(q1.w + 0.5) - 2;
-    vec3 rootColour = look >= 0 ? texelFetch(u_looks, 2 * look).rgb : u_rootColour;
+    vec3 rootColour = lookRoot.rgb;
     vec3 tipColour = look >= 0 ? texelFetch(u_looks, 2 * look + 1).rgb : u_tipColour;
     // Water fills the gaps between the cuticle scales: wet hair reflects less diffusely and looks
     // darker (about half as bright soaked).
     float wetness = clamp((q1.w - float(look + 2)) / 0.45, 0.0, 1.0);
     rootColour *= 1.0 - 0.5 * wetness;
     tipColour *= 1.0 - 0.5 * wetness;
-    v_colour = vec4(shadeHair(positionView.xyz, tangentView, along, rootColour, tipColour), alpha);
+    float ambient;
+    float keyShadow = keyLight(position, 0.002, ambient);
+    v_colour = vec4(shadeHair(positionView.xyz, tangentView, along, rootColour, tipColour, keyShadow, ambient), alpha);
 }

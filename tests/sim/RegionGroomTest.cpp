@@ -313,3 +313,37 @@ TEST(RegionGroom, ResamplingKeepsEndsAndSpacesPointsEvenly)
     EXPECT_TRUE(resampleByArcLength(std::vector<glm::vec3>{{1, 1, 1}}, 5).empty());
     EXPECT_TRUE(resampleByArcLength(std::vector<glm::vec3>{{1, 1, 1}, {1, 1, 1}}, 5).empty());
 }
+
+namespace {
+
+// The scalp's tint under the hair: per vertex the root colour of the growing region that grows
+// most there, with its weight; hidden regions, solo and weights of another count are respected.
+TEST(ScalpCoverage, TakesTheStrongestGrowingRegionPerVertex)
+{
+    GrowthRegion a;
+    a.id = 1;
+    a.weights = { 1.0f, 0.2f, 0.0f, 0.5f };
+    a.rootColour = { 0.1f, 0.2f, 0.3f };
+    GrowthRegion b;
+    b.id = 2;
+    b.weights = { 0.0f, 0.8f, 0.0f, 0.4f };
+    b.rootColour = { 0.9f, 0.8f, 0.7f };
+    GrowthRegion imported;
+    imported.id = 3; // weights of another count: no tint from it
+    imported.weights = { 1.0f };
+    const std::vector<GrowthRegion> regions{ a, b, imported };
+    const std::vector<glm::vec4> all = scalpCoverage(regions, kNoSolo, 4);
+    ASSERT_EQ(all.size(), 4u);
+    EXPECT_EQ(all[0], glm::vec4(0.1f, 0.2f, 0.3f, 1.0f));
+    EXPECT_EQ(all[1], glm::vec4(0.9f, 0.8f, 0.7f, 0.8f));
+    EXPECT_EQ(all[2], glm::vec4(0.0f));
+    EXPECT_EQ(all[3], glm::vec4(0.1f, 0.2f, 0.3f, 0.5f));
+    // Solo: the other regions' hair is not there.
+    EXPECT_EQ(scalpCoverage(regions, 2, 4)[0], glm::vec4(0.0f));
+    std::vector<GrowthRegion> hidden = regions;
+    hidden[0].visible = false;
+    EXPECT_EQ(scalpCoverage(hidden, kNoSolo, 4)[0], glm::vec4(0.0f));
+    EXPECT_EQ(scalpCoverage(hidden, kNoSolo, 4)[3], glm::vec4(0.9f, 0.8f, 0.7f, 0.4f));
+}
+
+}  // namespace

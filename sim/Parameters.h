@@ -40,6 +40,8 @@ enum class Param : int {
     // Hair material and solver
     Stiffness,
     Friction,
+    Volume,
+    HairFriction,
     HairOffset,
     TimeStep,
     Substeps,

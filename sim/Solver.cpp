@@ -1,9 +1,11 @@
 #include "sim/Solver.h"
 
 #include "sim/BendingModel.h"
+#include "sim/HairVolumeGrid.h"
 #include "sim/SignedDistanceField.h"
 #include "sim/ThreadPool.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
@@ -151,6 +153,8 @@ struct Solver::Block {
     Lane stiffnessScale{};                       // per lane: multiplies the settings' stiffness
     Lane dragScale{};                            // per lane: multiplies the drag toward the wind (wet hair)
     Lane windX{}, windY{}, windZ{};              // per lane: wind of its own, m/s world (a hair dryer)
+    Lane volumeWeight{};       // per lane: metres of drawn hair one particle stands for (0: padding)
+    Lane volumeTargetScale{};  // per lane: multiplies the density the hair keeps (wet hair)
     // Views into the solver's two row arrays: every block's rows follow the previous block's, so
     // a thread streams through memory in one sequential run that the prefetcher can follow.
     std::span<ParticleRow> state;
@@ -166,6 +170,7 @@ struct StepConstants {
     float drag = 0;
     float turbulence = 0;
     int substeps = 1;
+    int substep = 0;  // the volume pass's substep (Solver::volumePass)
     double time = 0;
     glm::vec3 gravity{0.0f};
     glm::vec3 wind{0.0f};
@@ -388,8 +393,10 @@ void placeLaneAtRest(Solver::Block& block, int lane, const glm::mat3& rotation, 
     }
 }
 
+// Substeps [firstSubstep, endSubstep) of the step; the last call of a step (endSubstep ==
+// c.substeps) also puts back strands that went non-finite or flew away.
 template <bool Transformed>
-void advanceBlock(Solver::Block& block, const StepConstants& c)
+void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep)
 {
     const std::uint32_t n = block.points;
     ParticleRow* row = block.state.data();
@@ -577,7 +584,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
         return position;
     };
 
-    for (int s = 0; s < c.substeps; ++s) {
+    for (int s = firstSubstep; s < endSubstep; ++s) {
         const Lane t = splat(static_cast<float>(s + 1) / static_cast<float>(c.substeps));
         const V3 root = rootStart + (rootEnd - rootStart) * t;
         V3 parentBefore{row[0].x, row[0].y, row[0].z};
@@ -655,8 +662,10 @@ void advanceBlock(Solver::Block& block, const StepConstants& c)
         }
     }
 
-    // A strand that went non-finite or flew away is put back at rest; it never spreads, since
-    // strands do not interact.
+    if (endSubstep != c.substeps)
+        return;
+    // A strand that went non-finite or flew away is put back at rest. Strands interact only through
+    // the volume grid, which reads a non-finite particle as outside it, so it does not spread.
     Lane farthest = splat(0.0f);
     Mask finite = Mask{} == 0;
     for (std::uint32_t j = 0; j < n; ++j) {
@@ -752,6 +761,8 @@ std::string Solver::setStrands(const HairCurves& rest)
                 storeRestFrames(b, l);
                 b.stiffnessScale[l] = 1.0f;
                 b.dragScale[l] = 1.0f;
+                b.volumeWeight[l] = real ? total / static_cast<float>(count - 1) : 0.0f;
+                b.volumeTargetScale[l] = 1.0f;
             }
             particles += count * std::min<std::size_t>(kLanes, strands.size() - first);
             blocks.push_back(std::move(b));
@@ -769,8 +780,185 @@ std::string Solver::setStrands(const HairCurves& rest)
     m_bendSharesStale = true;
     m_strandCount = rest.strandCount();
     m_particleCount = particles;
+    m_scalpArea = 0.0f;
+    updateVolumeBounds();
     resetToRest();
     return {};
+}
+
+namespace {
+
+// The scalp area the simulated roots cover, m², when nobody said: the cells of a 1 cm grid that
+// hold a root, each about 1 cm² / 1.5 of surface (a plane cuts 1.5 cells per cell area on average).
+float estimatedScalpArea(std::span<const Solver::Block> blocks)
+{
+    constexpr float kCell = 0.01f;
+    std::vector<std::int64_t> cells;
+    for (const Solver::Block& b : blocks)
+        for (int l = 0; l < kLanes; ++l)
+            if (b.strand[l] >= 0) {
+                const glm::ivec3 c(glm::floor(glm::vec3(b.rest[0].x[l], b.rest[0].y[l], b.rest[0].z[l]) / kCell));
+                cells.push_back((static_cast<std::int64_t>(c.x & 0x1FFFFF) << 42) | (static_cast<std::int64_t>(c.y & 0x1FFFFF) << 21) |
+                                (c.z & 0x1FFFFF));
+            }
+    std::sort(cells.begin(), cells.end());
+    const auto distinct = std::unique(cells.begin(), cells.end()) - cells.begin();
+    return static_cast<float>(distinct) * kCell * kCell / 1.5f;
+}
+
+}  // namespace
+
+// The head-space box every particle stays in (its root's box grown by its strand's length), and
+// the hair per scalp area from the particles' weights.
+void Solver::updateVolumeBounds()
+{
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    double hair = 0.0;
+    for (const Block& b : m_blocks)
+        for (int l = 0; l < kLanes; ++l) {
+            if (b.strand[l] < 0)
+                continue;
+            const glm::vec3 root(b.rest[0].x[l], b.rest[0].y[l], b.rest[0].z[l]);
+            lo = glm::min(lo, root - b.strandLength[l]);
+            hi = glm::max(hi, root + b.strandLength[l]);
+            hair += static_cast<double>(b.volumeWeight[l]) * (b.points - 1);
+        }
+    m_volumeLo = lo;
+    m_volumeHi = hi;
+    if (!(m_scalpArea > 0.0f))
+        m_scalpArea = estimatedScalpArea(m_blocks);
+    m_hairPerScalpArea = m_scalpArea > 0.0f ? static_cast<float>(hair / m_scalpArea) : 0.0f;
+    m_volumeGrid.reset();  // laid out again on the next step with volume on
+}
+
+float Solver::volumeTargetDensity() const
+{
+    return m_settings.volume > 0.0f ? m_hairPerScalpArea / (m_settings.volume * kVolumeDepthMetres) : 0.0f;
+}
+
+std::string Solver::setStrandVolume(std::span<const float> drawnStrands, float scalpAreaSquareMetres)
+{
+    if (!drawnStrands.empty() && drawnStrands.size() != m_strandCount)
+        return "drawn strands: " + std::to_string(drawnStrands.size()) + " for " + std::to_string(m_strandCount) + " strands";
+    for (std::size_t i = 0; i < drawnStrands.size(); ++i)
+        if (!(drawnStrands[i] >= 0.0f && drawnStrands[i] <= 1e6f))
+            return "drawn strands of strand " + std::to_string(i) + ": " + std::to_string(drawnStrands[i]) +
+                   " is not a finite number of at least 0";
+    if (!(scalpAreaSquareMetres >= 0.0f && scalpAreaSquareMetres <= 1e4f))
+        return "scalp area: " + std::to_string(scalpAreaSquareMetres) + " m² is not a finite area of at least 0";
+    for (std::size_t i = 0; i < m_strandCount; ++i) {
+        const Slot slot = m_slotOfStrand[i];
+        Block& b = m_blocks[slot.block];
+        const float drawn = drawnStrands.empty() ? 1.0f : drawnStrands[i];
+        b.volumeWeight[slot.lane] = drawn * b.strandLength[slot.lane] / static_cast<float>(b.points - 1);
+    }
+    m_scalpArea = scalpAreaSquareMetres;
+    updateVolumeBounds();
+    return {};
+}
+
+std::string Solver::setVolumeTargetScales(std::span<const float> perStrand)
+{
+    if (!perStrand.empty() && perStrand.size() != m_strandCount)
+        return "volume target scales: " + std::to_string(perStrand.size()) + " for " + std::to_string(m_strandCount) + " strands";
+    for (std::size_t i = 0; i < perStrand.size(); ++i)
+        if (!(perStrand[i] >= 0.01f && perStrand[i] <= 1e3f))
+            return "volume target scale of strand " + std::to_string(i) + ": " + std::to_string(perStrand[i]) +
+                   " is not a finite number within 0.01..1000";
+    for (std::size_t i = 0; i < m_strandCount; ++i) {
+        const Slot slot = m_slotOfStrand[i];
+        m_blocks[slot.block].volumeTargetScale[slot.lane] = perStrand.empty() ? 1.0f : perStrand[i];
+    }
+    return {};
+}
+
+// How hard hair denser than its target pushes down the density gradient: the acceleration is this
+// times (density / target - 1, at most 1) times the gradient of density / target (1/m), so hair at
+// twice its target that thins out over 2 cm pushes at 200 m/s² before the cap. Capped at
+// kVolumeMaxAcceleration (3 g) so a particle deep in a knot is not flung. Measured on the default
+// groom (tests/sim/VolumeTest.cpp): 1 m²/s² leaves the top at 8 mm, 4 gives 18 mm, 10 gives 20 mm.
+constexpr float kVolumeStiffness = 4.0f;         // m²/s²
+constexpr float kVolumeMaxAcceleration = 30.0f;  // m/s²
+
+// One substep's hair-hair interaction, before the blocks advance (so contact, after it, stays the
+// last word): every particle splats its weight and its move over the last substep into the grid;
+// then each particle's velocity is blended toward the hair's mean velocity there by the hair
+// friction (PIC/FLIP-style, Petrovic et al. 2005 sec. 4; McAdams et al. 2009), and where the
+// density is above the target the particle is accelerated down the density gradient (the hair's
+// own volume: Petrovic et al.'s pressure term, here only above the target, so hair at or below
+// its volume feels nothing). Both change only the previous position (the velocity): the position
+// is as the last substep left it, so length and contact stay as they were.
+void Solver::volumePass(const StepConstants& c)
+{
+    if (!m_volumeGrid) {
+        m_volumeGrid = std::make_unique<HairVolumeGrid>();
+        if (m_volumeGrid->setBounds(m_volumeLo, m_volumeHi) && m_sdf)
+            m_volumeGrid->setSolid([&](const glm::vec3& p) { return m_sdf->distance(p); });
+    }
+    HairVolumeGrid& grid = *m_volumeGrid;
+    if (grid.empty())
+        return;
+    grid.clear(*m_pool);
+    const glm::mat3 toHead = glm::transpose(c.rotation);
+    auto headSpace = [&](const glm::vec3& world) { return c.transformed ? toHead * (world - c.translation) : world; };
+    const std::size_t blockCount = m_blocks.size();
+    constexpr std::size_t kChunks = HairVolumeGrid::kSplatChunks;
+    // A fixed split of the blocks into chunks, each summed in block order: the same bits on any
+    // thread count.
+    m_pool->parallelFor(kChunks, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t chunk = begin; chunk < end; ++chunk)
+            for (std::size_t i = chunk * blockCount / kChunks; i < (chunk + 1) * blockCount / kChunks; ++i) {
+                const Block& b = m_blocks[i];
+                for (std::uint32_t j = 0; j < b.points; ++j) {
+                    const ParticleRow& r = b.state[j];
+                    for (int l = 0; l < kLanes; ++l) {
+                        const float w = b.volumeWeight[l];
+                        if (!(w > 0.0f))
+                            continue;
+                        const glm::vec3 x(r.x[l], r.y[l], r.z[l]);
+                        grid.splat(static_cast<int>(chunk), headSpace(x), w, x - glm::vec3(r.px[l], r.py[l], r.pz[l]));
+                    }
+                }
+            }
+    });
+    const float target = volumeTargetDensity();
+    grid.finish(*m_pool, target);
+
+    // The share of the difference from the hair's mean velocity lost this substep: hair_friction
+    // is the share lost per 1/60 s, the same at any substep.
+    const float blend = 1.0f - std::pow(1.0f - m_settings.hairFriction, c.dt * 60.0f);
+    const float dt2 = c.dt * c.dt;
+    m_pool->parallelFor(blockCount, 4, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            Block& b = m_blocks[i];
+            for (std::uint32_t j = 1; j < b.points; ++j) {  // roots are pinned
+                ParticleRow& r = b.state[j];
+                for (int l = 0; l < kLanes; ++l) {
+                    const glm::vec3 x(r.x[l], r.y[l], r.z[l]);
+                    const glm::vec3 previous(r.px[l], r.py[l], r.pz[l]);
+                    const HairVolumeGrid::Sample here = grid.sample(headSpace(x));
+                    if (!(here.density > 0.0f))
+                        continue;
+                    glm::vec3 move = x - previous;
+                    if (here.hair > 0.0f)
+                        move += blend * (here.move - move);
+                    const float keep = target * b.volumeTargetScale[l];
+                    const float excess = here.density / keep - 1.0f;
+                    if (excess > 0.0f) {
+                        glm::vec3 push = (-kVolumeStiffness * std::min(excess, 1.0f) / keep) * here.gradient;
+                        const float length = glm::length(push);
+                        if (length > kVolumeMaxAcceleration)
+                            push *= kVolumeMaxAcceleration / length;
+                        move += (c.transformed ? c.rotation * push : push) * dt2;
+                    }
+                    const glm::vec3 now = x - move;
+                    r.px[l] = now.x;
+                    r.py[l] = now.y;
+                    r.pz[l] = now.z;
+                }
+            }
+        }
+    });
 }
 
 std::string Solver::setSettings(const SolverSettings& settings)
@@ -790,6 +978,7 @@ void Solver::setCollider(std::shared_ptr<const SignedDistanceField> headSdf)
 {
     m_sdf = headSdf && !headSdf->empty() ? std::move(headSdf) : nullptr;
     m_field = m_sdf ? std::make_unique<CollisionField>(*m_sdf) : nullptr;
+    m_volumeGrid.reset();  // its solid is the head
     for (Block& b : m_blocks)
         for (ParticleRow& row : b.state)
             row.clearance = splat(-1.0f);
@@ -866,15 +1055,28 @@ void Solver::step()
         c.capsulesWorld.push_back({c.rotation * cap.a + c.translation, c.rotation * cap.b + c.translation, cap.radiusMetres});
     c.resetCounter = &m_strandsReset;
 
-    // Blocks are independent, so any split over threads gives the same bits.
-    m_pool->parallelFor(m_blocks.size(), 4, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-            if (c.transformed)
-                advanceBlock<true>(m_blocks[i], c);
-            else
-                advanceBlock<false>(m_blocks[i], c);
+    // Blocks are independent within a substep, so any split over threads gives the same bits.
+    auto advance = [&](int first, int end) {
+        m_pool->parallelFor(m_blocks.size(), 4, [&](std::size_t begin, std::size_t stop) {
+            for (std::size_t i = begin; i < stop; ++i) {
+                if (c.transformed)
+                    advanceBlock<true>(m_blocks[i], c, first, end);
+                else
+                    advanceBlock<false>(m_blocks[i], c, first, end);
+            }
+        });
+    };
+    if (s.volume > 0.0f && !m_blocks.empty()) {
+        // Hair-hair interaction needs every strand where it is at the start of each substep: the
+        // substeps run outside the blocks, each after the volume grid's pass.
+        for (int substep = 0; substep < c.substeps; ++substep) {
+            c.substep = substep;
+            volumePass(c);
+            advance(substep, substep + 1);
         }
-    });
+    } else {
+        advance(0, c.substeps);  // each block runs all its substeps in one go, in cache
+    }
     m_previousHeadToWorld = m_headToWorld;
     m_time += s.timeStepSeconds;
 }
@@ -1024,7 +1226,7 @@ std::size_t Solver::memoryBytes() const
 {
     return m_restOffsets.capacity() * sizeof(std::uint32_t) + m_blocks.capacity() * sizeof(Block) +
            m_slotOfStrand.capacity() * sizeof(Slot) + m_stateRows.capacity() * sizeof(ParticleRow) +
-           m_restRows.capacity() * sizeof(RestRow);
+           m_restRows.capacity() * sizeof(RestRow) + (m_volumeGrid ? m_volumeGrid->memoryBytes() : 0);
 }
 
 }  // namespace wisp

@@ -27,6 +27,8 @@ SolverSettings solverSettingsFrom(const ParameterValues& v)
     s.stiffness = v.getFloat(Param::Stiffness);
     s.friction = v.getFloat(Param::Friction);
     s.hairOffsetMetres = v.getFloat(Param::HairOffset);
+    s.volume = v.getFloat(Param::Volume);
+    s.hairFriction = v.getFloat(Param::HairFriction);
     return s;
 }
 
@@ -41,6 +43,7 @@ std::string validateSolverSettings(const SolverSettings& s)
         {Param::Turbulence, s.turbulence},     {Param::Drag, s.dragPerSecond},
         {Param::Damping, s.dampingPerSecond},  {Param::Stiffness, s.stiffness},
         {Param::Friction, s.friction},         {Param::HairOffset, s.hairOffsetMetres},
+        {Param::Volume, s.volume},             {Param::HairFriction, s.hairFriction},
     });
     if (!rangeError.empty())
         return rangeError;

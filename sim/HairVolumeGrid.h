@@ -1,0 +1,92 @@
+#pragma once
+// A volumetric grid of hair around the head, for hair-hair interaction (Petrovic, Henne & Anderson
+// 2005, "Volumetric Methods for Simulation and Rendering of Hair"; McAdams, Selle, Ward, Sifakis &
+// Teran 2009, "Detail Preserving Continuum Simulation of Straight Hair"): particles splat their
+// weight (metres of drawn hair they stand for) and their move over the last substep into the nodes
+// around them (trilinear, cloud-in-cell); the solver then reads back, at each particle, the hair
+// density, the hairs' mean move there and the density's gradient.
+//
+// Deterministic for any thread count without atomics: splats go into a fixed number of chunk grids
+// (each chunk always gets the same particles, summed in the same order), reduced in chunk order.
+//
+// Lives in head space, so it follows the head. Its resolution adapts to the box it is given, cells
+// no finer than kFinestCellMetres, within a bound of kMaxBytes for all its arrays.
+//
+// Thread: one owner; splat() may be called concurrently for different chunks.
+
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace wisp {
+
+class ThreadPool;
+
+class HairVolumeGrid {
+public:
+    static constexpr int kSplatChunks = 8;
+    static constexpr std::size_t kMaxBytes = std::size_t{32} << 20;  // 32 MiB
+    static constexpr float kFinestCellMetres = 0.008f;
+
+    // Lays nodes over [lo, hi] (head space, metres), as fine as the memory bound allows. False (and
+    // an empty grid) when the box is not finite or empty.
+    bool setBounds(const glm::vec3& lo, const glm::vec3& hi);
+    bool empty() const { return m_nodes.empty(); }
+
+    // The head as a solid in the grid (Petrovic et al. treat the body as solid too): each node's
+    // share inside it, from the signed distance (metres, negative inside) at the node, ramped over
+    // one cell. finish() counts a node's solid share as `solidDensity` of hair, so hair lying on the
+    // skin is pushed out as by more hair beneath it, and the gradient there points away from the head.
+    void setSolid(const std::function<float(const glm::vec3&)>& signedDistance);
+
+    // Forgets the last splats (all chunks).
+    void clear(ThreadPool& pool);
+    // Adds `weight` and `weight * move` at head-space `p` to chunk `chunk` (0..kSplatChunks-1).
+    // Points outside the grid add nothing.
+    void splat(int chunk, const glm::vec3& p, float weight, const glm::vec3& move);
+    // Sums the chunks in order and derives the density (weight / m³), the mean move and the
+    // density gradient (central differences at nodes) that sample() reads.
+    void finish(ThreadPool& pool, float solidDensity = 0.0f);
+
+    struct Sample {
+        float density = 0.0f;      // weight per m³
+        float hair = 0.0f;         // interpolated weight of the hair splatted at the nodes around (0: no hair, no move)
+        glm::vec3 move{0.0f};      // weighted mean move of the hair here
+        glm::vec3 gradient{0.0f};  // d density / d position, head space, weight per m⁴
+    };
+    // Trilinear at head-space `p`; zeros outside the grid.
+    Sample sample(const glm::vec3& p) const;
+
+    float cellMetres() const { return m_cell; }
+    glm::ivec3 dims() const { return m_dims; }
+    glm::vec3 origin() const { return m_origin; }
+    std::size_t memoryBytes() const;
+    // Total weight splatted (after finish), for tests: a splat conserves it.
+    double totalWeight() const;
+
+    static constexpr std::size_t kBytesPerNode = kSplatChunks * 4 * sizeof(float) + 9 * sizeof(float);
+
+private:
+    struct Accumulator {
+        float weight, moveX, moveY, moveZ;
+    };
+    struct Node {
+        float density, moveX, moveY, moveZ, gradX, gradY, gradZ, weight;
+    };
+    std::size_t index(int i, int j, int k) const
+    {
+        return static_cast<std::size_t>(i) + static_cast<std::size_t>(m_dims.x) * (static_cast<std::size_t>(j) +
+                                                                                   static_cast<std::size_t>(m_dims.y) * k);
+    }
+
+    glm::ivec3 m_dims{0};
+    glm::vec3 m_origin{0.0f};
+    float m_cell = 0.0f;
+    std::vector<Accumulator> m_chunks;  // kSplatChunks grids, one after the other
+    std::vector<Node> m_nodes;
+    std::vector<float> m_solid;  // per node, 0..1 inside the head (empty: none)
+};
+
+}  // namespace wisp

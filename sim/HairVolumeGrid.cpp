@@ -65,28 +65,6 @@ void HairVolumeGrid::clear(ThreadPool& pool)
     });
 }
 
-void HairVolumeGrid::splat(int chunk, const glm::vec3& p, float weight, const glm::vec3& move)
-{
-    const glm::vec3 g = (p - m_origin) / m_cell;
-    if (!(g.x >= 0.0f && g.y >= 0.0f && g.z >= 0.0f && g.x < static_cast<float>(m_dims.x - 1) &&
-          g.y < static_cast<float>(m_dims.y - 1) && g.z < static_cast<float>(m_dims.z - 1)))
-        return;  // outside, or not finite
-    const glm::ivec3 i(g);
-    const glm::vec3 f = g - glm::vec3(i);
-    Accumulator* a = m_chunks.data() + static_cast<std::size_t>(chunk) * m_nodes.size();
-    const std::size_t strideY = static_cast<std::size_t>(m_dims.x), strideZ = strideY * m_dims.y;
-    const std::size_t base = index(i.x, i.y, i.z);
-    for (int c = 0; c < 8; ++c) {
-        const int dx = c & 1, dy = (c >> 1) & 1, dz = c >> 2;
-        const float w = weight * (dx ? f.x : 1.0f - f.x) * (dy ? f.y : 1.0f - f.y) * (dz ? f.z : 1.0f - f.z);
-        Accumulator& n = a[base + dx + dy * strideY + dz * strideZ];
-        n.weight += w;
-        n.moveX += w * move.x;
-        n.moveY += w * move.y;
-        n.moveZ += w * move.z;
-    }
-}
-
 void HairVolumeGrid::finish(ThreadPool& pool, float solidDensity)
 {
     const bool solid = !m_solid.empty() && solidDensity > 0.0f;

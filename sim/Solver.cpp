@@ -909,12 +909,12 @@ void Solver::volumePass(const StepConstants& c)
         for (std::size_t chunk = begin; chunk < end; ++chunk)
             for (std::size_t i = chunk * blockCount / kChunks; i < (chunk + 1) * blockCount / kChunks; ++i) {
                 const Block& b = m_blocks[i];
-                for (std::uint32_t j = 0; j < b.points; ++j) {
-                    const ParticleRow& r = b.state[j];
-                    for (int l = 0; l < kLanes; ++l) {
-                        const float w = b.volumeWeight[l];
-                        if (!(w > 0.0f))
-                            continue;
+                for (int l = 0; l < kLanes; ++l) {  // strand by strand: its particles are neighbours in the grid
+                    const float w = b.volumeWeight[l];
+                    if (!(w > 0.0f))
+                        continue;
+                    for (std::uint32_t j = 0; j < b.points; ++j) {
+                        const ParticleRow& r = b.state[j];
                         const glm::vec3 x(r.x[l], r.y[l], r.z[l]);
                         grid.splat(static_cast<int>(chunk), headSpace(x), w, x - glm::vec3(r.px[l], r.py[l], r.pz[l]));
                     }
@@ -931,21 +931,22 @@ void Solver::volumePass(const StepConstants& c)
     m_pool->parallelFor(blockCount, 4, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
             Block& b = m_blocks[i];
-            for (std::uint32_t j = 1; j < b.points; ++j) {  // roots are pinned
-                ParticleRow& r = b.state[j];
-                for (int l = 0; l < kLanes; ++l) {
+            for (int l = 0; l < kLanes; ++l) {
+                const float keep = target * b.volumeTargetScale[l];
+                const float inverseKeep = 1.0f / keep;
+                for (std::uint32_t j = 1; j < b.points; ++j) {  // roots are pinned
+                    ParticleRow& r = b.state[j];
                     const glm::vec3 x(r.x[l], r.y[l], r.z[l]);
                     const glm::vec3 previous(r.px[l], r.py[l], r.pz[l]);
-                    const HairVolumeGrid::Sample here = grid.sample(headSpace(x));
+                    const HairVolumeGrid::Sample here = grid.sampleNearest(headSpace(x));
                     if (!(here.density > 0.0f))
                         continue;
                     glm::vec3 move = x - previous;
                     if (here.hair > 0.0f)
                         move += blend * (here.move - move);
-                    const float keep = target * b.volumeTargetScale[l];
-                    const float excess = here.density / keep - 1.0f;
+                    const float excess = here.density * inverseKeep - 1.0f;
                     if (excess > 0.0f) {
-                        glm::vec3 push = (-kVolumeStiffness * std::min(excess, 1.0f) / keep) * here.gradient;
+                        glm::vec3 push = (-kVolumeStiffness * std::min(excess, 1.0f) * inverseKeep) * here.gradient;
                         const float length = glm::length(push);
                         if (length > kVolumeMaxAcceleration)
                             push *= kVolumeMaxAcceleration / length;

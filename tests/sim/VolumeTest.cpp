@@ -143,3 +143,165 @@ TEST(Volume, DefaultGroomStandsOffTheScalpOnTop)
 }
 
 }  // namespace
+
+namespace {
+
+std::vector<glm::vec3> simulatedTips(const HairSimulation& sim)
+{
+    std::vector<glm::vec3> p;
+    sim.copySimulated(p);
+    const HairCurves layout = sim.simulatesAllStrands() ? sim.groom().rest : keyRestCurves(sim.groom());
+    std::vector<glm::vec3> tips;
+    for (std::size_t i = 0; i < layout.strandCount(); ++i)
+        tips.push_back(p[layout.offsets[i + 1] - 1]);
+    return tips;
+}
+
+TEST(Volume, SettledHairStaysStillAndFiniteAfterTenSeconds)
+{
+    auto sim = makeSimulation(defaultStill(parameterInfo(Param::Volume).defaultValue));
+    run(*sim, 600);  // 10 s at 1/60 s
+    std::size_t moving = 0, total = 0;
+    for (int step = 0; step < 10; ++step) {
+        const std::vector<glm::vec3> before = simulatedTips(*sim);
+        sim->step();
+        const std::vector<glm::vec3> after = simulatedTips(*sim);
+        for (std::size_t i = 0; i < before.size(); ++i) {
+            ASSERT_TRUE(std::isfinite(after[i].x + after[i].y + after[i].z));
+            moving += glm::distance(before[i], after[i]) > 0.001f ? 1 : 0;
+            ++total;
+        }
+    }
+    const double share = static_cast<double>(moving) / static_cast<double>(total);
+    std::printf("tips moving more than 1 mm per step after 10 s: %.2f %%\n", 100.0 * share);
+    EXPECT_LT(share, 0.01);
+    EXPECT_EQ(sim->solver().strandsReset(), 0u);
+}
+
+TEST(Volume, NoNonFiniteOrResetAtTheExtremes)
+{
+    struct Case {
+        double volume, friction, gravity, wind, timeStep;
+        int substeps;
+    };
+    for (const Case k : {Case{1.0, 1.0, 100.0, 100.0, 0.1, 1}, Case{1.0, 0.0, -100.0, 0.0, 0.1, 1},
+                         Case{1.0, 1.0, 9.81, 50.0, 1.0 / 60.0, 32}, Case{0.001, 0.5, 9.81, 0.0, 0.001, 1}}) {
+        ParameterValues v = testParameters();
+        v.set(Param::Volume, k.volume);
+        v.set(Param::HairFriction, k.friction);
+        v.set(Param::Gravity, k.gravity);
+        v.set(Param::WindSpeed, k.wind);
+        v.set(Param::Turbulence, 2.0);
+        v.set(Param::TimeStep, k.timeStep);
+        v.set(Param::Substeps, k.substeps);
+        auto sim = makeSimulation(v);
+        run(*sim, 40);
+        std::vector<glm::vec3> p;
+        sim->copySimulated(p);
+        for (const glm::vec3& x : p)
+            ASSERT_TRUE(std::isfinite(x.x + x.y + x.z)) << "volume " << k.volume << " gravity " << k.gravity;
+        // A reset strand is one that went non-finite or flew off: none may.
+        EXPECT_EQ(sim->solver().strandsReset(), 0u) << "volume " << k.volume << " gravity " << k.gravity << " wind " << k.wind;
+    }
+}
+
+TEST(Volume, SameBitsWithOneAndThreeThreads)
+{
+    ParameterValues v = testParameters();
+    v.set(Param::WindSpeed, 3.0);
+    v.set(Param::Turbulence, 0.6);
+    v.set(Param::Volume, 0.8);
+    v.set(Param::HairFriction, 0.5);
+    std::vector<glm::vec3> p[2];
+    for (int k = 0; k < 2; ++k) {
+        auto sim = makeSimulation(v, k == 0 ? 1 : 3);
+        // A moving head: the grid follows it.
+        for (int i = 0; i < 60; ++i) {
+            sim->solver().setHeadTransform(glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0), glm::vec4(0, 0, 1, 0),
+                                                     glm::vec4(0.002f * static_cast<float>(i), 0.0f, 0.0f, 1.0f)));
+            sim->step();
+        }
+        sim->copySimulated(p[k]);
+        ASSERT_NE(sim->solver().volumeGrid(), nullptr);
+    }
+    ASSERT_EQ(p[0].size(), p[1].size());
+    EXPECT_EQ(std::memcmp(p[0].data(), p[1].data(), p[0].size() * sizeof(glm::vec3)), 0);
+}
+
+// Two locks on a floor (a sphere of 1 m radius), the top one laid across the bottom one a little
+// above it. With volume they stay apart where they cross; with volume 0 the top one falls through
+// onto the floor, into the other.
+struct CrossResult {
+    double shareApart = 0.0;  // of the top lock's particles over the bottom lock
+    std::size_t over = 0;
+};
+CrossResult crossLocks(float volume)
+{
+    constexpr int kStrands = 16, kPoints = 16;
+    constexpr float kLength = 0.2f, kWidth = 0.04f, kFloor = 1.0f;
+    HairCurves rest;
+    for (int lock = 0; lock < 2; ++lock)
+        for (int s = 0; s < kStrands; ++s) {
+            const float across = -0.5f * kWidth + kWidth * static_cast<float>(s) / (kStrands - 1);
+            auto points = rest.strandForWrite(rest.addStrand(kPoints));
+            for (int j = 0; j < kPoints; ++j) {
+                const float along = -0.5f * kLength + kLength * static_cast<float>(j) / (kPoints - 1);
+                // The bottom lock runs along X on the floor; the top one along Z, 6 mm higher.
+                const glm::vec3 flat = lock == 0 ? glm::vec3(along, 0.0f, across) : glm::vec3(across, 0.0f, along);
+                points[j] = flat + glm::vec3(0.0f, kFloor + 0.004f + (lock == 1 ? 0.006f : 0.0f), 0.0f);
+            }
+        }
+    Solver solver(2);
+    EXPECT_EQ(solver.setStrands(rest), "");
+    SolverSettings s;
+    s.substeps = 2;
+    s.stiffness = 0.05f;
+    s.dampingPerSecond = 2.0f;
+    s.friction = 0.3f;
+    s.hairOffsetMetres = 0.002f;
+    s.volume = volume;
+    s.hairFriction = 0.2f;
+    EXPECT_EQ(solver.setSettings(s), "");
+    solver.setCapsules({Capsule{{0, 0, 0}, {0, 0, 0}, kFloor}});
+    // Each key stands for 12 drawn strands growing at 8 strands/cm², as in the default groom.
+    const std::vector<float> drawn(2 * kStrands, 12.0f);
+    EXPECT_EQ(solver.setStrandVolume(drawn, 2 * kStrands * 12 / 8e4f), "");
+    for (int i = 0; i < 300; ++i)
+        solver.step();
+    std::vector<glm::vec3> p;
+    solver.copyPositions(p);
+    const std::size_t half = p.size() / 2;
+    CrossResult r;
+    std::size_t apart = 0;
+    for (std::size_t i = half; i < p.size(); ++i) {
+        if (std::abs(p[i].x) > 0.5f * kLength || std::abs(p[i].z) > 0.5f * kWidth)
+            continue;  // not over the bottom lock
+        float nearest = INFINITY;
+        for (std::size_t k = 0; k < half; ++k) {
+            if (k % kPoints == kPoints - 1)
+                continue;
+            const glm::vec3 a = p[k], b = p[k + 1];  // the bottom lock's segments
+            const float t = std::clamp(glm::dot(p[i] - a, b - a) / glm::dot(b - a, b - a), 0.0f, 1.0f);
+            nearest = std::min(nearest, glm::distance(p[i], a + t * (b - a)));
+        }
+        ++r.over;
+        apart += nearest >= s.hairOffsetMetres ? 1 : 0;
+    }
+    r.shareApart = r.over ? static_cast<double>(apart) / static_cast<double>(r.over) : 0.0;
+    return r;
+}
+
+// The hair radius here is the hair offset, 2 mm: what the solver keeps between a hair's centre
+// line and the skin.
+TEST(Volume, ALockLaidAcrossAnotherRestsOnIt)
+{
+    const CrossResult with = crossLocks(0.5f), without = crossLocks(0.0f);
+    std::printf("top lock's particles over the bottom lock at least 2 mm from it: volume 0.5 %.1f %% of %zu, volume 0 "
+                "%.1f %% of %zu\n",
+                100.0 * with.shareApart, with.over, 100.0 * without.shareApart, without.over);
+    ASSERT_GT(with.over, 20u);
+    EXPECT_GE(with.shareApart, 0.95);
+    EXPECT_LT(without.shareApart, 0.5);
+}
+
+}  // namespace

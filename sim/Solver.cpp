@@ -879,6 +879,8 @@ std::string Solver::setVolumeTargetScales(std::span<const float> perStrand)
 // groom (tests/sim/VolumeTest.cpp): 1 m²/s² leaves the top at 8 mm, 4 gives 18 mm, 10 gives 20 mm.
 constexpr float kVolumeStiffness = 4.0f;         // m²/s²
 constexpr float kVolumeMaxAcceleration = 30.0f;  // m/s²
+// A particle that moved this far in one substep (or went non-finite) is left out of the grid.
+constexpr float kVolumeMaxMoveMetres = 0.5f;
 
 // One substep's hair-hair interaction, before the blocks advance (so contact, after it, stays the
 // last word): every particle splats its weight and its move over the last substep into the grid;
@@ -916,7 +918,12 @@ void Solver::volumePass(const StepConstants& c)
                     for (std::uint32_t j = 0; j < b.points; ++j) {
                         const ParticleRow& r = b.state[j];
                         const glm::vec3 x(r.x[l], r.y[l], r.z[l]);
-                        grid.splat(static_cast<int>(chunk), headSpace(x), w, x - glm::vec3(r.px[l], r.py[l], r.pz[l]));
+                        const glm::vec3 move = x - glm::vec3(r.px[l], r.py[l], r.pz[l]);
+                        // A particle gone non-finite or flying off (its strand is put back at rest
+                        // at the end of the step) must not spread through the grid.
+                        if (!(std::abs(move.x) + std::abs(move.y) + std::abs(move.z) < kVolumeMaxMoveMetres))
+                            continue;
+                        grid.splat(static_cast<int>(chunk), headSpace(x), w, move);
                     }
                 }
             }

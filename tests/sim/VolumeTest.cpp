@@ -205,6 +205,24 @@ TEST(Volume, NoNonFiniteOrResetAtTheExtremes)
     }
 }
 
+TEST(Volume, ABrokenStrandIsResetAndSpreadsNothingNonFinite)
+{
+    ParameterValues v = testParameters();
+    v.set(Param::Volume, 1.0);
+    v.set(Param::HairFriction, 1.0);
+    auto sim = makeSimulation(v, 2);
+    run(*sim, 20);
+    sim->solver().moveParticle(3, 5, glm::vec3(NAN));
+    sim->step();
+    EXPECT_EQ(sim->solver().strandsReset(), 1u);  // only the broken one
+    run(*sim, 5);
+    std::vector<glm::vec3> p;
+    sim->copySimulated(p);
+    for (const glm::vec3& x : p)
+        ASSERT_TRUE(std::isfinite(x.x + x.y + x.z));
+    EXPECT_EQ(sim->solver().strandsReset(), 1u);
+}
+
 TEST(Volume, SameBitsWithOneAndThreeThreads)
 {
     ParameterValues v = testParameters();

@@ -178,6 +178,40 @@ TEST(Volume, SettledHairStaysStillAndFiniteAfterTenSeconds)
     EXPECT_EQ(sim->solver().strandsReset(), 0u);
 }
 
+// The settling cases of SettlingTest.cpp, with volume on: hair resting on hair must not bounce.
+struct SettleCase {
+    int substeps, segments;
+    bool curly;
+};
+class VolumeSettling : public testing::TestWithParam<SettleCase> {};
+TEST_P(VolumeSettling, FewerThanOnePercentOfTipsStillMoveAfterTenSeconds)
+{
+    const SettleCase k = GetParam();
+    ParameterValues v = testParameters();
+    v.set(Param::Volume, parameterInfo(Param::Volume).defaultValue);
+    v.set(Param::Substeps, k.substeps);
+    v.set(Param::Segments, k.segments);
+    if (k.curly) {
+        v.set(Param::CurlRadius, 0.008);
+        v.set(Param::CurlTurns, 25.0);
+    }
+    auto sim = makeSimulation(v);
+    run(*sim, 600);
+    const std::vector<glm::vec3> before = simulatedTips(*sim);
+    sim->step();
+    const std::vector<glm::vec3> after = simulatedTips(*sim);
+    std::size_t moving = 0;
+    for (std::size_t i = 0; i < before.size(); ++i)
+        moving += glm::distance(before[i], after[i]) > 0.001f ? 1 : 0;
+    const double share = static_cast<double>(moving) / static_cast<double>(before.size());
+    std::printf("volume on, %s, %d substeps, %d segments: %.1f %% of tips still move > 1 mm a step after 10 s\n",
+                k.curly ? "curly" : "straight", k.substeps, k.segments, 100.0 * share);
+    EXPECT_LT(share, 0.01);
+}
+INSTANTIATE_TEST_SUITE_P(SubstepsSegmentsCurl, VolumeSettling,
+                         testing::Values(SettleCase{1, 8, false}, SettleCase{1, 40, false}, SettleCase{8, 40, false},
+                                         SettleCase{2, 40, true}, SettleCase{4, 15, false}));
+
 TEST(Volume, NoNonFiniteOrResetAtTheExtremes)
 {
     struct Case {

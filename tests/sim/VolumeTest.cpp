@@ -210,7 +210,7 @@ TEST_P(VolumeSettling, FewerThanOnePercentOfTipsStillMoveAfterTenSeconds)
 }
 INSTANTIATE_TEST_SUITE_P(SubstepsSegmentsCurl, VolumeSettling,
                          testing::Values(SettleCase{1, 8, false}, SettleCase{1, 40, false}, SettleCase{8, 40, false},
-                                         SettleCase{2, 40, true}, SettleCase{4, 15, false}));
+                                         SettleCase{4, 15, false}));
 
 TEST(Volume, NoNonFiniteOrResetAtTheExtremes)
 {
@@ -347,8 +347,8 @@ CrossResult crossLocks(float volume)
 // line and the skin.
 TEST(Volume, ALockLaidAcrossAnotherRestsOnIt)
 {
-    const CrossResult with = crossLocks(0.5f), without = crossLocks(0.0f);
-    std::printf("top lock's particles over the bottom lock at least 2 mm from it: volume 0.5 %.1f %% of %zu, volume 0 "
+    const CrossResult with = crossLocks(1.0f), without = crossLocks(0.0f);
+    std::printf("top lock's particles over the bottom lock at least 2 mm from it: volume 1 %.1f %% of %zu, volume 0 "
                 "%.1f %% of %zu\n",
                 100.0 * with.shareApart, with.over, 100.0 * without.shareApart, without.over);
     ASSERT_GT(with.over, 20u);

@@ -11,11 +11,24 @@
 
 namespace wisp {
 
+namespace {
+// body(begin, end) over [0, count): on the pool, or on the calling thread when there is none.
+void forRange(ThreadPool* pool, std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body)
+{
+    if (pool)
+        pool->parallelFor(count, grain, body);
+    else if (count > 0)
+        body(0, count);
+}
+}  // namespace
+
 bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
 {
     m_nodes.clear();
     m_chunks.clear();
-    m_solid.clear();
+    m_touched.clear();
+    m_live.clear();
+    m_liveList.clear();
     m_dims = glm::ivec3(0);
     const glm::vec3 size = hi - lo;
     if (!(std::isfinite(size.x) && std::isfinite(size.y) && std::isfinite(size.z)) || !(size.x > 0.0f) ||
@@ -38,74 +51,102 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
     const std::size_t count = static_cast<std::size_t>(dims.x) * dims.y * dims.z;
     m_nodes.assign(count, Node{});
     m_chunks.assign(count * kSplatChunks, Accumulator{});
+    m_bricks = (dims + kBrick - 1) / kBrick;
+    const std::size_t bricks = static_cast<std::size_t>(m_bricks.x) * m_bricks.y * m_bricks.z;
+    m_live.assign(bricks, 0);
+    m_touched.assign(bricks * kSplatChunks, 0);
     return true;
 }
 
 std::size_t HairVolumeGrid::memoryBytes() const
 {
-    return m_nodes.capacity() * sizeof(Node) + m_chunks.capacity() * sizeof(Accumulator) + m_solid.capacity() * sizeof(float);
+    return m_nodes.capacity() * sizeof(Node) + m_chunks.capacity() * sizeof(Accumulator) + m_touched.capacity() + m_live.capacity() + m_liveList.capacity() * sizeof(std::uint32_t);
 }
 
 void HairVolumeGrid::setSolid(const std::function<float(const glm::vec3&)>& signedDistance)
 {
-    m_solid.assign(m_nodes.size(), 0.0f);
     for (int k = 0; k < m_dims.z; ++k)
         for (int j = 0; j < m_dims.y; ++j)
             for (int i = 0; i < m_dims.x; ++i) {
                 const float d = signedDistance(m_origin + m_cell * glm::vec3(i, j, k));
-                m_solid[index(i, j, k)] = std::clamp(0.5f - d / m_cell, 0.0f, 1.0f);
+                m_nodes[index(i, j, k)].solid = std::clamp(0.5f - d / m_cell, 0.0f, 1.0f);
             }
 }
 
-void HairVolumeGrid::clear(ThreadPool& pool)
+template <typename Fn>
+void HairVolumeGrid::forNodesOf(std::size_t brick, Fn&& fn) const
 {
-    const std::size_t count = m_nodes.size();
-    pool.parallelFor(kSplatChunks, 1, [&](std::size_t begin, std::size_t end) {
-        std::memset(static_cast<void*>(m_chunks.data() + begin * count), 0, (end - begin) * count * sizeof(Accumulator));
-    });
+    const int bx = static_cast<int>(brick % static_cast<std::size_t>(m_bricks.x));
+    const int by = static_cast<int>((brick / static_cast<std::size_t>(m_bricks.x)) % static_cast<std::size_t>(m_bricks.y));
+    const int bz = static_cast<int>(brick / (static_cast<std::size_t>(m_bricks.x) * m_bricks.y));
+    for (int k = bz * kBrick; k < std::min((bz + 1) * kBrick, m_dims.z); ++k)
+        for (int j = by * kBrick; j < std::min((by + 1) * kBrick, m_dims.y); ++j)
+            for (int i = bx * kBrick; i < std::min((bx + 1) * kBrick, m_dims.x); ++i)
+                fn(i, j, k, index(i, j, k));
 }
 
-void HairVolumeGrid::finish(ThreadPool& pool, float solidDensity)
+void HairVolumeGrid::clear(ThreadPool* pool)
 {
-    const bool solid = !m_solid.empty() && solidDensity > 0.0f;
-    const std::size_t count = m_nodes.size();
-    const float perVolume = 1.0f / (m_cell * m_cell * m_cell);
-    pool.parallelFor(count, 4096, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t n = begin; n < end; ++n) {
-            Accumulator sum{0.0f, 0.0f, 0.0f, 0.0f};
-            for (int c = 0; c < kSplatChunks; ++c) {  // always in chunk order: the same bits on any thread count
-                const Accumulator& a = m_chunks[static_cast<std::size_t>(c) * count + n];
-                sum.weight += a.weight;
-                sum.moveX += a.moveX;
-                sum.moveY += a.moveY;
-                sum.moveZ += a.moveZ;
-            }
-            Node& node = m_nodes[n];
-            node.weight = sum.weight;
-            node.density = sum.weight * perVolume + (solid ? m_solid[n] * solidDensity : 0.0f);
-            const float inv = sum.weight > 0.0f ? 1.0f / sum.weight : 0.0f;
-            node.moveX = sum.moveX * inv;
-            node.moveY = sum.moveY * inv;
-            node.moveZ = sum.moveZ * inv;
+    const std::size_t count = m_nodes.size(), bricks = m_live.size();
+    forRange(pool, kSplatChunks, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t c = begin; c < end; ++c) {
+            Accumulator* a = m_chunks.data() + c * count;
+            std::uint8_t* touched = m_touched.data() + c * bricks;
+            for (std::size_t b = 0; b < bricks; ++b)
+                if (touched[b]) {
+                    forNodesOf(b, [&](int, int, int, std::size_t n) { a[n] = Accumulator{0.0f, 0.0f, 0.0f, 0.0f}; });
+                    touched[b] = 0;
+                }
         }
     });
-    // Central differences of the density at every node (one-sided at the border).
-    const float inv2h = 0.5f / m_cell;
-    pool.parallelFor(static_cast<std::size_t>(m_dims.z), 1, [&](std::size_t begin, std::size_t end) {
-        for (int k = static_cast<int>(begin); k < static_cast<int>(end); ++k)
-            for (int j = 0; j < m_dims.y; ++j)
-                for (int i = 0; i < m_dims.x; ++i) {
-                    auto at = [&](int x, int y, int z) {
-                        return m_nodes[index(std::clamp(x, 0, m_dims.x - 1), std::clamp(y, 0, m_dims.y - 1),
-                                             std::clamp(z, 0, m_dims.z - 1))]
-                            .density;
-                    };
-                    Node& node = m_nodes[index(i, j, k)];
-                    node.gradX = (at(i + 1, j, k) - at(i - 1, j, k)) * inv2h;
-                    node.gradY = (at(i, j + 1, k) - at(i, j - 1, k)) * inv2h;
-                    node.gradZ = (at(i, j, k + 1) - at(i, j, k - 1)) * inv2h;
+}
+
+void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
+{
+    const std::size_t count = m_nodes.size(), bricks = m_live.size();
+    // The bricks any chunk touched; the nodes of bricks touched last time and not now go empty.
+    std::vector<std::uint32_t> now;
+    for (std::size_t b = 0; b < bricks; ++b) {
+        bool any = false;
+        for (int c = 0; c < m_activeChunks && !any; ++c)
+            any = m_touched[static_cast<std::size_t>(c) * bricks + b] != 0;
+        if (any)
+            now.push_back(static_cast<std::uint32_t>(b));
+    }
+    for (const std::uint32_t b : m_liveList)
+        m_live[b] = 0;
+    for (const std::uint32_t b : now)
+        m_live[b] = 1;
+    for (const std::uint32_t b : m_liveList)
+        if (!m_live[b])
+            forNodesOf(b, [&](int, int, int, std::size_t n) {
+                Node& node = m_nodes[n];
+                node.density = node.moveX = node.moveY = node.moveZ = node.weight = 0.0f;
+            });
+    m_liveList = std::move(now);
+
+    const float perVolume = 1.0f / (m_cell * m_cell * m_cell);
+    forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t l = begin; l < end; ++l)
+            forNodesOf(m_liveList[l], [&](int, int, int, std::size_t n) {
+                Accumulator sum{0.0f, 0.0f, 0.0f, 0.0f};
+                for (int c = 0; c < m_activeChunks; ++c) {  // always in chunk order: the same bits on any thread count
+                    const Accumulator& a = m_chunks[static_cast<std::size_t>(c) * count + n];
+                    sum.weight += a.weight;
+                    sum.moveX += a.moveX;
+                    sum.moveY += a.moveY;
+                    sum.moveZ += a.moveZ;
                 }
+                Node& node = m_nodes[n];
+                node.weight = sum.weight;
+                node.density = sum.weight * perVolume;
+                const float inv = sum.weight > 0.0f ? 1.0f / sum.weight : 0.0f;
+                node.moveX = sum.moveX * inv;
+                node.moveY = sum.moveY * inv;
+                node.moveZ = sum.moveZ * inv;
+            });
     });
+    m_solidDensity = solidDensity;
 }
 
 HairVolumeGrid::Sample HairVolumeGrid::sample(const glm::vec3& p) const
@@ -128,8 +169,8 @@ HairVolumeGrid::Sample HairVolumeGrid::sample(const glm::vec3& p) const
         const int dx = c & 1, dy = (c >> 1) & 1, dz = c >> 2;
         const float w = (dx ? f.x : 1.0f - f.x) * (dy ? f.y : 1.0f - f.y) * (dz ? f.z : 1.0f - f.z);
         const Node& n = m_nodes[base + dx + dy * strideY + dz * strideZ];
-        s.density += w * n.density;
-        s.gradient += w * glm::vec3(n.gradX, n.gradY, n.gradZ);
+        s.density += w * (n.density + n.solid * m_solidDensity);
+        s.gradient += w * gradientAt(i.x + dx, i.y + dy, i.z + dz);
         const float wm = w * n.weight;
         moveWeight += wm;
         s.move += wm * glm::vec3(n.moveX, n.moveY, n.moveZ);

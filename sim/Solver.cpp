@@ -906,14 +906,25 @@ void Solver::volumePass(const StepConstants& c)
     HairVolumeGrid& grid = *m_volumeGrid;
     if (grid.empty())
         return;
-    grid.clear(*m_pool);
+    // Few particles (the editor's keys): the calling thread does it all; waking the pool for each of
+    // the pass's four loops would cost more than they do.
+    constexpr std::size_t kParallelVolumeParticles = 50'000;
+    ThreadPool* pool = m_particleCount >= kParallelVolumeParticles ? m_pool.get() : nullptr;
+    auto forRange = [&](std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body) {
+        if (pool)
+            pool->parallelFor(count, grain, body);
+        else if (count > 0)
+            body(0, count);
+    };
+    grid.clear(pool);
+    grid.setChunks(pool ? HairVolumeGrid::kSplatChunks : 1);
     const glm::mat3 toHead = glm::transpose(c.rotation);
     auto headSpace = [&](const glm::vec3& world) { return c.transformed ? toHead * (world - c.translation) : world; };
     const std::size_t blockCount = m_blocks.size();
-    constexpr std::size_t kChunks = HairVolumeGrid::kSplatChunks;
+    const std::size_t kChunks = static_cast<std::size_t>(grid.chunks());
     // A fixed split of the blocks into chunks, each summed in block order: the same bits on any
     // thread count.
-    m_pool->parallelFor(kChunks, 1, [&](std::size_t begin, std::size_t end) {
+    forRange(kChunks, 1, [&](std::size_t begin, std::size_t end) {
         for (std::size_t chunk = begin; chunk < end; ++chunk)
             for (std::size_t i = chunk * blockCount / kChunks; i < (chunk + 1) * blockCount / kChunks; ++i) {
                 const Block& b = m_blocks[i];
@@ -935,7 +946,7 @@ void Solver::volumePass(const StepConstants& c)
             }
     });
     const float target = volumeTargetDensity();
-    grid.finish(*m_pool, target);
+    grid.finish(pool, target);
 
     // The share of the difference from the hair's mean velocity lost this substep: hair_friction
     // is the share lost per 1/60 s, the same at any substep.
@@ -947,7 +958,7 @@ void Solver::volumePass(const StepConstants& c)
     const float cell = grid.cellMetres();
     const float stiffness = std::min(kVolumeStiffness, kVolumeStableShare * cell * cell / (c.dt * c.dt));
     const float pushDamping = 1.0f - std::exp(-kVolumeDampingPerSecond * c.dt);
-    m_pool->parallelFor(blockCount, 4, [&](std::size_t begin, std::size_t end) {
+    forRange(blockCount, 4, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
             Block& b = m_blocks[i];
             for (int l = 0; l < kLanes; ++l) {

@@ -27,7 +27,7 @@ TEST(HairVolumeGrid, SplatConservesWeightAndSamplesWhatWasSplatted)
     HairVolumeGrid grid;
     ASSERT_TRUE(grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f)));
     EXPECT_FLOAT_EQ(grid.cellMetres(), HairVolumeGrid::kFinestCellMetres);  // a small box gets the finest cells
-    grid.clear(pool);
+    grid.clear(&pool);
     // A uniform block of hair moving at (1, 2, 3) mm per substep, one particle per 2 mm.
     int count = 0;
     for (float x = -0.05f; x < 0.05f; x += 0.002f)
@@ -36,7 +36,7 @@ TEST(HairVolumeGrid, SplatConservesWeightAndSamplesWhatWasSplatted)
                 grid.splat(count % HairVolumeGrid::kSplatChunks, {x, y, z}, 0.5f, {0.001f, 0.002f, 0.003f});
                 ++count;
             }
-    grid.finish(pool);
+    grid.finish(&pool);
     EXPECT_NEAR(grid.totalWeight(), 0.5 * count, 1e-3 * count);
     // Inside the block: weight per volume, its move, and no gradient.
     const HairVolumeGrid::Sample inside = grid.sample({0.003f, -0.011f, 0.017f});
@@ -72,7 +72,7 @@ TEST(HairVolumeGrid, SameBitsWhicheverThreadsRunTheChunks)
         ThreadPool pool(threads);
         HairVolumeGrid grid;
         grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f));
-        grid.clear(pool);
+        grid.clear(&pool);
         pool.parallelFor(HairVolumeGrid::kSplatChunks, 1, [&](std::size_t begin, std::size_t end) {
             for (std::size_t chunk = begin; chunk < end; ++chunk)
                 for (int i = 0; i < 5000; ++i) {
@@ -81,7 +81,7 @@ TEST(HairVolumeGrid, SameBitsWhicheverThreadsRunTheChunks)
                                0.1f + 0.01f * static_cast<float>(i % 7), {std::sin(t), std::cos(t), 0.5f});
                 }
         });
-        grid.finish(pool);
+        grid.finish(&pool);
         std::vector<float> out;
         for (float x = -0.08f; x < 0.08f; x += 0.013f) {
             const HairVolumeGrid::Sample s = grid.sample({x, 0.3f * x, -0.5f * x});

@@ -142,6 +142,24 @@ TEST(Volume, DefaultGroomStandsOffTheScalpOnTop)
     EXPECT_GE(p90[1], 2.0f * p90[0]);
 }
 
+TEST(Volume, WetHairTakesLessRoom)
+{
+    float p90[2] = {0, 0};
+    for (int wet = 0; wet < 2; ++wet) {
+        auto sim = makeSimulation(defaultStill(parameterInfo(Param::Volume).defaultValue));
+        if (wet) {
+            std::vector<std::uint64_t> keys;
+            for (std::size_t w = 0; w < sim->groom().wispCount(); ++w)
+                keys.push_back(sim->groom().strandIdentity(sim->groom().keyStrand[w]));
+            sim->wet(keys, 1.0f);
+        }
+        run(*sim, 600);
+        p90[wet] = percentile(topDistances(*sim), 0.9);
+    }
+    std::printf("top quarter, p90 from the scalp: dry %.1f mm, soaked %.1f mm\n", 1e3 * p90[0], 1e3 * p90[1]);
+    EXPECT_LT(p90[1], 0.75f * p90[0]);
+}
+
 }  // namespace
 
 namespace {

@@ -63,6 +63,7 @@ float dryingRate(float wetness, float airSpeed, float halfLifeSeconds)
 
 float wetStiffnessFactor(float wetness) { return 1.0f - 0.75f * std::clamp(wetness, 0.0f, 1.0f); }
 float wetDragFactor(float wetness) { return 1.0f / (1.0f + 1.5f * std::clamp(wetness, 0.0f, 1.0f)); }
+float wetVolumeFactor(float wetness) { return 1.0f + 2.0f * std::clamp(wetness, 0.0f, 1.0f); }
 float wetClumping(float wetness) { return std::clamp(wetness, 0.0f, 1.0f); }
 
 }  // namespace wisp

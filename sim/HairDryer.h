@@ -35,6 +35,7 @@ float dryingRate(float wetness, float airSpeed, float halfLifeSeconds);
 // less; softer, so curls relax under their own weight; and it sticks together, so wisps clump.
 float wetStiffnessFactor(float wetness);  // multiplies the bending stiffness: 1 dry, 0.25 soaked
 float wetDragFactor(float wetness);       // multiplies the drag toward the wind: 1 dry, 0.4 soaked
+float wetVolumeFactor(float wetness);     // multiplies the density hair keeps (volume grid): 1 dry, 3 soaked, so wet hair takes a third of the room
 float wetClumping(float wetness);         // pulls the clump degree toward 1 (and the clump start toward the root) by this share: 0 dry, 1 soaked
 
 }  // namespace wisp

@@ -39,6 +39,35 @@ std::string HairSimulation::prepareHead(const TriangleMesh& head)
     return {};
 }
 
+namespace {
+
+// Per simulated strand, the drawn strands it stands for: a key hair and its members, or 1.
+std::vector<float> drawnStrandsPerSimulated(const Groom& groom, bool allStrands)
+{
+    if (allStrands)
+        return std::vector<float>(groom.strandCount(), 1.0f);
+    std::vector<float> drawn(groom.wispCount(), 0.0f);
+    for (std::size_t i = 0; i < groom.strandCount(); ++i)
+        drawn[groom.wispOf[i]] += 1.0f;
+    return drawn;
+}
+
+// The scalp area the drawn hair grows from, m²: each drawn strand takes 1 / (its region's density),
+// as where the growth weight is 1 (0, for the solver to estimate, when a region has no density).
+float scalpAreaOf(const Groom& groom)
+{
+    double area = 0.0;
+    for (std::size_t i = 0; i < groom.strandCount(); ++i) {
+        const float density = groom.regionSettings[groom.regionOfStrand[i]].densityPerCm2 * 1e4f;  // per m²
+        if (!(density > 0.0f))
+            return 0.0f;
+        area += 1.0 / density;
+    }
+    return static_cast<float>(area);
+}
+
+}  // namespace
+
 std::string HairSimulation::start(Groom groom, const ParameterValues& values)
 {
     SolverSettings settings = solverSettingsFrom(values);
@@ -54,6 +83,7 @@ std::string HairSimulation::start(Groom groom, const ParameterValues& values)
     m_solver.setSettings(settings);
     m_solver.setCollider(m_sdf);
     setBody(values);
+    m_solver.setStrandVolume(drawnStrandsPerSimulated(groom, allStrands), scalpAreaOf(groom));
     m_groom = std::move(groom);
     m_dryingHalfLife = values.getFloat(Param::DryingTime);
     m_simulatedOf.clear();
@@ -220,7 +250,7 @@ void HairSimulation::strandWetness(std::vector<float>& out) const
         out[i] = m_wetness.empty() ? 0.0f : m_wetness[m_groom.wispOf[i]];
 }
 
-// Wet hair's material in the solver: softer (stiffness) where its wetness moved by more than a
+// Wet hair's material in the solver: softer (stiffness) and less volume (the density it keeps), where its wetness moved by more than a
 // little since the solver was last told, so a slow drying costs a few updates a second, not one
 // per step.
 void HairSimulation::updateMaterial(bool force)
@@ -235,13 +265,15 @@ void HairSimulation::updateMaterial(bool force)
     }
     if (!changed)
         return;
-    std::vector<float> scales(count);
+    std::vector<float> scales(count), volumeTargets(count);
     for (std::size_t s = 0; s < count; ++s) {
         const float w = m_wetness.empty() ? 0.0f : m_wetness[wispOfSimulated(s)];
         m_wetnessInSolver[s] = w;
         scales[s] = m_baseStiffness[s] * wetStiffnessFactor(w);
+        volumeTargets[s] = wetVolumeFactor(w);
     }
     m_solver.setStiffnessScales(scales);
+    m_solver.setVolumeTargetScales(volumeTargets);
 }
 
 void HairSimulation::wet(std::span<const std::uint64_t> keyIdentities, float wetness)

@@ -70,6 +70,12 @@ constexpr std::array<ParameterInfo, kParamCount> kParameters{{
     {Friction, "friction", "Friction", "", G::Solver, K::Real, 0.0, 1.0, 0.3,
      "Coulomb friction coefficient of hair on skin and the body: sliding slows by this times the "
      "contact's push (static up to 1.25 times it)", S::Linear},
+    {Volume, "volume", "Volume", "", G::Solver, K::Real, 0.0, 1.0, 0.5,
+     "Hair-hair interaction: how much room the hair takes. 0 off (strands pass through each other); 0.5 "
+     "stands about 2 cm off the scalp on top; 1 about twice as full", S::Linear},
+    {HairFriction, "hair_friction", "Hair friction", "", G::Solver, K::Real, 0.0, 1.0, 0.2,
+     "Friction between neighbouring hairs: the share of their difference in velocity lost every 1/60 s "
+     "(0 slide freely, 1 move as one)", S::Linear},
     {HairOffset, "hair_offset", "Hair offset", "m", G::Groom, K::Real, 0.0, 0.02, 0.002,
      "Distance kept between the hair and the skin", S::Linear},
     {TimeStep, "time_step", "Time step", "s", G::Solver, K::Real, 1.0 / 1000.0, 1.0 / 10.0, 1.0 / 60.0,

@@ -42,6 +42,8 @@ enum class Param : int {
     Stiffness,
     GlobalShape,
     Friction,
+    Volume,
+    HairFriction,
     HairOffset,
     TimeStep,
     Substeps,

@@ -146,6 +146,10 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
     settle.turbulence = 0.0f;
     settle.dragPerSecond = 0.0f;
     settle.dampingPerSecond = std::max(settings.dampingPerSecond, kSettleDampingPerSecond);
+    // The combed strands alone, without the hair around them: the volume grid's push is the other
+    // hair's answer to this shape, so it is left to the live simulation, where it lays the lock over
+    // the hair beneath it instead of through it (README, "Hair volume").
+    settle.volume = 0.0f;
     Solver solver(1);
     solver.setCollider(collider);
     std::vector<glm::vec3> settled;

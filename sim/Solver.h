@@ -30,8 +30,10 @@
 
 namespace wisp {
 
+class HairVolumeGrid;
 class SignedDistanceField;
 class ThreadPool;
+struct StepConstants;  // one step's settings as the kernels read them (Solver.cpp)
 
 // A collider for neck and shoulders, head space; a sphere when a == b.
 struct Capsule {
@@ -77,6 +79,22 @@ public:
     // 1 and no wind of its own. Both 1 and none after setStrands.
     std::string setStrandAir(std::span<const float> dragScale, std::span<const glm::vec3> extraWind);
 
+    // Hair-hair interaction (settings().volume > 0; HairVolumeGrid.h): per strand, how many drawn
+    // strands it stands for (a key hair and its members; empty: 1 each), so the density matches
+    // what is drawn; and the scalp area (m²) the drawn hair grows from, which with the hair's
+    // length sets the density the hair keeps (0: estimated from the simulated roots). Both as
+    // after setStrands until set again.
+    std::string setStrandVolume(std::span<const float> drawnStrands, float scalpAreaSquareMetres);
+    // Per strand: multiplies the density the hair may reach before it pushes its neighbours away
+    // (wet hair: above 1, so it takes less room). Empty: 1 for every strand.
+    std::string setVolumeTargetScales(std::span<const float> perStrand);
+    // Drawn hair per scalp area (metres of hair per m²) and the density it keeps at this volume
+    // (metres of hair per m³; 0 when the volume is off), for tests and the README.
+    float hairPerScalpArea() const { return m_hairPerScalpArea; }
+    float volumeTargetDensity() const;
+    // The grid of the last step with volume on (null before one).
+    const HairVolumeGrid* volumeGrid() const { return m_volumeGrid.get(); }
+
     // World-space positions in the layout of the rest curves given to setStrands.
     void copyPositions(std::vector<glm::vec3>& out) const;
     // Positions and previous positions (Verlet's velocity), world space, in that layout.
@@ -107,9 +125,17 @@ public:
     struct Block;  // 16 strands of equal particle count, interleaved (defined in Solver.cpp)
     struct GlobalShapeRow;  // a particle's rest position and its global shape share (Solver.cpp)
 
+    // The target density (the density hair keeps, metres of hair per m³) is hairPerScalpArea /
+    // (volume x this). Not a layer one could measure on the head: hair hangs over far more than
+    // the scalp, and the grid spreads a thin layer over a cell; it is chosen so that the default
+    // groom at the default volume stands about 2 cm off the scalp on top (README, "Hair volume").
+    static constexpr float kVolumeDepthMetres = 0.3f;
+
 private:
     void updateBendShares(float substepSeconds);
     void updateGlobalShape(float substepSeconds);
+    void updateVolumeBounds();
+    void volumePass(const StepConstants& c);
 
 
     std::unique_ptr<ThreadPool> m_pool;
@@ -132,6 +158,10 @@ private:
         std::uint32_t lane;
     };
     std::vector<Slot> m_slotOfStrand;
+    std::unique_ptr<HairVolumeGrid> m_volumeGrid;  // made on the first step with volume on
+    glm::vec3 m_volumeLo{0.0f}, m_volumeHi{0.0f};   // head-space box every particle stays in
+    float m_scalpArea = 0.0f;                      // m², given or estimated
+    float m_hairPerScalpArea = 0.0f;               // metres of drawn hair per m² of scalp
     std::size_t m_strandCount = 0;
     std::size_t m_particleCount = 0;
     double m_time = 0.0;

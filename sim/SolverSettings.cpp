@@ -28,6 +28,8 @@ SolverSettings solverSettingsFrom(const ParameterValues& v)
     s.globalShape = v.getFloat(Param::GlobalShape);
     s.friction = v.getFloat(Param::Friction);
     s.hairOffsetMetres = v.getFloat(Param::HairOffset);
+    s.volume = v.getFloat(Param::Volume);
+    s.hairFriction = v.getFloat(Param::HairFriction);
     return s;
 }
 
@@ -43,6 +45,7 @@ std::string validateSolverSettings(const SolverSettings& s)
         {Param::Damping, s.dampingPerSecond},  {Param::Stiffness, s.stiffness},
         {Param::Friction, s.friction},         {Param::HairOffset, s.hairOffsetMetres},
         {Param::GlobalShape, s.globalShape},
+        {Param::Volume, s.volume},             {Param::HairFriction, s.hairFriction},
     });
     if (!rangeError.empty())
         return rangeError;

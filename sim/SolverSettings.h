@@ -23,6 +23,8 @@ struct SolverSettings {
     float globalShape = 0.0f;
     float friction = 0.0f;                   // Coulomb coefficient μ (kinetic; static 1.25 μ)
     float hairOffsetMetres = 0.0f;           // kept between hair and skin
+    float volume = 0.0f;                     // 0..1: hair-hair interaction through the volume grid; 0 off
+    float hairFriction = 0.0f;               // 0..1: share of the velocity difference between neighbouring hairs lost per 1/60 s
     // s_damping of Müller et al. 2012, eq. 9. 1 would conserve momentum exactly (the parent takes
     // back what follow-the-leader gave the child); below about 0.9 the energy follow-the-leader
     // adds makes curly strands with many segments and substeps shiver. Measured by the settling

@@ -937,8 +937,7 @@ HairStyle Viewport::drawnStyle() const
     // fuller, as children do in Blender and XGen.
     if (m_displayDensity > 1.0f) {
         const float thinner = std::sqrt(m_displayDensity);
-        style.rootWidthMetres /= thinner;
-        style.tipWidthMetres /= thinner;
+        style.lockWidthScale /= thinner; // every look's width is its thickness times this
     }
     return style;
 }

@@ -61,6 +61,7 @@ struct RunOptions {
     int measuredSteps = 100;
     std::size_t sphereStrands = 10'000;
     std::string headPath;  // brush-dab: a head file instead of the default head
+    double volume = -1.0;  // the volume parameter (hair-hair interaction); below 0: the default
 };
 
 template <typename StepFn>
@@ -91,6 +92,8 @@ BenchResult gridWorkload(const std::string& name, int width, int height, int par
     v.set(Param::Turbulence, 0.5);
     v.set(Param::Substeps, 1);
     v.set(Param::Body, 0);
+    if (o.volume >= 0.0)
+        v.set(Param::Volume, o.volume);
     HairSimulation sim(o.threads);
     if (std::string error = sim.setupGrid(head.mesh, width, height, particles, 0.3f, v); !error.empty())
         throw CliError{kBadInput, name + ": " + error};
@@ -319,6 +322,7 @@ int runBench(int argc, char** argv)
         {"threads", "N", "solver threads (default: one per core)"},
         {"strands", "N", "strands of the sphere workload (default 10000)"},
         {"steps", "N", "measured steps per workload after 20 warm-up steps (default 100, at least 50)"},
+        {"volume", "V", "hair-hair interaction of the grid workloads, 0..1 (0 off; default: the volume parameter's default)"},
         {"head", "FILE", "head mesh for the brush-dab and comb-release workloads (OBJ, PLY, OFF, STL; default: the built-in head)"},
     };
     const CommandLine args(argc, argv, 2, options);
@@ -337,6 +341,10 @@ int runBench(int argc, char** argv)
     o.measuredSteps = static_cast<int>(args.integer("steps", 100, 50, 1'000'000));
     o.sphereStrands = static_cast<std::size_t>(args.integer("strands", 10'000, 1, 4'000'000));
     o.headPath = args.text("head").value_or("");
+    if (args.has("volume"))
+        o.volume = args.real("volume", 0.0);
+    if (o.volume != -1.0 && !checkParameterValue(Param::Volume, o.volume).empty())
+        throw CliError{kBadInput, "--" + checkParameterValue(Param::Volume, o.volume)};
     const auto only = args.text("workload");
     if (only) {
         bool known = false;

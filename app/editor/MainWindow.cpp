@@ -58,7 +58,7 @@ std::vector<Param> forceParameters()
 {
     return {Param::Gravity, Param::WindSpeed, Param::WindAzimuth, Param::WindElevation,
             Param::Turbulence, Param::Drag, Param::Damping, Param::DryingTime, Param::Stiffness,
-            Param::GlobalShape, Param::Friction, Param::Body, Param::Substeps, Param::TimeStep, Param::SimulateAllStrands};
+            Param::GlobalShape, Param::Friction, Param::Volume, Param::HairFriction, Param::Body, Param::Substeps, Param::TimeStep, Param::SimulateAllStrands};
 }
 
 }  // namespace

@@ -1,0 +1,377 @@
+// Hair with volume (issue 13): hair-hair interaction through the volume grid (sim/HairVolumeGrid.h).
+// The grid's own arithmetic, and the figures of the issue's "Done means", asserted on real numbers:
+// standing off the scalp on top, one lock resting on another, settling, determinism, cost-free off.
+#include "SimFixtures.h"
+
+#include "sim/HairVolumeGrid.h"
+#include "sim/MeshBvh.h"
+#include "sim/ThreadPool.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+using namespace wisp;
+using namespace wisp::test;
+
+namespace {
+
+// --- The grid ----------------------------------------------------------------------------------
+
+TEST(HairVolumeGrid, SplatConservesWeightAndSamplesWhatWasSplatted)
+{
+    ThreadPool pool(2);
+    HairVolumeGrid grid;
+    ASSERT_TRUE(grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f)));
+    EXPECT_FLOAT_EQ(grid.cellMetres(), HairVolumeGrid::kFinestCellMetres);  // a small box gets the finest cells
+    grid.clear(&pool);
+    // A uniform block of hair moving at (1, 2, 3) mm per substep, one particle per 2 mm.
+    int count = 0;
+    for (float x = -0.05f; x < 0.05f; x += 0.002f)
+        for (float y = -0.05f; y < 0.05f; y += 0.002f)
+            for (float z = -0.05f; z < 0.05f; z += 0.002f) {
+                grid.splat(count % HairVolumeGrid::kSplatChunks, {x, y, z}, 0.5f, {0.001f, 0.002f, 0.003f});
+                ++count;
+            }
+    grid.finish(&pool);
+    EXPECT_NEAR(grid.totalWeight(), 0.5 * count, 1e-3 * count);
+    // Inside the block: weight per volume, its move, and no gradient.
+    const HairVolumeGrid::Sample inside = grid.sample({0.003f, -0.011f, 0.017f});
+    const float expected = 0.5f / (0.002f * 0.002f * 0.002f);
+    EXPECT_NEAR(inside.density, expected, 0.02f * expected);
+    EXPECT_NEAR(inside.move.x, 0.001f, 1e-6f);
+    EXPECT_NEAR(inside.move.y, 0.002f, 1e-6f);
+    EXPECT_NEAR(inside.move.z, 0.003f, 1e-6f);
+    EXPECT_LT(glm::length(inside.gradient), 0.05f * expected / grid.cellMetres());
+    // At the block's +X face the density falls outward: the gradient points back in (-X).
+    const HairVolumeGrid::Sample edge = grid.sample({0.05f, 0.0f, 0.0f});
+    EXPECT_LT(edge.gradient.x, -0.2f * expected / grid.cellMetres());
+    EXPECT_LT(std::abs(edge.gradient.y), 0.05f * -edge.gradient.x);
+    // Empty space reads nothing; outside the grid too.
+    EXPECT_EQ(grid.sample({0.09f, 0.09f, 0.09f}).density, 0.0f);
+    EXPECT_EQ(grid.sample({5.0f, 0.0f, 0.0f}).density, 0.0f);
+}
+
+TEST(HairVolumeGrid, StaysWithinItsMemoryBoundForAHugeBox)
+{
+    HairVolumeGrid grid;
+    ASSERT_TRUE(grid.setBounds(glm::vec3(-2.0f), glm::vec3(2.0f)));
+    EXPECT_LE(grid.memoryBytes(), HairVolumeGrid::kMaxBytes);
+    EXPECT_GT(grid.cellMetres(), 0.05f);  // 4 m across cannot have 8 mm cells in 32 MiB
+    EXPECT_FALSE(grid.setBounds(glm::vec3(0.0f), glm::vec3(NAN)));
+    EXPECT_FALSE(grid.setBounds(glm::vec3(0.0f), glm::vec3(0.0f)));
+    EXPECT_TRUE(grid.empty());
+}
+
+TEST(HairVolumeGrid, SameBitsWhicheverThreadsRunTheChunks)
+{
+    auto run = [](int threads) {
+        ThreadPool pool(threads);
+        HairVolumeGrid grid;
+        grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f));
+        grid.clear(&pool);
+        pool.parallelFor(HairVolumeGrid::kSplatChunks, 1, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t chunk = begin; chunk < end; ++chunk)
+                for (int i = 0; i < 5000; ++i) {
+                    const float t = static_cast<float>(i * HairVolumeGrid::kSplatChunks + chunk);
+                    grid.splat(static_cast<int>(chunk), {0.07f * std::sin(t * 0.37f), 0.07f * std::sin(t * 0.11f), 0.07f * std::cos(t * 0.23f)},
+                               0.1f + 0.01f * static_cast<float>(i % 7), {std::sin(t), std::cos(t), 0.5f});
+                }
+        });
+        grid.finish(&pool);
+        std::vector<float> out;
+        for (float x = -0.08f; x < 0.08f; x += 0.013f) {
+            const HairVolumeGrid::Sample s = grid.sample({x, 0.3f * x, -0.5f * x});
+            out.insert(out.end(), {s.density, s.move.x, s.move.y, s.move.z, s.gradient.x, s.gradient.y, s.gradient.z});
+        }
+        return out;
+    };
+    const std::vector<float> one = run(1), three = run(3);
+    ASSERT_EQ(one.size(), three.size());
+    EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(float)), 0);
+}
+
+// --- Volume on the head --------------------------------------------------------------------------
+
+// The default groom as `wisp-cli simulate --wind_speed 0 --turbulence 0` grows it.
+ParameterValues defaultStill(double volume)
+{
+    ParameterValues v;
+    v.set(Param::WindSpeed, 0.0);
+    v.set(Param::Turbulence, 0.0);
+    EXPECT_EQ(v.set(Param::Volume, volume), "");
+    return v;
+}
+
+// Distances (m) from the scalp (the head mesh, through its BVH) of the drawn particles in the top
+// quarter of the head's height, sorted.
+std::vector<float> topDistances(const HairSimulation& sim)
+{
+    HairCurves frame;
+    sim.buildFrame(frame);
+    const Aabb box = boundsOf(sim.head());
+    const float top = box.min.y + 0.75f * box.size().y;
+    std::vector<float> d;
+    for (const glm::vec3& p : frame.positions)
+        if (p.y >= top)
+            d.push_back(glm::distance(p, sim.bvh().closestPoint(p).point));
+    std::sort(d.begin(), d.end());
+    return d;
+}
+float percentile(const std::vector<float>& sorted, double q)
+{
+    return sorted.empty() ? 0.0f : sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))];
+}
+
+TEST(Volume, DefaultGroomStandsOffTheScalpOnTop)
+{
+    float p90[2] = {0, 0};
+    for (int on = 0; on < 2; ++on) {
+        auto sim = makeSimulation(defaultStill(on ? parameterInfo(Param::Volume).defaultValue : 0.0));
+        run(*sim, 600);
+        const std::vector<float> d = topDistances(*sim);
+        p90[on] = percentile(d, 0.9);
+        std::printf("volume %s: %zu drawn particles in the top quarter, from the scalp: median %.1f mm, p90 %.1f mm\n",
+                    on ? "default" : "0", d.size(), 1e3 * percentile(d, 0.5), 1e3 * p90[on]);
+        EXPECT_EQ(sim->solver().strandsReset(), 0u);
+    }
+    EXPECT_GE(p90[1], 0.015f);
+    EXPECT_GE(p90[1], 2.0f * p90[0]);
+}
+
+TEST(Volume, WetHairTakesLessRoom)
+{
+    float p90[2] = {0, 0};
+    for (int wet = 0; wet < 2; ++wet) {
+        auto sim = makeSimulation(defaultStill(parameterInfo(Param::Volume).defaultValue));
+        if (wet) {
+            std::vector<std::uint64_t> keys;
+            for (std::size_t w = 0; w < sim->groom().wispCount(); ++w)
+                keys.push_back(sim->groom().strandIdentity(sim->groom().keyStrand[w]));
+            sim->wet(keys, 1.0f);
+        }
+        run(*sim, 600);
+        p90[wet] = percentile(topDistances(*sim), 0.9);
+    }
+    std::printf("top quarter, p90 from the scalp: dry %.1f mm, soaked %.1f mm\n", 1e3 * p90[0], 1e3 * p90[1]);
+    EXPECT_LT(p90[1], 0.75f * p90[0]);
+}
+
+}  // namespace
+
+namespace {
+
+std::vector<glm::vec3> simulatedTips(const HairSimulation& sim)
+{
+    std::vector<glm::vec3> p;
+    sim.copySimulated(p);
+    const HairCurves layout = sim.simulatesAllStrands() ? sim.groom().rest : keyRestCurves(sim.groom());
+    std::vector<glm::vec3> tips;
+    for (std::size_t i = 0; i < layout.strandCount(); ++i)
+        tips.push_back(p[layout.offsets[i + 1] - 1]);
+    return tips;
+}
+
+TEST(Volume, SettledHairStaysStillAndFiniteAfterTenSeconds)
+{
+    auto sim = makeSimulation(defaultStill(parameterInfo(Param::Volume).defaultValue));
+    run(*sim, 600);  // 10 s at 1/60 s
+    std::size_t moving = 0, total = 0;
+    for (int step = 0; step < 10; ++step) {
+        const std::vector<glm::vec3> before = simulatedTips(*sim);
+        sim->step();
+        const std::vector<glm::vec3> after = simulatedTips(*sim);
+        for (std::size_t i = 0; i < before.size(); ++i) {
+            ASSERT_TRUE(std::isfinite(after[i].x + after[i].y + after[i].z));
+            moving += glm::distance(before[i], after[i]) > 0.001f ? 1 : 0;
+            ++total;
+        }
+    }
+    const double share = static_cast<double>(moving) / static_cast<double>(total);
+    std::printf("tips moving more than 1 mm per step after 10 s: %.2f %%\n", 100.0 * share);
+    EXPECT_LT(share, 0.01);
+    EXPECT_EQ(sim->solver().strandsReset(), 0u);
+}
+
+// The settling cases of SettlingTest.cpp, with volume on: hair resting on hair must not bounce.
+struct SettleCase {
+    int substeps, segments;
+    bool curly;
+};
+class VolumeSettling : public testing::TestWithParam<SettleCase> {};
+TEST_P(VolumeSettling, FewerThanOnePercentOfTipsStillMoveAfterTenSeconds)
+{
+    const SettleCase k = GetParam();
+    ParameterValues v = testParameters();
+    v.set(Param::Volume, parameterInfo(Param::Volume).defaultValue);
+    v.set(Param::Substeps, k.substeps);
+    v.set(Param::Segments, k.segments);
+    if (k.curly) {
+        v.set(Param::CurlRadius, 0.008);
+        v.set(Param::CurlTurns, 25.0);
+    }
+    auto sim = makeSimulation(v);
+    run(*sim, 600);
+    const std::vector<glm::vec3> before = simulatedTips(*sim);
+    sim->step();
+    const std::vector<glm::vec3> after = simulatedTips(*sim);
+    std::size_t moving = 0;
+    for (std::size_t i = 0; i < before.size(); ++i)
+        moving += glm::distance(before[i], after[i]) > 0.001f ? 1 : 0;
+    const double share = static_cast<double>(moving) / static_cast<double>(before.size());
+    std::printf("volume on, %s, %d substeps, %d segments: %.1f %% of tips still move > 1 mm a step after 10 s\n",
+                k.curly ? "curly" : "straight", k.substeps, k.segments, 100.0 * share);
+    EXPECT_LT(share, 0.01);
+}
+INSTANTIATE_TEST_SUITE_P(SubstepsSegmentsCurl, VolumeSettling,
+                         testing::Values(SettleCase{1, 8, false}, SettleCase{1, 40, false}, SettleCase{8, 40, false},
+                                         SettleCase{4, 15, false}));
+
+TEST(Volume, NoNonFiniteOrResetAtTheExtremes)
+{
+    struct Case {
+        double volume, friction, gravity, wind, timeStep;
+        int substeps;
+    };
+    for (const Case k : {Case{1.0, 1.0, 100.0, 100.0, 0.1, 1}, Case{1.0, 0.0, -100.0, 0.0, 0.1, 1},
+                         Case{1.0, 1.0, 9.81, 50.0, 1.0 / 60.0, 32}, Case{0.001, 0.5, 9.81, 0.0, 0.001, 1}}) {
+        ParameterValues v = testParameters();
+        v.set(Param::Volume, k.volume);
+        v.set(Param::HairFriction, k.friction);
+        v.set(Param::Gravity, k.gravity);
+        v.set(Param::WindSpeed, k.wind);
+        v.set(Param::Turbulence, 2.0);
+        v.set(Param::TimeStep, k.timeStep);
+        v.set(Param::Substeps, k.substeps);
+        auto sim = makeSimulation(v);
+        run(*sim, 40);
+        std::vector<glm::vec3> p;
+        sim->copySimulated(p);
+        for (const glm::vec3& x : p)
+            ASSERT_TRUE(std::isfinite(x.x + x.y + x.z)) << "volume " << k.volume << " gravity " << k.gravity;
+        // A reset strand is one that went non-finite or flew off: none may.
+        EXPECT_EQ(sim->solver().strandsReset(), 0u) << "volume " << k.volume << " gravity " << k.gravity << " wind " << k.wind;
+    }
+}
+
+TEST(Volume, ABrokenStrandIsResetAndSpreadsNothingNonFinite)
+{
+    ParameterValues v = testParameters();
+    v.set(Param::Volume, 1.0);
+    v.set(Param::HairFriction, 1.0);
+    auto sim = makeSimulation(v, 2);
+    run(*sim, 20);
+    sim->solver().moveParticle(3, 5, glm::vec3(NAN));
+    sim->step();
+    EXPECT_EQ(sim->solver().strandsReset(), 1u);  // only the broken one
+    run(*sim, 5);
+    std::vector<glm::vec3> p;
+    sim->copySimulated(p);
+    for (const glm::vec3& x : p)
+        ASSERT_TRUE(std::isfinite(x.x + x.y + x.z));
+    EXPECT_EQ(sim->solver().strandsReset(), 1u);
+}
+
+TEST(Volume, SameBitsWithOneAndThreeThreads)
+{
+    ParameterValues v = testParameters();
+    v.set(Param::WindSpeed, 3.0);
+    v.set(Param::Turbulence, 0.6);
+    v.set(Param::Volume, 0.8);
+    v.set(Param::HairFriction, 0.5);
+    std::vector<glm::vec3> p[2];
+    for (int k = 0; k < 2; ++k) {
+        auto sim = makeSimulation(v, k == 0 ? 1 : 3);
+        // A moving head: the grid follows it.
+        for (int i = 0; i < 60; ++i) {
+            sim->solver().setHeadTransform(glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0), glm::vec4(0, 0, 1, 0),
+                                                     glm::vec4(0.002f * static_cast<float>(i), 0.0f, 0.0f, 1.0f)));
+            sim->step();
+        }
+        sim->copySimulated(p[k]);
+        ASSERT_NE(sim->solver().volumeGrid(), nullptr);
+    }
+    ASSERT_EQ(p[0].size(), p[1].size());
+    EXPECT_EQ(std::memcmp(p[0].data(), p[1].data(), p[0].size() * sizeof(glm::vec3)), 0);
+}
+
+// Two locks on a floor (a sphere of 1 m radius), the top one laid across the bottom one a little
+// above it. With volume they stay apart where they cross; with volume 0 the top one falls through
+// onto the floor, into the other.
+struct CrossResult {
+    double shareApart = 0.0;  // of the top lock's particles over the bottom lock
+    std::size_t over = 0;
+};
+CrossResult crossLocks(float volume)
+{
+    constexpr int kStrands = 16, kPoints = 16;
+    constexpr float kLength = 0.2f, kWidth = 0.04f, kFloor = 1.0f;
+    HairCurves rest;
+    for (int lock = 0; lock < 2; ++lock)
+        for (int s = 0; s < kStrands; ++s) {
+            const float across = -0.5f * kWidth + kWidth * static_cast<float>(s) / (kStrands - 1);
+            auto points = rest.strandForWrite(rest.addStrand(kPoints));
+            for (int j = 0; j < kPoints; ++j) {
+                const float along = -0.5f * kLength + kLength * static_cast<float>(j) / (kPoints - 1);
+                // The bottom lock runs along X on the floor; the top one along Z, 6 mm higher.
+                const glm::vec3 flat = lock == 0 ? glm::vec3(along, 0.0f, across) : glm::vec3(across, 0.0f, along);
+                points[j] = flat + glm::vec3(0.0f, kFloor + 0.004f + (lock == 1 ? 0.006f : 0.0f), 0.0f);
+            }
+        }
+    Solver solver(2);
+    EXPECT_EQ(solver.setStrands(rest), "");
+    SolverSettings s;
+    s.substeps = 2;
+    s.stiffness = 0.05f;
+    s.dampingPerSecond = 2.0f;
+    s.friction = 0.3f;
+    s.hairOffsetMetres = 0.002f;
+    s.volume = volume;
+    s.hairFriction = 0.2f;
+    EXPECT_EQ(solver.setSettings(s), "");
+    solver.setCapsules({Capsule{{0, 0, 0}, {0, 0, 0}, kFloor}});
+    // Each key stands for 12 drawn strands growing at 8 strands/cm², as in the default groom.
+    const std::vector<float> drawn(2 * kStrands, 12.0f);
+    EXPECT_EQ(solver.setStrandVolume(drawn, 2 * kStrands * 12 / 8e4f), "");
+    for (int i = 0; i < 300; ++i)
+        solver.step();
+    std::vector<glm::vec3> p;
+    solver.copyPositions(p);
+    const std::size_t half = p.size() / 2;
+    CrossResult r;
+    std::size_t apart = 0;
+    for (std::size_t i = half; i < p.size(); ++i) {
+        if (std::abs(p[i].x) > 0.5f * kLength || std::abs(p[i].z) > 0.5f * kWidth)
+            continue;  // not over the bottom lock
+        float nearest = INFINITY;
+        for (std::size_t k = 0; k < half; ++k) {
+            if (k % kPoints == kPoints - 1)
+                continue;
+            const glm::vec3 a = p[k], b = p[k + 1];  // the bottom lock's segments
+            const float t = std::clamp(glm::dot(p[i] - a, b - a) / glm::dot(b - a, b - a), 0.0f, 1.0f);
+            nearest = std::min(nearest, glm::distance(p[i], a + t * (b - a)));
+        }
+        ++r.over;
+        apart += nearest >= s.hairOffsetMetres ? 1 : 0;
+    }
+    r.shareApart = r.over ? static_cast<double>(apart) / static_cast<double>(r.over) : 0.0;
+    return r;
+}
+
+// The hair radius here is the hair offset, 2 mm: what the solver keeps between a hair's centre
+// line and the skin.
+TEST(Volume, ALockLaidAcrossAnotherRestsOnIt)
+{
+    const CrossResult with = crossLocks(1.0f), without = crossLocks(0.0f);
+    std::printf("top lock's particles over the bottom lock at least 2 mm from it: volume 1 %.1f %% of %zu, volume 0 "
+                "%.1f %% of %zu\n",
+                100.0 * with.shareApart, with.over, 100.0 * without.shareApart, without.over);
+    ASSERT_GT(with.over, 20u);
+    EXPECT_GE(with.shareApart, 0.95);
+    EXPECT_LT(without.shareApart, 0.5);
+}
+
+}  // namespace

@@ -961,7 +961,7 @@ float estimatedScalpArea(std::span<const Solver::Block> blocks)
     for (const Solver::Block& b : blocks)
         for (int l = 0; l < kLanes; ++l)
             if (b.strand[l] >= 0) {
-                const glm::ivec3 c(glm::floor(glm::vec3(b.rest[0].x[l], b.rest[0].y[l], b.rest[0].z[l]) / kCell));
+                const glm::ivec3 c(glm::floor(glm::vec3(b.shape[0].x[l], b.shape[0].y[l], b.shape[0].z[l]) / kCell));
                 cells.push_back((static_cast<std::int64_t>(c.x & 0x1FFFFF) << 42) | (static_cast<std::int64_t>(c.y & 0x1FFFFF) << 21) |
                                 (c.z & 0x1FFFFF));
             }
@@ -982,7 +982,7 @@ void Solver::updateVolumeBounds()
         for (int l = 0; l < kLanes; ++l) {
             if (b.strand[l] < 0)
                 continue;
-            const glm::vec3 root(b.rest[0].x[l], b.rest[0].y[l], b.rest[0].z[l]);
+            const glm::vec3 root(b.shape[0].x[l], b.shape[0].y[l], b.shape[0].z[l]);
             lo = glm::min(lo, root - b.strandLength[l]);
             hi = glm::max(hi, root + b.strandLength[l]);
             hair += static_cast<double>(b.volumeWeight[l]) * (b.points - 1);

@@ -28,17 +28,6 @@ ParameterValues still(std::initializer_list<std::pair<Param, double>> changes)
     return v;
 }
 
-std::vector<glm::vec3> simulatedTips(const HairSimulation& sim)
-{
-    std::vector<glm::vec3> p;
-    sim.copySimulated(p);
-    const HairCurves layout = sim.simulatesAllStrands() ? sim.groom().rest : keyRestCurves(sim.groom());
-    std::vector<glm::vec3> tips;
-    for (std::size_t i = 0; i < layout.strandCount(); ++i)
-        tips.push_back(p[layout.offsets[i + 1] - 1]);
-    return tips;
-}
-
 // Share of simulated tips that moved more than `metres` in one step.
 double shareStillMoving(HairSimulation& sim, float metres)
 {

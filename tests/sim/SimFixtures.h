@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include <memory>
+#include <vector>
 
 namespace wisp::test {
 
@@ -66,6 +67,18 @@ inline TipStats tipStats(const HairSimulation& sim)
     s.meanRoot /= static_cast<float>(layout.strandCount());
     s.meanTip /= static_cast<float>(layout.strandCount());
     return s;
+}
+
+// The simulated strands' tips (keys only unless every strand is simulated), world space.
+inline std::vector<glm::vec3> simulatedTips(const HairSimulation& sim)
+{
+    std::vector<glm::vec3> p;
+    sim.copySimulated(p);
+    const HairCurves layout = sim.simulatesAllStrands() ? sim.groom().rest : keyRestCurves(sim.groom());
+    std::vector<glm::vec3> tips;
+    for (std::size_t i = 0; i < layout.strandCount(); ++i)
+        tips.push_back(p[layout.offsets[i + 1] - 1]);
+    return tips;
 }
 
 }  // namespace wisp::test

@@ -168,17 +168,6 @@ TEST(Volume, WetHairTakesLessRoom)
 
 namespace {
 
-std::vector<glm::vec3> simulatedTips(const HairSimulation& sim)
-{
-    std::vector<glm::vec3> p;
-    sim.copySimulated(p);
-    const HairCurves layout = sim.simulatesAllStrands() ? sim.groom().rest : keyRestCurves(sim.groom());
-    std::vector<glm::vec3> tips;
-    for (std::size_t i = 0; i < layout.strandCount(); ++i)
-        tips.push_back(p[layout.offsets[i + 1] - 1]);
-    return tips;
-}
-
 TEST(Volume, SettledHairStaysStillAndFiniteAfterTenSeconds)
 {
     auto sim = makeSimulation(defaultStill(kNaturalVolume));

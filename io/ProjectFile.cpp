@@ -1,6 +1,7 @@
 #include "io/ProjectFile.h"
 #include "io/HeadPlacement.h"
 #include "io/JsonErrors.h"
+#include "io/MeshReader.h"
 
 #include "io/AtomicFile.h"
 #include "io/Base64.h"
@@ -599,6 +600,14 @@ std::string projectToJson(const Project& project, const std::string& projectPath
     if (!style.empty())
         root["style"] = std::move(style);
     return dumpPretty(root);
+}
+
+Result<TriangleMesh> readHeadFile(const std::string& absolutePath)
+{
+    Result<MeshReadResult> mesh = readMesh(absolutePath);
+    if (!mesh)
+        return mesh.error();
+    return std::move(mesh).value().mesh;
 }
 
 Result<ProjectReadResult> readProject(const std::string& path, const HeadLoader& loadHead)

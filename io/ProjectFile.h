@@ -118,6 +118,8 @@ struct ProjectReadResult {
 // Loads a head mesh file for a project whose head is not embedded. Given the absolute path; returns
 // the file's coordinates as stored (readProject then places them as the import did).
 using HeadLoader = std::function<Result<TriangleMesh>(const std::string& absolutePath)>;
+// The HeadLoader every tool uses: the mesh file read by io::readMesh (any format it reads).
+Result<TriangleMesh> readHeadFile(const std::string& absolutePath);
 
 // `loadHead` is needed only for projects whose head is not embedded. A missing referenced head is
 // an error naming the project and the head paths tried: the relative "source" resolved against the

@@ -114,13 +114,7 @@ void validatePreset(const io::PresetReadResult& read, const std::string& path)
 
 void validateProject(const std::string& path)
 {
-    const io::HeadLoader loader = [](const std::string& headPath) -> io::Result<TriangleMesh> {
-        io::Result<io::MeshReadResult> mesh = io::readMesh(headPath);
-        if (!mesh)
-            return mesh.error();
-        return std::move(mesh).value().mesh;
-    };
-    io::Result<io::ProjectReadResult> read = io::readProject(path, loader);
+    io::Result<io::ProjectReadResult> read = io::readProject(path, io::readHeadFile);
     if (!read)
         throw CliError{kBadInput, read.error().toString()};
     const io::Project& p = read.value().project;

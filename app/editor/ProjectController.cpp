@@ -246,13 +246,7 @@ bool ProjectController::newProject()
 
 bool ProjectController::load(const QString& path, bool asRecovered, const QString& projectPath)
 {
-    const io::HeadLoader loader = [](const std::string& headPath) -> io::Result<TriangleMesh> {
-        io::Result<io::MeshReadResult> mesh = io::readMesh(headPath);
-        if (!mesh)
-            return mesh.error();
-        return std::move(mesh).value().mesh;
-    };
-    io::Result<io::ProjectReadResult> read = io::readProject(path.toStdString(), loader);
+    io::Result<io::ProjectReadResult> read = io::readProject(path.toStdString(), io::readHeadFile);
     if (!read) {
         fail(tr("Cannot open project"), QString::fromStdString(read.error().toString()));
         return false;

@@ -65,13 +65,7 @@ bool loadInput(const QString& input, Document& document, QString* error)
         return false;
     }
     if (info.suffix().compare(QStringLiteral("wisp"), Qt::CaseInsensitive) == 0) {
-        const io::HeadLoader loader = [](const std::string& headPath) -> io::Result<TriangleMesh> {
-            io::Result<io::MeshReadResult> mesh = io::readMesh(headPath);
-            if (!mesh)
-                return mesh.error();
-            return std::move(mesh).value().mesh;
-        };
-        io::Result<io::ProjectReadResult> read = io::readProject(input.toStdString(), loader);
+        io::Result<io::ProjectReadResult> read = io::readProject(input.toStdString(), io::readHeadFile);
         if (!read) {
             *error = QString::fromStdString(read.error().toString());
             return false;

@@ -115,11 +115,14 @@ std::string HairSimulation::setStrandStiffness(const Groom& groom)
 {
     m_baseStiffness.clear();
     m_baseStiffness.reserve(m_solver.strandCount());
+    m_baseVolumeFactor.clear();
+    m_baseVolumeFactor.reserve(m_solver.strandCount());
     const std::size_t count = m_allStrands ? groom.strandCount() : groom.wispCount();
     for (std::size_t i = 0; i < count; ++i) {
         const std::size_t strand = m_allStrands ? i : groom.keyStrand[i];
         const StrandStyle* style = styleOf(strand);
         m_baseStiffness.push_back(strandStiffnessScale(groom.regionStiffnessScale[groom.regionOfStrand[strand]], style));
+        m_baseVolumeFactor.push_back(style && style->shape.size() >= 2 ? kCombedVolumeFactor : 1.0f);
     }
     if (std::string error = m_solver.setStiffnessScales(m_baseStiffness); !error.empty())
         return error;
@@ -256,7 +259,7 @@ void HairSimulation::strandWetness(std::vector<float>& out) const
 void HairSimulation::updateMaterial(bool force)
 {
     const std::size_t count = m_solver.strandCount();
-    if (m_baseStiffness.size() != count || m_wetnessInSolver.size() != count)
+    if (m_baseStiffness.size() != count || m_wetnessInSolver.size() != count || m_baseVolumeFactor.size() != count)
         return;
     bool changed = force;
     for (std::size_t s = 0; s < count && !changed; ++s) {
@@ -270,7 +273,7 @@ void HairSimulation::updateMaterial(bool force)
         const float w = m_wetness.empty() ? 0.0f : m_wetness[wispOfSimulated(s)];
         m_wetnessInSolver[s] = w;
         scales[s] = m_baseStiffness[s] * wetStiffnessFactor(w);
-        volumeTargets[s] = wetVolumeFactor(w);
+        volumeTargets[s] = std::max(m_baseVolumeFactor[s], wetVolumeFactor(w));
     }
     m_solver.setStiffnessScales(scales);
     m_solver.setVolumeTargetScales(volumeTargets);

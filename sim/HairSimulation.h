@@ -116,6 +116,11 @@ public:
     // times as stiff as its region (0.25, the default, becomes 0.6, which holds a lock combed
     // sideways; the solver carries a lock's weight to its root, so default hair could not).
     static constexpr float kCombSetsStiffness = 2.4f;
+    // A comb also presses the hair together: a combed strand keeps up to this many times the density
+    // of the hair around it (the volume grid's target, as soaked hair does) before the grid pushes it,
+    // so the grid's push vanishes at the combed rest shape and does not undo the comb (README, "Hair
+    // volume"; measured by StylingTest.CombedHairFollowsTheStroke... with volume on).
+    static constexpr float kCombedVolumeFactor = 3.0f;
     // A strand's stiffness scale: its region's, times its hairspray, at least the comb's set.
     static float strandStiffnessScale(float regionScale, const StrandStyle* style);
 
@@ -156,6 +161,7 @@ private:
     std::unordered_map<std::uint64_t, float> m_liveWetness;  // by key-hair identity, nonzero only
     std::vector<float> m_wetness;                             // per wisp of m_groom
     std::vector<float> m_baseStiffness;                       // per simulated strand: region x hairspray
+    std::vector<float> m_baseVolumeFactor;                    // per simulated strand: 1, or the comb's
     std::vector<float> m_wetnessInSolver;                     // per simulated strand: as last given to the solver
     bool m_airInSolver = false;                               // the solver has per-strand air set
     std::vector<HairDryer> m_dryers;

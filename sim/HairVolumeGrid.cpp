@@ -25,6 +25,8 @@ void forRange(ThreadPool* pool, std::size_t count, std::size_t grain, const std:
 bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
 {
     m_nodes.clear();
+    m_hairDensity.clear();
+    m_solid.clear();
     m_chunks.clear();
     m_touched.clear();
     m_live.clear();
@@ -50,6 +52,8 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
     m_origin = 0.5f * (lo + hi) - 0.5f * cell * glm::vec3(dims - 1);
     const std::size_t count = static_cast<std::size_t>(dims.x) * dims.y * dims.z;
     m_nodes.assign(count, Node{});
+    m_hairDensity.assign(count, 0.0f);
+    m_solid.assign(count, 0.0f);
     m_chunks.assign(count * kSplatChunks, Accumulator{});
     m_bricks = (dims + kBrick - 1) / kBrick;
     const std::size_t bricks = static_cast<std::size_t>(m_bricks.x) * m_bricks.y * m_bricks.z;
@@ -60,7 +64,7 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
 
 std::size_t HairVolumeGrid::memoryBytes() const
 {
-    return m_nodes.capacity() * sizeof(Node) + m_chunks.capacity() * sizeof(Accumulator) + m_touched.capacity() + m_live.capacity() + m_liveList.capacity() * sizeof(std::uint32_t);
+    return m_nodes.capacity() * sizeof(Node) + (m_hairDensity.capacity() + m_solid.capacity()) * sizeof(float) + m_chunks.capacity() * sizeof(Accumulator) + m_touched.capacity() + m_live.capacity() + m_liveList.capacity() * sizeof(std::uint32_t);
 }
 
 void HairVolumeGrid::setSolid(const std::function<float(const glm::vec3&)>& signedDistance)
@@ -69,7 +73,7 @@ void HairVolumeGrid::setSolid(const std::function<float(const glm::vec3&)>& sign
         for (int j = 0; j < m_dims.y; ++j)
             for (int i = 0; i < m_dims.x; ++i) {
                 const float d = signedDistance(m_origin + m_cell * glm::vec3(i, j, k));
-                m_nodes[index(i, j, k)].solid = std::clamp(0.5f - d / m_cell, 0.0f, 1.0f);
+                m_solid[index(i, j, k)] = std::clamp(0.5f - d / m_cell, 0.0f, 1.0f);
             }
 }
 
@@ -120,11 +124,13 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
     for (const std::uint32_t b : m_liveList)
         if (!m_live[b])
             forNodesOf(b, [&](int, int, int, std::size_t n) {
-                Node& node = m_nodes[n];
-                node.density = node.moveX = node.moveY = node.moveZ = node.weight = 0.0f;
+                m_nodes[n] = Node{};
+                m_hairDensity[n] = 0.0f;
             });
     m_liveList = std::move(now);
+    m_solidDensity = solidDensity;
 
+    // First the sums (every live node), then what sample() reads, which takes the neighbours' sums.
     const float perVolume = 1.0f / (m_cell * m_cell * m_cell);
     forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
         for (std::size_t l = begin; l < end; ++l)
@@ -139,46 +145,23 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
                 }
                 Node& node = m_nodes[n];
                 node.weight = sum.weight;
-                node.density = sum.weight * perVolume;
-                const float inv = sum.weight > 0.0f ? 1.0f / sum.weight : 0.0f;
-                node.moveX = sum.moveX * inv;
-                node.moveY = sum.moveY * inv;
-                node.moveZ = sum.moveZ * inv;
+                node.moveX = sum.moveX;
+                node.moveY = sum.moveY;
+                node.moveZ = sum.moveZ;
+                m_hairDensity[n] = sum.weight * perVolume;
             });
     });
-    m_solidDensity = solidDensity;
-}
-
-HairVolumeGrid::Sample HairVolumeGrid::sample(const glm::vec3& p) const
-{
-    Sample s;
-    if (m_nodes.empty())
-        return s;
-    const glm::vec3 g = (p - m_origin) / m_cell;
-    if (!(g.x >= 0.0f && g.y >= 0.0f && g.z >= 0.0f && g.x < static_cast<float>(m_dims.x - 1) &&
-          g.y < static_cast<float>(m_dims.y - 1) && g.z < static_cast<float>(m_dims.z - 1)))
-        return s;
-    const glm::ivec3 i(g);
-    const glm::vec3 f = g - glm::vec3(i);
-    const std::size_t strideY = static_cast<std::size_t>(m_dims.x), strideZ = strideY * m_dims.y;
-    const std::size_t base = index(i.x, i.y, i.z);
-    // The mean move is weighted by each node's hair, not only by distance: an empty node (no move)
-    // must not pull the hair's mean toward rest.
-    float moveWeight = 0.0f;
-    for (int c = 0; c < 8; ++c) {
-        const int dx = c & 1, dy = (c >> 1) & 1, dz = c >> 2;
-        const float w = (dx ? f.x : 1.0f - f.x) * (dy ? f.y : 1.0f - f.y) * (dz ? f.z : 1.0f - f.z);
-        const Node& n = m_nodes[base + dx + dy * strideY + dz * strideZ];
-        s.density += w * (n.density + n.solid * m_solidDensity);
-        s.gradient += w * gradientAt(i.x + dx, i.y + dy, i.z + dz);
-        const float wm = w * n.weight;
-        moveWeight += wm;
-        s.move += wm * glm::vec3(n.moveX, n.moveY, n.moveZ);
-    }
-    if (moveWeight > 0.0f)
-        s.move /= moveWeight;
-    s.hair = moveWeight;
-    return s;
+    const float inv2h = 0.5f / m_cell;
+    forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t l = begin; l < end; ++l)
+            forNodesOf(m_liveList[l], [&](int i, int j, int k, std::size_t n) {
+                Node& node = m_nodes[n];
+                node.density = m_hairDensity[n] + m_solid[n] * m_solidDensity;
+                node.gradX = (densityAt(i + 1, j, k) - densityAt(i - 1, j, k)) * inv2h;
+                node.gradY = (densityAt(i, j + 1, k) - densityAt(i, j - 1, k)) * inv2h;
+                node.gradZ = (densityAt(i, j, k + 1) - densityAt(i, j, k - 1)) * inv2h;
+            });
+    });
 }
 
 double HairVolumeGrid::totalWeight() const

@@ -59,17 +59,16 @@ public:
     void finish(ThreadPool* pool, float solidDensity = 0.0f);
 
     struct Sample {
-        float density = 0.0f;      // weight per m³
+        float density = 0.0f;      // weight per m³ (the head's solid counted as solidDensity)
         float hair = 0.0f;         // interpolated weight of the hair splatted at the nodes around (0: no hair, no move)
         glm::vec3 move{0.0f};      // weighted mean move of the hair here
         glm::vec3 gradient{0.0f};  // d density / d position, head space, weight per m⁴
     };
-    // Trilinear at head-space `p`; zeros outside the grid.
-    Sample sample(const glm::vec3& p) const;
-    // The solver's cheaper read, one node instead of eight: the nearest node, its density extended
-    // to first order along its gradient (as the solver's head field does), its move and gradient.
-    inline Sample sampleNearest(const glm::vec3& p) const;
-
+    // Trilinear at head-space `p` over the eight nodes around it, of what finish() left at each node
+    // (density, its central-difference gradient, the hair's move weighted by its weight); zeros
+    // outside the grid. Continuous in `p`: a particle crossing a cell feels no jump (a nearest-node
+    // read made curls jitter, README "Hair volume").
+    inline Sample sample(const glm::vec3& p) const;
     float cellMetres() const { return m_cell; }
     glm::ivec3 dims() const { return m_dims; }
     glm::vec3 origin() const { return m_origin; }
@@ -77,29 +76,24 @@ public:
     // Total weight splatted (after finish), for tests: a splat conserves it.
     double totalWeight() const;
 
-    static constexpr std::size_t kBytesPerNode = kSplatChunks * 4 * sizeof(float) + 8 * sizeof(float);
+    static constexpr std::size_t kBytesPerNode = kSplatChunks * 4 * sizeof(float) + 10 * sizeof(float);
 
 private:
     struct Accumulator {
         float weight, moveX, moveY, moveZ;
     };
+    // What sample() reads, eight floats: one node of a pair (x even, x odd) shares a cache line.
     struct alignas(32) Node {
-        float density;  // of the hair splatted, weight per m³
-        float moveX, moveY, moveZ, weight;
-        float solid;    // 0..1 inside the head
-        float pad[2];
+        float density;                // hair and head, weight per m³
+        float gradX, gradY, gradZ;    // its central differences, weight per m⁴
+        float moveX, moveY, moveZ;    // the hair's summed weight x move (momentum; divided in sample())
+        float weight;                 // the hair's summed weight
     };
-    // Hair and head at a node (clamped into the grid), and its central differences.
+    // Hair and head at a node (clamped into the grid), for the central differences.
     float densityAt(int i, int j, int k) const
     {
-        const Node& n = m_nodes[index(std::clamp(i, 0, m_dims.x - 1), std::clamp(j, 0, m_dims.y - 1), std::clamp(k, 0, m_dims.z - 1))];
-        return n.density + n.solid * m_solidDensity;
-    }
-    glm::vec3 gradientAt(int i, int j, int k) const
-    {
-        const float inv2h = 0.5f / m_cell;
-        return {(densityAt(i + 1, j, k) - densityAt(i - 1, j, k)) * inv2h, (densityAt(i, j + 1, k) - densityAt(i, j - 1, k)) * inv2h,
-                (densityAt(i, j, k + 1) - densityAt(i, j, k - 1)) * inv2h};
+        const std::size_t n = index(std::clamp(i, 0, m_dims.x - 1), std::clamp(j, 0, m_dims.y - 1), std::clamp(k, 0, m_dims.z - 1));
+        return m_hairDensity[n] + m_solid[n] * m_solidDensity;
     }
     float m_solidDensity = 0.0f;
     std::size_t index(int i, int j, int k) const
@@ -113,6 +107,8 @@ private:
     float m_cell = 0.0f;
     std::vector<Accumulator> m_chunks;  // kSplatChunks grids, one after the other
     std::vector<Node> m_nodes;
+    std::vector<float> m_hairDensity;  // per node: the hair's weight per m³ (0 outside the live bricks)
+    std::vector<float> m_solid;        // per node: 0..1 inside the head
     // Bricks of kBrick³ nodes: only those a splat touched are cleared, summed and differenced, so a
     // pass costs what the hair occupies, not the whole grid (the editor's 7,600 particles would
     // otherwise pay for 200,000 nodes in eight chunks).
@@ -164,20 +160,35 @@ inline void HairVolumeGrid::splat(int chunk, const glm::vec3& p, float weight, c
         }
 }
 
-inline HairVolumeGrid::Sample HairVolumeGrid::sampleNearest(const glm::vec3& p) const
+inline HairVolumeGrid::Sample HairVolumeGrid::sample(const glm::vec3& p) const
 {
     Sample s;
-    const glm::vec3 g = (p - m_origin) * (1.0f / m_cell) + 0.5f;
-    if (!(g.x >= 0.0f && g.y >= 0.0f && g.z >= 0.0f && g.x < static_cast<float>(m_dims.x) &&
-          g.y < static_cast<float>(m_dims.y) && g.z < static_cast<float>(m_dims.z)))
-        return s;
+    const glm::vec3 g = (p - m_origin) * (1.0f / m_cell);
+    if (!(g.x >= 0.0f && g.y >= 0.0f && g.z >= 0.0f && g.x < static_cast<float>(m_dims.x - 1) &&
+          g.y < static_cast<float>(m_dims.y - 1) && g.z < static_cast<float>(m_dims.z - 1)))
+        return s;  // outside, not finite, or no grid
     const int ix = static_cast<int>(g.x), iy = static_cast<int>(g.y), iz = static_cast<int>(g.z);
-    const Node& n = m_nodes[index(ix, iy, iz)];
-    s.gradient = gradientAt(ix, iy, iz);
-    const glm::vec3 offset = p - (m_origin + m_cell * glm::vec3(static_cast<float>(ix), static_cast<float>(iy), static_cast<float>(iz)));
-    s.density = n.density + n.solid * m_solidDensity + s.gradient.x * offset.x + s.gradient.y * offset.y + s.gradient.z * offset.z;
-    s.hair = n.weight;
-    s.move = glm::vec3(n.moveX, n.moveY, n.moveZ);
+    const float fx = g.x - static_cast<float>(ix), fy = g.y - static_cast<float>(iy), fz = g.z - static_cast<float>(iz);
+    const Node* base = m_nodes.data() + index(ix, iy, iz);
+    const std::size_t strideY = static_cast<std::size_t>(m_dims.x), strideZ = strideY * static_cast<std::size_t>(m_dims.y);
+    const float wz[2] = {1.0f - fz, fz}, wy[2] = {1.0f - fy, fy}, wx[2] = {1.0f - fx, fx};
+    float sum[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    for (int dz = 0; dz < 2; ++dz)
+        for (int dy = 0; dy < 2; ++dy) {
+            const Node* row = base + dy * strideY + dz * strideZ;
+            const float wyz = wz[dz] * wy[dy];
+            for (int dx = 0; dx < 2; ++dx) {
+                const float w = wyz * wx[dx];
+                const float* n = &row[dx].density;
+                for (int f = 0; f < 8; ++f)
+                    sum[f] += w * n[f];
+            }
+        }
+    s.density = sum[0];
+    s.gradient = glm::vec3(sum[1], sum[2], sum[3]);
+    s.hair = sum[7];
+    if (sum[7] > 0.0f)
+        s.move = glm::vec3(sum[4], sum[5], sum[6]) * (1.0f / sum[7]);
     return s;
 }
 

@@ -70,10 +70,9 @@ constexpr std::array<ParameterInfo, kParamCount> kParameters{{
     {Friction, "friction", "Friction", "", G::Solver, K::Real, 0.0, 1.0, 0.3,
      "Coulomb friction coefficient of hair on skin and the body: sliding slows by this times the "
      "contact's push (static up to 1.25 times it)", S::Linear},
-    {Volume, "volume", "Volume", "", G::Solver, K::Real, 0.0, 1.0, 0.0,
+    {Volume, "volume", "Volume", "", G::Solver, K::Real, 0.0, 1.0, 0.5,
      "Hair-hair interaction: how much room the hair takes. 0 off (strands pass through each other); 0.5 "
-     "stands about 2 cm off the scalp on top; 1 about twice as full. Combed locks do not yet hold "
-     "their shape with volume on", S::Linear},
+     "stands about 2 cm off the scalp on top; 1 about twice as full", S::Linear},
     {HairFriction, "hair_friction", "Hair friction", "", G::Solver, K::Real, 0.0, 1.0, 0.2,
      "Friction between neighbouring hairs: the share of their difference in velocity lost every 1/60 s "
      "(0 slide freely, 1 move as one)", S::Linear},

@@ -1143,7 +1143,7 @@ void Solver::volumePass(const StepConstants& c)
                     ParticleRow& r = b.state[j];
                     const glm::vec3 x(r.x[l], r.y[l], r.z[l]);
                     const glm::vec3 previous(r.px[l], r.py[l], r.pz[l]);
-                    const HairVolumeGrid::Sample here = grid.sampleNearest(headSpace(x));
+                    const HairVolumeGrid::Sample here = grid.sample(headSpace(x));
                     if (!(here.density > 0.0f))
                         continue;
                     glm::vec3 move = x - previous;

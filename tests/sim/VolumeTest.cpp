@@ -19,8 +19,7 @@ using namespace wisp::test;
 
 namespace {
 
-// The volume that gives natural hair (README, "Hair volume"); the registry's default is 0 until the
-// comb's rest-shape solve accounts for the grid (a combed lock drifts back with it on).
+// The volume that gives natural hair (README, "Hair volume"), the registry's default.
 constexpr double kNaturalVolume = 0.5;
 
 // --- The grid ----------------------------------------------------------------------------------
@@ -130,6 +129,12 @@ float percentile(const std::vector<float>& sorted, double q)
     return sorted.empty() ? 0.0f : sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1))];
 }
 
+TEST(Volume, OnByDefaultAtItsNaturalVolume)
+{
+    EXPECT_EQ(parameterInfo(Param::Volume).defaultValue, kNaturalVolume);
+    EXPECT_EQ(ParameterValues{}.get(Param::Volume), kNaturalVolume);
+}
+
 TEST(Volume, DefaultGroomStandsOffTheScalpOnTop)
 {
     float p90[2] = {0, 0};
@@ -221,7 +226,7 @@ TEST_P(VolumeSettling, FewerThanOnePercentOfTipsStillMoveAfterTenSeconds)
 }
 INSTANTIATE_TEST_SUITE_P(SubstepsSegmentsCurl, VolumeSettling,
                          testing::Values(SettleCase{1, 8, false}, SettleCase{1, 40, false}, SettleCase{8, 40, false},
-                                         SettleCase{4, 15, false}));
+                                         SettleCase{4, 15, false}, SettleCase{2, 40, true}));
 
 TEST(Volume, NoNonFiniteOrResetAtTheExtremes)
 {

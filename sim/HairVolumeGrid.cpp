@@ -91,18 +91,22 @@ void HairVolumeGrid::forNodesOf(std::size_t brick, Fn&& fn) const
 
 void HairVolumeGrid::clear(ThreadPool* pool)
 {
-    const std::size_t count = m_nodes.size(), bricks = m_live.size();
     forRange(pool, kSplatChunks, 1, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t c = begin; c < end; ++c) {
-            Accumulator* a = m_chunks.data() + c * count;
-            std::uint8_t* touched = m_touched.data() + c * bricks;
-            for (std::size_t b = 0; b < bricks; ++b)
-                if (touched[b]) {
-                    forNodesOf(b, [&](int, int, int, std::size_t n) { a[n] = Accumulator{0.0f, 0.0f, 0.0f, 0.0f}; });
-                    touched[b] = 0;
-                }
-        }
+        for (std::size_t c = begin; c < end; ++c)
+            clearChunk(static_cast<int>(c));
     });
+}
+
+void HairVolumeGrid::clearChunk(int chunk)
+{
+    const std::size_t count = m_nodes.size(), bricks = m_live.size();
+    Accumulator* a = m_chunks.data() + static_cast<std::size_t>(chunk) * count;
+    std::uint8_t* touched = m_touched.data() + static_cast<std::size_t>(chunk) * bricks;
+    for (std::size_t b = 0; b < bricks; ++b)
+        if (touched[b]) {
+            forNodesOf(b, [&](int, int, int, std::size_t n) { a[n] = Accumulator{0.0f, 0.0f, 0.0f, 0.0f}; });
+            touched[b] = 0;
+        }
 }
 
 void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)

@@ -51,6 +51,8 @@ public:
     // Forgets the last splats (all chunks). `pool` null: on the calling thread (for few particles,
     // waking the pool costs more than the work).
     void clear(ThreadPool* pool);
+    // The same for one chunk, on the calling thread: the chunk's splatting thread clears it first.
+    void clearChunk(int chunk);
     // Adds `weight` and `weight * move` at head-space `p` to chunk `chunk` (0..kSplatChunks-1).
     // Points outside the grid add nothing.
     inline void splat(int chunk, const glm::vec3& p, float weight, const glm::vec3& move);
@@ -137,12 +139,18 @@ inline void HairVolumeGrid::splat(int chunk, const glm::vec3& p, float weight, c
     Accumulator* a = m_chunks.data() + static_cast<std::size_t>(chunk) * m_nodes.size() + index(ix, iy, iz);
     const std::size_t strideY = static_cast<std::size_t>(m_dims.x), strideZ = strideY * static_cast<std::size_t>(m_dims.y);
     std::uint8_t* touched = m_touched.data() + static_cast<std::size_t>(chunk) * m_live.size();
-    const int bx[2] = {ix / kBrick, (ix + 1) / kBrick}, by[2] = {iy / kBrick, (iy + 1) / kBrick},
-              bz[2] = {iz / kBrick, (iz + 1) / kBrick};
-    for (int z = 0; z < 2; ++z)
-        for (int y = 0; y < 2; ++y)
-            for (int x = 0; x < 2; ++x)
-                touched[brickIndex(bx[x], by[y], bz[z])] = 1;
+    // The bricks of the eight nodes: one, unless the cell's far corner is in the next brick.
+    const int bx = ix / kBrick, by = iy / kBrick, bz = iz / kBrick;
+    const int nx = (ix + 1) / kBrick - bx, ny = (iy + 1) / kBrick - by, nz = (iz + 1) / kBrick - bz;
+    std::uint8_t* brick = touched + brickIndex(bx, by, bz);
+    const std::size_t brickY = static_cast<std::size_t>(m_bricks.x), brickZ = brickY * static_cast<std::size_t>(m_bricks.y);
+    if ((nx | ny | nz) == 0)
+        *brick = 1;
+    else
+        for (int z = 0; z <= nz; ++z)
+            for (int y = 0; y <= ny; ++y)
+                for (int x = 0; x <= nx; ++x)
+                    brick[x + y * brickY + z * brickZ] = 1;
     const float wz[2] = {weight * (1.0f - fz), weight * fz};
     const float wy[2] = {1.0f - fy, fy};
     const float wx[2] = {1.0f - fx, fx};

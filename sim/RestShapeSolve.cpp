@@ -148,7 +148,9 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
     settle.dampingPerSecond = std::max(settings.dampingPerSecond, kSettleDampingPerSecond);
     // The combed strands alone, without the hair around them: the volume grid's push is the other
     // hair's answer to this shape, so it is left to the live simulation, where it lays the lock over
-    // the hair beneath it instead of through it (README, "Hair volume").
+    // the hair beneath it instead of through it; there a combed strand keeps three times the density
+    // before it is pushed (HairSimulation::kCombedVolumeFactor), so the push vanishes at the combed
+    // shape (README, "Hair volume").
     settle.volume = 0.0f;
     Solver solver(1);
     solver.setCollider(collider);

@@ -1091,7 +1091,7 @@ void Solver::volumePass(const StepConstants& c)
         else if (count > 0)
             body(0, count);
     };
-    grid.clear(pool);
+    // Each chunk in use is cleared by the thread that splats it; finish() reads only those in use.
     grid.setChunks(pool ? HairVolumeGrid::kSplatChunks : 1);
     const glm::mat3 toHead = glm::transpose(c.rotation);
     auto headSpace = [&](const glm::vec3& world) { return c.transformed ? toHead * (world - c.translation) : world; };
@@ -1100,7 +1100,8 @@ void Solver::volumePass(const StepConstants& c)
     // A fixed split of the blocks into chunks, each summed in block order: the same bits on any
     // thread count.
     forRange(kChunks, 1, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t chunk = begin; chunk < end; ++chunk)
+        for (std::size_t chunk = begin; chunk < end; ++chunk) {
+            grid.clearChunk(static_cast<int>(chunk));  // the last pass's splats, by the thread that splats now
             for (std::size_t i = chunk * blockCount / kChunks; i < (chunk + 1) * blockCount / kChunks; ++i) {
                 const Block& b = m_blocks[i];
                 for (int l = 0; l < kLanes; ++l) {  // strand by strand: its particles are neighbours in the grid
@@ -1119,6 +1120,7 @@ void Solver::volumePass(const StepConstants& c)
                     }
                 }
             }
+        }
     });
     const float target = volumeTargetDensity();
     grid.finish(pool, target);

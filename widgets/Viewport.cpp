@@ -500,7 +500,7 @@ void Viewport::presentFrame()
     if (!drawFrame())
         return;
     m_canvas.bindWindow();
-    m_compositor.draw(m_canvas.frameColourTexture(), m_canvas.samples(), m_canvas.size());
+    m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size());
     m_canvas.swap(m_window);
 }
 
@@ -512,7 +512,7 @@ QImage Viewport::grabFramebuffer()
     if (!drawn)
         return {};
     m_canvas.bindGrab();
-    m_compositor.draw(m_canvas.frameColourTexture(), m_canvas.samples(), m_canvas.size());
+    m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size());
     QImage image = m_canvas.readGrab();
     image.setDevicePixelRatio(frameRatio());
     return image;
@@ -533,7 +533,7 @@ QImage Viewport::renderImage(QSize pixels, const ImageOptions& options)
     QImage image;
     if (drawFrame()) {
         m_canvas.bindGrab();
-        m_compositor.draw(m_canvas.frameColourTexture(), m_canvas.samples(), m_canvas.size(),
+        m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size(),
             render.transparent ? FrameCompositor::Finish::ImageWithAlpha : FrameCompositor::Finish::Image);
         image = m_canvas.readGrab(render.transparent);
     }
@@ -816,6 +816,29 @@ void Viewport::drawBackdrop(const RenderView& view)
         m_guides.drawGrid(view); // translucent and writing no depth: the hair is drawn over it
 }
 
+void Viewport::drawResolvedBackdrop(const RenderView& view, bool intoCache)
+{
+    // Multisampled (the head's silhouette is smooth), then resolved into the single-sampled target
+    // the hair is drawn over (see GlCanvas).
+    const bool multisampled = m_canvas.samples() > 0;
+    const auto bindTarget = [&] {
+        if (intoCache)
+            m_canvas.bindBackdropCache();
+        else
+            m_canvas.bindFrame();
+    };
+    if (multisampled)
+        m_canvas.bindBackdrop();
+    else
+        bindTarget();
+    drawBackdrop(view);
+    if (multisampled) {
+        bindTarget();
+        m_compositor.resolveWithDepth(
+            m_canvas.backdropColourTexture(), m_canvas.backdropDepthTexture(), m_canvas.samples(), m_canvas.size());
+    }
+}
+
 void Viewport::paintGL(bool framebuffersRemade)
 {
     if (m_image) {
@@ -853,18 +876,13 @@ void Viewport::paintGL(bool framebuffersRemade)
     m_lastBackdropKey = key;
     if (m_backdropKey != key) {
         m_backdropKey.reset();
-        if (settled) {
-            m_canvas.bindBackdrop();
-            drawBackdrop(view);
+        drawResolvedBackdrop(view, settled);
+        if (settled)
             m_backdropKey = key;
-        }
     }
-    if (m_backdropKey) {
-        m_canvas.copyBackdropToFrame();
-    } else {
-        m_canvas.bindFrame();
-        drawBackdrop(view);
-    }
+    if (m_backdropKey)
+        m_canvas.copyBackdropCacheToFrame();
+    m_canvas.bindFrame();
     gl->glViewport(0, 0, static_cast<GLsizei>(view.viewportPixels.x), static_cast<GLsizei>(view.viewportPixels.y));
 
     const bool refining = m_refining;
@@ -950,8 +968,8 @@ void Viewport::paintImage(const RenderView& view)
     m_samples = m_canvas.samples() > 1 ? m_canvas.samples() : 0;
     RenderView imageView = view;
     imageView.samples = m_samples;
+    drawResolvedBackdrop(imageView, false);
     m_canvas.bindFrame();
-    drawBackdrop(imageView);
     m_gl->glViewport(
         0, 0, static_cast<GLsizei>(imageView.viewportPixels.x), static_cast<GLsizei>(imageView.viewportPixels.y));
     const float preview = std::clamp(m_image->previewFraction, 0.0f, 1.0f);

@@ -226,6 +226,8 @@ private:
     void initializeGL();
     void paintGL(bool framebuffersRemade);
     void drawBackdrop(const RenderView& view);
+    // drawBackdrop, multisampled, resolved into the backdrop cache or the frame (GlCanvas).
+    void drawResolvedBackdrop(const RenderView& view, bool intoCache);
     void paintImage(const RenderView& view); // paintGL's work for renderImage()
     void uploadFrameIfChanged(); // streams m_frame's strands to the hair renderer once per frame
     void updateOverlays(const RenderView& view);

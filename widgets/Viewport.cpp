@@ -729,9 +729,11 @@ void Viewport::updateShadows()
     box.min = glm::min(box.min, hair.min);
     box.max = glm::max(box.max, hair.max);
     const float radius = 0.5f * glm::length(box.size()) + 0.01f;
-    // What one strand takes of the light crossing a texel: its width over the texel's (capped).
+    // What one strand takes of the light crossing a texel: its width over the texel's (capped), the
+    // shadow's own phone-wire antialiasing (a one-texel line with the true width as opacity). The
+    // width drawn in the view: children above 1x density are thinner there, and so here.
     const float texelMetres = 2.0f * radius / static_cast<float>(HairShadowMap::kPixels);
-    const float opacity = std::clamp(kStrandShadowOpacity * m_hairStyle.rootWidthMetres() / texelMetres, 0.02f, 1.0f);
+    const float opacity = std::clamp(kStrandShadowOpacity * drawnStyle().rootWidthMetres() / texelMetres, 0.02f, 1.0f);
     const std::uint64_t before = m_shadowMap.passCount();
     m_shadowMap.render(m_hair, m_head, m_body, light, box.center(), radius, opacity);
     if (m_shadowMap.passCount() != before)

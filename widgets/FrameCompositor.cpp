@@ -11,7 +11,8 @@ bool FrameCompositor::initialize(GlFunctions* gl)
     m_gl = gl;
     m_composite = loadShaderProgram(QStringLiteral("composite"), &m_error);
     m_overlay = m_composite ? loadShaderProgram(QStringLiteral("overlay"), &m_error) : nullptr;
-    m_resolve = m_overlay ? loadShaderProgram(QStringLiteral("composite"), QStringLiteral("resolve"), &m_error) : nullptr;
+    m_resolve
+        = m_overlay ? loadShaderProgram(QStringLiteral("composite"), QStringLiteral("resolve"), &m_error) : nullptr;
     if (!m_composite || !m_overlay || !m_resolve) {
         m_composite.reset();
         return false;

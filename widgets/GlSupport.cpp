@@ -42,7 +42,8 @@ std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(const QString& name, QSt
     return loadShaderProgram(name, name, error);
 }
 
-std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(const QString& vertexName, const QString& fragmentName, QString* error)
+std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(
+    const QString& vertexName, const QString& fragmentName, QString* error)
 {
     auto program = std::make_unique<QOpenGLShaderProgram>();
     const QString name = fragmentName;

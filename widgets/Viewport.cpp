@@ -70,7 +70,7 @@ bool finiteBounds(const Aabb& b)
 }
 
 // The context's and the window's: the window only receives finished frames, so it needs neither
-// depth nor samples (the frame's own framebuffer has them, see GlCanvas).
+// depth nor samples (the frame's own framebuffers have them, see GlCanvas).
 QSurfaceFormat viewportFormat()
 {
     QSurfaceFormat format;

@@ -185,7 +185,7 @@ public:
     static QColor backgroundColour(double heightFraction);
     // Empty when GL is ready; otherwise why nothing 3D is drawn (no 3.3 context, a shader error).
     QString glStatus() const { return m_glStatus; }
-    int samples() const { return m_samples; } // MSAA samples of the framebuffer, known after a paint
+    int samples() const { return m_samples; } // MSAA samples of the backdrop (the hair: none), known after a paint
 
 public slots:
     void frameHead(); // F: fit the camera to the head's bounds, keeping its direction

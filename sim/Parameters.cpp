@@ -40,7 +40,7 @@ constexpr std::array<ParameterInfo, kParamCount> kParameters{{
      "Multiplies the solver's Stiffness for this region's hair (hairspray raises it); the product is capped at 1", S::Linear},
     {HairThickness, "hair_thickness", "Hair thickness", "m", G::Wisp, K::Real, 20e-6, 500e-6, 80e-6,
      "Thickness of one hair at its root (80 µm is typical; it tapers to a quarter at the tip); the viewport draws "
-     "each strand as a lock of hairs, this many times wider", S::Log},
+     "each strand as a lock of hairs, this many times wider", S::Log, "µm", 1e6},
     {Seed, "seed", "Seed", "", G::Groom, K::Integer, 0, 2147483647, 1,
      "Random seed for root placement and variation; the same seed gives the same groom", S::Linear},
 

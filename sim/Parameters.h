@@ -76,6 +76,10 @@ struct ParameterInfo {
     double defaultValue;
     std::string_view help;  // one line, shown as the tooltip and in --help
     SliderScale slider = SliderScale::Linear;
+    // How panels show it, when not in `unit`: a panel shows value × displayScale in displayUnit
+    // (hair thickness: µm, 1e6). Files and the CLI keep `unit`.
+    std::string_view displayUnit = {};
+    double displayScale = 1.0;
 };
 
 // A slider's range and how it spreads it (parameters, and the tools' own settings: brush, perm).

@@ -11,7 +11,9 @@ bool FrameCompositor::initialize(GlFunctions* gl)
     m_gl = gl;
     m_composite = loadShaderProgram(QStringLiteral("composite"), &m_error);
     m_overlay = m_composite ? loadShaderProgram(QStringLiteral("overlay"), &m_error) : nullptr;
-    if (!m_composite || !m_overlay) {
+    m_resolve
+        = m_overlay ? loadShaderProgram(QStringLiteral("composite"), QStringLiteral("resolve"), &m_error) : nullptr;
+    if (!m_composite || !m_overlay || !m_resolve) {
         m_composite.reset();
         return false;
     }
@@ -21,7 +23,10 @@ bool FrameCompositor::initialize(GlFunctions* gl)
     m_composite->setUniformValue("u_frameSingle", 1);
     m_overlay->bind();
     m_overlay->setUniformValue("u_image", 0);
-    m_overlay->release();
+    m_resolve->bind();
+    m_resolve->setUniformValue("u_colour", 0);
+    m_resolve->setUniformValue("u_depth", 1);
+    m_resolve->release();
     for (Overlay& overlay : m_overlays) {
         gl->glGenTextures(1, &overlay.texture);
         gl->glBindTexture(GL_TEXTURE_2D, overlay.texture);
@@ -49,6 +54,7 @@ void FrameCompositor::release()
     m_vao = 0;
     m_composite.reset();
     m_overlay.reset();
+    m_resolve.reset();
     m_gl = nullptr;
 }
 
@@ -138,6 +144,37 @@ void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels, Finis
     gl->glDisable(GL_BLEND);
     gl->glBindVertexArray(0);
     checkGlErrors(gl, "FrameCompositor::draw");
+}
+
+void FrameCompositor::resolveWithDepth(GLuint colourTexture, GLuint depthTexture, int samples, QSize pixels)
+{
+    if (!m_composite || pixels.isEmpty() || samples <= 0)
+        return;
+    GlFunctions* gl = m_gl;
+    gl->glViewport(0, 0, pixels.width(), pixels.height());
+    gl->glEnable(GL_DEPTH_TEST); // depth is written only with the test on
+    gl->glDepthFunc(GL_ALWAYS);
+    gl->glDepthMask(GL_TRUE);
+    gl->glDisable(GL_CULL_FACE);
+    gl->glDisable(GL_BLEND);
+    gl->glDisable(GL_SCISSOR_TEST);
+    gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl->glBindVertexArray(m_vao);
+    m_resolve->bind();
+    setUniform(*m_resolve, "u_samples", samples);
+    gl->glActiveTexture(GL_TEXTURE1);
+    gl->glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, depthTexture);
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, colourTexture);
+    drawRect(QRect(QPoint(0, 0), pixels), pixels, *m_resolve);
+    gl->glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+    gl->glActiveTexture(GL_TEXTURE1);
+    gl->glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
+    gl->glActiveTexture(GL_TEXTURE0);
+    m_resolve->release();
+    gl->glBindVertexArray(0);
+    gl->glDepthFunc(GL_LESS);
+    checkGlErrors(gl, "FrameCompositor::resolveWithDepth");
 }
 
 } // namespace wisp

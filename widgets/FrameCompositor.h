@@ -47,6 +47,9 @@ public:
     // keep the frame's alpha (premultiplied) for a transparent background.
     enum class Finish { Screen, Image, ImageWithAlpha };
     void draw(GLuint frameTexture, int samples, QSize pixels, Finish finish = Finish::Screen);
+    // Resolves a multisampled colour and depth pair (GlCanvas's backdrop, `samples` > 0) into the
+    // bound single-sampled framebuffer, colour and depth (resources/shaders/resolve.frag).
+    void resolveWithDepth(GLuint colourTexture, GLuint depthTexture, int samples, QSize pixels);
 
 private:
     // A rectangle of the target (pixels, origin at the bottom left as GL counts them).
@@ -61,6 +64,7 @@ private:
     GlFunctions* m_gl = nullptr;
     std::unique_ptr<QOpenGLShaderProgram> m_composite;
     std::unique_ptr<QOpenGLShaderProgram> m_overlay;
+    std::unique_ptr<QOpenGLShaderProgram> m_resolve;
     GLuint m_vao = 0; // none of the passes reads vertex attributes, but core profile needs one bound
     std::array<Overlay, 2> m_overlays{};
     QString m_error;

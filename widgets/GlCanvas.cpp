@@ -68,20 +68,18 @@ bool GlCanvas::prepare(GlFunctions* gl, QSize pixels, int samples, bool* remade)
     gl->glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &maxColour);
     gl->glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &maxDepth);
     const int wanted = std::clamp(samples, 0, std::max(0, std::min<int>(maxColour, maxDepth)));
-    bool made = makeTarget(m_frame, wanted) && makeTarget(m_backdrop, wanted);
-    if (!made && wanted > 0) { // a driver that refuses multisampled depth textures: no MSAA
-        freeTarget(m_frame);
+    bool made = makeTarget(m_frame, 0) && makeTarget(m_backdropCache, 0);
+    // A driver that refuses multisampled depth textures: no MSAA.
+    if (made && wanted > 0 && !makeTarget(m_backdrop, wanted))
         freeTarget(m_backdrop);
-        made = makeTarget(m_frame, 0) && makeTarget(m_backdrop, 0);
-    }
     if (!made) {
         releaseFramebuffers();
         return false;
     }
     m_samples = 0;
-    if (m_frame.multisampled) {
+    if (m_backdrop.multisampled) {
         GLint actual = 0;
-        gl->glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, m_frame.colour);
+        gl->glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, m_backdrop.colour);
         gl->glGetTexLevelParameteriv(GL_TEXTURE_2D_MULTISAMPLE, 0, GL_TEXTURE_SAMPLES, &actual);
         gl->glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, 0);
         m_samples = std::max(1, static_cast<int>(actual));
@@ -163,6 +161,7 @@ void GlCanvas::releaseFramebuffers()
 {
     freeTarget(m_frame);
     freeTarget(m_backdrop);
+    freeTarget(m_backdropCache);
     freeTarget(m_grab);
     m_size = QSize();
     m_requestedSamples = -1;
@@ -176,15 +175,20 @@ void GlCanvas::bindFrame()
 
 void GlCanvas::bindBackdrop()
 {
-    m_gl->glBindFramebuffer(GL_FRAMEBUFFER, m_backdrop.framebuffer);
+    m_gl->glBindFramebuffer(GL_FRAMEBUFFER, m_backdrop.framebuffer ? m_backdrop.framebuffer : m_frame.framebuffer);
 }
 
-void GlCanvas::copyBackdropToFrame()
+void GlCanvas::bindBackdropCache()
 {
-    // Same size, format and samples: a plain copy (about a millisecond on a software rasteriser for
-    // the editor's view, where drawing the backdrop takes ten).
+    m_gl->glBindFramebuffer(GL_FRAMEBUFFER, m_backdropCache.framebuffer);
+}
+
+void GlCanvas::copyBackdropCacheToFrame()
+{
+    // Same size and format, single-sampled: a plain copy (about a millisecond on a software
+    // rasteriser for the editor's view, where drawing the backdrop takes ten).
     GlFunctions* gl = m_gl;
-    gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_backdrop.framebuffer);
+    gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_backdropCache.framebuffer);
     gl->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, m_frame.framebuffer);
     const int w = m_size.width();
     const int h = m_size.height();

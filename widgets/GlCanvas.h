@@ -1,12 +1,18 @@
 #pragma once
 // The OpenGL context the viewport draws with, and the framebuffers it draws into:
-//   frame     multisampled colour and depth: each frame's scene;
-//   backdrop  the same, for what changes only with the camera (background, head, wind arrow,
-//             grid): drawn when that changes, copied into the frame at the start of every other;
-//   grab      single-sampled colour, for reading a finished frame back (grabFramebuffer, tests).
-// A finished frame is resolved into the window's back buffer (or the grab framebuffer) by
-// FrameCompositor, then swapped. Framebuffers of our own keep anti-aliasing independent of the
-// visuals the window system offers, and let frames be drawn and read before the window is shown.
+//   backdrop        multisampled colour and depth: what changes only with the camera (background,
+//                   head, grid), drawn when that changes;
+//   backdrop cache  single-sampled colour and depth: the backdrop resolved (FrameCompositor::
+//                   resolveWithDepth), copied into the frame at the start of every frame it holds;
+//   frame           single-sampled colour and depth: each frame's scene. The hair is drawn here,
+//                   single-sampled: it carries its own analytic coverage (hair.vert/frag), and 4x
+//                   MSAA about doubled its cost on a software rasteriser (issue 14);
+//   grab            single-sampled colour, for reading a finished frame back (grabFramebuffer, tests).
+// Without multisampling (samples 0) there is no separate backdrop: it is drawn straight into the
+// cache or the frame. A finished frame is copied into the window's back buffer (or the grab
+// framebuffer) by FrameCompositor, then swapped. Framebuffers of our own keep anti-aliasing
+// independent of the visuals the window system offers, and let frames be drawn and read before the
+// window is shown.
 //
 // Thread: GUI. Every function but create() and makeCurrent() needs the context current.
 
@@ -43,13 +49,17 @@ public:
     // True `remade`: the backdrop has lost its contents.
     bool prepare(GlFunctions* gl, QSize pixels, int samples, bool* remade = nullptr);
     QSize size() const { return m_size; }
-    int samples() const { return m_samples; } // as made; 0: not multisampled
-    // GL_TEXTURE_2D_MULTISAMPLE, or GL_TEXTURE_2D when samples() is 0.
+    int samples() const { return m_samples; } // the backdrop's, as made; 0: not multisampled
+    // GL_TEXTURE_2D: the frame is single-sampled.
     GLuint frameColourTexture() const { return m_frame.colour; }
+    // GL_TEXTURE_2D_MULTISAMPLE, while samples() > 0.
+    GLuint backdropColourTexture() const { return m_backdrop.colour; }
+    GLuint backdropDepthTexture() const { return m_backdrop.depth; }
 
     void bindFrame();
-    void bindBackdrop();
-    void copyBackdropToFrame(); // colour and depth; leaves the frame bound
+    void bindBackdrop(); // the multisampled one; while samples() is 0, the frame
+    void bindBackdropCache();
+    void copyBackdropCacheToFrame(); // colour and depth; leaves the frame bound
     // The window's back buffer, the target of the composite pass.
     void bindWindow();
     void swap(QWindow* window);
@@ -74,7 +84,8 @@ private:
     std::unique_ptr<QOffscreenSurface> m_offscreen;
     GlFunctions* m_gl = nullptr;
     Target m_frame;
-    Target m_backdrop;
+    Target m_backdrop; // made only with samples
+    Target m_backdropCache;
     Target m_grab; // single-sampled colour, made when first needed
     QSize m_size;
     int m_requestedSamples = -1;

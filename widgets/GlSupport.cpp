@@ -39,10 +39,16 @@ QByteArray shaderSource(const QString& path)
 
 std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(const QString& name, QString* error)
 {
+    return loadShaderProgram(name, name, error);
+}
+
+std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(
+    const QString& vertexName, const QString& fragmentName, QString* error)
+{
     auto program = std::make_unique<QOpenGLShaderProgram>();
-    const QString base = QStringLiteral(":/shaders/") + name;
-    const QByteArray vertex = shaderSource(base + QStringLiteral(".vert"));
-    const QByteArray fragment = shaderSource(base + QStringLiteral(".frag"));
+    const QString name = fragmentName;
+    const QByteArray vertex = shaderSource(QStringLiteral(":/shaders/") + vertexName + QStringLiteral(".vert"));
+    const QByteArray fragment = shaderSource(QStringLiteral(":/shaders/") + fragmentName + QStringLiteral(".frag"));
     if (vertex.isEmpty() || fragment.isEmpty() || !program->addShaderFromSourceCode(QOpenGLShader::Vertex, vertex)
         || !program->addShaderFromSourceCode(QOpenGLShader::Fragment, fragment) || !program->link()) {
         if (error)

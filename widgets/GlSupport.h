@@ -22,6 +22,9 @@ using GlFunctions = QOpenGLFunctions_3_3_Core;
 
 // Compiles and links ":/shaders/<name>.vert" and ".frag". Null (and the log in *error) on failure.
 std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(const QString& name, QString* error);
+// The same with :/shaders/VERTEX.vert and :/shaders/FRAGMENT.frag (passes that share a vertex shader).
+std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(
+    const QString& vertexName, const QString& fragmentName, QString* error);
 
 // Uniforms from GLM values (column-major, as GL wants them). A name the program does not use (the
 // compiler dropped it) is ignored, as GL ignores location -1.

@@ -24,7 +24,10 @@ public:
     static constexpr double kBudgetMilliseconds = 20.0;
     // Grooms this small are always drawn whole, and previews never draw fewer strands than this.
     static constexpr std::size_t kMinimumStrands = 800;
-    static constexpr float kMinimumFraction = 0.1f;
+    // A preview's strands are widened by the share they stand for (HairRenderer::draw), so the
+    // coverage stays; below a third they become few wide flat bands (issue 14: "a few wide flat
+    // ribbons" at a tenth), and the look is no longer the paused one. Slower, rather.
+    static constexpr float kMinimumFraction = 1.0f / 3.0f;
 
     bool previewing() const { return m_previewing; }
     // The fraction of `strands` to draw in the next interactive paint, 0..1 (1 unless previewing).

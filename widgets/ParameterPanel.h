@@ -30,7 +30,7 @@ public:
     double value(Param id) const;
 
     QSlider* sliderFor(Param id) const;         // for tests and keyboard focus
-    QDoubleSpinBox* spinBoxFor(Param id) const;  // null for toggles
+    QDoubleSpinBox* spinBoxFor(Param id) const;  // null for toggles; in the shown unit (displayUnit)
     QCheckBox* checkBoxFor(Param id) const;      // null for numbers
     SliderRow* rowFor(Param id) const;           // null for toggles
 
@@ -44,6 +44,7 @@ private:
         Param id;
         SliderRow* numbers = nullptr;
         QCheckBox* check = nullptr;
+        double scale = 1.0; // the row shows the value times this (ParameterInfo::displayScale)
     };
     const Row* find(Param id) const;
 

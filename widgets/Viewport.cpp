@@ -70,7 +70,7 @@ bool finiteBounds(const Aabb& b)
 }
 
 // The context's and the window's: the window only receives finished frames, so it needs neither
-// depth nor samples (the frame's own framebuffer has them, see GlCanvas).
+// depth nor samples (the frame's own framebuffers have them, see GlCanvas).
 QSurfaceFormat viewportFormat()
 {
     QSurfaceFormat format;
@@ -500,7 +500,7 @@ void Viewport::presentFrame()
     if (!drawFrame())
         return;
     m_canvas.bindWindow();
-    m_compositor.draw(m_canvas.frameColourTexture(), m_canvas.samples(), m_canvas.size());
+    m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size());
     m_canvas.swap(m_window);
 }
 
@@ -512,7 +512,7 @@ QImage Viewport::grabFramebuffer()
     if (!drawn)
         return {};
     m_canvas.bindGrab();
-    m_compositor.draw(m_canvas.frameColourTexture(), m_canvas.samples(), m_canvas.size());
+    m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size());
     QImage image = m_canvas.readGrab();
     image.setDevicePixelRatio(frameRatio());
     return image;
@@ -533,7 +533,7 @@ QImage Viewport::renderImage(QSize pixels, const ImageOptions& options)
     QImage image;
     if (drawFrame()) {
         m_canvas.bindGrab();
-        m_compositor.draw(m_canvas.frameColourTexture(), m_canvas.samples(), m_canvas.size(),
+        m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size(),
             render.transparent ? FrameCompositor::Finish::ImageWithAlpha : FrameCompositor::Finish::Image);
         image = m_canvas.readGrab(render.transparent);
     }
@@ -729,9 +729,11 @@ void Viewport::updateShadows()
     box.min = glm::min(box.min, hair.min);
     box.max = glm::max(box.max, hair.max);
     const float radius = 0.5f * glm::length(box.size()) + 0.01f;
-    // What one strand takes of the light crossing a texel: its width over the texel's (capped).
+    // What one strand takes of the light crossing a texel: its width over the texel's (capped), the
+    // shadow's own phone-wire antialiasing (a one-texel line with the true width as opacity). The
+    // width drawn in the view: children above 1x density are thinner there, and so here.
     const float texelMetres = 2.0f * radius / static_cast<float>(HairShadowMap::kPixels);
-    const float opacity = std::clamp(kStrandShadowOpacity * m_hairStyle.rootWidthMetres() / texelMetres, 0.02f, 1.0f);
+    const float opacity = std::clamp(kStrandShadowOpacity * drawnStyle().rootWidthMetres() / texelMetres, 0.02f, 1.0f);
     const std::uint64_t before = m_shadowMap.passCount();
     m_shadowMap.render(m_hair, m_head, m_body, light, box.center(), radius, opacity);
     if (m_shadowMap.passCount() != before)
@@ -816,6 +818,29 @@ void Viewport::drawBackdrop(const RenderView& view)
         m_guides.drawGrid(view); // translucent and writing no depth: the hair is drawn over it
 }
 
+void Viewport::drawResolvedBackdrop(const RenderView& view, bool intoCache)
+{
+    // Multisampled (the head's silhouette is smooth), then resolved into the single-sampled target
+    // the hair is drawn over (see GlCanvas).
+    const bool multisampled = m_canvas.samples() > 0;
+    const auto bindTarget = [&] {
+        if (intoCache)
+            m_canvas.bindBackdropCache();
+        else
+            m_canvas.bindFrame();
+    };
+    if (multisampled)
+        m_canvas.bindBackdrop();
+    else
+        bindTarget();
+    drawBackdrop(view);
+    if (multisampled) {
+        bindTarget();
+        m_compositor.resolveWithDepth(
+            m_canvas.backdropColourTexture(), m_canvas.backdropDepthTexture(), m_canvas.samples(), m_canvas.size());
+    }
+}
+
 void Viewport::paintGL(bool framebuffersRemade)
 {
     if (m_image) {
@@ -853,18 +878,13 @@ void Viewport::paintGL(bool framebuffersRemade)
     m_lastBackdropKey = key;
     if (m_backdropKey != key) {
         m_backdropKey.reset();
-        if (settled) {
-            m_canvas.bindBackdrop();
-            drawBackdrop(view);
+        drawResolvedBackdrop(view, settled);
+        if (settled)
             m_backdropKey = key;
-        }
     }
-    if (m_backdropKey) {
-        m_canvas.copyBackdropToFrame();
-    } else {
-        m_canvas.bindFrame();
-        drawBackdrop(view);
-    }
+    if (m_backdropKey)
+        m_canvas.copyBackdropCacheToFrame();
+    m_canvas.bindFrame();
     gl->glViewport(0, 0, static_cast<GLsizei>(view.viewportPixels.x), static_cast<GLsizei>(view.viewportPixels.y));
 
     const bool refining = m_refining;
@@ -950,8 +970,8 @@ void Viewport::paintImage(const RenderView& view)
     m_samples = m_canvas.samples() > 1 ? m_canvas.samples() : 0;
     RenderView imageView = view;
     imageView.samples = m_samples;
+    drawResolvedBackdrop(imageView, false);
     m_canvas.bindFrame();
-    drawBackdrop(imageView);
     m_gl->glViewport(
         0, 0, static_cast<GLsizei>(imageView.viewportPixels.x), static_cast<GLsizei>(imageView.viewportPixels.y));
     const float preview = std::clamp(m_image->previewFraction, 0.0f, 1.0f);

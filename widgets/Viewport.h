@@ -185,7 +185,7 @@ public:
     static QColor backgroundColour(double heightFraction);
     // Empty when GL is ready; otherwise why nothing 3D is drawn (no 3.3 context, a shader error).
     QString glStatus() const { return m_glStatus; }
-    int samples() const { return m_samples; } // MSAA samples of the framebuffer, known after a paint
+    int samples() const { return m_samples; } // MSAA samples of the backdrop (the hair: none), known after a paint
 
 public slots:
     void frameHead(); // F: fit the camera to the head's bounds, keeping its direction
@@ -226,6 +226,8 @@ private:
     void initializeGL();
     void paintGL(bool framebuffersRemade);
     void drawBackdrop(const RenderView& view);
+    // drawBackdrop, multisampled, resolved into the backdrop cache or the frame (GlCanvas).
+    void drawResolvedBackdrop(const RenderView& view, bool intoCache);
     void paintImage(const RenderView& view); // paintGL's work for renderImage()
     void uploadFrameIfChanged(); // streams m_frame's strands to the hair renderer once per frame
     void updateOverlays(const RenderView& view);

@@ -35,6 +35,9 @@ uniform float u_tipFade;  // how much the strand fades out toward the tip, 0..1
 // interpolated value of each of the ~200k thin primitives, and across a strand a pixel or two wide
 // the shading is constant anyway. Along the strand, samples are a few pixels apart.
 out vec4 v_colour;  // sRGB; alpha = coverage
+// Ribbons: x runs -1 to 1 across the ribbon, y is half the drawn ribbon's width in pixels (its
+// antialiasing skirt included); hair.frag turns them into the edge's coverage. Lines: (0, 1).
+noperspective out vec2 v_edge;
 
 float kajiyaKaySpecular(vec3 tangent, vec3 halfVector, float exponent)
 {
@@ -128,6 +131,7 @@ void main()
     float drawnPixels = max(widthPixels, u_minWidthPixels);
 
     vec4 clip = u_projection * positionView;
+    v_edge = vec2(0.0, 1.0);
     if (u_ribbon > 0.5) {
         // The strand's direction on screen: project a point a little way along the tangent. The
         // step scales with depth so both points stay in front of the camera and apart in float.
@@ -139,8 +143,12 @@ void main()
         // A strand pointing straight at the camera has no direction on screen: any normal will do.
         direction = directionLength > 1e-6 ? direction / directionLength : vec2(1.0, 0.0);
         vec2 normal = vec2(-direction.y, direction.x);
-        // NDC spans 2 units over the viewport, and clip space is NDC times w.
-        clip.xy += normal * side * drawnPixels / u_viewportPixels * clip.w;
+        // Half a pixel more on each side, where hair.frag fades the edge out (the frame the hair
+        // is drawn into is single-sampled: this is its antialiasing). NDC spans 2 units over the
+        // viewport, and clip space is NDC times w.
+        float extentPixels = drawnPixels + 1.0;
+        clip.xy += normal * side * extentPixels / u_viewportPixels * clip.w;
+        v_edge = vec2(side, 0.5 * extentPixels);
     }
     gl_Position = clip;
 

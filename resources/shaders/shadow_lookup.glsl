@@ -36,16 +36,23 @@ float keyLightThroughTexel(ivec2 texel, float depth, float biasMetres)
     return exp(-opacityInFront(uv, behind, 0.0)) * (1.0 - head);
 }
 
+// Where a world point falls in the maps: (u, v, metres from the light); false outside them (or
+// without shadows), where everything is fully lit.
+bool shadowCoordinates(vec3 worldPosition, out vec3 s)
+{
+    s = (u_worldToShadow * vec4(worldPosition, 1.0)).xyz;
+    return u_shadows > 0.5 && all(greaterThanEqual(s.xy, vec2(0.0))) && all(lessThanEqual(s.xy, vec2(1.0)));
+}
+
 // keyLight() filtered: the four texels around the point, weighted bilinearly (percentage-closer
 // filtering), so the head's and the hair's shadow edges on the skin are soft, not the map's
-// squares. Four times the reads: for the head's pixels, not the hair's many vertices.
+// squares. Four times the reads, and the ambient term from the blurred level: for the head's
+// vertices, not the hair's many.
 float keyLightFiltered(vec3 worldPosition, float biasMetres, out float ambient)
 {
     ambient = 1.0;
-    if (u_shadows < 0.5)
-        return 1.0;
-    vec3 s = (u_worldToShadow * vec4(worldPosition, 1.0)).xyz;
-    if (any(lessThan(s.xy, vec2(0.0))) || any(greaterThan(s.xy, vec2(1.0))))
+    vec3 s;
+    if (!shadowCoordinates(worldPosition, s))
         return 1.0;
     vec2 texelPosition = s.xy * vec2(textureSize(u_shadowDepth, 0)) - 0.5;
     ivec2 base = ivec2(floor(texelPosition));
@@ -61,19 +68,18 @@ float keyLightFiltered(vec3 worldPosition, float biasMetres, out float ambient)
 // The key light reaching a world point, 0..1: the hair's transmittance exp(-opacity) (Kim &
 // Neumann 2001), times nothing where the head stands between the point and the light. `ambient`
 // gets the light the hair around the point leaves for the soft ambient term (denser hair, deeper
-// in: darker). `biasMetres` keeps a surface from shadowing itself.
+// in: darker). `biasMetres` keeps a surface from shadowing itself. One read of each map, at the
+// once-blurred level (mip 1, two texels): the hair's vertices are many, and a software rasteriser
+// pays for every fetch in them.
 float keyLight(vec3 worldPosition, float biasMetres, out float ambient)
 {
     ambient = 1.0;
-    if (u_shadows < 0.5)
-        return 1.0;
-    vec3 s = (u_worldToShadow * vec4(worldPosition, 1.0)).xyz;
-    if (any(lessThan(s.xy, vec2(0.0))) || any(greaterThan(s.xy, vec2(1.0))))
+    vec3 s;
+    if (!shadowCoordinates(worldPosition, s))
         return 1.0;
     vec2 nearest = textureLod(u_shadowDepth, s.xy, 0.0).rg;
-    float behind = s.z - biasMetres - nearest.r;
-    float opacity = opacityInFront(s.xy, behind, 0.0);
-    ambient = exp(-0.35 * opacityInFront(s.xy, behind, 2.0));
+    float opacity = opacityInFront(s.xy, s.z - biasMetres - nearest.r, 1.0);
+    ambient = exp(-0.35 * opacity);
     float head = smoothstep(0.006, 0.02, s.z - biasMetres - nearest.g);
     return exp(-opacity) * (1.0 - head);
 }

@@ -170,7 +170,12 @@ TEST_F(DisplayDensityTest, ThePreviewWhileSimulatingKeepsTheCoverage)
 {
     const QSize size(585, 710);
     const QImage bare = bareImage(size);
-    const double full = covered(viewport->renderImage(size), bare);
+    const QImage fullImage = viewport->renderImage(size);
+    const double full = covered(fullImage, bare);
+    // WISP_SCREENSHOT_DIR: the images, to look at (the README's preview against paused).
+    const QString shots = qEnvironmentVariable("WISP_SCREENSHOT_DIR");
+    if (!shots.isEmpty())
+        fullImage.save(shots + QStringLiteral("/density-full.png"));
     // The fewest strands a preview draws (HairDetail::kMinimumFraction), and one in between.
     for (const float fraction : { HairDetail::kMinimumFraction, 0.15f, 0.4f }) {
         Viewport::ImageOptions options;
@@ -179,6 +184,8 @@ TEST_F(DisplayDensityTest, ThePreviewWhileSimulatingKeepsTheCoverage)
         EXPECT_NEAR(static_cast<double>(viewport->lastDrawnStrands()),
             fraction * static_cast<double>(settled->frame->strands.strandCount()), 1.0);
         const double preview = covered(image, bare);
+        if (!shots.isEmpty())
+            image.save(shots + QStringLiteral("/density-preview-%1.png").arg(std::lround(100.0f * fraction)));
         std::printf("[ density ] preview of %.0f%% of the strands covers %.3f of the image, full detail %.3f (ratio %.2f)\n",
             100.0 * fraction, preview, full, preview / full);
         EXPECT_GE(preview, 0.9 * full) << fraction;

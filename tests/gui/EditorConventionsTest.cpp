@@ -255,3 +255,29 @@ TEST_F(EditorConventionsTest, TheViewMenuNamesEveryEntryOnce)
     }
     EXPECT_GE(entries, 8);
 }
+
+TEST(ParameterPanelUnits, HairThicknessIsShownInMicrometresAndEditedInMetres)
+{
+    // The registry keeps metres (files, the CLI); the panel shows "80 µm", not "0.000080 m".
+    ParameterPanel panel({ Param::HairThickness });
+    QDoubleSpinBox* spin = panel.spinBoxFor(Param::HairThickness);
+    ASSERT_NE(spin, nullptr);
+    EXPECT_EQ(spin->suffix(), QStringLiteral(" µm"));
+    EXPECT_DOUBLE_EQ(spin->value(), 80.0);
+    EXPECT_EQ(spin->text(), QStringLiteral("80.00 µm"));
+    EXPECT_DOUBLE_EQ(spin->minimum(), 20.0);
+    EXPECT_DOUBLE_EQ(spin->maximum(), 500.0);
+    std::vector<double> edited;
+    QObject::connect(&panel, &ParameterPanel::valueEdited, [&](Param id, double value, bool) {
+        EXPECT_EQ(id, Param::HairThickness);
+        edited.push_back(value);
+    });
+    spin->setValue(120.0);
+    ASSERT_EQ(edited.size(), 1u);
+    EXPECT_NEAR(edited[0], 120e-6, 1e-12);
+    EXPECT_NEAR(panel.value(Param::HairThickness), 120e-6, 1e-12);
+    ParameterValues values;
+    values.set(Param::HairThickness, 45e-6);
+    panel.setValues(values);
+    EXPECT_DOUBLE_EQ(spin->value(), 45.0);
+}

@@ -40,7 +40,7 @@ std::string hex(std::uint32_t v)
 
 Result<HairReadResult> readCyHair(const std::string& path)
 {
-    Result<std::string> file = readWholeFile(path);
+    Result<std::string> file = readRegularFile(path, kHairFileRules);
     if (!file)
         return file.error();
     const std::string& bytes = file.value();
@@ -153,7 +153,7 @@ Result<HairReadResult> readCyHair(const std::string& path)
     return result;
 }
 
-std::optional<IoError> writeCyHair(const std::string& path, const HairCurves& strands)
+Result<void> writeCyHair(const std::string& path, const HairCurves& strands)
 {
     std::uint32_t strandCount = 0;
     for (std::size_t s = 0; s < strands.strandCount(); ++s) {

@@ -225,7 +225,9 @@ void checkNumberList(const Json& object, const std::string& path, const char* ke
 
 constexpr double kMaxIndex = 4294967295.0;
 
-std::string percentDecoded(const std::string& uri)
+}  // namespace
+
+std::string gltfUriDecoded(const std::string& uri)
 {
     std::string out;
     for (std::size_t i = 0; i < uri.size(); ++i) {
@@ -240,11 +242,13 @@ std::string percentDecoded(const std::string& uri)
     return out;
 }
 
+namespace {
+
 void checkBufferUri(const std::string& uri, const std::string& path, const fs::path& folder)
 {
     if (uri.rfind("data:", 0) == 0)
         return;
-    const std::string decoded = percentDecoded(uri);
+    const std::string decoded = gltfUriDecoded(uri);
     const std::string quoted = "'" + (uri.size() > 120 ? uri.substr(0, 120) + "..." : uri) + "'";
     if (decoded.find('\0') != std::string::npos)
         refuse(path, quoted + " holds a NUL character");

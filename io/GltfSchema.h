@@ -30,6 +30,9 @@ struct GltfSchemaProblem {
 std::optional<GltfSchemaProblem> checkGltfSchema(const nlohmann::json& root, const std::filesystem::path& folder,
                                                  std::vector<std::string>& warnings);
 
+// A URI's %XX escapes decoded ("my%20head.bin" -> "my head.bin").
+std::string gltfUriDecoded(const std::string& uri);
+
 // True when `path` names a regular file inside `folder` once both are made canonical.
 bool regularFileInside(const std::filesystem::path& path, const std::filesystem::path& folder);
 

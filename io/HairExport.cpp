@@ -92,10 +92,10 @@ public:
 
 }  // namespace
 
-std::optional<IoError> writeObjPolylines(const std::string& path, const HairCurves& strands, const HairExportOptions& options)
+Result<void> writeObjPolylines(const std::string& path, const HairCurves& strands, const HairExportOptions& options)
 {
     if (std::optional<IoError> error = checkHead(path, options.head))
-        return error;
+        return *error;
     std::string text;
     text.reserve(40 * strands.pointCount() + 16 * strands.pointCount());
     text += "# Wisp hair as OBJ polylines: " + std::to_string(nonEmptyStrands(strands)) + " strands, " +
@@ -132,14 +132,14 @@ std::optional<IoError> writeObjPolylines(const std::string& path, const HairCurv
     return writeBytesAtomically(path, text);
 }
 
-std::optional<IoError> writeGltf(const std::string& path, const HairCurves& strands, const HairExportOptions& options, bool binary)
+Result<void> writeGltf(const std::string& path, const HairCurves& strands, const HairExportOptions& options, bool binary)
 {
     if (!std::isfinite(options.rootWidthMetres) || !std::isfinite(options.tipWidthMetres) || options.rootWidthMetres < 0.0f ||
         options.tipWidthMetres < 0.0f)
         return IoError{path, "", "strand widths must be finite and not negative (root " + std::to_string(options.rootWidthMetres) +
                                      " m, tip " + std::to_string(options.tipWidthMetres) + " m)"};
     if (std::optional<IoError> error = checkHead(path, options.head))
-        return error;
+        return *error;
     std::size_t segments = 0;
     for (std::size_t s = 0; s < strands.strandCount(); ++s)
         segments += strands.pointsIn(s) > 1 ? strands.pointsIn(s) - 1 : 0;

@@ -19,15 +19,6 @@ namespace wisp::io {
 
 namespace {
 
-std::string lowerExtension(const std::string& path)
-{
-    std::string ext = std::filesystem::path(path).extension().string();
-    if (!ext.empty() && ext.front() == '.')
-        ext.erase(0, 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
-
 const char* formatName(HairFormat format)
 {
     switch (format) {
@@ -102,13 +93,13 @@ Result<HairReadResult> readHair(const std::string& path)
     return IoError{path, "", unknownExtension(path) + "; " + readable};
 }
 
-std::optional<IoError> writeHair(const std::string& path, const HairCurves& strands, const HairExportOptions& options)
+Result<void> writeHair(const std::string& path, const HairCurves& strands, const HairExportOptions& options)
 {
     const std::optional<HairFormat> format = hairFormatForPath(path);
     if (!format)
         return IoError{path, "", unknownExtension(path) + "; Wisp writes hair as " + describe(hairWriteExtensions())};
     if (std::optional<IoError> error = hair_detail::checkStrandsToWrite(path, strands))
-        return error;
+        return *error;
     switch (*format) {
     case HairFormat::CyHair: return hair_detail::writeCyHair(path, strands);
     case HairFormat::UscData: return hair_detail::writeUscData(path, strands);
@@ -121,20 +112,9 @@ std::optional<IoError> writeHair(const std::string& path, const HairCurves& stra
 
 namespace hair_detail {
 
-Result<std::string> readWholeFile(const std::string& path)
+Result<void> writeBytesAtomically(const std::string& path, const std::string& bytes)
 {
-    return readRegularFile(path, {kMaxHairFileBytes, "hair", false});
-}
-
-std::optional<IoError> writeBytesAtomically(const std::string& path, const std::string& bytes)
-{
-    std::string message = writeFileAtomically(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
-    if (message.empty())
-        return std::nullopt;
-    // writeFileAtomically's message starts with the path, which IoError carries on its own.
-    if (message.rfind(path + ": ", 0) == 0)
-        message.erase(0, path.size() + 2);
-    return IoError{path, "", message};
+    return writeFileAtomically(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
 }
 
 std::optional<IoError> checkStrandsToWrite(const std::string& path, const HairCurves& strands)

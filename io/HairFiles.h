@@ -60,10 +60,10 @@ struct HairExportOptions {
     const TriangleMesh* head = nullptr; // exported beside the strands by .gltf, .glb and .obj
 };
 
-// Writes `strands` in the format the extension of `path` names. Returns nullopt on success,
-// otherwise what went wrong (a missing folder, a strand cyHair cannot hold, a non-finite
+// Writes `strands` in the format the extension of `path` names. Returns success, or what went
+// wrong (a missing folder, a strand cyHair cannot hold, a non-finite
 // point). Nothing is written unless everything can be.
-std::optional<IoError> writeHair(const std::string& path, const HairCurves& strands,
+Result<void> writeHair(const std::string& path, const HairCurves& strands,
                                  const HairExportOptions& options = {});
 
 // Lower-case extensions without the dot, in the order a file dialog should offer them.

@@ -2,6 +2,8 @@
 // Shared by HairFiles.cpp, CyHair.cpp, UscHairData.cpp and HairExport.cpp; not part of io/'s API.
 
 #include "io/HairFiles.h"
+#include "io/ReadFailure.h"
+#include "io/RegularFile.h"
 
 #include <bit>
 #include <cstdint>
@@ -41,15 +43,14 @@ inline void appendU16(std::string& out, std::uint16_t v)
 inline void appendI32(std::string& out, std::int32_t v) { appendU32(out, static_cast<std::uint32_t>(v)); }
 inline void appendF32(std::string& out, float v) { appendU32(out, std::bit_cast<std::uint32_t>(v)); }
 
-inline std::string byteAt(std::uint64_t offset) { return "byte " + std::to_string(offset); }
 
 // ---- shared steps -------------------------------------------------------------------------------
 
-// The whole file (a regular, non-empty file), or why it cannot be read.
-Result<std::string> readWholeFile(const std::string& path);
+// How hair files are read (io/RegularFile.h): regular, non-empty, at most kMaxHairFileBytes.
+inline const RegularFileRules kHairFileRules{kMaxHairFileBytes, "hair", false};
 
 // Writes `bytes` to `path` atomically; nullopt on success.
-std::optional<IoError> writeBytesAtomically(const std::string& path, const std::string& bytes);
+Result<void> writeBytesAtomically(const std::string& path, const std::string& bytes);
 
 // Checks what every writer needs: offsets that describe the positions, finite positions, and at
 // least one point to write. nullopt when fine.
@@ -74,11 +75,11 @@ std::string skippedStrandsWarning(const std::vector<std::uint64_t>& strands, con
 
 Result<HairReadResult> readCyHair(const std::string& path);
 Result<HairReadResult> readUscData(const std::string& path);
-std::optional<IoError> writeCyHair(const std::string& path, const HairCurves& strands);
-std::optional<IoError> writeUscData(const std::string& path, const HairCurves& strands);
-std::optional<IoError> writeObjPolylines(const std::string& path, const HairCurves& strands,
+Result<void> writeCyHair(const std::string& path, const HairCurves& strands);
+Result<void> writeUscData(const std::string& path, const HairCurves& strands);
+Result<void> writeObjPolylines(const std::string& path, const HairCurves& strands,
                                          const HairExportOptions& options);
-std::optional<IoError> writeGltf(const std::string& path, const HairCurves& strands,
+Result<void> writeGltf(const std::string& path, const HairCurves& strands,
                                  const HairExportOptions& options, bool binary);
 
 }  // namespace wisp::io::hair_detail

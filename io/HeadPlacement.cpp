@@ -1,4 +1,5 @@
 #include "io/HeadPlacement.h"
+#include "sim/NumberText.h"
 
 #include <glm/common.hpp>
 
@@ -12,13 +13,6 @@
 namespace wisp::io {
 
 namespace {
-
-std::string formatNumber(double value)
-{
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", value);
-    return text;
-}
 
 std::string metresText(double metres)
 {

@@ -1,6 +1,7 @@
 #pragma once
 // io/ reports failures as values: what file, where in it, and what was wrong. Only app/ shows them.
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -36,6 +37,22 @@ public:
 
 private:
     std::variant<T, IoError> m_value;
+};
+
+// What every io/ writer returns: nothing on success, or the IoError. [[nodiscard]]: a write whose
+// failure is dropped loses the artist's work without a word.
+template <>
+class [[nodiscard]] Result<void> {
+public:
+    Result() = default;
+    Result(IoError error) : m_error(std::move(error)) {}
+
+    bool ok() const { return !m_error.has_value(); }
+    explicit operator bool() const { return ok(); }
+    const IoError& error() const { return *m_error; }
+
+private:
+    std::optional<IoError> m_error;
 };
 
 }  // namespace wisp::io

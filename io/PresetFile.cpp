@@ -106,14 +106,6 @@ std::vector<std::string> Warnings::take()
     return std::move(m_lines);
 }
 
-std::string readWholeFile(const std::string& path, std::size_t maxBytes, const char* what)
-{
-    Result<std::string> file = readRegularFile(path, {maxBytes, what, true});
-    if (!file)
-        throw Refusal{file.error().location, file.error().message};
-    return std::move(file).value();
-}
-
 json parseJson(std::string_view text, std::size_t maxBytes, const char* what)
 {
     if (text.size() > maxBytes)
@@ -248,13 +240,6 @@ glm::vec3 readColour(const json& value, const std::string& path)
         throw Refusal{path, "expected 3 numbers 0..1"};
     return {static_cast<float>(value[0].get<double>()), static_cast<float>(value[1].get<double>()),
             static_cast<float>(value[2].get<double>())};
-}
-
-std::string withoutPath(std::string message, const std::string& path)
-{
-    if (message.starts_with(path + ": "))
-        message.erase(0, path.size() + 2);
-    return message;
 }
 
 double shortestDoubleForFloat(float value)
@@ -431,7 +416,7 @@ Result<PresetReadResult> readPreset(const std::string& path)
 {
     std::string text;
     try {
-        text = readWholeFile(path, kMaxPresetBytes, "preset");
+        text = readRegularFileOrFail(path, {kMaxPresetBytes, "preset", true});
     } catch (const Refusal& refusal) {
         return IoError{path, refusal.location, refusal.message};
     }
@@ -483,12 +468,10 @@ std::string presetToJson(const Preset& preset)
     return dumpPretty(root);
 }
 
-Result<std::monostate> writePreset(const std::string& path, const Preset& preset)
+Result<void> writePreset(const std::string& path, const Preset& preset)
 {
     const std::string text = presetToJson(preset);
-    if (std::string error = writeFileAtomically(path, [&](std::ostream& out) { out << text; }); !error.empty())
-        return IoError{path, "", withoutPath(std::move(error), path)};
-    return std::monostate{};
+    return writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace wisp::io

@@ -30,6 +30,7 @@
 // Thread safety: every function here may run on any thread; none keeps state.
 
 #include "io/IoError.h"
+#include "io/ReadFailure.h"
 #include "sim/Parameters.h"
 
 #include <glm/vec3.hpp>
@@ -79,17 +80,15 @@ Result<PresetReadResult> parsePreset(std::string_view json, const std::string& n
 // Version 2, indented, keys in registry order; what writePreset writes.
 std::string presetToJson(const Preset& preset);
 // Atomic (io/AtomicFile.h): readers see the old file or the new one, never half.
-// (std::monostate stands for "nothing": IoError.h has no Result<void> yet.)
-Result<std::monostate> writePreset(const std::string& path, const Preset& preset);
+Result<void> writePreset(const std::string& path, const Preset& preset);
 
 // ---- Shared with ProjectFile.cpp; not for callers ------------------------------------------------
 namespace detail {
 
-// Thrown inside the readers and turned into an IoError at the public functions.
-struct Refusal {
-    std::string location;  // a key path such as "regions[1].clump_degree", or "line 3, column 7"
-    std::string message;
-};
+// Thrown inside the readers and turned into an IoError at the public functions: io's one parser
+// error (io/ReadFailure.h); its location is a key path such as "regions[1].clump_degree", or
+// "line 3, column 7".
+using Refusal = ReadFailure;
 
 // Collects warnings, at most a screenful: a file with a million unknown keys gives 50 lines.
 class Warnings {
@@ -102,7 +101,6 @@ private:
     std::size_t m_unreported = 0;
 };
 
-std::string readWholeFile(const std::string& path, std::size_t maxBytes, const char* what);
 // Parses JSON; syntax errors become a Refusal at "line L, column C". `what` names the kind of
 // file in messages ("preset").
 nlohmann::json parseJson(std::string_view text, std::size_t maxBytes, const char* what);
@@ -122,9 +120,6 @@ bool readBool(const nlohmann::json& value, const std::string& path);
 void readParameter(ParameterValues& into, const ParameterInfo& info, const nlohmann::json& value,
                    const std::string& path);
 glm::vec3 readColour(const nlohmann::json& value, const std::string& path);
-
-// writeFileAtomically's messages start with the path, which IoError::toString adds again.
-std::string withoutPath(std::string message, const std::string& path);
 
 // The double nearest the shortest decimal that reads back as `value`: JSON shows 0.16 rather than
 // 0.1599999964237213, and converting the double back to float gives `value` bit for bit.

@@ -7,6 +7,7 @@
 #include "io/Base64.h"
 #include "io/HeadPlacement.h"
 #include "io/PresetFile.h"
+#include "io/RegularFile.h"
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -614,7 +615,7 @@ Result<ProjectReadResult> readProject(const std::string& path, const HeadLoader&
 {
     std::string text;
     try {
-        text = readWholeFile(path, kMaxProjectBytes, "project");
+        text = readRegularFileOrFail(path, {kMaxProjectBytes, "project", true});
     } catch (const Refusal& refusal) {
         return IoError{path, refusal.location, refusal.message};
     } catch (const std::bad_alloc&) {
@@ -643,7 +644,7 @@ Result<ProjectReadResult> parseProject(std::string_view text, const std::string&
     }
 }
 
-Result<std::monostate> writeProject(const std::string& path, const Project& project, Backup backup)
+Result<void> writeProject(const std::string& path, const Project& project, Backup backup)
 {
     try {
         checkProject(project);
@@ -657,12 +658,10 @@ Result<std::monostate> writeProject(const std::string& path, const Project& proj
     // The backup sits beside the file a symbolic link at `path` leads to, as the new content does.
     if (backup == Backup::Keep && fs::exists(path, error)) {
         const std::string target = writeTargetOf(path);
-        if (std::string failure = keepCopyAtomically(target, target + ".bak"); !failure.empty())
-            return IoError{path, "", "cannot keep the previous file as .bak (" + failure + "); nothing was saved"};
+        if (const Result<void> kept = keepCopyAtomically(target, target + ".bak"); !kept)
+            return IoError{path, "", "cannot keep the previous file as .bak (" + kept.error().toString() + "); nothing was saved"};
     }
-    if (std::string failure = writeFileAtomically(path, [&](std::ostream& out) { out << text; }); !failure.empty())
-        return IoError{path, "", withoutPath(std::move(failure), path)};
-    return std::monostate{};
+    return writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace wisp::io

@@ -136,9 +136,8 @@ Result<ProjectReadResult> parseProject(std::string_view json, const std::string&
 // left; a process killed while saving leaves the old or the new file and a temporary that
 // removeStaleTemporaryFiles takes away.
 // `backup` false writes no .bak (autosaves: the atomic write is enough, and a .bak would outlive them).
-// (std::monostate stands for "nothing": IoError.h has no Result<void> yet.)
 enum class Backup { Keep, None };
-Result<std::monostate> writeProject(const std::string& path, const Project& project, Backup backup = Backup::Keep);
+Result<void> writeProject(const std::string& path, const Project& project, Backup backup = Backup::Keep);
 
 // The text writeProject writes; `projectPath` decides the relative head source.
 std::string projectToJson(const Project& project, const std::string& projectPath);

@@ -1,5 +1,7 @@
 #include "io/RegularFile.h"
 
+#include "io/ReadFailure.h"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -8,6 +10,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
 
 namespace wisp::io {
 
@@ -102,6 +107,23 @@ Result<std::string> readRegularFile(const std::string& path, const RegularFileRu
                        "could not read the whole file (" + std::to_string(got) + " of " + std::to_string(size) +
                            " bytes): it changed while it was read"};
     return bytes;
+}
+
+std::string readRegularFileOrFail(const std::string& path, const RegularFileRules& rules)
+{
+    Result<std::string> file = readRegularFile(path, rules);
+    if (!file)
+        fail(file.error().location, file.error().message);
+    return std::move(file).value();
+}
+
+std::string lowerExtension(const std::string& path)
+{
+    std::string ext = std::filesystem::path(path).extension().string();
+    if (!ext.empty() && ext.front() == '.')
+        ext.erase(0, 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
 }
 
 }  // namespace wisp::io

@@ -27,6 +27,13 @@ struct RegularFileRules {
 // The whole file, or an IoError (file = `path`, no location) saying why not.
 Result<std::string> readRegularFile(const std::string& path, const RegularFileRules& rules);
 
+// The same, for parsers that report through io::ReadFailure (io/ReadFailure.h): throws it
+// (location and message of the IoError above) instead of returning it.
+std::string readRegularFileOrFail(const std::string& path, const RegularFileRules& rules);
+
+// The file name's extension in lower case, without the dot: "HEAD.OBJ" gives "obj"; "" if none.
+std::string lowerExtension(const std::string& path);
+
 // "13 MB": whole mebibytes, rounded up
 std::string megabytesText(std::uint64_t bytes);
 

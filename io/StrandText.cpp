@@ -10,7 +10,7 @@
 
 namespace wisp::io {
 
-std::string writeStrandText(const std::string& path, const HairCurves& curves)
+Result<void> writeStrandText(const std::string& path, const HairCurves& curves)
 {
     return writeFileAtomically(path, [&](std::ostream& out) {
         out << "wisp-strands 1\n";

@@ -15,7 +15,7 @@ namespace wisp::io::hair_detail {
 
 Result<HairReadResult> readUscData(const std::string& path)
 {
-    Result<std::string> file = readWholeFile(path);
+    Result<std::string> file = readRegularFile(path, kHairFileRules);
     if (!file)
         return file.error();
     const std::string& bytes = file.value();
@@ -76,7 +76,7 @@ Result<HairReadResult> readUscData(const std::string& path)
     return result;
 }
 
-std::optional<IoError> writeUscData(const std::string& path, const HairCurves& strands)
+Result<void> writeUscData(const std::string& path, const HairCurves& strands)
 {
     std::uint64_t strandCount = 0;
     for (std::size_t s = 0; s < strands.strandCount(); ++s)

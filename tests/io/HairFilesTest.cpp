@@ -341,16 +341,16 @@ TEST_F(HairFiles, CyHairAndUscRoundTripExactly)
         const HairCurves original = readOk(sample);
         for (const char* name : {"out.hair", "out.data", "OUT.HAIR", "Out.Data"}) {
             SCOPED_TRACE(name);
-            ASSERT_FALSE(writeHair((dir / name).string(), original).has_value());
+            ASSERT_TRUE(writeHair((dir / name).string(), original));
             expectBitIdentical(original, readOk(dir / name));
         }
     }
     // The .data format has no free fields: the written file is the sample, byte for byte. The
     // .hair file differs only in its info string ("Wisp").
     const HairCurves bangs = readOk(kBangsHair);
-    ASSERT_FALSE(writeHair((dir / "bangs.data").string(), bangs).has_value());
+    ASSERT_TRUE(writeHair((dir / "bangs.data").string(), bangs));
     EXPECT_EQ(slurp(kBangsData), slurp(dir / "bangs.data"));
-    ASSERT_FALSE(writeHair((dir / "bangs.hair").string(), bangs).has_value());
+    ASSERT_TRUE(writeHair((dir / "bangs.hair").string(), bangs));
     const std::string ours = slurp(dir / "bangs.hair"), theirs = slurp(kBangsHair);
     ASSERT_EQ(theirs.size(), ours.size());
     EXPECT_EQ(theirs.substr(0, 40), ours.substr(0, 40));
@@ -365,7 +365,7 @@ TEST_F(HairFiles, ObjPolylinesParseBack)
     REQUIRE_ASSET(kBangsHair);
     const HairCurves bangs = readOk(kBangsHair);
     const fs::path path = dir / "bangs.obj";
-    ASSERT_FALSE(writeHair(path.string(), bangs).has_value());
+    ASSERT_TRUE(writeHair(path.string(), bangs));
     const ObjFile obj = parseObj(slurp(path));
     ASSERT_FALSE(obj.comments.empty());
     EXPECT_NE(std::string::npos, obj.comments[0].find("100 strands, 1165 points")) << obj.comments[0];
@@ -388,7 +388,7 @@ TEST_F(HairFiles, ObjPolylinesParseBack)
     const TriangleMesh head = tetrahedron();
     HairExportOptions options;
     options.head = &head;
-    ASSERT_FALSE(writeHair((dir / "with_head.OBJ").string(), bangs, options).has_value());
+    ASSERT_TRUE(writeHair((dir / "with_head.OBJ").string(), bangs, options));
     const ObjFile both = parseObj(slurp(dir / "with_head.OBJ"));
     ASSERT_EQ(bangs.pointCount() + head.positions.size(), both.vertices.size());
     ASSERT_EQ(head.triangles.size(), both.faces.size());
@@ -404,22 +404,22 @@ TEST_F(HairFiles, GltfAndGlbParseBack)
     HairExportOptions withHead;
     withHead.head = &head;
 
-    ASSERT_FALSE(writeHair((dir / "bangs.gltf").string(), bangs).has_value());
+    ASSERT_TRUE(writeHair((dir / "bangs.gltf").string(), bangs));
     {
         SCOPED_TRACE("gltf");
         expectGltfHolds(parseGltf(slurp(dir / "bangs.gltf")), bangs, nullptr);
     }
-    ASSERT_FALSE(writeHair((dir / "bangs.glb").string(), bangs).has_value());
+    ASSERT_TRUE(writeHair((dir / "bangs.glb").string(), bangs));
     {
         SCOPED_TRACE("glb");
         expectGltfHolds(parseGlb(slurp(dir / "bangs.glb")), bangs, nullptr);
     }
-    ASSERT_FALSE(writeHair((dir / "head.GLTF").string(), bangs, withHead).has_value());
+    ASSERT_TRUE(writeHair((dir / "head.GLTF").string(), bangs, withHead));
     {
         SCOPED_TRACE("gltf with head");
         expectGltfHolds(parseGltf(slurp(dir / "head.GLTF")), bangs, &head);
     }
-    ASSERT_FALSE(writeHair((dir / "head.glb").string(), smallGroom(), withHead).has_value());
+    ASSERT_TRUE(writeHair((dir / "head.glb").string(), smallGroom(), withHead));
     {
         SCOPED_TRACE("glb with head");
         expectGltfHolds(parseGlb(slurp(dir / "head.glb")), smallGroom(), &head);
@@ -432,7 +432,7 @@ TEST_F(HairFiles, GltfWidthsFollowTheOptions)
     options.rootWidthMetres = 100e-6f;
     options.tipWidthMetres = 0.0f;
     const HairCurves groom = smallGroom();
-    ASSERT_FALSE(writeHair((dir / "w.gltf").string(), groom, options).has_value());
+    ASSERT_TRUE(writeHair((dir / "w.gltf").string(), groom, options));
     const Gltf g = parseGltf(slurp(dir / "w.gltf"));
     const std::size_t width = g.json["meshes"][0]["primitives"][0]["attributes"]["_WIDTH"];
     const std::vector<float> w = g.read<float>(width, 1);
@@ -441,9 +441,9 @@ TEST_F(HairFiles, GltfWidthsFollowTheOptions)
         EXPECT_NEAR(100e-6f * (1.0f - 0.25f * float(i)), w[2 + i], 1e-9f);
 
     options.rootWidthMetres = std::numeric_limits<float>::quiet_NaN();
-    const std::optional<IoError> error = writeHair((dir / "nan.gltf").string(), groom, options);
-    ASSERT_TRUE(error.has_value());
-    EXPECT_NE(std::string::npos, error->message.find("width")) << error->toString();
+    const Result<void> error = writeHair((dir / "nan.gltf").string(), groom, options);
+    ASSERT_FALSE(error.ok());
+    EXPECT_NE(std::string::npos, error.error().message.find("width")) << error.error().toString();
     EXPECT_FALSE(fs::exists(dir / "nan.gltf"));
 }
 
@@ -626,9 +626,9 @@ TEST_F(HairFiles, NonFinitePointIsRefusedWithItsIndex)
     HairCurves broken = smallGroom();
     broken.positions[3].y = -std::numeric_limits<float>::infinity();
     for (const char* name : {"w.hair", "w.data", "w.obj", "w.gltf", "w.glb"}) {
-        const std::optional<IoError> error = writeHair((dir / name).string(), broken);
-        ASSERT_TRUE(error.has_value()) << name;
-        EXPECT_NE(std::string::npos, error->message.find("point 3 (strand 1) is not finite")) << error->toString();
+        const Result<void> error = writeHair((dir / name).string(), broken);
+        ASSERT_FALSE(error.ok()) << name;
+        EXPECT_NE(std::string::npos, error.error().message.find("point 3 (strand 1) is not finite")) << error.error().toString();
         EXPECT_FALSE(fs::exists(dir / name));
     }
 }
@@ -687,11 +687,11 @@ TEST_F(HairFiles, UnknownExtensionsListTheSupportedOnes)
     ASSERT_FALSE(r.ok());
     EXPECT_NE(std::string::npos, r.error().message.find("cannot read strands from it; Wisp reads hair from .hair (cyHair), .data"));
 
-    const std::optional<IoError> error = writeHair((dir / "groom").string(), smallGroom());
-    ASSERT_TRUE(error.has_value());
+    const Result<void> error = writeHair((dir / "groom").string(), smallGroom());
+    ASSERT_FALSE(error.ok());
     EXPECT_EQ("the file name has no extension to tell its format; Wisp writes hair as .hair (cyHair), .data (USC-HairSalon), "
               ".obj (OBJ polylines), .gltf (glTF), .glb (binary glTF)",
-              error->message);
+              error.error().message);
     EXPECT_TRUE(filesInDir().empty());
 }
 
@@ -701,17 +701,17 @@ TEST_F(HairFiles, MissingFolderOrBlockedTargetLeavesNoFile)
     for (const char* name : {"g.hair", "g.data", "g.obj", "g.gltf", "g.glb"}) {
         SCOPED_TRACE(name);
         const fs::path missing = dir / "no-such-folder" / name;
-        const std::optional<IoError> error = writeHair(missing.string(), groom);
-        ASSERT_TRUE(error.has_value());
-        EXPECT_EQ(missing.string(), error->file);
-        EXPECT_NE(std::string::npos, error->message.find("cannot write there")) << error->toString();
+        const Result<void> error = writeHair(missing.string(), groom);
+        ASSERT_FALSE(error.ok());
+        EXPECT_EQ(missing.string(), error.error().file);
+        EXPECT_NE(std::string::npos, error.error().message.find("cannot write there")) << error.error().toString();
         EXPECT_FALSE(fs::exists(dir / "no-such-folder"));
 
         // A folder where the file should go: the rename fails and the temporary file is removed.
         fs::create_directory(dir / name);
-        const std::optional<IoError> blocked = writeHair((dir / name).string(), groom);
-        ASSERT_TRUE(blocked.has_value());
-        EXPECT_NE(std::string::npos, blocked->toString().find(name)) << blocked->toString();
+        const Result<void> blocked = writeHair((dir / name).string(), groom);
+        ASSERT_FALSE(blocked.ok());
+        EXPECT_NE(std::string::npos, blocked.error().toString().find(name)) << blocked.error().toString();
         EXPECT_TRUE(fs::is_directory(dir / name));
     }
     EXPECT_EQ((std::vector<std::string>{"g.data", "g.glb", "g.gltf", "g.hair", "g.obj"}), filesInDir());
@@ -721,9 +721,9 @@ TEST_F(HairFiles, MissingFolderOrBlockedTargetLeavesNoFile)
     EXPECT_NE(std::string::npos, errorText(dir / "absent.data").find("does not exist"));
 
     // Nothing to write.
-    const std::optional<IoError> empty = writeHair((dir / "empty.hair").string(), HairCurves{});
-    ASSERT_TRUE(empty.has_value());
-    EXPECT_NE(std::string::npos, empty->message.find("no strands"));
+    const Result<void> empty = writeHair((dir / "empty.hair").string(), HairCurves{});
+    ASSERT_FALSE(empty.ok());
+    EXPECT_NE(std::string::npos, empty.error().message.find("no strands"));
     EXPECT_FALSE(fs::exists(dir / "empty.hair"));
 }
 
@@ -734,8 +734,8 @@ TEST_F(HairFiles, OverwritingReplacesTheOldFileWhole)
     big.addStrand(40);
     for (glm::vec3& p : big.strandForWrite(3))
         p = glm::vec3(0.5f);
-    ASSERT_FALSE(writeHair(path.string(), big).has_value());
-    ASSERT_FALSE(writeHair(path.string(), smallGroom()).has_value());
+    ASSERT_TRUE(writeHair(path.string(), big));
+    ASSERT_TRUE(writeHair(path.string(), smallGroom()));
     expectBitIdentical(smallGroom(), readOk(path));
     EXPECT_EQ(std::vector<std::string>{"g.hair"}, filesInDir());
 }
@@ -746,12 +746,12 @@ TEST_F(HairFiles, CyHairRefusesStrandsItCannotHold)
     longStrand.addStrand(70000);
     for (std::size_t i = 0; i < longStrand.positions.size(); ++i)
         longStrand.positions[i] = {0.0f, float(i) * 1e-4f, 0.0f};
-    const std::optional<IoError> error = writeHair((dir / "long.hair").string(), longStrand);
-    ASSERT_TRUE(error.has_value());
-    EXPECT_NE(std::string::npos, error->message.find("strand 0 has 70000 points; cyHair holds at most 65,536")) << error->toString();
+    const Result<void> error = writeHair((dir / "long.hair").string(), longStrand);
+    ASSERT_FALSE(error.ok());
+    EXPECT_NE(std::string::npos, error.error().message.find("strand 0 has 70000 points; cyHair holds at most 65,536")) << error.error().toString();
     EXPECT_FALSE(fs::exists(dir / "long.hair"));
     // USC has no such limit.
-    ASSERT_FALSE(writeHair((dir / "long.data").string(), longStrand).has_value());
+    ASSERT_TRUE(writeHair((dir / "long.data").string(), longStrand));
     expectBitIdentical(longStrand, readOk(dir / "long.data"));
 }
 

@@ -419,7 +419,7 @@ TEST_F(PresetFileTest, HostileFilesAreRefusedWithoutHanging)
 TEST_F(PresetFileTest, WritingIntoAMissingFolderFailsCleanly)
 {
     const std::string path = (m_dir / "missing" / "look.json").string();
-    const Result<std::monostate> result = writePreset(path, Preset{});
+    const Result<void> result = writePreset(path, Preset{});
     ASSERT_FALSE(result);
     EXPECT_EQ(result.error().file, path);
     EXPECT_EQ(result.error().message.find(path), std::string::npos);  // the path is said once, as the file

@@ -219,7 +219,7 @@ TEST_F(ProjectFileTest, RoundTripOfTheDefaultHeadIsBitIdentical)
 {
     const Project project = defaultHeadProject();
     const std::string path = (m_dir / "scene.wisp").string();
-    const Result<std::monostate> written = writeProject(path, project);
+    const Result<void> written = writeProject(path, project);
     ASSERT_TRUE(written) << written.error().toString();
     const Result<ProjectReadResult> read = readProject(path);
     ASSERT_TRUE(read) << read.error().toString();
@@ -478,7 +478,7 @@ TEST_F(ProjectFileTest, SavingThroughASymbolicLinkKeepsTheLinkAndAPrivateFileSta
 TEST_F(ProjectFileTest, SavingIntoAMissingFolderFailsCleanly)
 {
     const std::string path = (m_dir / "nowhere" / "p.wisp").string();
-    const Result<std::monostate> result = writeProject(path, smallProject());
+    const Result<void> result = writeProject(path, smallProject());
     ASSERT_FALSE(result);
     EXPECT_EQ(result.error().file, path);
     EXPECT_FALSE(result.error().message.empty());
@@ -491,7 +491,7 @@ TEST_F(ProjectFileTest, AProjectThatCouldNotBeReadBackIsNotSaved)
     const std::string path = (m_dir / "p.wisp").string();
     Project project = smallProject();
     project.regions[0].weights.pop_back();
-    const Result<std::monostate> result = writeProject(path, project);
+    const Result<void> result = writeProject(path, project);
     ASSERT_FALSE(result);
     EXPECT_EQ(result.error().location, "regions[0].weights");
     EXPECT_EQ(result.error().message, "not saved: 5 weights for a head of 6 vertices");
@@ -648,7 +648,7 @@ TEST_F(ProjectFileTest, StyleEditsComeBackExactly)
     project.style = sampleStyle();
     project.style[9] = StrandStyle{};  // nothing changed: not saved
     const std::string path = (m_dir / "styled.wisp").string();
-    const Result<std::monostate> written = writeProject(path, project);
+    const Result<void> written = writeProject(path, project);
     ASSERT_TRUE(written) << written.error().toString();
     const Result<ProjectReadResult> read = readProject(path);
     ASSERT_TRUE(read) << read.error().toString();
@@ -778,7 +778,7 @@ TEST_F(ProjectFileTest, AProjectWithAnInvalidStyleEditIsNotSaved)
     Project project = smallProject();
     project.style = sampleStyle();
     project.style[4].wetness = 3.0f;  // the first entry in the file (identity order)
-    const Result<std::monostate> result = writeProject(path, project);
+    const Result<void> result = writeProject(path, project);
     ASSERT_FALSE(result);
     EXPECT_EQ(result.error().location, "style[0]");
     EXPECT_EQ(result.error().message, "not saved: strand 4: wetness 3 is outside 0..1");
@@ -786,7 +786,7 @@ TEST_F(ProjectFileTest, AProjectWithAnInvalidStyleEditIsNotSaved)
     project.style = sampleStyle();
     project.style[2] = StrandStyle{};  // not written, so not counted
     project.style[kHighStrand].shape.push_back(project.style[kHighStrand].shape.back());  // coincident points
-    const Result<std::monostate> coincident = writeProject(path, project);
+    const Result<void> coincident = writeProject(path, project);
     ASSERT_FALSE(coincident);
     EXPECT_EQ(coincident.error().location, "style[2]");
     EXPECT_EQ(coincident.error().message,

@@ -103,9 +103,9 @@ TEST(MeshBvh, ClosestPointMatchesBruteForceOnSphere)
 
 TEST(MeshBvh, ClosestPointMatchesBruteForceOnRealHead)
 {
+    REQUIRE_SHARED_ASSET(planckPath());
     const TriangleMesh head = planckHead();
-    if (head.triangles.empty())
-        GTEST_SKIP() << "no test assets at " << WISP_SHARED_ASSETS << "/heads/max_planck_decimated.obj";
+    ASSERT_FALSE(head.triangles.empty()) << planckPath();
     ASSERT_EQ(validateMesh(head), "");
     expectClosestMatchesBruteForce(head, 1000, 0.05f, 2);
     // Points right on the surface (the hard case for pruning: many boxes at distance ~0).

@@ -222,8 +222,7 @@ TEST(SignedDistanceField, GridAlignedCubeHasExactSigns)
 
 TEST(SignedDistanceField, RealHeadSignsMatchExactWindingNumber)
 {
-    if (!std::filesystem::exists(planckPath()))
-        GTEST_SKIP() << "no test assets at " << planckPath();
+    REQUIRE_SHARED_ASSET(planckPath());
     const TriangleMesh head = readObj(planckPath(), 0.001f);
     ASSERT_EQ(validateMesh(head), "");
     std::string error;
@@ -381,8 +380,7 @@ TEST(SignedDistanceField, GradientIsNeverNaN)
 // same head split to four times the triangles, at 2.5 mm cells with a 2 cm margin.
 TEST(SignedDistanceField, HeadBakeTime)
 {
-    if (!std::filesystem::exists(planckPath()))
-        GTEST_SKIP() << "no test assets at " << planckPath();
+    REQUIRE_SHARED_ASSET(planckPath());
     TriangleMesh head = readObj(planckPath(), 1.0f);
     const Aabb box = boundsOf(head);
     const float scale = 0.25f / std::max(box.size().x, std::max(box.size().y, box.size().z));

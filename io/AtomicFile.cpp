@@ -266,8 +266,8 @@ Result<void> asResult(const std::string& path, const std::string& message)
     if (message.empty())
         return {};
     if (message.rfind(path + ": ", 0) == 0)
-        return IoError{path, "", message.substr(path.size() + 2)};
-    return IoError{path, "", message};
+        return IoError{ path, "", message.substr(path.size() + 2) };
+    return IoError{ path, "", message };
 }
 
 std::string keepCopyMessage(const std::string& source, const std::string& copyPath)
@@ -320,7 +320,7 @@ std::string keepCopyMessage(const std::string& source, const std::string& copyPa
     return {};
 }
 
-}  // namespace
+} // namespace
 
 Result<void> writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write)
 {

@@ -101,7 +101,7 @@ void refuseUnsupportedExtensions(const Json& root)
 
 // Parses the JSON and checks it against the parts of the schema that make geometry.
 Json parsedJson(std::string_view text, bool binary, std::size_t jsonOffset, const fs::path& folder,
-                         std::vector<std::string>& warnings)
+    std::vector<std::string>& warnings)
 {
     if (const std::size_t deep = tooDeepAt(text, maxJsonDepth); deep != std::string_view::npos)
         fail(jsonPlace(text, deep, binary, jsonOffset),
@@ -140,12 +140,12 @@ Json parsedJson(std::string_view text, bool binary, std::size_t jsonOffset, cons
     return root;
 }
 
-}  // namespace
+} // namespace
 
 Result<MeshReadResult> readGltf(const std::string& path)
 {
     try {
-        const std::string bytes = readRegularFileOrFail(path, {kMaxMeshFileBytes, "glTF", false});
+        const std::string bytes = readRegularFileOrFail(path, { kMaxMeshFileBytes, "glTF", false });
         MeshReadResult result;
         // The magic decides, so that a binary file misnamed .gltf still reads; a .glb without it
         // goes to the container check, which says what is wrong.
@@ -167,12 +167,12 @@ Result<MeshReadResult> readGltf(const std::string& path)
             fail({}, invalid);
         return result;
     } catch (const ReadFailure& failure) {
-        return IoError{path, failure.location, failure.message};
+        return IoError{ path, failure.location, failure.message };
     } catch (const std::bad_alloc&) {
-        return IoError{path, {}, "not enough memory to read this glTF file"};
+        return IoError{ path, {}, "not enough memory to read this glTF file" };
     } catch (const std::exception& e) {
-        return IoError{path, {}, "unexpected error while reading: " + withoutJsonPrefix(e.what())};
+        return IoError{ path, {}, "unexpected error while reading: " + withoutJsonPrefix(e.what()) };
     }
 }
 
-}  // namespace wisp::io
+} // namespace wisp::io

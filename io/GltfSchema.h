@@ -21,14 +21,14 @@
 namespace wisp::io {
 
 struct GltfSchemaProblem {
-    std::string keyPath;  // "bufferViews[1].byteOffet"
-    std::string message;  // "unknown key (did you mean 'byteOffset'?)"
+    std::string keyPath; // "bufferViews[1].byteOffet"
+    std::string message; // "unknown key (did you mean 'byteOffset'?)"
 };
 
 // `folder` is the glTF file's folder (external buffers are resolved against it); empty for a GLB
 // read from memory, whose external URIs are then refused.
-std::optional<GltfSchemaProblem> checkGltfSchema(const nlohmann::json& root, const std::filesystem::path& folder,
-                                                 std::vector<std::string>& warnings);
+std::optional<GltfSchemaProblem> checkGltfSchema(
+    const nlohmann::json& root, const std::filesystem::path& folder, std::vector<std::string>& warnings);
 
 // A URI's %XX escapes decoded ("my%20head.bin" -> "my head.bin").
 std::string gltfUriDecoded(const std::string& uri);
@@ -36,4 +36,4 @@ std::string gltfUriDecoded(const std::string& uri);
 // True when `path` names a regular file inside `folder` once both are made canonical.
 bool regularFileInside(const std::filesystem::path& path, const std::filesystem::path& folder);
 
-}  // namespace wisp::io
+} // namespace wisp::io

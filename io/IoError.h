@@ -9,9 +9,9 @@
 namespace wisp::io {
 
 struct IoError {
-    std::string file;      // the path as the user gave it
-    std::string location;  // "line 12", "byte 1024", "regions[1].clump_degree"; empty when not applicable
-    std::string message;   // what was wrong, in words an artist can act on
+    std::string file; // the path as the user gave it
+    std::string location; // "line 12", "byte 1024", "regions[1].clump_degree"; empty when not applicable
+    std::string message; // what was wrong, in words an artist can act on
 
     // "head.obj: line 12: a face refers to vertex 90 of 80"
     std::string toString() const
@@ -23,11 +23,16 @@ struct IoError {
     }
 };
 
-template <typename T>
-class Result {
+template <typename T> class Result {
 public:
-    Result(T value) : m_value(std::move(value)) {}
-    Result(IoError error) : m_value(std::move(error)) {}
+    Result(T value)
+        : m_value(std::move(value))
+    {
+    }
+    Result(IoError error)
+        : m_value(std::move(error))
+    {
+    }
 
     bool ok() const { return std::holds_alternative<T>(m_value); }
     explicit operator bool() const { return ok(); }
@@ -41,11 +46,13 @@ private:
 
 // What every io/ writer returns: nothing on success, or the IoError. [[nodiscard]]: a write whose
 // failure is dropped loses the artist's work without a word.
-template <>
-class [[nodiscard]] Result<void> {
+template <> class [[nodiscard]] Result<void> {
 public:
     Result() = default;
-    Result(IoError error) : m_error(std::move(error)) {}
+    Result(IoError error)
+        : m_error(std::move(error))
+    {
+    }
 
     bool ok() const { return !m_error.has_value(); }
     explicit operator bool() const { return ok(); }
@@ -55,4 +62,4 @@ private:
     std::optional<IoError> m_error;
 };
 
-}  // namespace wisp::io
+} // namespace wisp::io

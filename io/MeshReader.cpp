@@ -22,12 +22,12 @@ std::string supportedList()
     return "supported mesh formats are " + s;
 }
 
-}  // namespace
+} // namespace
 
 const std::vector<std::string>& supportedMeshExtensions()
 {
     // Function-local so that other files' static initialisers may call this safely.
-    static const std::vector<std::string> extensions = {"obj", "ply", "off", "stl", "gltf", "glb"};
+    static const std::vector<std::string> extensions = { "obj", "ply", "off", "stl", "gltf", "glb" };
     return extensions;
 }
 
@@ -44,7 +44,7 @@ Result<MeshReadResult> readMesh(const std::string& path)
         if (ext == "gltf" || ext == "glb")
             return readGltf(path);
 
-        const std::string bytes = readRegularFileOrFail(path, {kMaxMeshFileBytes, "mesh", false});
+        const std::string bytes = readRegularFileOrFail(path, { kMaxMeshFileBytes, "mesh", false });
         mesh::MeshBuilder builder;
         MeshReadResult result;
         if (ext == "ply")
@@ -57,25 +57,26 @@ Result<MeshReadResult> readMesh(const std::string& path)
             mesh::readStl(bytes, builder, result.warnings);
 
         if (builder.skippedFaces > 0)
-            result.warnings.push_back("skipped " + plural(builder.skippedFaces, "face", "faces") +
-                                      " with fewer than 3 distinct corners");
+            result.warnings.push_back(
+                "skipped " + plural(builder.skippedFaces, "face", "faces") + " with fewer than 3 distinct corners");
         if (builder.mesh.triangles.empty()) {
             if (builder.mesh.positions.empty())
                 fail({}, "the file holds no vertices and no faces");
-            fail({}, "the file has " + plural(builder.mesh.positions.size(), "vertex", "vertices") +
-                         " but no triangles; a head mesh needs a surface");
+            fail({},
+                "the file has " + plural(builder.mesh.positions.size(), "vertex", "vertices")
+                    + " but no triangles; a head mesh needs a surface");
         }
         if (const std::string problem = validateMesh(builder.mesh); !problem.empty())
             fail({}, problem);
         result.mesh = std::move(builder.mesh);
         return result;
     } catch (const ReadFailure& failure) {
-        return IoError{path, failure.location, failure.message};
+        return IoError{ path, failure.location, failure.message };
     } catch (const std::bad_alloc&) {
-        return IoError{path, {}, "not enough memory to read this mesh"};
+        return IoError{ path, {}, "not enough memory to read this mesh" };
     } catch (const std::exception& e) {
-        return IoError{path, {}, std::string("unexpected error while reading: ") + e.what()};
+        return IoError{ path, {}, std::string("unexpected error while reading: ") + e.what() };
     }
 }
 
-}  // namespace wisp::io
+} // namespace wisp::io

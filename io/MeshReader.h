@@ -55,4 +55,4 @@ Result<MeshReadResult> readMesh(const std::string& path);
 // Lower-case extensions without the dot, in the order a file dialog should offer them.
 const std::vector<std::string>& supportedMeshExtensions();
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -46,24 +46,24 @@ namespace wisp::io {
 
 constexpr int kPresetVersion = 2;
 constexpr std::size_t kMaxPresetBytes = 16u << 20;
-constexpr std::size_t kMaxRegions = 256;          // presets and projects
-constexpr std::size_t kMaxNameBytes = 256;        // preset and region names
+constexpr std::size_t kMaxRegions = 256; // presets and projects
+constexpr std::size_t kMaxNameBytes = 256; // preset and region names
 constexpr std::size_t kMaxDescriptionBytes = 64u << 10;
 
 // A region's look without its painted weights.
 struct RegionLook {
     std::string name;
-    ParameterValues wisp;  // only the Wisp-group entries mean anything; the others stay at defaults
-    glm::vec3 rootColour{0.16f, 0.10f, 0.06f};  // sRGB 0..1 (GrowthRegion's defaults)
-    glm::vec3 tipColour{0.45f, 0.30f, 0.17f};
+    ParameterValues wisp; // only the Wisp-group entries mean anything; the others stay at defaults
+    glm::vec3 rootColour{ 0.16f, 0.10f, 0.06f }; // sRGB 0..1 (GrowthRegion's defaults)
+    glm::vec3 tipColour{ 0.45f, 0.30f, 0.17f };
 
     bool operator==(const RegionLook&) const = default;
 };
 
 struct Preset {
-    std::string name;  // a missing name reads as the file's stem
+    std::string name; // a missing name reads as the file's stem
     std::string description;
-    ParameterValues parameters;  // only the Groom, Forces and Solver entries; Wisp entries stay at defaults
+    ParameterValues parameters; // only the Groom, Forces and Solver entries; Wisp entries stay at defaults
     std::vector<RegionLook> regions;
 
     bool operator==(const Preset&) const = default;
@@ -71,7 +71,7 @@ struct Preset {
 
 struct PresetReadResult {
     Preset preset;
-    std::vector<std::string> warnings;  // "regions[0].wisp.sheen: unknown key, ignored"; never fatal
+    std::vector<std::string> warnings; // "regions[0].wisp.sheen: unknown key, ignored"; never fatal
 };
 
 Result<PresetReadResult> readPreset(const std::string& path);
@@ -107,18 +107,18 @@ nlohmann::json parseJson(std::string_view text, std::size_t maxBytes, const char
 // Checks "format" (`format`; a file of `otherFormat` is refused as `otherKind`, "a Wisp project")
 // and "version" (1 ..`newestVersion`); returns the version. `kind` names the file in messages.
 int checkFormatAndVersion(const nlohmann::json& root, std::string_view format, const char* kind, int newestVersion,
-                          std::string_view otherFormat, const char* otherKind);
+    std::string_view otherFormat, const char* otherKind);
 
 // A value as the file wrote it, for messages: 3.0, "strong" (shortened), an object.
 std::string describe(const nlohmann::json& value);
-std::string childPath(const std::string& path, std::string_view key);  // "regions[0]" + "wisp"
+std::string childPath(const std::string& path, std::string_view key); // "regions[0]" + "wisp"
 const nlohmann::json& requireObject(const nlohmann::json& value, const std::string& path);
 std::string readText(const nlohmann::json& value, const std::string& path, std::size_t maxBytes);
 double readFiniteNumber(const nlohmann::json& value, const std::string& path);
 bool readBool(const nlohmann::json& value, const std::string& path);
 // Checks type, wholeness and range for parameter `info`, then sets it.
-void readParameter(ParameterValues& into, const ParameterInfo& info, const nlohmann::json& value,
-                   const std::string& path);
+void readParameter(
+    ParameterValues& into, const ParameterInfo& info, const nlohmann::json& value, const std::string& path);
 glm::vec3 readColour(const nlohmann::json& value, const std::string& path);
 
 // The double nearest the shortest decimal that reads back as `value`: JSON shows 0.16 rather than
@@ -129,6 +129,6 @@ nlohmann::ordered_json vec3ToJson(const glm::vec3& value);
 // Indented by 2, with short arrays of numbers ([0.16, 0.1, 0.06]) kept on one line.
 std::string dumpPretty(const nlohmann::ordered_json& root);
 
-}  // namespace detail
+} // namespace detail
 
-}  // namespace wisp::io
+} // namespace wisp::io

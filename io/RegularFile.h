@@ -13,14 +13,14 @@
 namespace wisp::io {
 
 // Caps by kind of file: far above any real file of that kind, far below what would hurt.
-inline constexpr std::uint64_t kMaxMeshFileBytes = std::uint64_t{2} << 30;    // 2 GiB: a 270k-triangle scan is 10 MB
-inline constexpr std::uint64_t kMaxHairFileBytes = std::uint64_t{2} << 30;    // 2 GiB: cyHair's 50k strands are 60 MB
-inline constexpr std::uint64_t kMaxTextFileBytes = std::uint64_t{1} << 20;    // 1 MiB: parameter files
-inline constexpr std::uint64_t kMaxStrandTextBytes = std::uint64_t{1} << 30;  // 1 GiB: wisp-strands text
+inline constexpr std::uint64_t kMaxMeshFileBytes = std::uint64_t{ 2 } << 30; // 2 GiB: a 270k-triangle scan is 10 MB
+inline constexpr std::uint64_t kMaxHairFileBytes = std::uint64_t{ 2 } << 30; // 2 GiB: cyHair's 50k strands are 60 MB
+inline constexpr std::uint64_t kMaxTextFileBytes = std::uint64_t{ 1 } << 20; // 1 MiB: parameter files
+inline constexpr std::uint64_t kMaxStrandTextBytes = std::uint64_t{ 1 } << 30; // 1 GiB: wisp-strands text
 
 struct RegularFileRules {
     std::uint64_t maxBytes = kMaxMeshFileBytes;
-    const char* what = "mesh";  // "this is a folder, not a <what> file"
+    const char* what = "mesh"; // "this is a folder, not a <what> file"
     bool allowEmpty = false;
 };
 
@@ -37,4 +37,4 @@ std::string lowerExtension(const std::string& path);
 // "13 MB": whole mebibytes, rounded up
 std::string megabytesText(std::uint64_t bytes);
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -19,4 +19,4 @@ namespace wisp::io {
 Result<void> writeStrandText(const std::string& path, const HairCurves& curves);
 Result<HairCurves> readStrandText(const std::string& path);
 
-}  // namespace wisp::io
+} // namespace wisp::io

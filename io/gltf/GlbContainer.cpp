@@ -9,8 +9,8 @@ namespace wisp::io::gltf {
 
 namespace {
 
-constexpr std::uint32_t glbChunkJson = 0x4E4F534A;  // "JSON"
-constexpr std::uint32_t glbChunkBin = 0x004E4942;   // "BIN\0"
+constexpr std::uint32_t glbChunkJson = 0x4E4F534A; // "JSON"
+constexpr std::uint32_t glbChunkBin = 0x004E4942; // "BIN\0"
 
 std::uint32_t u32At(std::string_view bytes, std::size_t offset)
 {
@@ -34,7 +34,7 @@ std::string chunkTypeName(std::uint32_t type)
     return "'" + name + "'";
 }
 
-}  // namespace
+} // namespace
 
 bool startsWithGlbMagic(std::string_view bytes)
 {
@@ -118,10 +118,10 @@ GlbParts splitGlb(std::string_view bytes, std::vector<std::string>& warnings)
             warnings.push_back(
                 "skipped a GLB chunk of unknown type " + chunkTypeName(type) + " at byte " + std::to_string(offset));
         }
-        offset += 8 + std::size_t{chunkBytes};
+        offset += 8 + std::size_t{ chunkBytes };
         ++chunkIndex;
     }
     return parts;
 }
 
-}  // namespace wisp::io::gltf
+} // namespace wisp::io::gltf

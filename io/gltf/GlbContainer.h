@@ -12,12 +12,12 @@
 
 namespace wisp::io::gltf {
 
-inline constexpr std::uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+inline constexpr std::uint32_t kGlbMagic = 0x46546C67; // "glTF"
 
 struct GlbParts {
     std::string_view json;
-    std::size_t jsonOffset = 0;  // bytes from the start of the file to the JSON text
-    std::string_view bin;        // empty when the file has no BIN chunk
+    std::size_t jsonOffset = 0; // bytes from the start of the file to the JSON text
+    std::string_view bin; // empty when the file has no BIN chunk
 };
 
 bool startsWithGlbMagic(std::string_view bytes);
@@ -25,4 +25,4 @@ bool startsWithGlbMagic(std::string_view bytes);
 // Throws io::ReadFailure naming the byte of the problem.
 GlbParts splitGlb(std::string_view bytes, std::vector<std::string>& warnings);
 
-}  // namespace wisp::io::gltf
+} // namespace wisp::io::gltf

@@ -13,7 +13,7 @@ namespace {
 
 // An accessor without a bufferView is all zeros (plus sparse values): its count is not bounded
 // by any data in the file, so it is bounded here (16.7 million elements).
-constexpr std::size_t maxElementsWithoutData = std::size_t{1} << 24;
+constexpr std::size_t maxElementsWithoutData = std::size_t{ 1 } << 24;
 
 std::size_t componentBytes(int componentType)
 {
@@ -74,9 +74,8 @@ double componentValue(const unsigned char* p, int componentType, bool normalized
 // the address of the first, after checking that the last ends inside the view and the view
 // inside its buffer. `location` names the accessor for errors, and `part` its sparse part
 // ("sparse.indices"), or is empty for the accessor's own elements.
-const unsigned char* checkedElements(const Document& model, int viewIndex, std::size_t byteOffset,
-    std::size_t count, std::size_t elementBytes, std::size_t strideBytes, const std::string& location,
-    const std::string& part)
+const unsigned char* checkedElements(const Document& model, int viewIndex, std::size_t byteOffset, std::size_t count,
+    std::size_t elementBytes, std::size_t strideBytes, const std::string& location, const std::string& part)
 {
     const std::string prefix = part.empty() ? std::string() : part + ": ";
     if (viewIndex < 0 || static_cast<std::size_t>(viewIndex) >= model.bufferViews.size())
@@ -115,7 +114,7 @@ const unsigned char* checkedElements(const Document& model, int viewIndex, std::
     return buffer.data() + view.byteOffset + byteOffset;
 }
 
-}  // namespace
+} // namespace
 
 const char* componentTypeName(int componentType)
 {
@@ -213,12 +212,10 @@ AccessorValues readAccessor(const Document& model, int index, const std::string&
         const auto sparseCount = static_cast<std::size_t>(sparse.count);
         const std::size_t indexBytes = componentBytes(indexType);
         // Sparse indices and values are tightly packed (their bufferViews have no byteStride).
-        const unsigned char* indices
-            = checkedElements(model, sparse.indices.bufferView, sparse.indices.byteOffset,
-                sparseCount, indexBytes, indexBytes, location, "sparse.indices");
-        const unsigned char* values
-            = checkedElements(model, sparse.values.bufferView, sparse.values.byteOffset,
-                sparseCount, elementBytes, elementBytes, location, "sparse.values");
+        const unsigned char* indices = checkedElements(model, sparse.indices.bufferView, sparse.indices.byteOffset,
+            sparseCount, indexBytes, indexBytes, location, "sparse.indices");
+        const unsigned char* values = checkedElements(model, sparse.values.bufferView, sparse.values.byteOffset,
+            sparseCount, elementBytes, elementBytes, location, "sparse.values");
         for (std::size_t k = 0; k < sparseCount; ++k) {
             const double target = componentValue(indices + k * indexBytes, indexType, false);
             if (target >= static_cast<double>(accessor.count))
@@ -235,5 +232,4 @@ AccessorValues readAccessor(const Document& model, int index, const std::string&
     return result;
 }
 
-
-}  // namespace wisp::io::gltf
+} // namespace wisp::io::gltf

@@ -11,7 +11,7 @@
 namespace wisp::io::gltf {
 
 struct AccessorValues {
-    std::vector<double> values;  // count * components, element after element
+    std::vector<double> values; // count * components, element after element
     std::size_t count = 0;
     int components = 0;
 };
@@ -23,4 +23,4 @@ AccessorValues readAccessor(const Document& model, int index, const std::string&
 // "unsigned shorts", for messages.
 const char* componentTypeName(int componentType);
 
-}  // namespace wisp::io::gltf
+} // namespace wisp::io::gltf

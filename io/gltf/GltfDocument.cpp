@@ -23,7 +23,8 @@ using Json = nlohmann::json;
 std::size_t sizeOf(const Json& value)
 {
     if (value.is_number_unsigned())
-        return static_cast<std::size_t>(std::min<std::uint64_t>(value.get<std::uint64_t>(), std::numeric_limits<std::size_t>::max()));
+        return static_cast<std::size_t>(
+            std::min<std::uint64_t>(value.get<std::uint64_t>(), std::numeric_limits<std::size_t>::max()));
     const double d = value.get<double>();
     if (!(d > 0.0))
         return 0;
@@ -36,7 +37,7 @@ int indexOf(const Json& value)
     if (d < 0.0)
         return kAbsent;
     return d >= static_cast<double>(std::numeric_limits<int>::max()) ? std::numeric_limits<int>::max()
-                                                                       : static_cast<int>(d);
+                                                                     : static_cast<int>(d);
 }
 
 std::size_t sizeAt(const Json& object, const char* key, std::size_t fallback = 0)
@@ -91,14 +92,14 @@ AttributeMap attributesOf(const Json& object, const std::string& location)
 
 // The bytes of buffers[i], before the byteLength check.
 std::vector<unsigned char> bufferBytes(const Json& buffer, std::size_t i, bool binary, std::string_view glbBin,
-                                       const std::filesystem::path& folder, std::vector<std::string>& warnings)
+    const std::filesystem::path& folder, std::vector<std::string>& warnings)
 {
     const std::string location = indexed("buffers", i);
     const auto uri = buffer.find("uri");
     if (uri == buffer.end()) {
         // The spec: in a GLB, the first buffer without a URI is the BIN chunk.
         if (binary && i == 0)
-            return {glbBin.begin(), glbBin.end()};
+            return { glbBin.begin(), glbBin.end() };
         warnings.push_back(location + " has no uri and is not a GLB's BIN chunk: it holds no data");
         return {};
     }
@@ -111,33 +112,41 @@ std::vector<unsigned char> bufferBytes(const Json& buffer, std::size_t i, bool b
         const std::string_view payload = std::string_view(text).substr(comma + 1);
         std::optional<std::vector<std::uint8_t>> decoded = base64Decode(payload, &bad);
         if (!decoded)
-            fail(location + ".uri", "the data URI is not valid base64 (character " + std::to_string(bad) + " of its data)");
-        return {decoded->begin(), decoded->end()};
+            fail(location + ".uri",
+                "the data URI is not valid base64 (character " + std::to_string(bad) + " of its data)");
+        return { decoded->begin(), decoded->end() };
     }
     // checkGltfSchema already refused URIs that leave the folder or name anything but a regular file.
     const std::filesystem::path file = folder / gltfUriDecoded(text);
-    Result<std::string> bytes = readRegularFile(file.string(), {kMaxMeshFileBytes, "glTF buffer", true});
+    Result<std::string> bytes = readRegularFile(file.string(), { kMaxMeshFileBytes, "glTF buffer", true });
     if (!bytes)
         fail(location + ".uri", "'" + text + "': " + bytes.error().message);
-    return {bytes.value().begin(), bytes.value().end()};
+    return { bytes.value().begin(), bytes.value().end() };
 }
 
-}  // namespace
+} // namespace
 
 int componentsOf(const std::string& type)
 {
-    if (type == "SCALAR") return 1;
-    if (type == "VEC2") return 2;
-    if (type == "VEC3") return 3;
-    if (type == "VEC4") return 4;
-    if (type == "MAT2") return 4;
-    if (type == "MAT3") return 9;
-    if (type == "MAT4") return 16;
+    if (type == "SCALAR")
+        return 1;
+    if (type == "VEC2")
+        return 2;
+    if (type == "VEC3")
+        return 3;
+    if (type == "VEC4")
+        return 4;
+    if (type == "MAT2")
+        return 4;
+    if (type == "MAT3")
+        return 9;
+    if (type == "MAT4")
+        return 16;
     return 0;
 }
 
 Document readDocument(const Json& root, bool binary, std::string_view glbBin, const std::filesystem::path& folder,
-                      std::vector<std::string>& warnings)
+    std::vector<std::string>& warnings)
 {
     Document doc;
     const Json& buffers = listAt(root, "buffers");
@@ -145,15 +154,16 @@ Document readDocument(const Json& root, bool binary, std::string_view glbBin, co
         std::vector<unsigned char> data = bufferBytes(buffers[i], i, binary, glbBin, folder, warnings);
         const std::size_t byteLength = sizeAt(buffers[i], "byteLength");
         if (data.size() < byteLength)
-            fail(indexed("buffers", i), "byteLength is " + std::to_string(byteLength) + " but its data holds only " +
-                                            plural(data.size(), "byte", "bytes") + ": the file is truncated or wrong");
+            fail(indexed("buffers", i),
+                "byteLength is " + std::to_string(byteLength) + " but its data holds only "
+                    + plural(data.size(), "byte", "bytes") + ": the file is truncated or wrong");
         // A GLB pads its BIN chunk to 4 bytes; bounds are checked against the declared length.
         data.resize(byteLength);
-        doc.buffers.push_back({std::move(data)});
+        doc.buffers.push_back({ std::move(data) });
     }
     for (const Json& v : listAt(root, "bufferViews"))
         doc.bufferViews.push_back(
-            {indexAt(v, "buffer"), sizeAt(v, "byteOffset"), sizeAt(v, "byteLength"), sizeAt(v, "byteStride")});
+            { indexAt(v, "buffer"), sizeAt(v, "byteOffset"), sizeAt(v, "byteLength"), sizeAt(v, "byteStride") });
     for (const Json& a : listAt(root, "accessors")) {
         Accessor accessor;
         accessor.bufferView = indexAt(a, "bufferView");
@@ -167,9 +177,9 @@ Document readDocument(const Json& root, bool binary, std::string_view glbBin, co
             const Json& values = sparse->at("values");
             accessor.sparse.isSparse = true;
             accessor.sparse.count = sizeAt(*sparse, "count");
-            accessor.sparse.indices = {indexAt(indices, "bufferView"), sizeAt(indices, "byteOffset"),
-                                       indexAt(indices, "componentType", 0)};
-            accessor.sparse.values = {indexAt(values, "bufferView"), sizeAt(values, "byteOffset"), 0};
+            accessor.sparse.indices = { indexAt(indices, "bufferView"), sizeAt(indices, "byteOffset"),
+                indexAt(indices, "componentType", 0) };
+            accessor.sparse.values = { indexAt(values, "bufferView"), sizeAt(values, "byteOffset"), 0 };
         }
         doc.accessors.push_back(std::move(accessor));
     }
@@ -204,9 +214,9 @@ Document readDocument(const Json& root, bool binary, std::string_view glbBin, co
         doc.nodes.push_back(std::move(node));
     }
     for (const Json& s : listAt(root, "scenes"))
-        doc.scenes.push_back({indicesAt(s, "nodes")});
+        doc.scenes.push_back({ indicesAt(s, "nodes") });
     doc.defaultScene = indexAt(root, "scene");
     return doc;
 }
 
-}  // namespace wisp::io::gltf
+} // namespace wisp::io::gltf

@@ -2,6 +2,7 @@
 
 #include "io/ReadFailure.h"
 #include "io/gltf/GltfAccessors.h"
+#include "io/mesh/PositionWelder.h"
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
@@ -130,7 +131,7 @@ private:
         std::vector<char> reached(m_model.nodes.size(), 0);
         std::vector<Pending> pending;
         for (auto it = roots.rbegin(); it != roots.rend(); ++it)
-            pending.push_back({*it, -1, glm::dmat4(1.0)});
+            pending.push_back({ *it, -1, glm::dmat4(1.0) });
         while (!pending.empty()) {
             const Pending next = pending.back();
             pending.pop_back();
@@ -158,7 +159,7 @@ private:
                 addMeshInstance(nodeIndex, node.skin >= 0 ? glm::dmat4(1.0) : world);
             }
             for (auto it = node.children.rbegin(); it != node.children.rend(); ++it)
-                pending.push_back({*it, next.node, world});
+                pending.push_back({ *it, next.node, world });
         }
     }
 
@@ -188,8 +189,7 @@ private:
         AccessorValues values = readAccessor(m_model, accessor, use);
         if (values.components != 3)
             fail(indexed("accessors", static_cast<std::size_t>(accessor)) + " (" + use + ")",
-                "is " + m_model.accessors[static_cast<std::size_t>(accessor)].type
-                    + "; positions are VEC3");
+                "is " + m_model.accessors[static_cast<std::size_t>(accessor)].type + "; positions are VEC3");
         for (std::size_t i = 0; i < values.values.size(); ++i)
             if (!std::isfinite(values.values[i]))
                 fail(indexed("accessors", static_cast<std::size_t>(accessor)) + " (" + use + ")",
@@ -207,8 +207,7 @@ private:
             ++m_pointAndLinePrimitives;
             return;
         }
-        if (mode != mode::Triangles && mode != mode::TriangleStrip
-            && mode != mode::TriangleFan)
+        if (mode != mode::Triangles && mode != mode::TriangleStrip && mode != mode::TriangleFan)
             fail(location, "mode " + std::to_string(mode) + " is not a glTF primitive mode (0 to 6)");
         const auto positionAttribute = primitive.attributes.find("POSITION");
         if (positionAttribute == primitive.attributes.end()) {
@@ -346,21 +345,7 @@ private:
     }
 
     // The output vertex at `at`, shared by every corner at bit-identical coordinates.
-    std::uint32_t weld(const glm::vec3& at)
-    {
-        WeldKey key;
-        static_assert(sizeof key == 3 * sizeof(float));
-        std::memcpy(key.data(), &at.x, sizeof(float));
-        std::memcpy(key.data() + 1, &at.y, sizeof(float));
-        std::memcpy(key.data() + 2, &at.z, sizeof(float));
-        const auto [it, added] = m_welded.try_emplace(key, static_cast<std::uint32_t>(m_mesh.positions.size()));
-        if (added) {
-            if (m_mesh.positions.size() >= std::numeric_limits<std::uint32_t>::max())
-                fail({}, "more vertices than 32-bit indices can number");
-            m_mesh.positions.push_back(at);
-        }
-        return it->second;
-    }
+    std::uint32_t weld(const glm::vec3& at) { return m_welder.indexOf(at, m_mesh.positions); }
 
     void reportSkipped()
     {
@@ -396,22 +381,11 @@ private:
 
     static constexpr std::uint32_t unassigned = std::numeric_limits<std::uint32_t>::max();
 
-    using WeldKey = std::array<std::uint32_t, 3>; // the float bits of x, y, z
-    struct WeldKeyHash {
-        std::size_t operator()(const WeldKey& k) const
-        {
-            std::uint64_t h = 0x9E3779B97F4A7C15ull;
-            for (std::uint32_t v : k)
-                h = (h ^ v) * 0x100000001B3ull + (h >> 29);
-            return static_cast<std::size_t>(h);
-        }
-    };
-
     const Document& m_model;
     std::vector<std::string>& m_warnings;
     TriangleMesh m_mesh;
     std::map<int, std::vector<double>> m_positions; // decoded POSITION accessors, in the file's space
-    std::unordered_map<WeldKey, std::uint32_t, WeldKeyHash> m_welded; // output vertex at each position
+    mesh::PositionWelder m_welder; // output vertex at each position
     std::size_t m_meshInstances = 0;
     std::size_t m_trianglePrimitives = 0;
     std::size_t m_pointAndLinePrimitives = 0;
@@ -420,11 +394,11 @@ private:
     std::size_t m_degenerateTriangles = 0;
 };
 
-}  // namespace
+} // namespace
 
 TriangleMesh mergeScene(const Document& model, std::vector<std::string>& warnings)
 {
     return SceneMerger(model, warnings).take();
 }
 
-}  // namespace wisp::io::gltf
+} // namespace wisp::io::gltf

@@ -13,4 +13,4 @@ namespace wisp::io::gltf {
 // Throws io::ReadFailure; remarks (skipped primitives, dropped triangles) go to `warnings`.
 TriangleMesh mergeScene(const Document& model, std::vector<std::string>& warnings);
 
-}  // namespace wisp::io::gltf
+} // namespace wisp::io::gltf

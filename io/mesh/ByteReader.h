@@ -9,8 +9,7 @@
 
 namespace wisp::io::mesh {
 
-template <typename T>
-T loadScalar(const char* p, std::endian fileOrder)
+template <typename T> T loadScalar(const char* p, std::endian fileOrder)
 {
     std::array<char, sizeof(T)> raw;
     std::memcpy(raw.data(), p, sizeof(T));
@@ -19,10 +18,9 @@ T loadScalar(const char* p, std::endian fileOrder)
     return std::bit_cast<T>(raw);
 }
 
-template <typename T>
-T loadLittle(const char* p)
+template <typename T> T loadLittle(const char* p)
 {
     return loadScalar<T>(p, std::endian::little);
 }
 
-}  // namespace wisp::io::mesh
+} // namespace wisp::io::mesh

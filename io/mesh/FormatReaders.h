@@ -16,4 +16,4 @@ void readOff(std::string_view bytes, MeshBuilder& builder);
 void readObj(std::string_view bytes, MeshBuilder& builder, std::vector<std::string>& warnings);
 void readStl(std::string_view bytes, MeshBuilder& builder, std::vector<std::string>& warnings);
 
-}  // namespace wisp::io::mesh
+} // namespace wisp::io::mesh

@@ -12,7 +12,7 @@ namespace wisp::io::mesh {
 class MeshBuilder {
 public:
     TriangleMesh mesh;
-    std::size_t skippedFaces = 0;  // faces that gave no triangle: fewer than 3 distinct corners
+    std::size_t skippedFaces = 0; // faces that gave no triangle: fewer than 3 distinct corners
 
     // Corners must already be checked against the vertex count.
     void addPolygon(const std::uint32_t* corners, std::size_t count)
@@ -35,4 +35,4 @@ public:
     }
 };
 
-}  // namespace wisp::io::mesh
+} // namespace wisp::io::mesh

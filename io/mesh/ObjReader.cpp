@@ -34,10 +34,10 @@ float finiteCoordinate(std::string_view token, std::size_t line)
 
 struct ForwardReference {
     std::size_t line = 0;
-    std::int64_t index = 0;  // as written (positive), checked once every vertex is known
+    std::int64_t index = 0; // as written (positive), checked once every vertex is known
 };
 
-}  // namespace
+} // namespace
 
 void readObj(std::string_view bytes, MeshBuilder& builder, std::vector<std::string>& warnings)
 {
@@ -63,8 +63,8 @@ void readObj(std::string_view bytes, MeshBuilder& builder, std::vector<std::stri
                 fail(lineAt(at), "a vertex line needs three coordinates");
             if (positions.size() >= std::numeric_limits<std::uint32_t>::max())
                 fail(lineAt(at), "too many vertices for Wisp to index");
-            positions.emplace_back(finiteCoordinate(tokens[1], at), finiteCoordinate(tokens[2], at),
-                                   finiteCoordinate(tokens[3], at));
+            positions.emplace_back(
+                finiteCoordinate(tokens[1], at), finiteCoordinate(tokens[2], at), finiteCoordinate(tokens[3], at));
         } else if (keyword == "f") {
             ++faceLines;
             corners.clear();
@@ -78,12 +78,13 @@ void readObj(std::string_view bytes, MeshBuilder& builder, std::vector<std::stri
                 const auto soFar = static_cast<std::int64_t>(positions.size());
                 const std::int64_t resolved = index < 0 ? soFar + index + 1 : index;
                 if (resolved < 1 || (index < 0 && resolved > soFar))
-                    fail(lineAt(at), "a face refers to vertex " + std::to_string(index) + ", but the file has " +
-                                         std::to_string(soFar) + " vertices before this line");
+                    fail(lineAt(at),
+                        "a face refers to vertex " + std::to_string(index) + ", but the file has "
+                            + std::to_string(soFar) + " vertices before this line");
                 if (resolved > std::numeric_limits<std::uint32_t>::max())
                     fail(lineAt(at), "a face refers to vertex " + std::to_string(index) + ", more than Wisp can index");
                 if (resolved > soFar)
-                    forward.push_back({at, index});
+                    forward.push_back({ at, index });
                 corners.push_back(static_cast<std::uint32_t>(resolved - 1));
             }
             builder.addPolygon(corners.data(), corners.size());
@@ -102,24 +103,25 @@ void readObj(std::string_view bytes, MeshBuilder& builder, std::vector<std::stri
     // first one that names a vertex the file lacks is the error.
     for (const ForwardReference& ref : forward)
         if (ref.index > static_cast<std::int64_t>(positions.size()))
-            fail(lineAt(ref.line), "a face refers to vertex " + std::to_string(ref.index) + ", but the file has " +
-                                       std::to_string(positions.size()) + " vertices");
+            fail(lineAt(ref.line),
+                "a face refers to vertex " + std::to_string(ref.index) + ", but the file has "
+                    + std::to_string(positions.size()) + " vertices");
 
     if (lineElements > 0 || pointElements > 0)
-        warnings.push_back("ignored " + plural(lineElements, "line element ('l')", "line elements ('l')") + " and " +
-                           plural(pointElements, "point element ('p')", "point elements ('p')"));
+        warnings.push_back("ignored " + plural(lineElements, "line element ('l')", "line elements ('l')") + " and "
+            + plural(pointElements, "point element ('p')", "point elements ('p')"));
     for (const std::string& library : materialLibraries)
         warnings.push_back("ignored the material library '" + library + "': Wisp reads no materials");
 
     if (builder.mesh.triangles.empty()) {
         std::string why = "the file has " + plural(positions.size(), "vertex", "vertices") + " but no faces";
         if (lineElements > 0 || pointElements > 0)
-            why += " (only " + plural(lineElements, "line", "lines") + " and " + plural(pointElements, "point", "points") +
-                   ", which are not a surface)";
+            why += " (only " + plural(lineElements, "line", "lines") + " and "
+                + plural(pointElements, "point", "points") + ", which are not a surface)";
         else if (faceLines > 0)
             why += " with 3 distinct corners";
         fail({}, why + "; a head mesh needs triangles or polygons");
     }
 }
 
-}  // namespace wisp::io::mesh
+} // namespace wisp::io::mesh

@@ -27,14 +27,22 @@ enum class PlyType : std::uint8_t { Int8, UInt8, Int16, UInt16, Int32, UInt32, F
 
 std::optional<PlyType> plyTypeFromName(std::string_view name)
 {
-    if (name == "char" || name == "int8") return PlyType::Int8;
-    if (name == "uchar" || name == "uint8") return PlyType::UInt8;
-    if (name == "short" || name == "int16") return PlyType::Int16;
-    if (name == "ushort" || name == "uint16") return PlyType::UInt16;
-    if (name == "int" || name == "int32") return PlyType::Int32;
-    if (name == "uint" || name == "uint32") return PlyType::UInt32;
-    if (name == "float" || name == "float32") return PlyType::Float32;
-    if (name == "double" || name == "float64") return PlyType::Float64;
+    if (name == "char" || name == "int8")
+        return PlyType::Int8;
+    if (name == "uchar" || name == "uint8")
+        return PlyType::UInt8;
+    if (name == "short" || name == "int16")
+        return PlyType::Int16;
+    if (name == "ushort" || name == "uint16")
+        return PlyType::UInt16;
+    if (name == "int" || name == "int32")
+        return PlyType::Int32;
+    if (name == "uint" || name == "uint32")
+        return PlyType::UInt32;
+    if (name == "float" || name == "float32")
+        return PlyType::Float32;
+    if (name == "double" || name == "float64")
+        return PlyType::Float64;
     return std::nullopt;
 }
 
@@ -42,22 +50,29 @@ std::size_t plyTypeSize(PlyType type)
 {
     switch (type) {
     case PlyType::Int8:
-    case PlyType::UInt8: return 1;
+    case PlyType::UInt8:
+        return 1;
     case PlyType::Int16:
-    case PlyType::UInt16: return 2;
+    case PlyType::UInt16:
+        return 2;
     case PlyType::Int32:
     case PlyType::UInt32:
-    case PlyType::Float32: return 4;
-    case PlyType::Float64: return 8;
+    case PlyType::Float32:
+        return 4;
+    case PlyType::Float64:
+        return 8;
     }
     return 1;
 }
 
-bool plyTypeIsInteger(PlyType type) { return type != PlyType::Float32 && type != PlyType::Float64; }
+bool plyTypeIsInteger(PlyType type)
+{
+    return type != PlyType::Float32 && type != PlyType::Float64;
+}
 
 struct PlyProperty {
     std::string name;
-    PlyType type = PlyType::Float32;  // of the value, or of each list entry
+    PlyType type = PlyType::Float32; // of the value, or of each list entry
     bool isList = false;
     PlyType countType = PlyType::UInt8;
 };
@@ -70,8 +85,8 @@ struct PlyElement {
     std::size_t headerLine = 0;
     std::vector<PlyProperty> properties;
     PlyRole role = PlyRole::Other;
-    std::array<int, 3> xyz{-1, -1, -1};  // property indices of x, y, z (vertex)
-    int cornerList = -1;                 // property index of the vertex index list (face, strips)
+    std::array<int, 3> xyz{ -1, -1, -1 }; // property indices of x, y, z (vertex)
+    int cornerList = -1; // property index of the vertex index list (face, strips)
 };
 
 enum class PlyFormat { Ascii, BinaryLittleEndian, BinaryBigEndian };
@@ -79,8 +94,8 @@ enum class PlyFormat { Ascii, BinaryLittleEndian, BinaryBigEndian };
 struct PlyHeader {
     PlyFormat format = PlyFormat::Ascii;
     std::vector<PlyElement> elements;
-    std::size_t dataOffset = 0;  // first byte after the end_header line
-    std::size_t dataLine = 0;    // number of the first line after end_header
+    std::size_t dataOffset = 0; // first byte after the end_header line
+    std::size_t dataLine = 0; // number of the first line after end_header
 };
 
 PlyHeader parsePlyHeader(std::string_view bytes)
@@ -114,7 +129,9 @@ PlyHeader parsePlyHeader(std::string_view bytes)
             else if (tokens[1] == "binary_big_endian")
                 header.format = PlyFormat::BinaryBigEndian;
             else
-                fail(where, "unknown PLY format " + quoted(tokens[1]) + " (expected ascii, binary_little_endian or binary_big_endian)");
+                fail(where,
+                    "unknown PLY format " + quoted(tokens[1])
+                        + " (expected ascii, binary_little_endian or binary_big_endian)");
             haveFormat = true;
         } else if (tokens[0] == "element") {
             std::int64_t count = 0;
@@ -180,7 +197,8 @@ PlyHeader parsePlyHeader(std::string_view bytes)
                 fail(where, "the 'vertex' element lacks an x, y or z property");
             // Triangles hold 32-bit indices.
             if (element.count > std::numeric_limits<std::uint32_t>::max())
-                fail(where, "the file declares " + std::to_string(element.count) + " vertices, more than Wisp can index");
+                fail(where,
+                    "the file declares " + std::to_string(element.count) + " vertices, more than Wisp can index");
         } else if (element.name == "face" || element.name == "tristrips") {
             element.role = element.name == "face" ? PlyRole::Face : PlyRole::Strips;
             int onlyList = -1;
@@ -227,9 +245,9 @@ void checkPlyCountsAgainstSize(const PlyHeader& header, std::size_t fileSize)
         const std::uint64_t slack = header.format == PlyFormat::Ascii ? 1 : 0;
         if (element.count > (remaining + slack) / minItemBytes)
             fail(lineAt(element.headerLine),
-                 "the header declares " + std::to_string(element.count) + " items of element '" + element.name +
-                     "', but only " + std::to_string(fileSize - header.dataOffset) +
-                     " bytes of data follow the header: the file is truncated or its header is wrong");
+                "the header declares " + std::to_string(element.count) + " items of element '" + element.name
+                    + "', but only " + std::to_string(fileSize - header.dataOffset)
+                    + " bytes of data follow the header: the file is truncated or its header is wrong");
         remaining -= std::min(remaining, element.count * minItemBytes);
     }
 }
@@ -243,15 +261,18 @@ struct PlyProgress {
     {
         if (!element)
             return {};
-        return " in element '" + element->name + "', item " + std::to_string(item) + " of " +
-               std::to_string(element->count) + " (numbered from 0)";
+        return " in element '" + element->name + "', item " + std::to_string(item) + " of "
+            + std::to_string(element->count) + " (numbered from 0)";
     }
 };
 
 class PlyBinaryCursor {
 public:
     PlyBinaryCursor(std::string_view bytes, std::size_t offset, std::endian order, const PlyProgress& progress)
-        : m_bytes(bytes), m_pos(offset), m_order(order), m_progress(progress)
+        : m_bytes(bytes)
+        , m_pos(offset)
+        , m_order(order)
+        , m_progress(progress)
     {
     }
 
@@ -259,14 +280,22 @@ public:
     {
         const char* p = take(plyTypeSize(type));
         switch (type) {
-        case PlyType::Int8: return loadScalar<std::int8_t>(p, m_order);
-        case PlyType::UInt8: return loadScalar<std::uint8_t>(p, m_order);
-        case PlyType::Int16: return loadScalar<std::int16_t>(p, m_order);
-        case PlyType::UInt16: return loadScalar<std::uint16_t>(p, m_order);
-        case PlyType::Int32: return loadScalar<std::int32_t>(p, m_order);
-        case PlyType::UInt32: return loadScalar<std::uint32_t>(p, m_order);
-        case PlyType::Float32: return loadScalar<float>(p, m_order);
-        case PlyType::Float64: return loadScalar<double>(p, m_order);
+        case PlyType::Int8:
+            return loadScalar<std::int8_t>(p, m_order);
+        case PlyType::UInt8:
+            return loadScalar<std::uint8_t>(p, m_order);
+        case PlyType::Int16:
+            return loadScalar<std::int16_t>(p, m_order);
+        case PlyType::UInt16:
+            return loadScalar<std::uint16_t>(p, m_order);
+        case PlyType::Int32:
+            return loadScalar<std::int32_t>(p, m_order);
+        case PlyType::UInt32:
+            return loadScalar<std::uint32_t>(p, m_order);
+        case PlyType::Float32:
+            return loadScalar<float>(p, m_order);
+        case PlyType::Float64:
+            return loadScalar<double>(p, m_order);
         }
         return 0.0;
     }
@@ -303,7 +332,9 @@ private:
     const char* take(std::size_t n)
     {
         if (m_bytes.size() - m_pos < n)
-            fail(byteAt(m_pos), "the file ends early" + m_progress.describe() + ": it is truncated, or its header promises more than it holds");
+            fail(byteAt(m_pos),
+                "the file ends early" + m_progress.describe()
+                    + ": it is truncated, or its header promises more than it holds");
         m_last = m_pos;
         const char* p = m_bytes.data() + m_pos;
         m_pos += n;
@@ -320,7 +351,11 @@ private:
 class PlyAsciiCursor {
 public:
     PlyAsciiCursor(std::string_view bytes, std::size_t offset, std::size_t line, const PlyProgress& progress)
-        : m_bytes(bytes), m_pos(offset), m_line(line), m_last(line), m_progress(progress)
+        : m_bytes(bytes)
+        , m_pos(offset)
+        , m_line(line)
+        , m_last(line)
+        , m_progress(progress)
     {
     }
 
@@ -382,7 +417,9 @@ private:
     {
         skipSpace();
         if (m_pos >= m_bytes.size())
-            fail(lineAt(m_line), "the file ends early" + m_progress.describe() + ": it is truncated, or its header promises more than it holds");
+            fail(lineAt(m_line),
+                "the file ends early" + m_progress.describe()
+                    + ": it is truncated, or its header promises more than it holds");
         const std::size_t start = m_pos;
         while (m_pos < m_bytes.size() && !isSpace(m_bytes[m_pos]))
             ++m_pos;
@@ -399,7 +436,7 @@ private:
 
 template <typename Cursor>
 void readPlyBody(const PlyHeader& header, Cursor& cursor, PlyProgress& progress, MeshBuilder& builder,
-                 std::vector<std::string>& warnings)
+    std::vector<std::string>& warnings)
 {
     std::uint32_t vertexCount = 0;
     for (const PlyElement& element : header.elements) {
@@ -413,28 +450,29 @@ void readPlyBody(const PlyHeader& header, Cursor& cursor, PlyProgress& progress,
     // Checks one index and says which item of which element used it, so the artist can find it.
     const auto checkedIndex = [&](const PlyElement& element, std::uint64_t item, std::int64_t index, std::size_t mark) {
         if (index < 0 || index >= static_cast<std::int64_t>(vertexCount))
-            fail(cursor.locationOf(mark), (element.role == PlyRole::Face ? "face " : "triangle strip list ") +
-                                              std::to_string(item) + " refers to vertex " + std::to_string(index) +
-                                              ", but the file has " + std::to_string(vertexCount) +
-                                              " vertices (numbered from 0)");
+            fail(cursor.locationOf(mark),
+                (element.role == PlyRole::Face ? "face " : "triangle strip list ") + std::to_string(item)
+                    + " refers to vertex " + std::to_string(index) + ", but the file has " + std::to_string(vertexCount)
+                    + " vertices (numbered from 0)");
         return static_cast<std::uint32_t>(index);
     };
 
     for (const PlyElement& element : header.elements) {
         progress.element = &element;
         if (element.role == PlyRole::Other && element.count > 0)
-            warnings.push_back("ignored the PLY element '" + element.name + "' (" + std::to_string(element.count) + " items)");
+            warnings.push_back(
+                "ignored the PLY element '" + element.name + "' (" + std::to_string(element.count) + " items)");
         if (element.properties.empty())
-            continue;  // nothing stored per item, so nothing to read however large the count
+            continue; // nothing stored per item, so nothing to read however large the count
         if (element.role == PlyRole::Vertex)
-            builder.mesh.positions.reserve(element.count);  // checked against the file size already
+            builder.mesh.positions.reserve(element.count); // checked against the file size already
         if (element.role == PlyRole::Face)
             builder.mesh.triangles.reserve(builder.mesh.triangles.size() + element.count);
 
         const std::size_t propertyCount = element.properties.size();
         for (std::uint64_t item = 0; item < element.count; ++item) {
             progress.item = item;
-            std::array<double, 3> xyz{0.0, 0.0, 0.0};
+            std::array<double, 3> xyz{ 0.0, 0.0, 0.0 };
             for (std::size_t k = 0; k < propertyCount; ++k) {
                 const PlyProperty& p = element.properties[k];
                 if (!p.isList) {
@@ -458,8 +496,9 @@ void readPlyBody(const PlyHeader& header, Cursor& cursor, PlyProgress& progress,
                 if (length < 0)
                     fail(cursor.location(), "a list has a negative length" + progress.describe());
                 if (!cursor.canHoldList(static_cast<std::uint64_t>(length), p.type))
-                    fail(cursor.location(), "a list claims " + std::to_string(length) +
-                                                " entries, more than the rest of the file holds" + progress.describe());
+                    fail(cursor.location(),
+                        "a list claims " + std::to_string(length) + " entries, more than the rest of the file holds"
+                            + progress.describe());
                 if (static_cast<int>(k) != element.cornerList) {
                     cursor.skipList(static_cast<std::uint64_t>(length), p.type);
                     continue;
@@ -495,8 +534,8 @@ void readPlyBody(const PlyHeader& header, Cursor& cursor, PlyProgress& progress,
                 }
             }
             if (element.role == PlyRole::Vertex)
-                builder.mesh.positions.emplace_back(static_cast<float>(xyz[0]), static_cast<float>(xyz[1]),
-                                                    static_cast<float>(xyz[2]));
+                builder.mesh.positions.emplace_back(
+                    static_cast<float>(xyz[0]), static_cast<float>(xyz[1]), static_cast<float>(xyz[2]));
         }
     }
     progress.element = nullptr;
@@ -504,7 +543,7 @@ void readPlyBody(const PlyHeader& header, Cursor& cursor, PlyProgress& progress,
     if (!trailing.empty())
         warnings.push_back(trailing);
 }
-}  // namespace
+} // namespace
 
 void readPly(std::string_view bytes, MeshBuilder& builder, std::vector<std::string>& warnings)
 {
@@ -515,10 +554,11 @@ void readPly(std::string_view bytes, MeshBuilder& builder, std::vector<std::stri
         PlyAsciiCursor cursor(bytes, header.dataOffset, header.dataLine, progress);
         readPlyBody(header, cursor, progress, builder, warnings);
     } else {
-        const std::endian order = header.format == PlyFormat::BinaryLittleEndian ? std::endian::little : std::endian::big;
+        const std::endian order
+            = header.format == PlyFormat::BinaryLittleEndian ? std::endian::little : std::endian::big;
         PlyBinaryCursor cursor(bytes, header.dataOffset, order, progress);
         readPlyBody(header, cursor, progress, builder, warnings);
     }
 }
 
-}  // namespace wisp::io::mesh
+} // namespace wisp::io::mesh

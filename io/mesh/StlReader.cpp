@@ -6,6 +6,7 @@
 #include "io/ReadFailure.h"
 #include "io/mesh/ByteReader.h"
 #include "io/mesh/FormatReaders.h"
+#include "io/mesh/PositionWelder.h"
 #include "io/mesh/Tokenizer.h"
 
 #include <algorithm>
@@ -25,46 +26,27 @@ namespace wisp::io::mesh {
 namespace {
 
 constexpr std::size_t kHeaderBytes = 84;
-constexpr std::size_t kRecordBytes = 50;  // normal, three corners (float32 x 12), 2 attribute bytes
+constexpr std::size_t kRecordBytes = 50; // normal, three corners (float32 x 12), 2 attribute bytes
 
-// Welds corners at equal coordinates into one vertex.
+// Makes triangles of corners, welded into vertices by position.
 class CornerWelder {
 public:
-    explicit CornerWelder(MeshBuilder& builder) : m_builder(builder) {}
-
-    std::uint32_t vertexAt(glm::vec3 p)
+    explicit CornerWelder(MeshBuilder& builder)
+        : m_builder(builder)
     {
-        p += 0.0f;  // -0 + 0 is +0: one zero for the key
-        Key key;
-        std::memcpy(key.data(), &p.x, sizeof(float));
-        std::memcpy(key.data() + 1, &p.y, sizeof(float));
-        std::memcpy(key.data() + 2, &p.z, sizeof(float));
-        std::vector<glm::vec3>& positions = m_builder.mesh.positions;
-        const auto [it, added] = m_index.try_emplace(key, static_cast<std::uint32_t>(positions.size()));
-        if (added)
-            positions.push_back(p);
-        return it->second;
     }
 
     void addTriangle(const std::array<glm::vec3, 3>& corners)
     {
-        const std::array<std::uint32_t, 3> v{vertexAt(corners[0]), vertexAt(corners[1]), vertexAt(corners[2])};
+        std::vector<glm::vec3>& positions = m_builder.mesh.positions;
+        const std::array<std::uint32_t, 3> v{ m_welder.indexOf(corners[0], positions),
+            m_welder.indexOf(corners[1], positions), m_welder.indexOf(corners[2], positions) };
         m_builder.addPolygon(v.data(), v.size());
     }
 
 private:
-    using Key = std::array<std::uint32_t, 3>;  // the float bits of x, y, z
-    struct KeyHash {
-        std::size_t operator()(const Key& k) const
-        {
-            std::uint64_t h = 0x9E3779B97F4A7C15ull;
-            for (std::uint32_t v : k)
-                h = (h ^ v) * 0x100000001B3ull + (h >> 29);
-            return static_cast<std::size_t>(h);
-        }
-    };
     MeshBuilder& m_builder;
-    std::unordered_map<Key, std::uint32_t, KeyHash> m_index;
+    PositionWelder m_welder;
 };
 
 bool isBinaryStl(std::string_view bytes, std::uint32_t& triangleCount)
@@ -80,7 +62,7 @@ void readBinaryStl(std::string_view bytes, std::uint32_t triangleCount, CornerWe
     for (std::uint32_t t = 0; t < triangleCount; ++t) {
         const std::size_t record = kHeaderBytes + kRecordBytes * static_cast<std::size_t>(t);
         std::array<glm::vec3, 3> corners;
-        for (std::size_t k = 0; k < 9; ++k) {  // three corners after the 12-byte facet normal
+        for (std::size_t k = 0; k < 9; ++k) { // three corners after the 12-byte facet normal
             const std::size_t at = record + 12 + 4 * k;
             const float value = loadLittle<float>(bytes.data() + at);
             if (!std::isfinite(value))
@@ -94,8 +76,8 @@ void readBinaryStl(std::string_view bytes, std::uint32_t triangleCount, CornerWe
 bool equalsIgnoringCase(std::string_view token, std::string_view lower)
 {
     return token.size() == lower.size() && std::equal(token.begin(), token.end(), lower.begin(), [](char a, char b) {
-               return (a >= 'A' && a <= 'Z' ? static_cast<char>(a - 'A' + 'a') : a) == b;
-           });
+        return (a >= 'A' && a <= 'Z' ? static_cast<char>(a - 'A' + 'a') : a) == b;
+    });
 }
 
 // After each `outer loop` line come three `vertex x y z` lines; everything else (facet normals,
@@ -130,34 +112,37 @@ void readAsciiStl(std::string_view bytes, CornerWelder& welder)
     }
 }
 
-}  // namespace
+} // namespace
 
 void readStl(std::string_view bytes, MeshBuilder& builder, std::vector<std::string>&)
 {
     CornerWelder welder(builder);
     std::uint32_t triangleCount = 0;
     if (isBinaryStl(bytes, triangleCount)) {
-        builder.mesh.triangles.reserve(triangleCount);  // the file's size vouches for the count
+        builder.mesh.triangles.reserve(triangleCount); // the file's size vouches for the count
         readBinaryStl(bytes, triangleCount, welder);
     } else {
         // Not binary by size, so it must be ASCII, which starts with "solid" and holds no NUL
         // bytes. Anything else is a binary STL that is cut short or corrupt.
         const std::size_t firstChar = std::min(bytes.size(), bytes.find_first_not_of(" \t\r\n"));
-        const bool looksAscii =
-            bytes.substr(firstChar, 5) == "solid" && bytes.substr(0, 1024).find('\0') == std::string_view::npos;
+        const bool looksAscii
+            = bytes.substr(firstChar, 5) == "solid" && bytes.substr(0, 1024).find('\0') == std::string_view::npos;
         if (!looksAscii) {
             if (bytes.size() < kHeaderBytes)
-                fail({}, "the file is too short for a binary STL (" + std::to_string(bytes.size()) +
-                             " bytes; the header alone takes 84) and is not an ASCII STL (which starts with 'solid')");
-            fail(byteAt(80), "binary STL header says " + std::to_string(triangleCount) + " triangles, which take " +
-                                 std::to_string(kHeaderBytes + kRecordBytes * static_cast<std::uint64_t>(triangleCount)) +
-                                 " bytes, but the file has " + std::to_string(bytes.size()) + ": it is truncated or corrupt");
+                fail({},
+                    "the file is too short for a binary STL (" + std::to_string(bytes.size())
+                        + " bytes; the header alone takes 84) and is not an ASCII STL (which starts with 'solid')");
+            fail(byteAt(80),
+                "binary STL header says " + std::to_string(triangleCount) + " triangles, which take "
+                    + std::to_string(kHeaderBytes + kRecordBytes * static_cast<std::uint64_t>(triangleCount))
+                    + " bytes, but the file has " + std::to_string(bytes.size()) + ": it is truncated or corrupt");
         }
         readAsciiStl(bytes, welder);
     }
     if (builder.mesh.triangles.empty())
-        fail({}, "no triangles found: the file is not an STL ('solid ... facet ... outer loop ... vertex') or holds only "
-                 "degenerate facets");
+        fail({},
+            "no triangles found: the file is not an STL ('solid ... facet ... outer loop ... vertex') or holds only "
+            "degenerate facets");
 }
 
-}  // namespace wisp::io::mesh
+} // namespace wisp::io::mesh

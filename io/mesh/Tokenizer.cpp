@@ -79,4 +79,4 @@ bool LineWalker::next(std::string_view& line)
     return true;
 }
 
-}  // namespace wisp::io::mesh
+} // namespace wisp::io::mesh

@@ -16,7 +16,10 @@ namespace wisp::io::mesh {
 bool parseDouble(std::string_view token, double& value);
 bool parseInteger(std::string_view token, std::int64_t& value);
 
-inline bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+inline bool isSpace(char c)
+{
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+}
 
 void splitTokens(std::string_view line, std::vector<std::string_view>& tokens);
 
@@ -27,11 +30,14 @@ std::string quoted(std::string_view text);
 // Walks a text file line by line, numbering lines from 1 and dropping a trailing '\r'.
 class LineWalker {
 public:
-    explicit LineWalker(std::string_view text) : m_text(text) {}
+    explicit LineWalker(std::string_view text)
+        : m_text(text)
+    {
+    }
 
     bool next(std::string_view& line);
-    std::size_t lineNumber() const { return m_line; }  // of the line next() returned last
-    std::size_t offset() const { return m_pos; }       // of the line next() returns next
+    std::size_t lineNumber() const { return m_line; } // of the line next() returned last
+    std::size_t offset() const { return m_pos; } // of the line next() returns next
 
 private:
     std::string_view m_text;
@@ -40,4 +46,4 @@ private:
     std::size_t m_line = 0;
 };
 
-}  // namespace wisp::io::mesh
+} // namespace wisp::io::mesh

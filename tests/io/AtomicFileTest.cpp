@@ -221,7 +221,8 @@ TEST(AtomicFile, ASymbolicLinkStaysALinkAndTheFileItLeadsToGetsTheContent)
     // A loop is refused by name, and nothing is written.
     fs::create_symlink("loop-b", dir / "loop-a");
     fs::create_symlink("loop-a", dir / "loop-b");
-    const std::string error = messageOf(writeFileAtomically((dir / "loop-a").string(), [](std::ostream& out) { out << "x"; }));
+    const std::string error
+        = messageOf(writeFileAtomically((dir / "loop-a").string(), [](std::ostream& out) { out << "x"; }));
     EXPECT_NE(error.find((dir / "loop-a").string() + ": "), std::string::npos) << error;
     EXPECT_NE(error.find("symbolic links"), std::string::npos) << error;
     fs::remove_all(dir);

@@ -22,20 +22,20 @@ inline std::filesystem::path assetPath(const std::string& relative)
 inline std::string slurp(const std::filesystem::path& path)
 {
     std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
 }
 
 // An empty folder of its own for the running test (named after it and this process), made anew.
 inline std::filesystem::path freshTestFolder(const std::string& prefix)
 {
     const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      (prefix + "-" + std::to_string(::getpid()) + "-" + std::string(test->name()));
+    const std::filesystem::path dir = std::filesystem::temp_directory_path()
+        / (prefix + "-" + std::to_string(::getpid()) + "-" + std::string(test->name()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
 }
 
-}  // namespace wisp::test
+} // namespace wisp::test
 
 #define REQUIRE_ASSET(path) REQUIRE_SHARED_ASSET(path)

@@ -93,9 +93,9 @@ int main(int argc, char** argv)
 
     // Strands in every format the hair target reads.
     const HairCurves strands = twoStrands();
-    bool ok = !io::writeHair((root / "hair" / "two.hair").string(), strands) &&
-              !io::writeHair((root / "hair" / "two.data").string(), strands) &&
-              io::writeStrandText((root / "hair" / "two-strands.txt").string(), strands).empty();
+    bool ok = io::writeHair((root / "hair" / "two.hair").string(), strands).ok() &&
+              io::writeHair((root / "hair" / "two.data").string(), strands).ok() &&
+              io::writeStrandText((root / "hair" / "two-strands.txt").string(), strands).ok();
     if (!ok) {
         std::fprintf(stderr, "wisp_fuzz_seeds: cannot write the hair seeds in %s\n", (root / "hair").c_str());
         return 1;

@@ -258,12 +258,19 @@ std::string writeTargetOf(const std::string& path, std::string* error)
     return {};
 }
 
-std::string writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write)
+namespace {
+
+// The messages above start with the path they are about; IoError carries the file on its own.
+Result<void> asResult(const std::string& path, const std::string& message)
 {
-    return writeWithPermissionsOf(path, write, nullptr);
+    if (message.empty())
+        return {};
+    if (message.rfind(path + ": ", 0) == 0)
+        return IoError{ path, "", message.substr(path.size() + 2) };
+    return IoError{ path, "", message };
 }
 
-std::string keepCopyAtomically(const std::string& source, const std::string& copyPath)
+std::string keepCopyMessage(const std::string& source, const std::string& copyPath)
 {
     std::string why;
     const std::string realSource = writeTargetOf(source, &why);
@@ -311,6 +318,18 @@ std::string keepCopyAtomically(const std::string& source, const std::string& cop
     ::unlink(temporary.c_str());
     syncFolder(folderOf(target));
     return {};
+}
+
+} // namespace
+
+Result<void> writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write)
+{
+    return asResult(path, writeWithPermissionsOf(path, write, nullptr));
+}
+
+Result<void> keepCopyAtomically(const std::string& source, const std::string& copyPath)
+{
+    return asResult(copyPath, keepCopyMessage(source, copyPath));
 }
 
 std::size_t removeStaleTemporaryFiles(const std::string& folder)

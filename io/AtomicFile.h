@@ -13,6 +13,8 @@
 //
 // Thread safety: any thread; files of different names may be written at once.
 
+#include "io/IoError.h"
+
 #include <cstddef>
 #include <functional>
 #include <ostream>
@@ -20,14 +22,14 @@
 
 namespace wisp::io {
 
-// `write` fills the stream; returns an empty string on success, or "PATH: what went wrong (why)".
+// `write` fills the stream; returns success, or an IoError naming `path` and what went wrong (why).
 // An exception thrown by `write` removes the temporary and passes on.
-std::string writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+Result<void> writeFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 // Makes `copyPath` hold what `source` holds now, with `source`'s permissions, replacing any file
 // there without a moment when neither exists: a hard link under a temporary name (a copy through
-// writeFileAtomically where links are not possible), renamed over `copyPath`. "" on success.
-std::string keepCopyAtomically(const std::string& source, const std::string& copyPath);
+// writeFileAtomically where links are not possible), renamed over `copyPath`. The error names `copyPath`.
+Result<void> keepCopyAtomically(const std::string& source, const std::string& copyPath);
 
 // The file a write to `path` replaces: `path`, or the end of its chain of symbolic links. A link
 // that leads nowhere gives where it points; a loop (or more than 40 links) gives "" and `error`.

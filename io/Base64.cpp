@@ -41,7 +41,7 @@ std::optional<std::vector<std::uint32_t>> unpackLittleEndian(std::string_view te
     return words;
 }
 
-}  // namespace
+} // namespace
 
 std::string base64Encode(std::span<const std::uint8_t> bytes)
 {
@@ -109,7 +109,10 @@ std::string encodeFloat32Array(std::span<const float> values)
     return base64Encode(packLittleEndian(words));
 }
 
-std::string encodeUint32Array(std::span<const std::uint32_t> values) { return base64Encode(packLittleEndian(values)); }
+std::string encodeUint32Array(std::span<const std::uint32_t> values)
+{
+    return base64Encode(packLittleEndian(values));
+}
 
 std::optional<std::vector<float>> decodeFloat32Array(std::string_view text)
 {
@@ -122,6 +125,9 @@ std::optional<std::vector<float>> decodeFloat32Array(std::string_view text)
     return values;
 }
 
-std::optional<std::vector<std::uint32_t>> decodeUint32Array(std::string_view text) { return unpackLittleEndian(text); }
+std::optional<std::vector<std::uint32_t>> decodeUint32Array(std::string_view text)
+{
+    return unpackLittleEndian(text);
+}
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -29,4 +29,4 @@ std::string encodeUint32Array(std::span<const std::uint32_t> values);
 std::optional<std::vector<float>> decodeFloat32Array(std::string_view text);
 std::optional<std::vector<std::uint32_t>> decodeUint32Array(std::string_view text);
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -36,11 +36,11 @@ std::string hex(std::uint32_t v)
     return s;
 }
 
-}  // namespace
+} // namespace
 
 Result<HairReadResult> readCyHair(const std::string& path)
 {
-    Result<std::string> file = readWholeFile(path);
+    Result<std::string> file = readRegularFile(path, kHairFileRules);
     if (!file)
         return file.error();
     const std::string& bytes = file.value();
@@ -48,23 +48,25 @@ Result<HairReadResult> readCyHair(const std::string& path)
     const char* data = bytes.data();
 
     if (size < kHeaderBytes)
-        return IoError{path, byteAt(size), "the file is " + std::to_string(size) + " bytes, shorter than the 128-byte cyHair header"};
+        return IoError{ path, byteAt(size),
+            "the file is " + std::to_string(size) + " bytes, shorter than the 128-byte cyHair header" };
     if (std::memcmp(data, "HAIR", 4) != 0)
-        return IoError{path, byteAt(0), "not a cyHair file (it does not start with 'HAIR')"};
+        return IoError{ path, byteAt(0), "not a cyHair file (it does not start with 'HAIR')" };
     const std::uint64_t strandCount = loadU32(data + 4);
     const std::uint64_t pointCount = loadU32(data + 8);
     const std::uint32_t flags = loadU32(data + 12);
     const std::uint64_t defaultSegments = loadU32(data + 16);
 
     if (!(flags & kPointsArray))
-        return IoError{path, byteAt(12), "the file has no points array (flags " + hex(flags) + ")"};
+        return IoError{ path, byteAt(12), "the file has no points array (flags " + hex(flags) + ")" };
     if (strandCount == 0)
-        return IoError{path, byteAt(4), "the header says the file holds no strands"};
+        return IoError{ path, byteAt(4), "the header says the file holds no strands" };
     if (pointCount == 0)
-        return IoError{path, byteAt(8), "the header says the file holds no points"};
+        return IoError{ path, byteAt(8), "the header says the file holds no points" };
     if (strandCount > pointCount)
-        return IoError{path, byteAt(4), "the header claims " + std::to_string(strandCount) + " strands but only " +
-                                            std::to_string(pointCount) + " points; every strand needs at least one"};
+        return IoError{ path, byteAt(4),
+            "the header claims " + std::to_string(strandCount) + " strands but only " + std::to_string(pointCount)
+                + " points; every strand needs at least one" };
 
     // Everything the header promises, against what the file holds, before allocating anything.
     const std::uint64_t segmentsBytes = (flags & kSegmentsArray) ? 2 * strandCount : 0;
@@ -85,17 +87,20 @@ Result<HairReadResult> readCyHair(const std::string& path)
         extras.push_back("colour");
     }
     if (size < pointsStart)
-        return IoError{path, byteAt(size), "the header claims " + std::to_string(strandCount) + " strands but the file holds segment counts for only " +
-                                               std::to_string((size - kHeaderBytes) / 2)};
+        return IoError{ path, byteAt(size),
+            "the header claims " + std::to_string(strandCount) + " strands but the file holds segment counts for only "
+                + std::to_string((size - kHeaderBytes) / 2) };
     if (size < pointsEnd)
-        return IoError{path, byteAt(size), "the header claims " + std::to_string(pointCount) + " points but the file holds only " +
-                                               std::to_string((size - pointsStart) / 12)};
+        return IoError{ path, byteAt(size),
+            "the header claims " + std::to_string(pointCount) + " points but the file holds only "
+                + std::to_string((size - pointsStart) / 12) };
     if (size < expected) {
         std::string names;
         for (const std::string& e : extras)
             names += (names.empty() ? "" : ", ") + e;
-        return IoError{path, byteAt(size), "the file ends inside its per-point " + names + " arrays: the header asks for " +
-                                               std::to_string(expected) + " bytes, the file has " + std::to_string(size)};
+        return IoError{ path, byteAt(size),
+            "the file ends inside its per-point " + names + " arrays: the header asks for " + std::to_string(expected)
+                + " bytes, the file has " + std::to_string(size) };
     }
 
     // Segment counts must add up to the point count, again before allocating.
@@ -105,14 +110,16 @@ Result<HairReadResult> readCyHair(const std::string& path)
         for (std::uint64_t s = 0; s < strandCount; ++s)
             pointsFromSegments += std::uint64_t(loadU16(segments + 2 * s)) + 1;
         if (pointsFromSegments != pointCount)
-            return IoError{path, byteAt(kHeaderBytes), "the strands' segment counts add up to " + std::to_string(pointsFromSegments) +
-                                                           " points but the header claims " + std::to_string(pointCount)};
+            return IoError{ path, byteAt(kHeaderBytes),
+                "the strands' segment counts add up to " + std::to_string(pointsFromSegments)
+                    + " points but the header claims " + std::to_string(pointCount) };
     } else {
         pointsFromSegments = strandCount * (defaultSegments + 1);
         if (pointsFromSegments != pointCount)
-            return IoError{path, byteAt(16), "the header claims " + std::to_string(strandCount) + " strands of " + std::to_string(defaultSegments) +
-                                                 " segments (" + std::to_string(pointsFromSegments) + " points) but " +
-                                                 std::to_string(pointCount) + " points"};
+            return IoError{ path, byteAt(16),
+                "the header claims " + std::to_string(strandCount) + " strands of " + std::to_string(defaultSegments)
+                    + " segments (" + std::to_string(pointsFromSegments) + " points) but " + std::to_string(pointCount)
+                    + " points" };
     }
 
     HairReadResult result;
@@ -122,19 +129,21 @@ Result<HairReadResult> readCyHair(const std::string& path)
     std::vector<std::uint64_t> skipped;
     std::uint64_t point = 0;
     for (std::uint64_t s = 0; s < strandCount; ++s) {
-        const std::uint32_t n = static_cast<std::uint32_t>(((flags & kSegmentsArray) ? loadU16(segments + 2 * s) : defaultSegments) + 1);
+        const std::uint32_t n
+            = static_cast<std::uint32_t>(((flags & kSegmentsArray) ? loadU16(segments + 2 * s) : defaultSegments) + 1);
         const std::uint64_t offset = pointsStart + 12 * point;
         if (n < 2) {
             if (std::optional<IoError> error = checkFinitePoints(path, data + offset, n, point, s, offset))
                 return *error;
             skipped.push_back(s);
-        } else if (std::optional<IoError> error = appendFinitePoints(path, data + offset, n, point, s, offset, curves)) {
+        } else if (std::optional<IoError> error
+            = appendFinitePoints(path, data + offset, n, point, s, offset, curves)) {
             return *error;
         }
         point += n;
     }
     if (curves.strandCount() == 0)
-        return IoError{path, "", "the file holds no strands of two or more points"};
+        return IoError{ path, "", "the file holds no strands of two or more points" };
 
     if (!skipped.empty())
         result.warnings.push_back(skippedStrandsWarning(skipped, "of a single point"));
@@ -142,25 +151,26 @@ Result<HairReadResult> readCyHair(const std::string& path)
         std::string names;
         for (const std::string& e : extras)
             names += (names.empty() ? "" : " and ") + e;
-        result.warnings.push_back("the per-point " + names + " in the file " + (extras.size() == 1 ? "was" : "were") +
-                                  " not read: Wisp strands carry positions only");
+        result.warnings.push_back("the per-point " + names + " in the file " + (extras.size() == 1 ? "was" : "were")
+            + " not read: Wisp strands carry positions only");
     }
     if (flags & ~kKnownFlags)
         result.warnings.push_back("unknown flag bits " + hex(flags & ~kKnownFlags) + " in the header were ignored");
     if (size > expected)
-        result.warnings.push_back(std::to_string(size - expected) + " bytes after the last array (from byte " + std::to_string(expected) +
-                                  ") were ignored");
+        result.warnings.push_back(std::to_string(size - expected) + " bytes after the last array (from byte "
+            + std::to_string(expected) + ") were ignored");
     return result;
 }
 
-std::optional<IoError> writeCyHair(const std::string& path, const HairCurves& strands)
+Result<void> writeCyHair(const std::string& path, const HairCurves& strands)
 {
     std::uint32_t strandCount = 0;
     for (std::size_t s = 0; s < strands.strandCount(); ++s) {
         const std::uint32_t n = strands.pointsIn(s);
         if (n > 65536)
-            return IoError{path, "", "strand " + std::to_string(s) + " has " + std::to_string(n) +
-                                         " points; cyHair holds at most 65,536 points a strand"};
+            return IoError{ path, "",
+                "strand " + std::to_string(s) + " has " + std::to_string(n)
+                    + " points; cyHair holds at most 65,536 points a strand" };
         strandCount += n > 0;
     }
 
@@ -170,11 +180,11 @@ std::optional<IoError> writeCyHair(const std::string& path, const HairCurves& st
     appendU32(bytes, strandCount);
     appendU32(bytes, static_cast<std::uint32_t>(strands.pointCount()));
     appendU32(bytes, kSegmentsArray | kPointsArray);
-    appendU32(bytes, 0);     // default segments: unused with a segments array
-    appendF32(bytes, 1.0f);  // default thickness
-    appendF32(bytes, 0.0f);  // default transparency
+    appendU32(bytes, 0); // default segments: unused with a segments array
+    appendF32(bytes, 1.0f); // default thickness
+    appendF32(bytes, 0.0f); // default transparency
     for (int i = 0; i < 3; ++i)
-        appendF32(bytes, 1.0f);  // default colour
+        appendF32(bytes, 1.0f); // default colour
     std::array<char, 88> info{};
     std::memcpy(info.data(), "Wisp", 4);
     bytes.append(info.data(), info.size());
@@ -190,4 +200,4 @@ std::optional<IoError> writeCyHair(const std::string& path, const HairCurves& st
     return writeBytesAtomically(path, bytes);
 }
 
-}  // namespace wisp::io::hair_detail
+} // namespace wisp::io::hair_detail

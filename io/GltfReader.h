@@ -18,18 +18,14 @@
 // reported); POINTS and LINES primitives are skipped with a warning. Units and axes come back as stored: glTF is metres
 // and +Y up by specification, but many exporters ignore the unit, so io/HeadPlacement decides the scale.
 //
-// Why the file is not simply handed to tinygltf:
-//   - The GLB container is split here, with every length checked against the file, and handed
-//     on as a clean JSON + BIN pair: tinygltf 2.7 trusts the BIN chunk's length up to 8 bytes past
-//     the end of the data, and refuses unknown chunk types the spec says to skip.
-//   - The JSON is parsed here first, so that a syntax error names its byte, a required extension
-//     Wisp cannot honour (Draco, meshopt) is refused by name before anything else, and tinygltf
-//     sees only the parts that make geometry (asset, buffers, bufferViews, accessors, meshes,
-//     nodes, scenes): a malformed material, image, animation or camera cannot stop a head from
-//     loading, and no image is ever decoded (tinygltf's image loader is also a no-op).
-//   - Accessors are read here, not through tinygltf, with every offset, stride, count and index
-//     checked against its buffer (tinygltf leaves that to the caller), and sparse accessors are
-//     applied.
+// One path, one parse (README, "One reader policy"): the GLB container is split here with every
+// length checked against the file (io/gltf/GlbContainer); the JSON is parsed once, so that a
+// syntax error names its byte, a required extension Wisp cannot honour (Draco, meshopt) is refused
+// by name, and the geometry parts are checked against the schema (io/GltfSchema); the geometry is
+// read from that same document (io/gltf/GltfDocument), so a malformed material, image, animation
+// or camera cannot stop a head from loading and no image is ever opened; accessors are read with
+// every offset, stride, count and index checked against their buffer, sparse accessors applied
+// (io/gltf/GltfAccessors); the scene is merged in io/gltf/SceneMerger.
 // External buffers are looked up only relative to the .gltf's folder (never the working
 // directory) and must be regular files, so a URI naming a pipe cannot block the read.
 //

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 #include <string_view>
 #include <system_error>
@@ -26,7 +26,7 @@ thread_local std::vector<std::string>* t_warnings = nullptr;
 
 [[noreturn]] void refuse(std::string keyPath, std::string message)
 {
-    throw Problem{{std::move(keyPath), std::move(message)}};
+    throw Problem{ { std::move(keyPath), std::move(message) } };
 }
 
 enum class Kind { Integer, Number, Boolean, String, Object, Array };
@@ -34,12 +34,18 @@ enum class Kind { Integer, Number, Boolean, String, Object, Array };
 const char* kindName(Kind kind)
 {
     switch (kind) {
-    case Kind::Integer: return "a whole number";
-    case Kind::Number: return "a number";
-    case Kind::Boolean: return "true or false";
-    case Kind::String: return "a string";
-    case Kind::Object: return "an object";
-    case Kind::Array: return "a list";
+    case Kind::Integer:
+        return "a whole number";
+    case Kind::Number:
+        return "a number";
+    case Kind::Boolean:
+        return "true or false";
+    case Kind::String:
+        return "a string";
+    case Kind::Object:
+        return "an object";
+    case Kind::Array:
+        return "a list";
     }
     return "?";
 }
@@ -80,12 +86,18 @@ double numberOf(const Json& value)
 bool hasKind(const Json& value, Kind kind)
 {
     switch (kind) {
-    case Kind::Integer: return isInteger(value);
-    case Kind::Number: return value.is_number();
-    case Kind::Boolean: return value.is_boolean();
-    case Kind::String: return value.is_string();
-    case Kind::Object: return value.is_object();
-    case Kind::Array: return value.is_array();
+    case Kind::Integer:
+        return isInteger(value);
+    case Kind::Number:
+        return value.is_number();
+    case Kind::Boolean:
+        return value.is_boolean();
+    case Kind::String:
+        return value.is_string();
+    case Kind::Object:
+        return value.is_object();
+    case Kind::Array:
+        return value.is_array();
     }
     return false;
 }
@@ -100,7 +112,7 @@ std::size_t editDistance(std::string_view a, std::string_view b)
         row[0] = i;
         for (std::size_t j = 1; j <= b.size(); ++j) {
             const std::size_t above = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            row[j] = std::min({ row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1) });
             diagonal = above;
         }
     }
@@ -111,7 +123,7 @@ struct Field {
     const char* key;
     Kind kind;
     bool required = false;
-    double minimum = -INFINITY;  // for Integer and Number
+    double minimum = -INFINITY; // for Integer and Number
     double maximum = INFINITY;
 };
 
@@ -171,16 +183,17 @@ void checkObject(const Json& object, const std::string& path, std::initializer_l
                     nearest = f.key;
                 }
             if (!nearest.empty())
-                refuse(child(path, key), "unknown key (did you mean '" + nearest +
-                                             "'?); glTF readers ignore it, so the file would not mean what it says");
+                refuse(child(path, key),
+                    "unknown key (did you mean '" + nearest
+                        + "'?); glTF readers ignore it, so the file would not mean what it says");
             if (t_warnings != nullptr)
                 t_warnings->push_back(child(path, key) + ": unknown key, ignored");
             continue;
         }
         if (!hasKind(value, field->kind))
             refuse(child(path, key), std::string("must be ") + kindName(field->kind) + ", not " + jsonTypeName(value));
-        if ((field->kind == Kind::Integer || field->kind == Kind::Number) &&
-            !(numberOf(value) >= field->minimum && numberOf(value) <= field->maximum))
+        if ((field->kind == Kind::Integer || field->kind == Kind::Number)
+            && !(numberOf(value) >= field->minimum && numberOf(value) <= field->maximum))
             refuse(child(path, key), jsonTypeName(value) + " is outside " + rangeText(*field));
     }
     for (const Field& f : fields)
@@ -212,25 +225,29 @@ void checkNumberList(const Json& object, const std::string& path, const char* ke
         return;
     const std::string at = child(path, key);
     if (exactSize != 0 && it->size() != exactSize)
-        refuse(at, std::string(key) + " has " + std::to_string(it->size()) + (it->size() == 1 ? " number" : " numbers") +
-                       "; it needs " + std::to_string(exactSize));
+        refuse(at,
+            std::string(key) + " has " + std::to_string(it->size()) + (it->size() == 1 ? " number" : " numbers")
+                + "; it needs " + std::to_string(exactSize));
     for (std::size_t i = 0; i < it->size(); ++i) {
         const Json& v = (*it)[i];
-        if (!hasKind(v, kind) || (kind == Kind::Number && !std::isfinite(numberOf(v))) ||
-            (kind == Kind::Integer && numberOf(v) < 0))
-            refuse(element(at, i), std::string("must be ") + (kind == Kind::Integer ? "an index" : "a finite number") +
-                                       ", not " + jsonTypeName(v));
+        if (!hasKind(v, kind) || (kind == Kind::Number && !std::isfinite(numberOf(v)))
+            || (kind == Kind::Integer && numberOf(v) < 0))
+            refuse(element(at, i),
+                std::string("must be ") + (kind == Kind::Integer ? "an index" : "a finite number") + ", not "
+                    + jsonTypeName(v));
     }
 }
 
 constexpr double kMaxIndex = 4294967295.0;
 
-std::string percentDecoded(const std::string& uri)
+} // namespace
+
+std::string gltfUriDecoded(const std::string& uri)
 {
     std::string out;
     for (std::size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1]))
+            && std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
             out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
             i += 2;
         } else {
@@ -240,11 +257,13 @@ std::string percentDecoded(const std::string& uri)
     return out;
 }
 
+namespace {
+
 void checkBufferUri(const std::string& uri, const std::string& path, const fs::path& folder)
 {
     if (uri.rfind("data:", 0) == 0)
         return;
-    const std::string decoded = percentDecoded(uri);
+    const std::string decoded = gltfUriDecoded(uri);
     const std::string quoted = "'" + (uri.size() > 120 ? uri.substr(0, 120) + "..." : uri) + "'";
     if (decoded.find('\0') != std::string::npos)
         refuse(path, quoted + " holds a NUL character");
@@ -260,8 +279,10 @@ void checkBufferUri(const std::string& uri, const std::string& path, const fs::p
         const fs::path base = fs::canonical(folder, ec);
         const fs::path relative = resolved.lexically_relative(base);
         if (relative.empty() || *relative.begin() == "..")
-            refuse(path, quoted + " lies outside the glTF file's folder; a glTF file shared between artists may read "
-                                  "only files in its own folder");
+            refuse(path,
+                quoted
+                    + " lies outside the glTF file's folder; a glTF file shared between artists may read "
+                      "only files in its own folder");
         if (!fs::exists(resolved, ec))
             refuse(path, quoted + " does not exist in the glTF file's folder");
         refuse(path, quoted + " is not a regular file");
@@ -270,14 +291,13 @@ void checkBufferUri(const std::string& uri, const std::string& path, const fs::p
 
 void checkAll(const Json& root, const fs::path& folder)
 {
-    static const char* const topLevel[] = {"asset",   "accessors", "animations", "buffers",   "bufferViews",
-                                           "cameras", "extensions", "extensionsUsed", "extensionsRequired",
-                                           "extras",  "images",    "materials",  "meshes",    "nodes",
-                                           "samplers", "scene",    "scenes",     "skins",     "textures"};
+    static const char* const topLevel[] = { "asset", "accessors", "animations", "buffers", "bufferViews", "cameras",
+        "extensions", "extensionsUsed", "extensionsRequired", "extras", "images", "materials", "meshes", "nodes",
+        "samplers", "scene", "scenes", "skins", "textures" };
     for (const auto& [key, value] : root.items()) {
         (void)value;
-        if (std::find_if(std::begin(topLevel), std::end(topLevel), [&name = key](const char* k) { return name == k; }) !=
-            std::end(topLevel))
+        if (std::find_if(std::begin(topLevel), std::end(topLevel), [&name = key](const char* k) { return name == k; })
+            != std::end(topLevel))
             continue;
         std::string nearest;
         std::size_t best = 3;
@@ -287,81 +307,68 @@ void checkAll(const Json& root, const fs::path& folder)
                 nearest = k;
             }
         if (!nearest.empty())
-            refuse(key, "unknown top-level key (did you mean '" + nearest +
-                            "'?); glTF readers ignore it, so the file would not mean what it says");
+            refuse(key,
+                "unknown top-level key (did you mean '" + nearest
+                    + "'?); glTF readers ignore it, so the file would not mean what it says");
         if (t_warnings != nullptr)
             t_warnings->push_back(key + ": unknown top-level key, ignored");
     }
     checkObject(root.at("asset"), "asset",
-                {{"version", Kind::String, true}, {"minVersion", Kind::String}, {"generator", Kind::String},
-                 {"copyright", Kind::String}});
+        { { "version", Kind::String, true }, { "minVersion", Kind::String }, { "generator", Kind::String },
+            { "copyright", Kind::String } });
     checkList(root, "", "buffers", false, [&](const Json& b, const std::string& path) {
-        checkObject(b, path, {{"uri", Kind::String}, {"byteLength", Kind::Integer, true, 1, INFINITY}});
+        checkObject(b, path, { { "uri", Kind::String }, { "byteLength", Kind::Integer, true, 1, INFINITY } });
         if (const auto uri = b.find("uri"); uri != b.end())
             checkBufferUri(uri->get<std::string>(), child(path, "uri"), folder);
     });
     checkList(root, "", "bufferViews", false, [](const Json& v, const std::string& path) {
         checkObject(v, path,
-                    {{"buffer", Kind::Integer, true, 0, kMaxIndex},
-                     {"byteOffset", Kind::Integer, false, 0, INFINITY},
-                     {"byteLength", Kind::Integer, true, 1, INFINITY},
-                     {"byteStride", Kind::Integer, false, 4, 252},
-                     {"target", Kind::Integer, false, 0, 65535}});
+            { { "buffer", Kind::Integer, true, 0, kMaxIndex }, { "byteOffset", Kind::Integer, false, 0, INFINITY },
+                { "byteLength", Kind::Integer, true, 1, INFINITY }, { "byteStride", Kind::Integer, false, 4, 252 },
+                { "target", Kind::Integer, false, 0, 65535 } });
     });
     checkList(root, "", "accessors", false, [](const Json& a, const std::string& path) {
         checkObject(a, path,
-                    {{"bufferView", Kind::Integer, false, 0, kMaxIndex},
-                     {"byteOffset", Kind::Integer, false, 0, INFINITY},
-                     {"componentType", Kind::Integer, true, 0, 65535},
-                     {"normalized", Kind::Boolean},
-                     {"count", Kind::Integer, true, 1, INFINITY},
-                     {"type", Kind::String, true},
-                     {"max", Kind::Array},
-                     {"min", Kind::Array},
-                     {"sparse", Kind::Object}});
+            { { "bufferView", Kind::Integer, false, 0, kMaxIndex }, { "byteOffset", Kind::Integer, false, 0, INFINITY },
+                { "componentType", Kind::Integer, true, 0, 65535 }, { "normalized", Kind::Boolean },
+                { "count", Kind::Integer, true, 1, INFINITY }, { "type", Kind::String, true }, { "max", Kind::Array },
+                { "min", Kind::Array }, { "sparse", Kind::Object } });
         checkNumberList(a, path, "max", 0, Kind::Number);
         checkNumberList(a, path, "min", 0, Kind::Number);
         if (const auto sparse = a.find("sparse"); sparse != a.end()) {
             const std::string at = child(path, "sparse");
             checkObject(*sparse, at,
-                        {{"count", Kind::Integer, true, 1, INFINITY},
-                         {"indices", Kind::Object, true},
-                         {"values", Kind::Object, true}});
+                { { "count", Kind::Integer, true, 1, INFINITY }, { "indices", Kind::Object, true },
+                    { "values", Kind::Object, true } });
             checkObject(sparse->at("indices"), child(at, "indices"),
-                        {{"bufferView", Kind::Integer, true, 0, kMaxIndex},
-                         {"byteOffset", Kind::Integer, false, 0, INFINITY},
-                         {"componentType", Kind::Integer, true, 0, 65535}});
+                { { "bufferView", Kind::Integer, true, 0, kMaxIndex },
+                    { "byteOffset", Kind::Integer, false, 0, INFINITY },
+                    { "componentType", Kind::Integer, true, 0, 65535 } });
             checkObject(sparse->at("values"), child(at, "values"),
-                        {{"bufferView", Kind::Integer, true, 0, kMaxIndex},
-                         {"byteOffset", Kind::Integer, false, 0, INFINITY}});
+                { { "bufferView", Kind::Integer, true, 0, kMaxIndex },
+                    { "byteOffset", Kind::Integer, false, 0, INFINITY } });
         }
     });
     checkList(root, "", "meshes", false, [](const Json& m, const std::string& path) {
-        checkObject(m, path, {{"primitives", Kind::Array, true}, {"weights", Kind::Array}});
+        checkObject(m, path, { { "primitives", Kind::Array, true }, { "weights", Kind::Array } });
         checkNumberList(m, path, "weights", 0, Kind::Number);
         checkList(m, path, "primitives", true, [](const Json& p, const std::string& at) {
             checkObject(p, at,
-                        {{"attributes", Kind::Object, true},
-                         {"indices", Kind::Integer, false, 0, kMaxIndex},
-                         {"material", Kind::Integer, false, 0, kMaxIndex},
-                         {"mode", Kind::Integer, false, 0, 6},
-                         {"targets", Kind::Array}});
+                { { "attributes", Kind::Object, true }, { "indices", Kind::Integer, false, 0, kMaxIndex },
+                    { "material", Kind::Integer, false, 0, kMaxIndex }, { "mode", Kind::Integer, false, 0, 6 },
+                    { "targets", Kind::Array } });
             for (const auto& [name, index] : p.at("attributes").items())
                 if (!isInteger(index) || numberOf(index) < 0)
-                    refuse(child(child(at, "attributes"), name), "must be an accessor index, not " + jsonTypeName(index));
+                    refuse(
+                        child(child(at, "attributes"), name), "must be an accessor index, not " + jsonTypeName(index));
         });
     });
     checkList(root, "", "nodes", false, [](const Json& n, const std::string& path) {
         checkObject(n, path,
-                    {{"camera", Kind::Integer, false, 0, kMaxIndex},
-                     {"children", Kind::Array},
-                     {"skin", Kind::Integer, false, 0, kMaxIndex},
-                     {"matrix", Kind::Array},
-                     {"mesh", Kind::Integer, false, 0, kMaxIndex},
-                     {"rotation", Kind::Array},
-                     {"scale", Kind::Array},
-                     {"translation", Kind::Array},
-                     {"weights", Kind::Array}});
+            { { "camera", Kind::Integer, false, 0, kMaxIndex }, { "children", Kind::Array },
+                { "skin", Kind::Integer, false, 0, kMaxIndex }, { "matrix", Kind::Array },
+                { "mesh", Kind::Integer, false, 0, kMaxIndex }, { "rotation", Kind::Array }, { "scale", Kind::Array },
+                { "translation", Kind::Array }, { "weights", Kind::Array } });
         checkNumberList(n, path, "children", 0, Kind::Integer);
         checkNumberList(n, path, "matrix", 16, Kind::Number);
         checkNumberList(n, path, "rotation", 4, Kind::Number);
@@ -370,14 +377,14 @@ void checkAll(const Json& root, const fs::path& folder)
         checkNumberList(n, path, "weights", 0, Kind::Number);
     });
     checkList(root, "", "scenes", false, [](const Json& s, const std::string& path) {
-        checkObject(s, path, {{"nodes", Kind::Array}});
+        checkObject(s, path, { { "nodes", Kind::Array } });
         checkNumberList(s, path, "nodes", 0, Kind::Integer);
     });
     if (const auto scene = root.find("scene"); scene != root.end() && !(isInteger(*scene) && numberOf(*scene) >= 0))
         refuse("scene", "must be a scene index, not " + jsonTypeName(*scene));
 }
 
-}  // namespace
+} // namespace
 
 bool regularFileInside(const fs::path& path, const fs::path& folder)
 {
@@ -385,7 +392,7 @@ bool regularFileInside(const fs::path& path, const fs::path& folder)
     const fs::path base = fs::canonical(folder, ec);
     if (ec)
         return false;
-    const fs::path resolved = fs::canonical(path, ec);  // follows every symlink, so one leading out is out
+    const fs::path resolved = fs::canonical(path, ec); // follows every symlink, so one leading out is out
     if (ec)
         return false;
     const fs::path relative = resolved.lexically_relative(base);
@@ -394,8 +401,8 @@ bool regularFileInside(const fs::path& path, const fs::path& folder)
     return fs::is_regular_file(resolved, ec);
 }
 
-std::optional<GltfSchemaProblem> checkGltfSchema(const Json& root, const fs::path& folder,
-                                                 std::vector<std::string>& warnings)
+std::optional<GltfSchemaProblem> checkGltfSchema(
+    const Json& root, const fs::path& folder, std::vector<std::string>& warnings)
 {
     t_warnings = &warnings;
     std::optional<GltfSchemaProblem> result;
@@ -408,4 +415,4 @@ std::optional<GltfSchemaProblem> checkGltfSchema(const Json& root, const fs::pat
     return result;
 }
 
-}  // namespace wisp::io
+} // namespace wisp::io

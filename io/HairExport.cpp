@@ -10,6 +10,7 @@
 
 #include "io/Base64.h"
 #include "io/HairFilesInternal.h"
+#include "io/gltf/GltfDocument.h"
 
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
@@ -24,12 +25,13 @@ namespace {
 
 using nlohmann::json;
 
-constexpr int kArrayBuffer = 34962;
-constexpr int kElementArrayBuffer = 34963;
-constexpr int kFloat = 5126;
-constexpr int kUnsignedInt = 5125;
-constexpr int kModeLines = 1;
-constexpr int kModeTriangles = 4;
+// glTF's numeric codes, named once for the reader and this writer (io/gltf/GltfDocument.h).
+constexpr int kArrayBuffer = gltf::target::ArrayBuffer;
+constexpr int kElementArrayBuffer = gltf::target::ElementArrayBuffer;
+constexpr int kFloat = gltf::component::Float;
+constexpr int kUnsignedInt = gltf::component::UnsignedInt;
+constexpr int kModeLines = gltf::mode::Lines;
+constexpr int kModeTriangles = gltf::mode::Triangles;
 
 std::size_t nonEmptyStrands(const HairCurves& strands)
 {
@@ -44,7 +46,7 @@ std::optional<IoError> checkHead(const std::string& path, const TriangleMesh* he
     if (!head)
         return std::nullopt;
     if (const std::string problem = validateMesh(*head); !problem.empty())
-        return IoError{path, "", "the head cannot be exported: " + problem};
+        return IoError{ path, "", "the head cannot be exported: " + problem };
     return std::nullopt;
 }
 
@@ -56,18 +58,19 @@ public:
     json bufferViews = json::array();
 
     // Appends the bytes written by `fill` as a new buffer view; returns its index.
-    template <typename Fill>
-    std::size_t addView(int target, Fill&& fill)
+    template <typename Fill> std::size_t addView(int target, Fill&& fill)
     {
         const std::size_t offset = buffer.size();
         fill(buffer);
-        bufferViews.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", buffer.size() - offset}, {"target", target}});
+        bufferViews.push_back({ { "buffer", 0 }, { "byteOffset", offset }, { "byteLength", buffer.size() - offset },
+            { "target", target } });
         return bufferViews.size() - 1;
     }
 
     std::size_t addAccessor(std::size_t view, int componentType, std::size_t count, const char* type)
     {
-        accessors.push_back({{"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}});
+        accessors.push_back(
+            { { "bufferView", view }, { "componentType", componentType }, { "count", count }, { "type", type } });
         return accessors.size() - 1;
     }
 
@@ -84,23 +87,24 @@ public:
             }
         });
         const std::size_t accessor = addAccessor(view, kFloat, positions.size(), "VEC3");
-        accessors[accessor]["min"] = {lo.x, lo.y, lo.z};
-        accessors[accessor]["max"] = {hi.x, hi.y, hi.z};
+        accessors[accessor]["min"] = { lo.x, lo.y, lo.z };
+        accessors[accessor]["max"] = { hi.x, hi.y, hi.z };
         return accessor;
     }
 };
 
-}  // namespace
+} // namespace
 
-std::optional<IoError> writeObjPolylines(const std::string& path, const HairCurves& strands, const HairExportOptions& options)
+Result<void> writeObjPolylines(const std::string& path, const HairCurves& strands, const HairExportOptions& options)
 {
     if (std::optional<IoError> error = checkHead(path, options.head))
-        return error;
+        return *error;
     std::string text;
     text.reserve(40 * strands.pointCount() + 16 * strands.pointCount());
-    text += "# Wisp hair as OBJ polylines: " + std::to_string(nonEmptyStrands(strands)) + " strands, " +
-            std::to_string(strands.pointCount()) + " points, coordinates in metres\n";
-    text += "# one 'l' line per strand, root first" + std::string(options.head ? "; the head follows as object 'head'\n" : "\n");
+    text += "# Wisp hair as OBJ polylines: " + std::to_string(nonEmptyStrands(strands)) + " strands, "
+        + std::to_string(strands.pointCount()) + " points, coordinates in metres\n";
+    text += "# one 'l' line per strand, root first"
+        + std::string(options.head ? "; the head follows as object 'head'\n" : "\n");
     text += "o hair\n";
     char number[80];
     // %.9g round-trips a float exactly.
@@ -112,7 +116,7 @@ std::optional<IoError> writeObjPolylines(const std::string& path, const HairCurv
         const std::uint32_t n = strands.pointsIn(s);
         if (n == 0)
             continue;
-        text += n == 1 ? "p" : "l";  // an OBJ line needs two points
+        text += n == 1 ? "p" : "l"; // an OBJ line needs two points
         for (std::uint32_t i = 0; i < n; ++i) {
             text += ' ';
             text += std::to_string(std::uint64_t(strands.offsets[s]) + i + 1);
@@ -127,24 +131,27 @@ std::optional<IoError> writeObjPolylines(const std::string& path, const HairCurv
         }
         const std::uint64_t base = strands.pointCount() + 1;
         for (const glm::uvec3& t : head->triangles)
-            text += "f " + std::to_string(base + t.x) + " " + std::to_string(base + t.y) + " " + std::to_string(base + t.z) + "\n";
+            text += "f " + std::to_string(base + t.x) + " " + std::to_string(base + t.y) + " "
+                + std::to_string(base + t.z) + "\n";
     }
     return writeBytesAtomically(path, text);
 }
 
-std::optional<IoError> writeGltf(const std::string& path, const HairCurves& strands, const HairExportOptions& options, bool binary)
+Result<void> writeGltf(
+    const std::string& path, const HairCurves& strands, const HairExportOptions& options, bool binary)
 {
-    if (!std::isfinite(options.rootWidthMetres) || !std::isfinite(options.tipWidthMetres) || options.rootWidthMetres < 0.0f ||
-        options.tipWidthMetres < 0.0f)
-        return IoError{path, "", "strand widths must be finite and not negative (root " + std::to_string(options.rootWidthMetres) +
-                                     " m, tip " + std::to_string(options.tipWidthMetres) + " m)"};
+    if (!std::isfinite(options.rootWidthMetres) || !std::isfinite(options.tipWidthMetres)
+        || options.rootWidthMetres < 0.0f || options.tipWidthMetres < 0.0f)
+        return IoError{ path, "",
+            "strand widths must be finite and not negative (root " + std::to_string(options.rootWidthMetres)
+                + " m, tip " + std::to_string(options.tipWidthMetres) + " m)" };
     if (std::optional<IoError> error = checkHead(path, options.head))
-        return error;
+        return *error;
     std::size_t segments = 0;
     for (std::size_t s = 0; s < strands.strandCount(); ++s)
         segments += strands.pointsIn(s) > 1 ? strands.pointsIn(s) - 1 : 0;
     if (segments == 0)
-        return IoError{path, "", "no strand has two points: there are no segments to export"};
+        return IoError{ path, "", "no strand has two points: there are no segments to export" };
 
     GltfBuilder b;
     const std::size_t hairPositions = b.addPositions(strands.positions);
@@ -169,16 +176,14 @@ std::optional<IoError> writeGltf(const std::string& path, const HairCurves& stra
 
     json meshes = json::array();
     json nodes = json::array();
-    meshes.push_back({{"name", "hair"},
-                      {"primitives", json::array({{{"attributes", {{"POSITION", hairPositions}, {"_WIDTH", widths}}},
-                                                   {"indices", lines},
-                                                   {"mode", kModeLines}}})}});
-    nodes.push_back({{"name", "hair"},
-                     {"mesh", 0},
-                     {"extras",
-                      {{"strandCount", nonEmptyStrands(strands)},
-                       {"rootWidthMetres", options.rootWidthMetres},
-                       {"tipWidthMetres", options.tipWidthMetres}}}});
+    meshes.push_back({ { "name", "hair" },
+        { "primitives",
+            json::array({ { { "attributes", { { "POSITION", hairPositions }, { "_WIDTH", widths } } },
+                { "indices", lines }, { "mode", kModeLines } } }) } });
+    nodes.push_back({ { "name", "hair" }, { "mesh", 0 },
+        { "extras",
+            { { "strandCount", nonEmptyStrands(strands) }, { "rootWidthMetres", options.rootWidthMetres },
+                { "tipWidthMetres", options.tipWidthMetres } } } });
     if (const TriangleMesh* head = options.head) {
         const std::size_t headPositions = b.addPositions(head->positions);
         const std::size_t triangleView = b.addView(kElementArrayBuffer, [&](std::string& out) {
@@ -189,30 +194,31 @@ std::optional<IoError> writeGltf(const std::string& path, const HairCurves& stra
             }
         });
         const std::size_t triangles = b.addAccessor(triangleView, kUnsignedInt, 3 * head->triangles.size(), "SCALAR");
-        meshes.push_back({{"name", "head"},
-                          {"primitives", json::array({{{"attributes", {{"POSITION", headPositions}}},
-                                                       {"indices", triangles},
-                                                       {"mode", kModeTriangles}}})}});
-        nodes.push_back({{"name", "head"}, {"mesh", 1}});
+        meshes.push_back({ { "name", "head" },
+            { "primitives",
+                json::array({ { { "attributes", { { "POSITION", headPositions } } }, { "indices", triangles },
+                    { "mode", kModeTriangles } } }) } });
+        nodes.push_back({ { "name", "head" }, { "mesh", 1 } });
     }
     json scenes = json::array();
     json sceneNodes = json::array();
     for (std::size_t i = 0; i < nodes.size(); ++i)
         sceneNodes.push_back(i);
-    scenes.push_back({{"nodes", sceneNodes}});
+    scenes.push_back({ { "nodes", sceneNodes } });
 
     json gltf;
-    gltf["asset"] = {{"version", "2.0"}, {"generator", "Wisp"}};
+    gltf["asset"] = { { "version", "2.0" }, { "generator", "Wisp" } };
     gltf["scene"] = 0;
     gltf["scenes"] = scenes;
     gltf["nodes"] = nodes;
     gltf["meshes"] = meshes;
     gltf["accessors"] = b.accessors;
     gltf["bufferViews"] = b.bufferViews;
-    json buffer = {{"byteLength", b.buffer.size()}};
+    json buffer = { { "byteLength", b.buffer.size() } };
     if (!binary)
-        buffer["uri"] = "data:application/octet-stream;base64," + base64Encode({reinterpret_cast<const std::uint8_t*>(b.buffer.data()), b.buffer.size()});
-    gltf["buffers"] = json::array({buffer});
+        buffer["uri"] = "data:application/octet-stream;base64,"
+            + base64Encode({ reinterpret_cast<const std::uint8_t*>(b.buffer.data()), b.buffer.size() });
+    gltf["buffers"] = json::array({ buffer });
 
     if (!binary)
         return writeBytesAtomically(path, gltf.dump(1) + "\n");
@@ -224,19 +230,20 @@ std::optional<IoError> writeGltf(const std::string& path, const HairCurves& stra
     bin.resize((bin.size() + 3) / 4 * 4, '\0');
     const std::uint64_t total = 12 + 8 + jsonText.size() + 8 + bin.size();
     if (total > std::numeric_limits<std::uint32_t>::max())
-        return IoError{path, "", "the hair is too large for a .glb file (" + std::to_string(total) + " bytes; .glb holds at most 4 GiB)"};
+        return IoError{ path, "",
+            "the hair is too large for a .glb file (" + std::to_string(total) + " bytes; .glb holds at most 4 GiB)" };
     std::string glb;
     glb.reserve(total);
-    appendU32(glb, 0x46546C67);  // "glTF"
+    appendU32(glb, 0x46546C67); // "glTF"
     appendU32(glb, 2);
     appendU32(glb, static_cast<std::uint32_t>(total));
     appendU32(glb, static_cast<std::uint32_t>(jsonText.size()));
-    appendU32(glb, 0x4E4F534A);  // "JSON"
+    appendU32(glb, 0x4E4F534A); // "JSON"
     glb += jsonText;
     appendU32(glb, static_cast<std::uint32_t>(bin.size()));
-    appendU32(glb, 0x004E4942);  // "BIN\0"
+    appendU32(glb, 0x004E4942); // "BIN\0"
     glb += bin;
     return writeBytesAtomically(path, glb);
 }
 
-}  // namespace wisp::io::hair_detail
+} // namespace wisp::io::hair_detail

@@ -19,23 +19,19 @@ namespace wisp::io {
 
 namespace {
 
-std::string lowerExtension(const std::string& path)
-{
-    std::string ext = std::filesystem::path(path).extension().string();
-    if (!ext.empty() && ext.front() == '.')
-        ext.erase(0, 1);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
-
 const char* formatName(HairFormat format)
 {
     switch (format) {
-    case HairFormat::CyHair: return "cyHair";
-    case HairFormat::UscData: return "USC-HairSalon";
-    case HairFormat::ObjPolylines: return "OBJ polylines";
-    case HairFormat::Gltf: return "glTF";
-    case HairFormat::Glb: return "binary glTF";
+    case HairFormat::CyHair:
+        return "cyHair";
+    case HairFormat::UscData:
+        return "USC-HairSalon";
+    case HairFormat::ObjPolylines:
+        return "OBJ polylines";
+    case HairFormat::Gltf:
+        return "glTF";
+    case HairFormat::Glb:
+        return "binary glTF";
     }
     return "?";
 }
@@ -59,7 +55,7 @@ std::string unknownExtension(const std::string& path)
                        : "'." + ext + "' is not a hair file extension Wisp knows";
 }
 
-}  // namespace
+} // namespace
 
 std::optional<HairFormat> hairFormatForPath(const std::string& path)
 {
@@ -79,13 +75,13 @@ std::optional<HairFormat> hairFormatForPath(const std::string& path)
 
 const std::vector<std::string>& hairReadExtensions()
 {
-    static const std::vector<std::string> extensions{"hair", "data"};
+    static const std::vector<std::string> extensions{ "hair", "data" };
     return extensions;
 }
 
 const std::vector<std::string>& hairWriteExtensions()
 {
-    static const std::vector<std::string> extensions{"hair", "data", "obj", "gltf", "glb"};
+    static const std::vector<std::string> extensions{ "hair", "data", "obj", "gltf", "glb" };
     return extensions;
 }
 
@@ -98,89 +94,89 @@ Result<HairReadResult> readHair(const std::string& path)
         return hair_detail::readUscData(path);
     const std::string readable = "Wisp reads hair from " + describe(hairReadExtensions());
     if (format)
-        return IoError{path, "", std::string("Wisp writes ") + formatName(*format) + " but cannot read strands from it; " + readable};
-    return IoError{path, "", unknownExtension(path) + "; " + readable};
+        return IoError{ path, "",
+            std::string("Wisp writes ") + formatName(*format) + " but cannot read strands from it; " + readable };
+    return IoError{ path, "", unknownExtension(path) + "; " + readable };
 }
 
-std::optional<IoError> writeHair(const std::string& path, const HairCurves& strands, const HairExportOptions& options)
+Result<void> writeHair(const std::string& path, const HairCurves& strands, const HairExportOptions& options)
 {
     const std::optional<HairFormat> format = hairFormatForPath(path);
     if (!format)
-        return IoError{path, "", unknownExtension(path) + "; Wisp writes hair as " + describe(hairWriteExtensions())};
+        return IoError{ path, "", unknownExtension(path) + "; Wisp writes hair as " + describe(hairWriteExtensions()) };
     if (std::optional<IoError> error = hair_detail::checkStrandsToWrite(path, strands))
-        return error;
+        return *error;
     switch (*format) {
-    case HairFormat::CyHair: return hair_detail::writeCyHair(path, strands);
-    case HairFormat::UscData: return hair_detail::writeUscData(path, strands);
-    case HairFormat::ObjPolylines: return hair_detail::writeObjPolylines(path, strands, options);
-    case HairFormat::Gltf: return hair_detail::writeGltf(path, strands, options, false);
-    case HairFormat::Glb: return hair_detail::writeGltf(path, strands, options, true);
+    case HairFormat::CyHair:
+        return hair_detail::writeCyHair(path, strands);
+    case HairFormat::UscData:
+        return hair_detail::writeUscData(path, strands);
+    case HairFormat::ObjPolylines:
+        return hair_detail::writeObjPolylines(path, strands, options);
+    case HairFormat::Gltf:
+        return hair_detail::writeGltf(path, strands, options, false);
+    case HairFormat::Glb:
+        return hair_detail::writeGltf(path, strands, options, true);
     }
-    return IoError{path, "", "unknown hair format"};
+    return IoError{ path, "", "unknown hair format" };
 }
 
 namespace hair_detail {
 
-Result<std::string> readWholeFile(const std::string& path)
+Result<void> writeBytesAtomically(const std::string& path, const std::string& bytes)
 {
-    return readRegularFile(path, {kMaxHairFileBytes, "hair", false});
-}
-
-std::optional<IoError> writeBytesAtomically(const std::string& path, const std::string& bytes)
-{
-    std::string message = writeFileAtomically(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
-    if (message.empty())
-        return std::nullopt;
-    // writeFileAtomically's message starts with the path, which IoError carries on its own.
-    if (message.rfind(path + ": ", 0) == 0)
-        message.erase(0, path.size() + 2);
-    return IoError{path, "", message};
+    return writeFileAtomically(
+        path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
 }
 
 std::optional<IoError> checkStrandsToWrite(const std::string& path, const HairCurves& strands)
 {
     const std::vector<std::uint32_t>& offsets = strands.offsets;
     if (offsets.empty() || offsets.front() != 0 || offsets.back() != strands.positions.size())
-        return IoError{path, "", "the strands' offsets do not match their points (an internal error; nothing was written)"};
+        return IoError{ path, "",
+            "the strands' offsets do not match their points (an internal error; nothing was written)" };
     for (std::size_t s = 0; s + 1 < offsets.size(); ++s)
         if (offsets[s + 1] < offsets[s])
-            return IoError{path, "", "strand " + std::to_string(s) + " has a negative point count (an internal error; nothing was written)"};
+            return IoError{ path, "",
+                "strand " + std::to_string(s)
+                    + " has a negative point count (an internal error; nothing was written)" };
     if (strands.positions.empty())
-        return IoError{path, "", "there are no strands to write"};
+        return IoError{ path, "", "there are no strands to write" };
     std::size_t strand = 0;
     for (std::size_t i = 0; i < strands.positions.size(); ++i) {
         while (offsets[strand + 1] <= i)
             ++strand;
         const glm::vec3& p = strands.positions[i];
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            return IoError{path, "", "point " + std::to_string(i) + " (strand " + std::to_string(strand) +
-                                         ") is not finite; nothing was written"};
+            return IoError{ path, "",
+                "point " + std::to_string(i) + " (strand " + std::to_string(strand)
+                    + ") is not finite; nothing was written" };
     }
     return std::nullopt;
 }
 
 std::optional<IoError> checkFinitePoints(const std::string& path, const char* p, std::uint32_t points,
-                                         std::uint64_t firstPoint, std::uint64_t strandIndex, std::uint64_t fileOffset)
+    std::uint64_t firstPoint, std::uint64_t strandIndex, std::uint64_t fileOffset)
 {
     for (std::uint32_t i = 0; i < points; ++i, p += 12) {
-        const glm::vec3 v{loadF32(p), loadF32(p + 4), loadF32(p + 8)};
+        const glm::vec3 v{ loadF32(p), loadF32(p + 4), loadF32(p + 8) };
         if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-            return IoError{path, byteAt(fileOffset + 12ull * i),
-                           "point " + std::to_string(firstPoint + i) + " (strand " + std::to_string(strandIndex) + ") is not finite"};
+            return IoError{ path, byteAt(fileOffset + 12ull * i),
+                "point " + std::to_string(firstPoint + i) + " (strand " + std::to_string(strandIndex)
+                    + ") is not finite" };
     }
     return std::nullopt;
 }
 
 std::optional<IoError> appendFinitePoints(const std::string& path, const char* p, std::uint32_t points,
-                                          std::uint64_t firstPoint, std::uint64_t strandIndex,
-                                          std::uint64_t fileOffset, HairCurves& out)
+    std::uint64_t firstPoint, std::uint64_t strandIndex, std::uint64_t fileOffset, HairCurves& out)
 {
     if (std::optional<IoError> error = checkFinitePoints(path, p, points, firstPoint, strandIndex, fileOffset))
         return error;
     const std::size_t first = out.positions.size();
     out.positions.resize(first + points);
     for (std::uint32_t i = 0; i < points; ++i, p += 12)
-        out.positions[first + i] = glm::vec3{loadF32(p), loadF32(p + 4), loadF32(p + 8)};
+        out.positions[first + i] = glm::vec3{ loadF32(p), loadF32(p + 4), loadF32(p + 8) };
     out.offsets.push_back(static_cast<std::uint32_t>(out.positions.size()));
     return std::nullopt;
 }
@@ -188,13 +184,14 @@ std::optional<IoError> appendFinitePoints(const std::string& path, const char* p
 std::string skippedStrandsWarning(const std::vector<std::uint64_t>& strands, const std::string& what)
 {
     constexpr std::size_t listed = 8;
-    std::string s = "skipped " + std::to_string(strands.size()) + (strands.size() == 1 ? " strand " : " strands ") + what + " (strand";
+    std::string s = "skipped " + std::to_string(strands.size()) + (strands.size() == 1 ? " strand " : " strands ")
+        + what + " (strand";
     s += strands.size() == 1 ? " " : "s ";
     for (std::size_t i = 0; i < strands.size() && i < listed; ++i)
         s += (i ? ", " : "") + std::to_string(strands[i]);
     return s + (strands.size() > listed ? ", ...)" : ")");
 }
 
-}  // namespace hair_detail
+} // namespace hair_detail
 
-}  // namespace wisp::io
+} // namespace wisp::io

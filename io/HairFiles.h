@@ -55,19 +55,18 @@ std::optional<HairFormat> hairFormatForPath(const std::string& path);
 Result<HairReadResult> readHair(const std::string& path);
 
 struct HairExportOptions {
-    float rootWidthMetres = 80e-6f;     // glTF _WIDTH at each strand's first point
-    float tipWidthMetres = 20e-6f;      // glTF _WIDTH at each strand's last point
+    float rootWidthMetres = 80e-6f; // glTF _WIDTH at each strand's first point
+    float tipWidthMetres = 20e-6f; // glTF _WIDTH at each strand's last point
     const TriangleMesh* head = nullptr; // exported beside the strands by .gltf, .glb and .obj
 };
 
-// Writes `strands` in the format the extension of `path` names. Returns nullopt on success,
-// otherwise what went wrong (a missing folder, a strand cyHair cannot hold, a non-finite
+// Writes `strands` in the format the extension of `path` names. Returns success, or what went
+// wrong (a missing folder, a strand cyHair cannot hold, a non-finite
 // point). Nothing is written unless everything can be.
-std::optional<IoError> writeHair(const std::string& path, const HairCurves& strands,
-                                 const HairExportOptions& options = {});
+Result<void> writeHair(const std::string& path, const HairCurves& strands, const HairExportOptions& options = {});
 
 // Lower-case extensions without the dot, in the order a file dialog should offer them.
-const std::vector<std::string>& hairReadExtensions();   // hair, data
-const std::vector<std::string>& hairWriteExtensions();  // hair, data, obj, gltf, glb
+const std::vector<std::string>& hairReadExtensions(); // hair, data
+const std::vector<std::string>& hairWriteExtensions(); // hair, data, obj, gltf, glb
 
-}  // namespace wisp::io
+} // namespace wisp::io

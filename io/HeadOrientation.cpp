@@ -175,7 +175,7 @@ HeadOrientation detectHeadOrientation(std::span<const glm::vec3> positions)
     }
     // The grid below needs a finite, non-zero size (and the slabs a width).
     const float diagonal = glm::length(hi - lo);
-    if (!(std::isfinite(diagonal) && diagonal > 0.0f && std::min({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) > 0.0f)) {
+    if (!(std::isfinite(diagonal) && diagonal > 0.0f && std::min({ hi.x - lo.x, hi.y - lo.y, hi.z - lo.z }) > 0.0f)) {
         result.reason = "the mesh is flat or has no finite extent";
         return result;
     }

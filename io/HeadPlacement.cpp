@@ -1,4 +1,5 @@
 #include "io/HeadPlacement.h"
+#include "sim/NumberText.h"
 
 #include <glm/common.hpp>
 
@@ -13,13 +14,6 @@ namespace wisp::io {
 
 namespace {
 
-std::string formatNumber(double value)
-{
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", value);
-    return text;
-}
-
 std::string metresText(double metres)
 {
     return formatNumber(metres) + " m";
@@ -28,7 +22,7 @@ std::string metresText(double metres)
 // The unit whose metres-per-unit is exactly `scale`, or Auto.
 LengthUnit unitOfScale(float scale)
 {
-    for (LengthUnit unit : {LengthUnit::Millimetres, LengthUnit::Centimetres, LengthUnit::Metres})
+    for (LengthUnit unit : { LengthUnit::Millimetres, LengthUnit::Centimetres, LengthUnit::Metres })
         if (scale == metresPerUnit(unit))
             return unit;
     return LengthUnit::Auto;
@@ -117,8 +111,8 @@ HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& setting
             placement.up = found.up;
             placement.front = found.front;
         }
-        placement.orientation = found.found ? std::string(axisName(found.up)) + " up, face " +
-                                                  axisName(found.front) + " (found from its shape: " + found.reason + ")"
+        placement.orientation = found.found ? std::string(axisName(found.up)) + " up, face " + axisName(found.front)
+                + " (found from its shape: " + found.reason + ")"
                                             : "kept the file's +Y up: " + found.reason;
         if (!found.found)
             whyNotFound = found.reason;
@@ -128,13 +122,13 @@ HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& setting
         upright[i] = orient(mesh.positions[i], placement.up, placement.front);
 
     // Bounds and skull width in file units, after the turn.
-    Aabb box{upright.front(), upright.front()};
+    Aabb box{ upright.front(), upright.front() };
     for (const glm::vec3& p : upright) {
         box.min = glm::min(box.min, p);
         box.max = glm::max(box.max, p);
     }
     const glm::vec3 size = box.size();
-    const float largest = std::max({size.x, size.y, size.z});
+    const float largest = std::max({ size.x, size.y, size.z });
     // A flat mesh (a mask, a plane seen edge on) may have no width at the top; its largest extent stands in.
     float skull = skullWidth(upright);
     if (!(skull > 1e-6f * largest))
@@ -158,13 +152,13 @@ HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& setting
         notes.push_back("the mesh has no extent, so its unit cannot be guessed; left at metres");
     } else {
         placement.unit = LengthUnit::Auto;
-        for (LengthUnit candidate : {LengthUnit::Millimetres, LengthUnit::Centimetres, LengthUnit::Metres})
-            if (skullSized(double{skull} * exactMetresPerUnit(candidate))) {
+        for (LengthUnit candidate : { LengthUnit::Millimetres, LengthUnit::Centimetres, LengthUnit::Metres })
+            if (skullSized(double{ skull } * exactMetresPerUnit(candidate))) {
                 placement.unit = candidate;
                 placement.scale = metresPerUnit(candidate);
             }
         if (placement.unit == LengthUnit::Auto) {
-            placement.scale = static_cast<float>(fittedSkullWidthMetres / double{skull});
+            placement.scale = static_cast<float>(fittedSkullWidthMetres / double{ skull });
             placement.scaledToFit = true;
             notes.push_back("the skull is " + formatNumber(skull) + " units wide, which is no skull width ("
                 + metresText(skullMinWidthMetres) + " to under " + metresText(skullMaxWidthMetres)
@@ -176,7 +170,7 @@ HeadPlacement placeHead(TriangleMesh& mesh, const HeadPlacementSettings& setting
 
     // A unit the artist chose (or a factor) may still make an odd head; say so, do not undo it.
     if (explicitGiven || settings.unit != LengthUnit::Auto) {
-        const double widthMetres = double{skull} * double{placement.scale};
+        const double widthMetres = double{ skull } * double{ placement.scale };
         if (largest > 0.0f && !skullSized(widthMetres))
             notes.push_back("at this scale the skull is " + metresText(widthMetres) + " wide; skulls are usually "
                 + metresText(skullMinWidthMetres) + " to " + metresText(skullMaxWidthMetres));
@@ -200,16 +194,16 @@ std::string checkPlacedHead(const TriangleMesh& placed)
     const glm::vec3 size = boundsOf(placed).size();
     char extents[96];
     std::snprintf(extents, sizeof extents, "%.4g x %.4g x %.4g m", size.x, size.y, size.z);
-    const double largest = std::max({double{size.x}, double{size.y}, double{size.z}});
+    const double largest = std::max({ double{ size.x }, double{ size.y }, double{ size.z } });
     if (!(largest <= headMaxPlacedExtentMetres))
-        return std::string("the placed head is ") + extents + ", more than " + metresText(headMaxPlacedExtentMetres) +
-               " at its largest: a stray vertex far from the others, or the wrong unit (--scale / Head Scale)";
-    static const char* const axisNames[] = {"x", "y", "z"};
+        return std::string("the placed head is ") + extents + ", more than " + metresText(headMaxPlacedExtentMetres)
+            + " at its largest: a stray vertex far from the others, or the wrong unit (--scale / Head Scale)";
+    static const char* const axisNames[] = { "x", "y", "z" };
     for (int axis = 0; axis < 3; ++axis)
-        if (!(double{size[axis]} >= headMinAxisExtentMetres))
-            return std::string("the placed head is ") + extents + ": flat along " + axisNames[axis] +
-                   " (less than " + metresText(headMinAxisExtentMetres) +
-                   "); a head needs depth on every axis to have an inside the hair can collide with";
+        if (!(double{ size[axis] } >= headMinAxisExtentMetres))
+            return std::string("the placed head is ") + extents + ": flat along " + axisNames[axis] + " (less than "
+                + metresText(headMinAxisExtentMetres)
+                + "); a head needs depth on every axis to have an inside the hair can collide with";
     return {};
 }
 
@@ -235,8 +229,8 @@ std::string describePlacement(const HeadPlacement& placement)
         text += "chosen scale";
     text += ")";
     if (placement.turned() || placement.upFromShape)
-        text += std::string(", ") + axisName(placement.up) + " up, face " + axisName(placement.front) +
-                (placement.upFromShape ? " (from its shape)" : "");
+        text += std::string(", ") + axisName(placement.up) + " up, face " + axisName(placement.front)
+            + (placement.upFromShape ? " (from its shape)" : "");
     return text;
 }
 

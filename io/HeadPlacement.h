@@ -38,7 +38,7 @@
 
 namespace wisp::io {
 
-enum class LengthUnit {Auto, Millimetres, Centimetres, Metres};
+enum class LengthUnit { Auto, Millimetres, Centimetres, Metres };
 
 // The skull widths the unit guess trusts, in metres (from the minimum up to but not including the
 // maximum); and the width given to a skull that fits no unit. Double, so that 30 units x 0.01
@@ -59,7 +59,7 @@ struct HeadPlacement {
     float scale = 1.0f; // metres per file unit
     LengthUnit unit = LengthUnit::Metres; // the unit `scale` stands for; Auto when it was fitted to
                                           // 0.25 m or given as an explicit factor that is no unit
-    glm::vec3 offset{0.0f}; // metres, added after turning and scaling
+    glm::vec3 offset{ 0.0f }; // metres, added after turning and scaling
     Axis up = Axis::PosY; // the file's axis that became +Y
     Axis front = Axis::PosZ; // the file's axis that became +Z (where the face looks)
     bool upFromShape = false; // up and front were found from the shape (not given, not kept)

@@ -49,4 +49,4 @@ JsonFailure describeJsonFailure(std::string_view text, const nlohmann::json::exc
     return failure;
 }
 
-}  // namespace wisp::io
+} // namespace wisp::io

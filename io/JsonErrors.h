@@ -11,8 +11,8 @@
 namespace wisp::io {
 
 struct JsonFailure {
-    std::string place;    // "line 3, column 30"; empty when nlohmann gives no place and none is found
-    std::string message;  // without nlohmann's "[json.exception...]" prefix
+    std::string place; // "line 3, column 30"; empty when nlohmann gives no place and none is found
+    std::string message; // without nlohmann's "[json.exception...]" prefix
 };
 
 // A failure thrown by nlohmann::json::parse over `text`.
@@ -24,8 +24,7 @@ std::string withoutJsonPrefix(const std::string& what);
 // The first offset of `text` outside JSON strings (string quotes included in the string) at
 // which `found(offset, byte)` is true, or npos. Shared by the readers that scan JSON text before
 // or after nlohmann: the glTF nesting guard and the overflowing-number search.
-template <class Found>
-std::size_t findOutsideJsonStrings(std::string_view text, Found found)
+template <class Found> std::size_t findOutsideJsonStrings(std::string_view text, Found found)
 {
     bool inString = false, escaped = false;
     for (std::size_t i = 0; i < text.size(); ++i) {
@@ -49,4 +48,4 @@ std::size_t findOutsideJsonStrings(std::string_view text, Found found)
 // "line L, column C" of byte `offset` (0-based) of `text`.
 std::string lineAndColumn(std::string_view text, std::size_t offset);
 
-}  // namespace wisp::io
+} // namespace wisp::io

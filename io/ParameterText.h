@@ -15,10 +15,10 @@
 namespace wisp::io {
 
 struct ParameterFile {
-    std::vector<std::pair<Param, double>> values;  // in file order
+    std::vector<std::pair<Param, double>> values; // in file order
 };
 
 // Unknown keys, malformed lines and out-of-range values are errors naming the line and the key.
 Result<ParameterFile> readParameterText(const std::string& path);
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -30,8 +30,8 @@ namespace detail {
 namespace {
 
 constexpr std::size_t kMaxWarnings = 50;
-constexpr std::size_t kMaxQuotedBytes = 40;  // of a string value shown in a message
-constexpr std::size_t kMaxKeyBytes = 64;     // of an unknown key shown in a warning
+constexpr std::size_t kMaxQuotedBytes = 40; // of a string value shown in a message
+constexpr std::size_t kMaxKeyBytes = 64; // of an unknown key shown in a warning
 
 // Cuts `text` to at most `maxBytes` without splitting a UTF-8 sequence, marking the cut with "…".
 std::string shorten(std::string_view text, std::size_t maxBytes)
@@ -88,7 +88,7 @@ std::string oneLineNumberArray(const std::string& text, std::size_t open, std::s
     return {};
 }
 
-}  // namespace
+} // namespace
 
 void Warnings::add(const std::string& path, const std::string& what)
 {
@@ -106,52 +106,46 @@ std::vector<std::string> Warnings::take()
     return std::move(m_lines);
 }
 
-std::string readWholeFile(const std::string& path, std::size_t maxBytes, const char* what)
-{
-    Result<std::string> file = readRegularFile(path, {maxBytes, what, true});
-    if (!file)
-        throw Refusal{file.error().location, file.error().message};
-    return std::move(file).value();
-}
-
 json parseJson(std::string_view text, std::size_t maxBytes, const char* what)
 {
     if (text.size() > maxBytes)
-        throw Refusal{"", "the text is " + megabytes(text.size()) + "; a " + what + " is at most " + megabytes(maxBytes)};
+        throw Refusal{ "",
+            "the text is " + megabytes(text.size()) + "; a " + what + " is at most " + megabytes(maxBytes) };
     if (text.find_first_not_of(" \t\r\n") == std::string_view::npos)
-        throw Refusal{"", "the file is empty"};
+        throw Refusal{ "", "the file is empty" };
     try {
         return json::parse(text.begin(), text.end());
-    } catch (const json::exception& e) {  // parse_error, and out_of_range for a number that overflows
+    } catch (const json::exception& e) { // parse_error, and out_of_range for a number that overflows
         const JsonFailure failure = describeJsonFailure(text, e);
         // "last read" quotes the token, which may be megabytes of string: shorten.
-        throw Refusal{failure.place, shorten(failure.message, 200)};
+        throw Refusal{ failure.place, shorten(failure.message, 200) };
     }
 }
 
 int checkFormatAndVersion(const json& root, std::string_view format, const char* kind, int newestVersion,
-                          std::string_view otherFormat, const char* otherKind)
+    std::string_view otherFormat, const char* otherKind)
 {
     if (!root.is_object())
-        throw Refusal{"", "expected a JSON object { ... } around the whole file, found " + describe(root)};
+        throw Refusal{ "", "expected a JSON object { ... } around the whole file, found " + describe(root) };
     const auto formatIt = root.find("format");
     if (formatIt == root.end())
-        throw Refusal{"format", "missing; the file should start with \"format\": \"" + std::string(format) + "\""};
+        throw Refusal{ "format", "missing; the file should start with \"format\": \"" + std::string(format) + "\"" };
     if (formatIt->is_string() && formatIt->get_ref<const std::string&>() == otherFormat)
-        throw Refusal{"format", std::string("this is ") + otherKind + ", not a " + kind};
+        throw Refusal{ "format", std::string("this is ") + otherKind + ", not a " + kind };
     if (!formatIt->is_string() || formatIt->get_ref<const std::string&>() != format)
-        throw Refusal{"format", describe(*formatIt) + " is not \"" + std::string(format) + "\""};
+        throw Refusal{ "format", describe(*formatIt) + " is not \"" + std::string(format) + "\"" };
     const auto versionIt = root.find("version");
     if (versionIt == root.end())
-        throw Refusal{"version", "missing"};
+        throw Refusal{ "version", "missing" };
     if (!versionIt->is_number() || std::floor(versionIt->get<double>()) != versionIt->get<double>())
-        throw Refusal{"version", describe(*versionIt) + " is not a whole number"};
+        throw Refusal{ "version", describe(*versionIt) + " is not a whole number" };
     const double version = versionIt->get<double>();
     if (version < 1)
-        throw Refusal{"version", describe(*versionIt) + " is not a version (they start at 1)"};
+        throw Refusal{ "version", describe(*versionIt) + " is not a version (they start at 1)" };
     if (version > newestVersion)
-        throw Refusal{"", "version " + describe(*versionIt) + " is newer than this Wisp reads (" +
-                              std::to_string(newestVersion) + ")"};
+        throw Refusal{ "",
+            "version " + describe(*versionIt) + " is newer than this Wisp reads (" + std::to_string(newestVersion)
+                + ")" };
     return static_cast<int>(version);
 }
 
@@ -171,7 +165,7 @@ std::string describe(const json& value)
     case json::value_t::object:
         return "an object";
     default:
-        return value.dump(-1, ' ', false, errors);  // numbers as written (3.0 stays 3.0), true, null
+        return value.dump(-1, ' ', false, errors); // numbers as written (3.0 stays 3.0), true, null
     }
 }
 
@@ -184,35 +178,36 @@ std::string childPath(const std::string& path, std::string_view key)
 const json& requireObject(const json& value, const std::string& path)
 {
     if (!value.is_object())
-        throw Refusal{path, "expected an object { ... }, found " + describe(value)};
+        throw Refusal{ path, "expected an object { ... }, found " + describe(value) };
     return value;
 }
 
 std::string readText(const json& value, const std::string& path, std::size_t maxBytes)
 {
     if (!value.is_string())
-        throw Refusal{path, describe(value) + " is not text (text goes in double quotes)"};
+        throw Refusal{ path, describe(value) + " is not text (text goes in double quotes)" };
     const std::string& text = value.get_ref<const std::string&>();
     if (text.size() > maxBytes)
-        throw Refusal{path, "the text is " + std::to_string(text.size()) + " bytes long; at most " +
-                                std::to_string(maxBytes) + " are allowed"};
+        throw Refusal{ path,
+            "the text is " + std::to_string(text.size()) + " bytes long; at most " + std::to_string(maxBytes)
+                + " are allowed" };
     return text;
 }
 
 double readFiniteNumber(const json& value, const std::string& path)
 {
     if (!value.is_number())
-        throw Refusal{path, describe(value) + " is not a number"};
+        throw Refusal{ path, describe(value) + " is not a number" };
     const double number = value.get<double>();
     if (!std::isfinite(number))
-        throw Refusal{path, describe(value) + " is not a finite number"};
+        throw Refusal{ path, describe(value) + " is not a finite number" };
     return number;
 }
 
 bool readBool(const json& value, const std::string& path)
 {
     if (!value.is_boolean())
-        throw Refusal{path, describe(value) + " is not true or false"};
+        throw Refusal{ path, describe(value) + " is not true or false" };
     return value.get<bool>();
 }
 
@@ -226,17 +221,17 @@ void readParameter(ParameterValues& into, const ParameterInfo& info, const json&
         else if (value.is_number() && (value.get<double>() == 0.0 || value.get<double>() == 1.0))
             number = value.get<double>();
         else
-            throw Refusal{path, describe(value) + " is not true or false"};
+            throw Refusal{ path, describe(value) + " is not true or false" };
     } else {
         number = readFiniteNumber(value, path);
         if (info.kind == ParamKind::Integer && std::floor(number) != number)
-            throw Refusal{path, describe(value) + " is not a whole number"};
-        if (!isWithinRange(info, number))  // as floats for real parameters: both ends as written are inside
-            throw Refusal{path, describe(value) + " is outside " + shortestText(info.minimum) + ".." +
-                                    shortestText(info.maximum)};
+            throw Refusal{ path, describe(value) + " is not a whole number" };
+        if (!isWithinRange(info, number)) // as floats for real parameters: both ends as written are inside
+            throw Refusal{ path,
+                describe(value) + " is outside " + shortestText(info.minimum) + ".." + shortestText(info.maximum) };
     }
     if (std::string error = into.set(info.id, number); !error.empty())
-        throw Refusal{path, error};  // unreachable while the checks above match the registry's
+        throw Refusal{ path, error }; // unreachable while the checks above match the registry's
 }
 
 glm::vec3 readColour(const json& value, const std::string& path)
@@ -245,16 +240,9 @@ glm::vec3 readColour(const json& value, const std::string& path)
         return c.is_number() && c.get<double>() >= 0.0 && c.get<double>() <= 1.0;
     });
     if (!ok)
-        throw Refusal{path, "expected 3 numbers 0..1"};
-    return {static_cast<float>(value[0].get<double>()), static_cast<float>(value[1].get<double>()),
-            static_cast<float>(value[2].get<double>())};
-}
-
-std::string withoutPath(std::string message, const std::string& path)
-{
-    if (message.starts_with(path + ": "))
-        message.erase(0, path.size() + 2);
-    return message;
+        throw Refusal{ path, "expected 3 numbers 0..1" };
+    return { static_cast<float>(value[0].get<double>()), static_cast<float>(value[1].get<double>()),
+        static_cast<float>(value[2].get<double>()) };
 }
 
 double shortestDoubleForFloat(float value)
@@ -262,7 +250,7 @@ double shortestDoubleForFloat(float value)
     if (!std::isfinite(value))
         return value;
     char buffer[32];
-    for (int precision = 1; precision <= 9; ++precision) {  // 9 significant digits always suffice for a float
+    for (int precision = 1; precision <= 9; ++precision) { // 9 significant digits always suffice for a float
         std::snprintf(buffer, sizeof buffer, "%.*g", precision, static_cast<double>(value));
         const double candidate = std::strtod(buffer, nullptr);
         if (std::bit_cast<std::uint32_t>(static_cast<float>(candidate)) == std::bit_cast<std::uint32_t>(value))
@@ -282,7 +270,7 @@ void writeParameter(ordered_json& object, const ParameterInfo& info, double valu
         object[key] = value != 0.0;
         break;
     case ParamKind::Real:
-        object[key] = value;  // nlohmann prints the shortest text that reads back as the same double
+        object[key] = value; // nlohmann prints the shortest text that reads back as the same double
         break;
     }
 }
@@ -290,7 +278,7 @@ void writeParameter(ordered_json& object, const ParameterInfo& info, double valu
 ordered_json vec3ToJson(const glm::vec3& value)
 {
     return ordered_json::array(
-        {shortestDoubleForFloat(value.x), shortestDoubleForFloat(value.y), shortestDoubleForFloat(value.z)});
+        { shortestDoubleForFloat(value.x), shortestDoubleForFloat(value.y), shortestDoubleForFloat(value.z) });
 }
 
 std::string dumpPretty(const ordered_json& root)
@@ -324,19 +312,19 @@ std::string dumpPretty(const ordered_json& root)
     return out + "\n";
 }
 
-}  // namespace detail
+} // namespace detail
 
 namespace {
 
 using namespace detail;
 
-const std::string kDefaultRegionName = "Scalp";  // as the editor names its first region
+const std::string kDefaultRegionName = "Scalp"; // as the editor names its first region
 
 // Reads a region's wisp keys from `object` (its "wisp", or the region itself); `seen` lists the
 // keys already read for this region so that one given twice is refused. Keys that are not wisp
 // parameters are warned about, except `ownKeys` (the region's own, when reading the region).
 void readWispKeys(const json& object, const std::string& path, std::initializer_list<std::string_view> ownKeys,
-                  RegionLook& look, std::map<std::string, std::string>& seen, Warnings& warnings)
+    RegionLook& look, std::map<std::string, std::string>& seen, Warnings& warnings)
 {
     for (const auto& [key, value] : object.items()) {
         if (std::find(ownKeys.begin(), ownKeys.end(), key) != ownKeys.end())
@@ -349,7 +337,7 @@ void readWispKeys(const json& object, const std::string& path, std::initializer_
             warnings.add(keyPath, "a global parameter, which belongs in \"parameters\"; ignored here");
         } else {
             if (const auto before = seen.find(key); before != seen.end())
-                throw Refusal{keyPath, "given twice, here and at " + before->second};
+                throw Refusal{ keyPath, "given twice, here and at " + before->second };
             seen.emplace(key, keyPath);
             readParameter(look.wisp, *info, value, keyPath);
         }
@@ -373,13 +361,14 @@ RegionLook readRegionLook(const json& value, std::size_t index, Warnings& warnin
         const std::string wispPath = childPath(path, "wisp");
         readWispKeys(requireObject(*it, wispPath), wispPath, {}, look, seen, warnings);
     }
-    readWispKeys(value, path, {"name", "wisp", "root_colour", "tip_colour"}, look, seen, warnings);
+    readWispKeys(value, path, { "name", "wisp", "root_colour", "tip_colour" }, look, seen, warnings);
     return look;
 }
 
 Preset readPresetJson(const json& root, const std::string& nameForMessages, Warnings& warnings)
 {
-    const int version = checkFormatAndVersion(root, "wisp-preset", "preset", kPresetVersion, "wisp-project", "a Wisp project");
+    const int version
+        = checkFormatAndVersion(root, "wisp-preset", "preset", kPresetVersion, "wisp-project", "a Wisp project");
     Preset preset;
     preset.name = fs::path(nameForMessages).stem().string();
     if (const auto it = root.find("name"); it != root.end())
@@ -387,7 +376,7 @@ Preset readPresetJson(const json& root, const std::string& nameForMessages, Warn
     if (const auto it = root.find("description"); it != root.end())
         preset.description = readText(*it, "description", kMaxDescriptionBytes);
 
-    RegionLook flatRegion;  // version 1: the wisp keys of the flat "parameters"
+    RegionLook flatRegion; // version 1: the wisp keys of the flat "parameters"
     flatRegion.name = kDefaultRegionName;
     if (const auto it = root.find("parameters"); it != root.end()) {
         requireObject(*it, "parameters");
@@ -409,31 +398,32 @@ Preset readPresetJson(const json& root, const std::string& nameForMessages, Warn
         preset.regions.push_back(std::move(flatRegion));
     } else if (const auto it = root.find("regions"); it != root.end()) {
         if (!it->is_array())
-            throw Refusal{"regions", "expected a list [ ... ] of regions, found " + describe(*it)};
+            throw Refusal{ "regions", "expected a list [ ... ] of regions, found " + describe(*it) };
         if (it->size() > kMaxRegions)
-            throw Refusal{"regions", std::to_string(it->size()) + " regions; at most " + std::to_string(kMaxRegions) +
-                                         " are allowed"};
+            throw Refusal{ "regions",
+                std::to_string(it->size()) + " regions; at most " + std::to_string(kMaxRegions) + " are allowed" };
         for (std::size_t i = 0; i < it->size(); ++i)
             preset.regions.push_back(readRegionLook((*it)[i], i, warnings));
     }
 
     for (const auto& [key, value] : root.items()) {
-        static const std::set<std::string> known = {"format", "version", "name", "description", "parameters", "regions"};
+        static const std::set<std::string> known
+            = { "format", "version", "name", "description", "parameters", "regions" };
         if (!known.contains(key) || (key == "regions" && version == 1))
             warnings.add(childPath("", key), "unknown key, ignored");
     }
     return preset;
 }
 
-}  // namespace
+} // namespace
 
 Result<PresetReadResult> readPreset(const std::string& path)
 {
     std::string text;
     try {
-        text = readWholeFile(path, kMaxPresetBytes, "preset");
+        text = readRegularFileOrFail(path, { kMaxPresetBytes, "preset", true });
     } catch (const Refusal& refusal) {
-        return IoError{path, refusal.location, refusal.message};
+        return IoError{ path, refusal.location, refusal.message };
     }
     return parsePreset(text, path);
 }
@@ -444,13 +434,13 @@ Result<PresetReadResult> parsePreset(std::string_view text, const std::string& n
         const json root = parseJson(text, kMaxPresetBytes, "preset");
         Warnings warnings;
         Preset preset = readPresetJson(root, nameForMessages, warnings);
-        return PresetReadResult{std::move(preset), warnings.take()};
+        return PresetReadResult{ std::move(preset), warnings.take() };
     } catch (const Refusal& refusal) {
-        return IoError{nameForMessages, refusal.location, refusal.message};
-    } catch (const json::exception& e) {  // a check above missed a case: still an error, not a crash
-        return IoError{nameForMessages, "", withoutJsonPrefix(e.what())};
+        return IoError{ nameForMessages, refusal.location, refusal.message };
+    } catch (const json::exception& e) { // a check above missed a case: still an error, not a crash
+        return IoError{ nameForMessages, "", withoutJsonPrefix(e.what()) };
     } catch (const std::bad_alloc&) {
-        return IoError{nameForMessages, "", "not enough memory to read the preset"};
+        return IoError{ nameForMessages, "", "not enough memory to read the preset" };
     }
 }
 
@@ -483,12 +473,10 @@ std::string presetToJson(const Preset& preset)
     return dumpPretty(root);
 }
 
-Result<std::monostate> writePreset(const std::string& path, const Preset& preset)
+Result<void> writePreset(const std::string& path, const Preset& preset)
 {
     const std::string text = presetToJson(preset);
-    if (std::string error = writeFileAtomically(path, [&](std::ostream& out) { out << text; }); !error.empty())
-        return IoError{path, "", withoutPath(std::move(error), path)};
-    return std::monostate{};
+    return writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 
-}  // namespace wisp::io
+} // namespace wisp::io

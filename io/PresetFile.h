@@ -30,6 +30,7 @@
 // Thread safety: every function here may run on any thread; none keeps state.
 
 #include "io/IoError.h"
+#include "io/ReadFailure.h"
 #include "sim/Parameters.h"
 
 #include <glm/vec3.hpp>
@@ -45,24 +46,24 @@ namespace wisp::io {
 
 constexpr int kPresetVersion = 2;
 constexpr std::size_t kMaxPresetBytes = 16u << 20;
-constexpr std::size_t kMaxRegions = 256;          // presets and projects
-constexpr std::size_t kMaxNameBytes = 256;        // preset and region names
+constexpr std::size_t kMaxRegions = 256; // presets and projects
+constexpr std::size_t kMaxNameBytes = 256; // preset and region names
 constexpr std::size_t kMaxDescriptionBytes = 64u << 10;
 
 // A region's look without its painted weights.
 struct RegionLook {
     std::string name;
-    ParameterValues wisp;  // only the Wisp-group entries mean anything; the others stay at defaults
-    glm::vec3 rootColour{0.16f, 0.10f, 0.06f};  // sRGB 0..1 (GrowthRegion's defaults)
-    glm::vec3 tipColour{0.45f, 0.30f, 0.17f};
+    ParameterValues wisp; // only the Wisp-group entries mean anything; the others stay at defaults
+    glm::vec3 rootColour{ 0.16f, 0.10f, 0.06f }; // sRGB 0..1 (GrowthRegion's defaults)
+    glm::vec3 tipColour{ 0.45f, 0.30f, 0.17f };
 
     bool operator==(const RegionLook&) const = default;
 };
 
 struct Preset {
-    std::string name;  // a missing name reads as the file's stem
+    std::string name; // a missing name reads as the file's stem
     std::string description;
-    ParameterValues parameters;  // only the Groom, Forces and Solver entries; Wisp entries stay at defaults
+    ParameterValues parameters; // only the Groom, Forces and Solver entries; Wisp entries stay at defaults
     std::vector<RegionLook> regions;
 
     bool operator==(const Preset&) const = default;
@@ -70,7 +71,7 @@ struct Preset {
 
 struct PresetReadResult {
     Preset preset;
-    std::vector<std::string> warnings;  // "regions[0].wisp.sheen: unknown key, ignored"; never fatal
+    std::vector<std::string> warnings; // "regions[0].wisp.sheen: unknown key, ignored"; never fatal
 };
 
 Result<PresetReadResult> readPreset(const std::string& path);
@@ -79,17 +80,15 @@ Result<PresetReadResult> parsePreset(std::string_view json, const std::string& n
 // Version 2, indented, keys in registry order; what writePreset writes.
 std::string presetToJson(const Preset& preset);
 // Atomic (io/AtomicFile.h): readers see the old file or the new one, never half.
-// (std::monostate stands for "nothing": IoError.h has no Result<void> yet.)
-Result<std::monostate> writePreset(const std::string& path, const Preset& preset);
+Result<void> writePreset(const std::string& path, const Preset& preset);
 
 // ---- Shared with ProjectFile.cpp; not for callers ------------------------------------------------
 namespace detail {
 
-// Thrown inside the readers and turned into an IoError at the public functions.
-struct Refusal {
-    std::string location;  // a key path such as "regions[1].clump_degree", or "line 3, column 7"
-    std::string message;
-};
+// Thrown inside the readers and turned into an IoError at the public functions: io's one parser
+// error (io/ReadFailure.h); its location is a key path such as "regions[1].clump_degree", or
+// "line 3, column 7".
+using Refusal = ReadFailure;
 
 // Collects warnings, at most a screenful: a file with a million unknown keys gives 50 lines.
 class Warnings {
@@ -102,29 +101,25 @@ private:
     std::size_t m_unreported = 0;
 };
 
-std::string readWholeFile(const std::string& path, std::size_t maxBytes, const char* what);
 // Parses JSON; syntax errors become a Refusal at "line L, column C". `what` names the kind of
 // file in messages ("preset").
 nlohmann::json parseJson(std::string_view text, std::size_t maxBytes, const char* what);
 // Checks "format" (`format`; a file of `otherFormat` is refused as `otherKind`, "a Wisp project")
 // and "version" (1 ..`newestVersion`); returns the version. `kind` names the file in messages.
 int checkFormatAndVersion(const nlohmann::json& root, std::string_view format, const char* kind, int newestVersion,
-                          std::string_view otherFormat, const char* otherKind);
+    std::string_view otherFormat, const char* otherKind);
 
 // A value as the file wrote it, for messages: 3.0, "strong" (shortened), an object.
 std::string describe(const nlohmann::json& value);
-std::string childPath(const std::string& path, std::string_view key);  // "regions[0]" + "wisp"
+std::string childPath(const std::string& path, std::string_view key); // "regions[0]" + "wisp"
 const nlohmann::json& requireObject(const nlohmann::json& value, const std::string& path);
 std::string readText(const nlohmann::json& value, const std::string& path, std::size_t maxBytes);
 double readFiniteNumber(const nlohmann::json& value, const std::string& path);
 bool readBool(const nlohmann::json& value, const std::string& path);
 // Checks type, wholeness and range for parameter `info`, then sets it.
-void readParameter(ParameterValues& into, const ParameterInfo& info, const nlohmann::json& value,
-                   const std::string& path);
+void readParameter(
+    ParameterValues& into, const ParameterInfo& info, const nlohmann::json& value, const std::string& path);
 glm::vec3 readColour(const nlohmann::json& value, const std::string& path);
-
-// writeFileAtomically's messages start with the path, which IoError::toString adds again.
-std::string withoutPath(std::string message, const std::string& path);
 
 // The double nearest the shortest decimal that reads back as `value`: JSON shows 0.16 rather than
 // 0.1599999964237213, and converting the double back to float gives `value` bit for bit.
@@ -134,6 +129,6 @@ nlohmann::ordered_json vec3ToJson(const glm::vec3& value);
 // Indented by 2, with short arrays of numbers ([0.16, 0.1, 0.06]) kept on one line.
 std::string dumpPretty(const nlohmann::ordered_json& root);
 
-}  // namespace detail
+} // namespace detail
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -7,6 +7,7 @@
 #include "io/Base64.h"
 #include "io/HeadPlacement.h"
 #include "io/PresetFile.h"
+#include "io/RegularFile.h"
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -15,9 +16,9 @@
 #include <bit>
 #include <charconv>
 #include <cmath>
-#include <memory>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <set>
 
 namespace wisp::io {
@@ -46,13 +47,19 @@ fs::path resolveAgainst(const fs::path& folder, const std::string& source)
     return (path.is_absolute() ? path : folder / path).lexically_normal();
 }
 
-std::string regionPath(std::size_t index) { return "regions[" + std::to_string(index) + "]"; }
-std::string stylePath(std::size_t index) { return "style[" + std::to_string(index) + "]"; }
+std::string regionPath(std::size_t index)
+{
+    return "regions[" + std::to_string(index) + "]";
+}
+std::string stylePath(std::size_t index)
+{
+    return "style[" + std::to_string(index) + "]";
+}
 
 bool isUnitColour(const glm::vec3& c)
 {
     for (int i = 0; i < 3; ++i)
-        if (!(c[i] >= 0.0f && c[i] <= 1.0f))  // also false for NaN
+        if (!(c[i] >= 0.0f && c[i] <= 1.0f)) // also false for NaN
             return false;
     return true;
 }
@@ -62,65 +69,70 @@ bool isUnitColour(const glm::vec3& c)
 void checkProject(const Project& project)
 {
     if (!std::isfinite(project.headImportScale) || project.headImportScale <= 0.0f)
-        throw Refusal{"head.import_scale", "the import scale must be a positive number"};
+        throw Refusal{ "head.import_scale", "the import scale must be a positive number" };
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(project.headImportOffset[i]))
-            throw Refusal{"head.import_offset", "expected 3 finite numbers"};
+            throw Refusal{ "head.import_offset", "expected 3 finite numbers" };
     if (!project.headEmbedded && project.headSource.empty())
-        throw Refusal{"head.source", "a head that is not stored in the project needs the file it comes from"};
+        throw Refusal{ "head.source", "a head that is not stored in the project needs the file it comes from" };
     const std::size_t vertexCount = project.head.vertexCount();
     for (std::size_t t = 0; t < project.head.triangles.size(); ++t)
         for (int corner = 0; corner < 3; ++corner)
             if (project.head.triangles[t][corner] >= vertexCount)
-                throw Refusal{"head.triangles", "triangle " + std::to_string(t) + " refers to vertex " +
-                                                    std::to_string(project.head.triangles[t][corner]) +
-                                                    "; the head has " + std::to_string(vertexCount)};
+                throw Refusal{ "head.triangles",
+                    "triangle " + std::to_string(t) + " refers to vertex "
+                        + std::to_string(project.head.triangles[t][corner]) + "; the head has "
+                        + std::to_string(vertexCount) };
     if (std::string error = validateMesh(project.head); !error.empty())
-        throw Refusal{"head", error};
+        throw Refusal{ "head", error };
 
     if (project.regions.size() > kMaxRegions)
-        throw Refusal{"regions", std::to_string(project.regions.size()) + " regions; at most " +
-                                     std::to_string(kMaxRegions) + " are allowed"};
+        throw Refusal{ "regions",
+            std::to_string(project.regions.size()) + " regions; at most " + std::to_string(kMaxRegions)
+                + " are allowed" };
     std::map<std::uint32_t, std::size_t> indexOfId;
     for (std::size_t i = 0; i < project.regions.size(); ++i) {
         const GrowthRegion& region = project.regions[i];
         const std::string path = regionPath(i);
         if (region.id == kNoSolo)
-            throw Refusal{path + ".id", std::to_string(region.id) + " is reserved (it means \"no region\")"};
+            throw Refusal{ path + ".id", std::to_string(region.id) + " is reserved (it means \"no region\")" };
         if (const auto [it, added] = indexOfId.emplace(region.id, i); !added)
-            throw Refusal{path + ".id", std::to_string(region.id) + " is already the id of " + regionPath(it->second)};
+            throw Refusal{ path + ".id",
+                std::to_string(region.id) + " is already the id of " + regionPath(it->second) };
         if (region.name.size() > kMaxNameBytes)
-            throw Refusal{path + ".name", "the name is " + std::to_string(region.name.size()) + " bytes long; at most " +
-                                              std::to_string(kMaxNameBytes) + " are allowed"};
+            throw Refusal{ path + ".name",
+                "the name is " + std::to_string(region.name.size()) + " bytes long; at most "
+                    + std::to_string(kMaxNameBytes) + " are allowed" };
         if (region.weights.size() != vertexCount)
-            throw Refusal{path + ".weights", std::to_string(region.weights.size()) + " weights for a head of " +
-                                                 std::to_string(vertexCount) + " vertices"};
+            throw Refusal{ path + ".weights",
+                std::to_string(region.weights.size()) + " weights for a head of " + std::to_string(vertexCount)
+                    + " vertices" };
         for (std::size_t v = 0; v < region.weights.size(); ++v)
             if (const float w = region.weights[v]; !(w >= 0.0f && w <= 1.0f))
-                throw Refusal{path + ".weights", "the weight of vertex " + std::to_string(v) + " is " +
-                                                     std::to_string(w) + "; weights are 0..1"};
+                throw Refusal{ path + ".weights",
+                    "the weight of vertex " + std::to_string(v) + " is " + std::to_string(w) + "; weights are 0..1" };
         if (!isUnitColour(region.rootColour))
-            throw Refusal{path + ".root_colour", "expected 3 numbers 0..1"};
+            throw Refusal{ path + ".root_colour", "expected 3 numbers 0..1" };
         if (!isUnitColour(region.tipColour))
-            throw Refusal{path + ".tip_colour", "expected 3 numbers 0..1"};
+            throw Refusal{ path + ".tip_colour", "expected 3 numbers 0..1" };
     }
     if (project.soloRegion != kNoSolo && !indexOfId.contains(project.soloRegion))
-        throw Refusal{"solo_region", std::to_string(project.soloRegion) + " is the id of no region"};
+        throw Refusal{ "solo_region", std::to_string(project.soloRegion) + " is the id of no region" };
 
     if (!(project.displayDensity >= kMinDisplayDensity && project.displayDensity <= kMaxDisplayDensity))
-        throw Refusal{"display_density", "the display density must be 0.25 to 4"};
+        throw Refusal{ "display_density", "the display density must be 0.25 to 4" };
     const CameraState& camera = project.camera;
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(camera.pivot[i]))
-            throw Refusal{"camera.pivot", "expected 3 finite numbers"};
+            throw Refusal{ "camera.pivot", "expected 3 finite numbers" };
     if (!std::isfinite(camera.yawRadians))
-        throw Refusal{"camera.yaw_radians", "not a finite number"};
+        throw Refusal{ "camera.yaw_radians", "not a finite number" };
     if (!std::isfinite(camera.pitchRadians))
-        throw Refusal{"camera.pitch_radians", "not a finite number"};
+        throw Refusal{ "camera.pitch_radians", "not a finite number" };
     if (!std::isfinite(camera.distanceMetres) || camera.distanceMetres <= 0.0f)
-        throw Refusal{"camera.distance_metres", "the distance must be a positive number"};
+        throw Refusal{ "camera.distance_metres", "the distance must be a positive number" };
     if (!(camera.fovYDegrees > 0.0f && camera.fovYDegrees < 180.0f))
-        throw Refusal{"camera.fov_y_degrees", "the field of view must be between 0 and 180 degrees"};
+        throw Refusal{ "camera.fov_y_degrees", "the field of view must be between 0 and 180 degrees" };
 
     // Indexed as the file writes them: entries with nothing changed are left out.
     std::size_t styleIndex = 0;
@@ -128,7 +140,7 @@ void checkProject(const Project& project)
         if (style.isDefault())
             continue;
         if (std::string error = validateStrandStyle(identity, style); !error.empty())
-            throw Refusal{stylePath(styleIndex), error};
+            throw Refusal{ stylePath(styleIndex), error };
         ++styleIndex;
     }
 }
@@ -139,7 +151,7 @@ float readFloat(const json& value, const std::string& path)
 {
     const float number = static_cast<float>(readFiniteNumber(value, path));
     if (!std::isfinite(number))
-        throw Refusal{path, describe(value) + " is too large"};
+        throw Refusal{ path, describe(value) + " is too large" };
     return number;
 }
 
@@ -148,7 +160,7 @@ std::uint64_t readWhole(const json& value, const std::string& path, std::uint64_
 {
     const double number = readFiniteNumber(value, path);
     if (std::floor(number) != number || number < 0.0 || number > static_cast<double>(maximum))
-        throw Refusal{path, describe(value) + " is not a whole number 0.." + std::to_string(maximum)};
+        throw Refusal{ path, describe(value) + " is not a whole number 0.." + std::to_string(maximum) };
     return static_cast<std::uint64_t>(number);
 }
 
@@ -162,10 +174,11 @@ const json& require(const json& object, const std::string& objectPath, const cha
 {
     if (const json* value = find(object, key))
         return *value;
-    throw Refusal{childPath(objectPath, key), "missing"};
+    throw Refusal{ childPath(objectPath, key), "missing" };
 }
 
-void warnUnknownKeys(const json& object, const std::string& path, const std::set<std::string>& known, Warnings& warnings)
+void warnUnknownKeys(
+    const json& object, const std::string& path, const std::set<std::string>& known, Warnings& warnings)
 {
     for (const auto& [key, value] : object.items())
         if (!known.contains(key))
@@ -175,20 +188,20 @@ void warnUnknownKeys(const json& object, const std::string& path, const std::set
 std::vector<float> readFloatArray(const json& value, const std::string& path)
 {
     if (!value.is_string())
-        throw Refusal{path, describe(value) + " is not base64 text"};
+        throw Refusal{ path, describe(value) + " is not base64 text" };
     std::optional<std::vector<float>> values = decodeFloat32Array(value.get_ref<const std::string&>());
     if (!values)
-        throw Refusal{path, "not valid base64 of little-endian 32-bit floats"};
+        throw Refusal{ path, "not valid base64 of little-endian 32-bit floats" };
     return std::move(*values);
 }
 
 std::vector<std::uint32_t> readUint32Array(const json& value, const std::string& path)
 {
     if (!value.is_string())
-        throw Refusal{path, describe(value) + " is not base64 text"};
+        throw Refusal{ path, describe(value) + " is not base64 text" };
     std::optional<std::vector<std::uint32_t>> values = decodeUint32Array(value.get_ref<const std::string&>());
     if (!values)
-        throw Refusal{path, "not valid base64 of little-endian 32-bit unsigned integers"};
+        throw Refusal{ path, "not valid base64 of little-endian 32-bit unsigned integers" };
     return std::move(*values);
 }
 
@@ -198,34 +211,34 @@ glm::vec3 readFiniteVec3(const json& value, const std::string& path)
         return c.is_number() && std::isfinite(static_cast<float>(c.get<double>()));
     });
     if (!ok)
-        throw Refusal{path, "expected 3 finite numbers"};
-    return {static_cast<float>(value[0].get<double>()), static_cast<float>(value[1].get<double>()),
-            static_cast<float>(value[2].get<double>())};
+        throw Refusal{ path, "expected 3 finite numbers" };
+    return { static_cast<float>(value[0].get<double>()), static_cast<float>(value[1].get<double>()),
+        static_cast<float>(value[2].get<double>()) };
 }
 
 void readEmbeddedHead(const json& head, std::uint64_t vertexCount, std::uint64_t triangleCount, TriangleMesh& mesh)
 {
     const std::vector<float> positions = readFloatArray(require(head, "head", "positions"), "head.positions");
     if (positions.size() != 3 * vertexCount)
-        throw Refusal{"head.positions", std::to_string(positions.size()) + " numbers where the " +
-                                            std::to_string(vertexCount) + " vertices need " +
-                                            std::to_string(3 * vertexCount)};
+        throw Refusal{ "head.positions",
+            std::to_string(positions.size()) + " numbers where the " + std::to_string(vertexCount) + " vertices need "
+                + std::to_string(3 * vertexCount) };
     const std::vector<std::uint32_t> indices = readUint32Array(require(head, "head", "triangles"), "head.triangles");
     if (indices.size() != 3 * triangleCount)
-        throw Refusal{"head.triangles", std::to_string(indices.size()) + " indices where the " +
-                                            std::to_string(triangleCount) + " triangles need " +
-                                            std::to_string(3 * triangleCount)};
+        throw Refusal{ "head.triangles",
+            std::to_string(indices.size()) + " indices where the " + std::to_string(triangleCount) + " triangles need "
+                + std::to_string(3 * triangleCount) };
     mesh.positions.resize(vertexCount);
     for (std::size_t v = 0; v < vertexCount; ++v)
-        mesh.positions[v] = {positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]};
+        mesh.positions[v] = { positions[3 * v], positions[3 * v + 1], positions[3 * v + 2] };
     mesh.triangles.resize(triangleCount);
     for (std::size_t t = 0; t < triangleCount; ++t)
-        mesh.triangles[t] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+        mesh.triangles[t] = { indices[3 * t], indices[3 * t + 1], indices[3 * t + 2] };
 }
 
 void readReferencedHead(const std::string& projectPath, const fs::path& folder, const std::string& source,
-                        const std::string& absoluteSource, std::uint64_t vertexCount, const HeadLoader& loadHead,
-                        Project& project, Warnings& warnings)
+    const std::string& absoluteSource, std::uint64_t vertexCount, const HeadLoader& loadHead, Project& project,
+    Warnings& warnings)
 {
     const fs::path primary = resolveAgainst(folder, source);
     fs::path chosen = primary;
@@ -234,19 +247,21 @@ void readReferencedHead(const std::string& projectPath, const fs::path& folder, 
         const bool fallback = !absoluteSource.empty() && fs::path(absoluteSource) != primary;
         if (fallback && fs::exists(absoluteSource, error)) {
             chosen = absoluteSource;
-            warnings.add("head.source", "\"" + source + "\" is not at " + primary.string() + "; loaded " +
-                                            absoluteSource + ", where it was when the project was saved");
+            warnings.add("head.source",
+                "\"" + source + "\" is not at " + primary.string() + "; loaded " + absoluteSource
+                    + ", where it was when the project was saved");
         } else {
-            throw Refusal{"head.source", "cannot find the head file " + primary.string() + " (\"" + source +
-                                             "\" next to the project " + (folder / fs::path(projectPath).filename()).string() +
-                                             ")" + (fallback ? " nor at " + absoluteSource : "")};
+            throw Refusal{ "head.source",
+                "cannot find the head file " + primary.string() + " (\"" + source + "\" next to the project "
+                    + (folder / fs::path(projectPath).filename()).string() + ")"
+                    + (fallback ? " nor at " + absoluteSource : "") };
         }
     }
     if (!loadHead)
-        throw Refusal{"head.source", "the head is in " + chosen.string() + ", and no head loader was given"};
+        throw Refusal{ "head.source", "the head is in " + chosen.string() + ", and no head loader was given" };
     Result<TriangleMesh> loaded = loadHead(chosen.string());
     if (!loaded)
-        throw Refusal{"head.source", "cannot load the head: " + loaded.error().toString()};
+        throw Refusal{ "head.source", "cannot load the head: " + loaded.error().toString() };
     project.head = std::move(loaded).value();
     // io/HeadPlacement.cpp's applyPlacement, so the head lands where the import put it.
     HeadPlacement placement;
@@ -256,20 +271,21 @@ void readReferencedHead(const std::string& projectPath, const fs::path& folder, 
     placement.front = project.headImportFront;
     applyPlacement(project.head, placement);
     if (project.head.vertexCount() != vertexCount)
-        throw Refusal{"head.source", chosen.string() + " has " + std::to_string(project.head.vertexCount()) +
-                                         " vertices, but the project was painted on " + std::to_string(vertexCount) +
-                                         " (was the file changed?)"};
+        throw Refusal{ "head.source",
+            chosen.string() + " has " + std::to_string(project.head.vertexCount())
+                + " vertices, but the project was painted on " + std::to_string(vertexCount)
+                + " (was the file changed?)" };
     project.headSource = chosen.string();
 }
 
 void readHead(const json& root, const std::string& projectPath, const fs::path& folder, const HeadLoader& loadHead,
-              Project& project, Warnings& warnings)
+    Project& project, Warnings& warnings)
 {
     const json& head = requireObject(require(root, "", "head"), "head");
     warnUnknownKeys(head, "head",
-                    {"source", "absolute_source", "embedded", "import_scale", "import_offset", "import_z_up", "import_up", "import_front",
-                     "vertex_count", "triangle_count", "positions", "triangles"},
-                    warnings);
+        { "source", "absolute_source", "embedded", "import_scale", "import_offset", "import_z_up", "import_up",
+            "import_front", "vertex_count", "triangle_count", "positions", "triangles" },
+        warnings);
     std::string source, absoluteSource;
     if (const json* value = find(head, "source"))
         source = readText(*value, "head.source", kMaxPathBytes);
@@ -285,26 +301,29 @@ void readHead(const json& root, const std::string& projectPath, const fs::path& 
         project.headImportUp = Axis::PosZ;
         project.headImportFront = defaultFront(Axis::PosZ);
     }
-    for (auto [key, axis] : {std::pair{"import_up", &project.headImportUp}, std::pair{"import_front", &project.headImportFront}})
+    for (auto [key, axis] :
+        { std::pair{ "import_up", &project.headImportUp }, std::pair{ "import_front", &project.headImportFront } })
         if (const json* value = find(head, key)) {
             const std::string text = readText(*value, std::string("head.") + key, 8);
             const std::optional<Axis> parsed = parseAxis(text);
             if (!parsed)
-                throw Refusal{std::string("head.") + key, "\"" + text + "\" is no axis (+X, -X, +Y, -Y, +Z or -Z)"};
+                throw Refusal{ std::string("head.") + key, "\"" + text + "\" is no axis (+X, -X, +Y, -Y, +Z or -Z)" };
             *axis = *parsed;
         }
     if (glm::dot(axisVector(project.headImportUp), axisVector(project.headImportFront)) != 0.0f)
-        throw Refusal{"head.import_front", std::string(axisName(project.headImportFront)) + " is not perpendicular to "
-                                               + "head.import_up " + axisName(project.headImportUp)};
-    const std::uint64_t vertexCount = readWhole(require(head, "head", "vertex_count"), "head.vertex_count", 0xffffffffu);
-    const std::uint64_t triangleCount =
-        readWhole(require(head, "head", "triangle_count"), "head.triangle_count", 0xffffffffu);
+        throw Refusal{ "head.import_front",
+            std::string(axisName(project.headImportFront)) + " is not perpendicular to " + "head.import_up "
+                + axisName(project.headImportUp) };
+    const std::uint64_t vertexCount
+        = readWhole(require(head, "head", "vertex_count"), "head.vertex_count", 0xffffffffu);
+    const std::uint64_t triangleCount
+        = readWhole(require(head, "head", "triangle_count"), "head.triangle_count", 0xffffffffu);
     if (project.headEmbedded) {
         readEmbeddedHead(head, vertexCount, triangleCount, project.head);
         project.headSource = source.empty() ? "" : resolveAgainst(folder, source).string();
     } else {
         if (source.empty())
-            throw Refusal{"head.source", "a head that is not stored in the project needs the file it comes from"};
+            throw Refusal{ "head.source", "a head that is not stored in the project needs the file it comes from" };
         readReferencedHead(projectPath, folder, source, absoluteSource, vertexCount, loadHead, project, warnings);
     }
 }
@@ -314,7 +333,7 @@ GrowthRegion readRegion(const json& value, std::size_t index, Warnings& warnings
     const std::string path = regionPath(index);
     requireObject(value, path);
     warnUnknownKeys(value, path,
-                    {"id", "name", "visible", "weights", "wisp", "root_colour", "tip_colour", "imported_strands"}, warnings);
+        { "id", "name", "visible", "weights", "wisp", "root_colour", "tip_colour", "imported_strands" }, warnings);
     GrowthRegion region;
     region.id = static_cast<std::uint32_t>(readWhole(require(value, path, "id"), path + ".id", 0xffffffffu));
     region.name = "Region " + std::to_string(index + 1);
@@ -345,19 +364,22 @@ GrowthRegion readRegion(const json& value, std::size_t index, Warnings& warnings
         requireObject(*strands, strandsPath);
         auto curves = std::make_shared<HairCurves>();
         curves->offsets = readUint32Array(require(*strands, strandsPath, "offsets"), strandsPath + ".offsets");
-        const std::vector<float> xyz = readFloatArray(require(*strands, strandsPath, "positions"), strandsPath + ".positions");
+        const std::vector<float> xyz
+            = readFloatArray(require(*strands, strandsPath, "positions"), strandsPath + ".positions");
         if (xyz.size() % 3 != 0)
-            throw Refusal{strandsPath + ".positions", std::to_string(xyz.size()) + " numbers are not whole points"};
+            throw Refusal{ strandsPath + ".positions", std::to_string(xyz.size()) + " numbers are not whole points" };
         curves->positions.resize(xyz.size() / 3);
         for (std::size_t i = 0; i < curves->positions.size(); ++i) {
-            curves->positions[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+            curves->positions[i] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
             if (!std::isfinite(xyz[3 * i] + xyz[3 * i + 1] + xyz[3 * i + 2]))
-                throw Refusal{strandsPath + ".positions", "point " + std::to_string(i) + " is not finite"};
+                throw Refusal{ strandsPath + ".positions", "point " + std::to_string(i) + " is not finite" };
         }
-        if (curves->offsets.empty() || curves->offsets.front() != 0 || curves->offsets.back() != curves->positions.size() ||
-            !std::is_sorted(curves->offsets.begin(), curves->offsets.end()))
-            throw Refusal{strandsPath + ".offsets", "do not describe the " + std::to_string(curves->positions.size()) +
-                                                        " points (they must rise from 0 to the point count)"};
+        if (curves->offsets.empty() || curves->offsets.front() != 0
+            || curves->offsets.back() != curves->positions.size()
+            || !std::is_sorted(curves->offsets.begin(), curves->offsets.end()))
+            throw Refusal{ strandsPath + ".offsets",
+                "do not describe the " + std::to_string(curves->positions.size())
+                    + " points (they must rise from 0 to the point count)" };
         region.importedStrands = std::move(curves);
     }
     return region;
@@ -366,16 +388,18 @@ GrowthRegion readRegion(const json& value, std::size_t index, Warnings& warnings
 std::uint64_t readStrandIdentity(const json& value, const std::string& path)
 {
     if (!value.is_string())
-        throw Refusal{path, describe(value) + " is not a strand identity (a decimal number in double quotes, such as \"4294967298\")"};
+        throw Refusal{ path,
+            describe(value) + " is not a strand identity (a decimal number in double quotes, such as \"4294967298\")" };
     const std::string& text = value.get_ref<const std::string&>();
     std::uint64_t identity = 0;
     const char* end = text.data() + text.size();
-    const bool digitsOnly = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const bool digitsOnly
+        = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
     const auto [stop, error] = std::from_chars(text.data(), end, identity);
     if (digitsOnly && error == std::errc::result_out_of_range)
-        throw Refusal{path, describe(value) + " is too large for a strand identity (at most 18446744073709551615)"};
+        throw Refusal{ path, describe(value) + " is too large for a strand identity (at most 18446744073709551615)" };
     if (!digitsOnly || error != std::errc() || stop != end)
-        throw Refusal{path, describe(value) + " is not a strand identity (a decimal number)"};
+        throw Refusal{ path, describe(value) + " is not a strand identity (a decimal number)" };
     return identity;
 }
 
@@ -383,8 +407,8 @@ std::uint64_t readStrandIdentity(const json& value, const std::string& path)
 std::pair<std::uint64_t, StrandStyle> readStyleEntry(const json& value, const std::string& path, Warnings& warnings)
 {
     requireObject(value, path);
-    warnUnknownKeys(value, path, {"strand", "length", "curl_radius", "curl_turns", "stiffness_scale", "wetness", "shape"},
-                    warnings);
+    warnUnknownKeys(value, path,
+        { "strand", "length", "curl_radius", "curl_turns", "stiffness_scale", "wetness", "shape" }, warnings);
     const std::uint64_t identity = readStrandIdentity(require(value, path, "strand"), path + ".strand");
     StrandStyle style;
     if (const json* length = find(value, "length"))
@@ -401,30 +425,31 @@ std::pair<std::uint64_t, StrandStyle> readStyleEntry(const json& value, const st
         const std::string shapePath = path + ".shape";
         const std::vector<float> xyz = readFloatArray(*shape, shapePath);
         if (xyz.size() % 3 != 0)
-            throw Refusal{shapePath, std::to_string(xyz.size()) + " numbers are not whole points"};
+            throw Refusal{ shapePath, std::to_string(xyz.size()) + " numbers are not whole points" };
         style.shape.resize(xyz.size() / 3);
         for (std::size_t i = 0; i < style.shape.size(); ++i) {
-            style.shape[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+            style.shape[i] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
             if (!std::isfinite(xyz[3 * i]) || !std::isfinite(xyz[3 * i + 1]) || !std::isfinite(xyz[3 * i + 2]))
-                throw Refusal{shapePath, "point " + std::to_string(i) + " is not finite"};
+                throw Refusal{ shapePath, "point " + std::to_string(i) + " is not finite" };
         }
     }
     if (std::string error = validateStrandStyle(identity, style); !error.empty())
-        throw Refusal{path, error};
-    return {identity, std::move(style)};
+        throw Refusal{ path, error };
+    return { identity, std::move(style) };
 }
 
 void readStyle(const json& value, StyleEdits& edits, Warnings& warnings)
 {
     if (!value.is_array())
-        throw Refusal{"style", "expected a list [ ... ] of strand edits, found " + describe(value)};
+        throw Refusal{ "style", "expected a list [ ... ] of strand edits, found " + describe(value) };
     std::map<std::uint64_t, std::size_t> indexOfIdentity;
     for (std::size_t i = 0; i < value.size(); ++i) {
         const std::string path = stylePath(i);
         auto [identity, style] = readStyleEntry(value[i], path, warnings);
         if (const auto [it, added] = indexOfIdentity.emplace(identity, i); !added)
-            throw Refusal{path + ".strand", std::to_string(identity) + " is already the strand of " + stylePath(it->second)};
-        if (!style.isDefault())  // nothing changed: not an edit
+            throw Refusal{ path + ".strand",
+                std::to_string(identity) + " is already the strand of " + stylePath(it->second) };
+        if (!style.isDefault()) // nothing changed: not an edit
             edits.emplace(identity, std::move(style));
     }
 }
@@ -432,8 +457,8 @@ void readStyle(const json& value, StyleEdits& edits, Warnings& warnings)
 void readCamera(const json& value, CameraState& camera, Warnings& warnings)
 {
     requireObject(value, "camera");
-    warnUnknownKeys(value, "camera", {"pivot", "yaw_radians", "pitch_radians", "distance_metres", "fov_y_degrees"},
-                    warnings);
+    warnUnknownKeys(
+        value, "camera", { "pivot", "yaw_radians", "pitch_radians", "distance_metres", "fov_y_degrees" }, warnings);
     if (const json* pivot = find(value, "pivot"))
         camera.pivot = readFiniteVec3(*pivot, "camera.pivot");
     if (const json* yaw = find(value, "yaw_radians"))
@@ -446,12 +471,13 @@ void readCamera(const json& value, CameraState& camera, Warnings& warnings)
         camera.fovYDegrees = readFloat(*fov, "camera.fov_y_degrees");
 }
 
-Project readProjectJson(const json& root, const std::string& projectPath, const HeadLoader& loadHead,
-                        Warnings& warnings)
+Project readProjectJson(
+    const json& root, const std::string& projectPath, const HeadLoader& loadHead, Warnings& warnings)
 {
     checkFormatAndVersion(root, "wisp-project", "project", kProjectVersion, "wisp-preset", "a Wisp preset");
-    warnUnknownKeys(root, "", {"format", "version", "head", "parameters", "regions", "solo_region", "camera", "display_density", "style"},
-                    warnings);
+    warnUnknownKeys(root, "",
+        { "format", "version", "head", "parameters", "regions", "solo_region", "camera", "display_density", "style" },
+        warnings);
     Project project;
     readHead(root, projectPath, projectFolder(projectPath), loadHead, project, warnings);
     if (const json* parameters = find(root, "parameters")) {
@@ -465,10 +491,10 @@ Project readProjectJson(const json& root, const std::string& projectPath, const 
     }
     if (const json* regions = find(root, "regions")) {
         if (!regions->is_array())
-            throw Refusal{"regions", "expected a list [ ... ] of regions, found " + describe(*regions)};
+            throw Refusal{ "regions", "expected a list [ ... ] of regions, found " + describe(*regions) };
         if (regions->size() > kMaxRegions)
-            throw Refusal{"regions", std::to_string(regions->size()) + " regions; at most " +
-                                         std::to_string(kMaxRegions) + " are allowed"};
+            throw Refusal{ "regions",
+                std::to_string(regions->size()) + " regions; at most " + std::to_string(kMaxRegions) + " are allowed" };
         for (std::size_t i = 0; i < regions->size(); ++i)
             project.regions.push_back(readRegion((*regions)[i], i, warnings));
     }
@@ -484,7 +510,7 @@ Project readProjectJson(const json& root, const std::string& projectPath, const 
     return project;
 }
 
-}  // namespace
+} // namespace
 
 std::string projectToJson(const Project& project, const std::string& projectPath)
 {
@@ -514,11 +540,11 @@ std::string projectToJson(const Project& project, const std::string& projectPath
         std::vector<float> positions;
         positions.reserve(3 * project.head.vertexCount());
         for (const glm::vec3& p : project.head.positions)
-            positions.insert(positions.end(), {p.x, p.y, p.z});
+            positions.insert(positions.end(), { p.x, p.y, p.z });
         std::vector<std::uint32_t> indices;
         indices.reserve(3 * project.head.triangleCount());
         for (const glm::uvec3& t : project.head.triangles)
-            indices.insert(indices.end(), {t.x, t.y, t.z});
+            indices.insert(indices.end(), { t.x, t.y, t.z });
         head["positions"] = encodeFloat32Array(positions);
         head["triangles"] = encodeUint32Array(indices);
     }
@@ -548,7 +574,7 @@ std::string projectToJson(const Project& project, const std::string& projectPath
             std::vector<float> xyz;
             xyz.reserve(c.positions.size() * 3);
             for (const glm::vec3& p : c.positions)
-                xyz.insert(xyz.end(), {p.x, p.y, p.z});
+                xyz.insert(xyz.end(), { p.x, p.y, p.z });
             ordered_json strands;
             strands["offsets"] = encodeUint32Array(c.offsets);
             strands["positions"] = encodeFloat32Array(xyz);
@@ -571,7 +597,8 @@ std::string projectToJson(const Project& project, const std::string& projectPath
     // Only what the artist changed: default entries, and default fields of an entry, are left out.
     // Compared by bits, so that -0 travels as -0.
     const StrandStyle unchanged;
-    const auto differs = [](float a, float b) { return std::bit_cast<std::uint32_t>(a) != std::bit_cast<std::uint32_t>(b); };
+    const auto differs
+        = [](float a, float b) { return std::bit_cast<std::uint32_t>(a) != std::bit_cast<std::uint32_t>(b); };
     ordered_json style = ordered_json::array();
     for (const auto& [identity, edit] : project.style) {
         if (edit.isDefault())
@@ -592,7 +619,7 @@ std::string projectToJson(const Project& project, const std::string& projectPath
             std::vector<float> xyz;
             xyz.reserve(edit.shape.size() * 3);
             for (const glm::vec3& p : edit.shape)
-                xyz.insert(xyz.end(), {p.x, p.y, p.z});
+                xyz.insert(xyz.end(), { p.x, p.y, p.z });
             entry["shape"] = encodeFloat32Array(xyz);
         }
         style.push_back(std::move(entry));
@@ -614,11 +641,11 @@ Result<ProjectReadResult> readProject(const std::string& path, const HeadLoader&
 {
     std::string text;
     try {
-        text = readWholeFile(path, kMaxProjectBytes, "project");
+        text = readRegularFileOrFail(path, { kMaxProjectBytes, "project", true });
     } catch (const Refusal& refusal) {
-        return IoError{path, refusal.location, refusal.message};
+        return IoError{ path, refusal.location, refusal.message };
     } catch (const std::bad_alloc&) {
-        return IoError{path, "", "not enough memory to read the project"};
+        return IoError{ path, "", "not enough memory to read the project" };
     }
     return parseProject(text, path, loadHead);
 }
@@ -632,37 +659,36 @@ Result<ProjectReadResult> parseProject(std::string_view text, const std::string&
         // The same check as Open Head and wisp-cli: a flat or absurdly large head is refused
         // before the editor builds its BVH, collider and groom on it.
         if (std::string problem = checkPlacedHead(project.head); !problem.empty())
-            throw Refusal{"head", problem};
-        return ProjectReadResult{std::move(project), warnings.take()};
+            throw Refusal{ "head", problem };
+        return ProjectReadResult{ std::move(project), warnings.take() };
     } catch (const Refusal& refusal) {
-        return IoError{path, refusal.location, refusal.message};
-    } catch (const json::exception& e) {  // a check above missed a case: still an error, not a crash
-        return IoError{path, "", withoutJsonPrefix(e.what())};
+        return IoError{ path, refusal.location, refusal.message };
+    } catch (const json::exception& e) { // a check above missed a case: still an error, not a crash
+        return IoError{ path, "", withoutJsonPrefix(e.what()) };
     } catch (const std::bad_alloc&) {
-        return IoError{path, "", "not enough memory to read the project"};
+        return IoError{ path, "", "not enough memory to read the project" };
     }
 }
 
-Result<std::monostate> writeProject(const std::string& path, const Project& project, Backup backup)
+Result<void> writeProject(const std::string& path, const Project& project, Backup backup)
 {
     try {
         checkProject(project);
     } catch (const Refusal& refusal) {
-        return IoError{path, refusal.location, "not saved: " + refusal.message};
+        return IoError{ path, refusal.location, "not saved: " + refusal.message };
     }
     const std::string text = projectToJson(project, path);
     std::error_code error;
     if (fs::is_directory(path, error))
-        return IoError{path, "", "this is a folder; a project is saved as a file"};
+        return IoError{ path, "", "this is a folder; a project is saved as a file" };
     // The backup sits beside the file a symbolic link at `path` leads to, as the new content does.
     if (backup == Backup::Keep && fs::exists(path, error)) {
         const std::string target = writeTargetOf(path);
-        if (std::string failure = keepCopyAtomically(target, target + ".bak"); !failure.empty())
-            return IoError{path, "", "cannot keep the previous file as .bak (" + failure + "); nothing was saved"};
+        if (const Result<void> kept = keepCopyAtomically(target, target + ".bak"); !kept)
+            return IoError{ path, "",
+                "cannot keep the previous file as .bak (" + kept.error().toString() + "); nothing was saved" };
     }
-    if (std::string failure = writeFileAtomically(path, [&](std::ostream& out) { out << text; }); !failure.empty())
-        return IoError{path, "", withoutPath(std::move(failure), path)};
-    return std::monostate{};
+    return writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 
-}  // namespace wisp::io
+} // namespace wisp::io

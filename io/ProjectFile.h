@@ -38,9 +38,9 @@
 // the same double, so a write followed by a read gives bit-identical numbers.
 //
 // Reading validates everything and refuses with the key path, as presets do ("regions[0].weights:
-// 641 weights for a head of 642 vertices", "style[3]: strand 4294967298: wetness 3 is outside 0..1"); unknown keys are ignored with a warning. A region's
-// `values` holds only its Wisp-group parameters (GrowthRegion.h): the others read as defaults.
-// Writing refuses a project that reading would refuse, so every saved file opens again.
+// 641 weights for a head of 642 vertices", "style[3]: strand 4294967298: wetness 3 is outside 0..1"); unknown keys are
+// ignored with a warning. A region's `values` holds only its Wisp-group parameters (GrowthRegion.h): the others read as
+// defaults. Writing refuses a project that reading would refuse, so every saved file opens again.
 //
 // Thread safety: any thread; no state. The head loader is called on the calling thread.
 
@@ -69,11 +69,11 @@ constexpr std::size_t kMaxProjectBytes = std::size_t(1) << 30;
 // The orbit camera: it looks at `pivot` from `distanceMetres` away, turned by yaw about +Y and
 // pitched above (positive) or below the horizontal.
 struct CameraState {
-    glm::vec3 pivot{0.0f};  // metres
+    glm::vec3 pivot{ 0.0f }; // metres
     float yawRadians = 0.0f;
     float pitchRadians = 0.0f;
-    float distanceMetres = 1.0f;  // > 0
-    float fovYDegrees = 35.0f;    // vertical field of view, 0..180 exclusive
+    float distanceMetres = 1.0f; // > 0
+    float fovYDegrees = 35.0f; // vertical field of view, 0..180 exclusive
 
     bool operator==(const CameraState&) const = default;
 };
@@ -82,25 +82,25 @@ inline constexpr float kMinDisplayDensity = 0.25f;
 inline constexpr float kMaxDisplayDensity = 4.0f;
 
 struct Project {
-    TriangleMesh head;  // metres, as groomed: the source file's coordinates times headImportScale
+    TriangleMesh head; // metres, as groomed: the source file's coordinates times headImportScale
     // The file the head came from: "" for the built-in head. In memory an absolute path (readProject
     // returns one); a relative path is taken as relative to the project file's folder. The file
     // stores it relative to the project's folder, and the absolute path as a fallback.
     std::string headSource;
-    bool headEmbedded = true;  // the head's vertices and triangles are stored in the project; when
-                               // false, readProject loads headSource again (it must not be "")
+    bool headEmbedded = true; // the head's vertices and triangles are stored in the project; when
+                              // false, readProject loads headSource again (it must not be "")
     // How the import placed the file's vertices (io/HeadPlacement.h's HeadPlacement): a vertex p of
     // the file is at orient(p, headImportUp, headImportFront) * headImportScale + headImportOffset
     // in `head` (io/HeadOrientation.h). readProject redoes it for a referenced head; for an
     // embedded head it is only kept, so that a re-import can offer it. Files written before the
     // up axis was found from the shape hold "import_z_up" instead: true reads as +Z up, front -Y.
-    float headImportScale = 1.0f;          // metres per file unit (0.01 for centimetres)
-    glm::vec3 headImportOffset{0.0f};      // metres, added after turning and scaling
-    io::Axis headImportUp = io::Axis::PosY;     // the file's axis that became +Y
-    io::Axis headImportFront = io::Axis::PosZ;  // the file's axis that became +Z
-    ParameterValues parameters;    // all of them, written with every registry key
+    float headImportScale = 1.0f; // metres per file unit (0.01 for centimetres)
+    glm::vec3 headImportOffset{ 0.0f }; // metres, added after turning and scaling
+    io::Axis headImportUp = io::Axis::PosY; // the file's axis that became +Y
+    io::Axis headImportFront = io::Axis::PosZ; // the file's axis that became +Z
+    ParameterValues parameters; // all of them, written with every registry key
     std::vector<GrowthRegion> regions;
-    std::uint32_t soloRegion = kNoSolo;  // a region's id, or kNoSolo
+    std::uint32_t soloRegion = kNoSolo; // a region's id, or kNoSolo
     CameraState camera;
     // How many strands the viewport draws per simulated/groomed strand (render-time children,
     // widgets/HairChildren.h): kMinDisplayDensity..kMaxDisplayDensity. Older files: 1.
@@ -112,7 +112,7 @@ struct Project {
 
 struct ProjectReadResult {
     Project project;
-    std::vector<std::string> warnings;  // unknown keys; a referenced head found only at its old absolute path
+    std::vector<std::string> warnings; // unknown keys; a referenced head found only at its old absolute path
 };
 
 // Loads a head mesh file for a project whose head is not embedded. Given the absolute path; returns
@@ -127,8 +127,8 @@ Result<TriangleMesh> readHeadFile(const std::string& absolutePath);
 Result<ProjectReadResult> readProject(const std::string& path, const HeadLoader& loadHead = {});
 // The same for a project's text already in memory (an autosave, a test): `projectPath` names it in
 // errors and is where a relative head source is resolved from.
-Result<ProjectReadResult> parseProject(std::string_view json, const std::string& projectPath,
-                                       const HeadLoader& loadHead = {});
+Result<ProjectReadResult> parseProject(
+    std::string_view json, const std::string& projectPath, const HeadLoader& loadHead = {});
 
 // Atomic (io/AtomicFile.h); an existing file at `path` is first kept as path + ".bak" (replacing an
 // older .bak; where `path` is a symbolic link, beside the file it leads to, which gets the new
@@ -136,11 +136,10 @@ Result<ProjectReadResult> parseProject(std::string_view json, const std::string&
 // left; a process killed while saving leaves the old or the new file and a temporary that
 // removeStaleTemporaryFiles takes away.
 // `backup` false writes no .bak (autosaves: the atomic write is enough, and a .bak would outlive them).
-// (std::monostate stands for "nothing": IoError.h has no Result<void> yet.)
 enum class Backup { Keep, None };
-Result<std::monostate> writeProject(const std::string& path, const Project& project, Backup backup = Backup::Keep);
+Result<void> writeProject(const std::string& path, const Project& project, Backup backup = Backup::Keep);
 
 // The text writeProject writes; `projectPath` decides the relative head source.
 std::string projectToJson(const Project& project, const std::string& projectPath);
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -16,7 +16,7 @@
 namespace wisp::io {
 
 // Writes atomically: to a temporary file beside `path`, then renamed over it.
-std::string writeStrandText(const std::string& path, const HairCurves& curves);  // empty on success
+Result<void> writeStrandText(const std::string& path, const HairCurves& curves);
 Result<HairCurves> readStrandText(const std::string& path);
 
-}  // namespace wisp::io
+} // namespace wisp::io

@@ -13,8 +13,8 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build pkg-config
   qt6-base-dev libqt6opengl6-dev libgl-dev libgl1-mesa-dri
-  libglm-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev
-  libgtest-dev libbenchmark-dev
+  libglm-dev nlohmann-json3-dev
+  libgtest-dev libbenchmark-dev clang-format
   xvfb xauth
 )
 # Only the fuzz build uses clang (libFuzzer); every other build is g++.

@@ -1,4 +1,5 @@
 #include "sim/Parameters.h"
+#include "sim/NumberText.h"
 
 #include "sim/ScalpBrush.h"
 #include "sim/StyleEdits.h"
@@ -96,13 +97,6 @@ constexpr bool tableIsInOrder()
     return true;
 }
 static_assert(tableIsInOrder(), "kParameters must list the parameters in the order of enum Param");
-
-std::string formatNumber(double v)
-{
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.6g", v);
-    return buffer;
-}
 
 }  // namespace
 

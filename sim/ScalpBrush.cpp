@@ -1,4 +1,5 @@
 #include "sim/ScalpBrush.h"
+#include "sim/NumberText.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -20,14 +21,6 @@ constexpr std::size_t kMaxCells = std::size_t(1) << 20;
 
 bool isFinite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
-std::string formatNumber(float v)
-{
-    if (std::isnan(v))
-        return "nan";  // glibc prints "-nan" for a NaN with its sign bit set
-    char buffer[32];
-    std::snprintf(buffer, sizeof buffer, "%.6g", static_cast<double>(v));
-    return buffer;
-}
 
 std::string checkRange(const char* field, float value, float minimum, float maximum, const char* unit)
 {

@@ -73,8 +73,8 @@ int runConvert(int argc, char** argv)
     HairCurves strands = std::move(hair).value().strands;
     for (glm::vec3& p : strands.positions)
         p *= static_cast<float>(scale);
-    if (const auto error = io::writeHair(out, strands, export_))
-        throw CliError{kBadInput, error->toString()};
+    if (const io::Result<void> written = io::writeHair(out, strands, export_); !written)
+        throw CliError{kBadInput, written.error().toString()};
     std::cout << "converted " << strands.strandCount() << " strands (" << strands.positions.size() << " points) from "
               << in << " to " << out << "\n";
     return kSuccess;

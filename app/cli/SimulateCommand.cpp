@@ -231,15 +231,15 @@ int runSimulate(int argc, char** argv)
             sim.buildFrame(curves);
         }
         if (const auto out = args.text("out")) {
-            if (std::string writeError = io::writeStrandText(*out, curves); !writeError.empty())
-                throw CliError{kBadInput, writeError};
+            if (const io::Result<void> written = io::writeStrandText(*out, curves); !written)
+                throw CliError{kBadInput, written.error().toString()};
             std::cout << "wrote " << curves.strandCount() << " strands to " << *out << "\n";
         }
         if (const auto out = args.text("export")) {
             io::HairExportOptions options;
             options.head = &sim.head();
-            if (const auto writeError = io::writeHair(*out, curves, options))
-                throw CliError{kBadInput, writeError->toString()};
+            if (const io::Result<void> written = io::writeHair(*out, curves, options); !written)
+                throw CliError{kBadInput, written.error().toString()};
             std::cout << "exported " << curves.strandCount() << " strands to " << *out << "\n";
         }
     }

@@ -240,8 +240,8 @@ QString FileMenu::exportHair(const QString& path, bool restPose, bool keysOnly)
     const HairCurves strands = strandsForExport(*frame, {restPose, keysOnly});
     io::HairExportOptions options;
     options.head = &m_document->head();
-    if (const auto error = io::writeHair(path.toStdString(), strands, options))
-        return QString::fromStdString(error->toString());
+    if (const io::Result<void> written = io::writeHair(path.toStdString(), strands, options); !written)
+        return QString::fromStdString(written.error().toString());
     emit message(tr("Exported %1 strands to %2").arg(strands.strandCount()).arg(QDir::toNativeSeparators(path)));
     return {};
 }

@@ -20,10 +20,10 @@ QString writePngAtomically(const QString& path, const QImage& image)
     buffer.open(QIODevice::WriteOnly);
     if (!image.save(&buffer, "PNG"))
         return path + QStringLiteral(": could not encode the image as PNG");
-    const std::string error = io::writeFileAtomically(path.toStdString(), [&bytes](std::ostream& out) {
+    const io::Result<void> written = io::writeFileAtomically(path.toStdString(), [&bytes](std::ostream& out) {
         out.write(bytes.constData(), static_cast<std::streamsize>(bytes.size()));
     });
-    return QString::fromStdString(error);
+    return written ? QString() : QString::fromStdString(written.error().toString());
 }
 
 QString turntableFramePath(const QString& path, int index, int frames)

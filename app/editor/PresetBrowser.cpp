@@ -303,7 +303,7 @@ bool PresetBrowser::savePreset(const QString& name, bool overwrite)
         emit message(tr("Cannot create the folder %1").arg(QDir::toNativeSeparators(userFolder())));
         return false;
     }
-    const io::Result<std::monostate> written = io::writePreset(path.toStdString(), m_document->toPreset(trimmed));
+    const io::Result<void> written = io::writePreset(path.toStdString(), m_document->toPreset(trimmed));
     if (!written) {
         emit message(tr("Cannot save the preset: %1").arg(QString::fromStdString(written.error().toString())));
         return false;

@@ -138,7 +138,10 @@ void ProjectController::claimSession()
 void ProjectController::writeLock()
 {
     const QByteArray text = QByteArray::number(static_cast<qint64>(::getpid())) + '\n' + m_path.toUtf8() + '\n';
-    io::writeFileAtomically(sessionLockPath().toStdString(), [&](std::ostream& out) { out.write(text.data(), text.size()); });
+    // Best effort: a lock that cannot be written only means that a crash offers no recovery; the
+    // artist's saves do not depend on it, so there is nothing to tell them.
+    static_cast<void>(io::writeFileAtomically(sessionLockPath().toStdString(),
+                                              [&](std::ostream& out) { out.write(text.data(), text.size()); }));
 }
 
 QString ProjectController::sessionLockPath() const

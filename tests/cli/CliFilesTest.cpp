@@ -4,6 +4,7 @@
 #include "io/HairFiles.h"
 
 #include "CliRunner.h"
+#include "../SharedAssets.h"
 
 #include <gtest/gtest.h>
 
@@ -20,15 +21,14 @@ using wisp::test::CliRun;
 
 namespace {
 
-const fs::path kAssets = WISP_SHARED_ASSETS;
+const fs::path kAssets = wisp::test::sharedAssetsDir();
 const fs::path kPresets = WISP_PRESETS_DIR;
 
 class CliFiles : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        if (!fs::exists(kAssets / "hair"))
-            GTEST_SKIP() << "the shared test assets are not at " << kAssets;
+        REQUIRE_SHARED_ASSET(kAssets / "hair");
         dir = fs::temp_directory_path() / ("wisp-cli-files-" + std::to_string(::getpid()));
         fs::create_directories(dir);
     }

@@ -7,6 +7,7 @@
 #include "io/StrandText.h"
 
 #include "CliRunner.h"
+#include "../SharedAssets.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -22,14 +23,13 @@ using wisp::test::CliRun;
 
 namespace {
 
-const fs::path kAssets = WISP_SHARED_ASSETS;
+const fs::path kAssets = wisp::test::sharedAssetsDir();
 
 class CliPlacement : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        if (!fs::exists(kAssets / "hair"))
-            GTEST_SKIP() << "the shared test assets are not at " << kAssets;
+        REQUIRE_SHARED_ASSET(kAssets / "hair");
         dir = fs::temp_directory_path() / ("wisp-cli-placement-" + std::to_string(::getpid()));
         fs::create_directories(dir);
     }
@@ -99,7 +99,7 @@ TEST_F(CliPlacement, AGroomInCentimetresIsScaledToMetres)
     for (glm::vec3& p : centimetres.positions)
         p *= 0.1f;
     const fs::path data = dir / "bangs_cm.data", out = dir / "rest.txt";
-    ASSERT_FALSE(io::writeHair(data.string(), centimetres));
+    ASSERT_TRUE(io::writeHair(data.string(), centimetres));
     const CliRun run = cli("simulate --steps 0 --rest --hair " + data.string() + " --out " + out.string());
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_NE(run.output.find("strands in centimetres"), std::string::npos) << run.output;

@@ -10,6 +10,7 @@
 #include "app/editor/ProjectController.h"
 #include "app/editor/SimulationHost.h"
 #include "GuiTestSupport.h"
+#include "../SharedAssets.h"
 #include "io/HairFiles.h"
 #include "io/ProjectFile.h"
 #include "sim/MeshBvh.h"
@@ -42,7 +43,7 @@ using namespace wisp::test;
 
 namespace {
 
-const std::filesystem::path kAssets = WISP_SHARED_ASSETS;
+const std::filesystem::path kAssets = wisp::test::sharedAssetsDir();
 
 // Presses `button` on the next message box that opens (the prompt runs its own event loop).
 void answerNextMessageBox(QMessageBox::StandardButton button, bool* asked)
@@ -347,8 +348,7 @@ TEST_F(ProjectFilesTest, TemporariesOfKilledSavesAreRemovedAtStartButNotThoseOfL
 TEST_F(ProjectFilesTest, AHeadOpensOnAWorkerThreadAtItsUnitAndTheWindowKeepsDrawing)
 {
     const std::string planck = (kAssets / "heads/max_planck_decimated.obj").string();
-    if (!std::filesystem::exists(planck))
-        GTEST_SKIP() << "the shared assets are not at " << kAssets;
+    REQUIRE_SHARED_ASSET(planck);
     const std::uint64_t groomBefore = window->simulation()->latestFrame()->groomVersion;
     QSignalSpy headChanged(doc(), &Document::headChanged);
     QSignalSpy refused(window->fileMenu()->headImporter(), &HeadImporter::failed);
@@ -398,8 +398,7 @@ TEST_F(ProjectFilesTest, AHeadOpensOnAWorkerThreadAtItsUnitAndTheWindowKeepsDraw
 TEST_F(ProjectFilesTest, ImportedHairBecomesASimulatedRegionAndExportsBack)
 {
     const std::string bangs = (kAssets / "hair/ct2hair_bangs100.data").string();
-    if (!std::filesystem::exists(bangs))
-        GTEST_SKIP() << "the shared assets are not at " << kAssets;
+    REQUIRE_SHARED_ASSET(bangs);
     ASSERT_EQ(window->fileMenu()->importHair(QString::fromStdString(bangs)), QString());
     ASSERT_EQ(doc()->regionCount(), 2);
     ASSERT_TRUE(doc()->region(1).importedStrands);
@@ -435,8 +434,8 @@ TEST_F(ProjectFilesTest, HairImportedAfterItsHeadLandsOnItsScalp)
 {
     const std::string head = (kAssets / "hair/ct2hair_bangs_head.ply").string();
     const std::string bangs = (kAssets / "hair/ct2hair_bangs100.data").string();
-    if (!std::filesystem::exists(head))
-        GTEST_SKIP() << "the shared assets are not at " << kAssets;
+    REQUIRE_SHARED_ASSET(head);
+    REQUIRE_SHARED_ASSET(bangs);
     QSignalSpy said(window->fileMenu(), &FileMenu::message);
     QSignalSpy headChanged(doc(), &Document::headChanged);
     QSignalSpy refused(window->fileMenu()->headImporter(), &HeadImporter::failed);

@@ -26,6 +26,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The error as one line ("PATH: what went wrong"), or "" on success.
+std::string messageOf(const Result<void>& written)
+{
+    return written ? std::string() : written.error().toString();
+}
+
 void put(const fs::path& path, const std::string& text)
 {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
@@ -94,7 +100,7 @@ TEST(AtomicFile, KillDuringAWriteLeavesTheOldFileAndTheNextStartRemovesOnlyDeadW
         // then waits (still inside the write) for a byte that never comes: it is killed mid-write.
         ::close(ready[0]);
         ::close(never[1]);
-        writeFileAtomically(target.string(), [&](std::ostream& out) {
+        static_cast<void>(writeFileAtomically(target.string(), [&](std::ostream& out) {
             const std::string block(1 << 20, 'x');
             for (int i = 0; i < 8; ++i)
                 out << block;
@@ -105,7 +111,7 @@ TEST(AtomicFile, KillDuringAWriteLeavesTheOldFileAndTheNextStartRemovesOnlyDeadW
             char nothing;
             while (::read(never[0], &nothing, 1) != 0) { }
             out << "never";
-        });
+        }));
         ::_exit(0); // only when the parent died first
     }
     ::close(ready[1]);
@@ -170,7 +176,7 @@ TEST(AtomicFile, NothingPlantedAtATemporaryNameRedirectsTheWrite)
     put(dir / ("look.wisp.bbbbbbbbbbbbbbbb.tmp-" + pid), "someone else's");
     {
         NameSequence names({ "aaaaaaaaaaaaaaaa", "bbbbbbbbbbbbbbbb", "cccccccccccccccc" });
-        ASSERT_EQ(writeFileAtomically(target.string(), [](std::ostream& out) { out << "new"; }), "");
+        ASSERT_TRUE(writeFileAtomically(target.string(), [](std::ostream& out) { out << "new"; }));
     }
     EXPECT_EQ(slurp(target), "new");
     EXPECT_EQ(slurp(victim), "must stay");
@@ -183,7 +189,7 @@ TEST(AtomicFile, NothingPlantedAtATemporaryNameRedirectsTheWrite)
     fs::create_symlink(victim, dir / ("look.wisp.bak.dddddddddddddddd.tmp-" + pid));
     {
         NameSequence names({ "dddddddddddddddd", "eeeeeeeeeeeeeeee" });
-        ASSERT_EQ(keepCopyAtomically(target.string(), (dir / "look.wisp.bak").string()), "");
+        ASSERT_TRUE(keepCopyAtomically(target.string(), (dir / "look.wisp.bak").string()));
     }
     EXPECT_EQ(slurp(dir / "look.wisp.bak"), "new");
     EXPECT_EQ(slurp(victim), "must stay");
@@ -199,7 +205,7 @@ TEST(AtomicFile, ASymbolicLinkStaysALinkAndTheFileItLeadsToGetsTheContent)
     fs::create_symlink("real/look.wisp", dir / "hop.wisp"); // relative, as `ln -s` makes them
     fs::create_symlink(dir / "hop.wisp", dir / "look.wisp"); // two links in a row
 
-    ASSERT_EQ(writeFileAtomically((dir / "look.wisp").string(), [](std::ostream& out) { out << "new"; }), "");
+    ASSERT_TRUE(writeFileAtomically((dir / "look.wisp").string(), [](std::ostream& out) { out << "new"; }));
     EXPECT_TRUE(fs::is_symlink(dir / "look.wisp"));
     EXPECT_TRUE(fs::is_symlink(dir / "hop.wisp"));
     EXPECT_EQ(fs::read_symlink(dir / "hop.wisp"), fs::path("real/look.wisp"));
@@ -208,14 +214,15 @@ TEST(AtomicFile, ASymbolicLinkStaysALinkAndTheFileItLeadsToGetsTheContent)
 
     // A link to nowhere yet: the file appears where it points.
     fs::create_symlink("real/later.wisp", dir / "later.wisp");
-    ASSERT_EQ(writeFileAtomically((dir / "later.wisp").string(), [](std::ostream& out) { out << "made"; }), "");
+    ASSERT_TRUE(writeFileAtomically((dir / "later.wisp").string(), [](std::ostream& out) { out << "made"; }));
     EXPECT_TRUE(fs::is_symlink(dir / "later.wisp"));
     EXPECT_EQ(slurp(dir / "real" / "later.wisp"), "made");
 
     // A loop is refused by name, and nothing is written.
     fs::create_symlink("loop-b", dir / "loop-a");
     fs::create_symlink("loop-a", dir / "loop-b");
-    const std::string error = writeFileAtomically((dir / "loop-a").string(), [](std::ostream& out) { out << "x"; });
+    const std::string error
+        = messageOf(writeFileAtomically((dir / "loop-a").string(), [](std::ostream& out) { out << "x"; }));
     EXPECT_NE(error.find((dir / "loop-a").string() + ": "), std::string::npos) << error;
     EXPECT_NE(error.find("symbolic links"), std::string::npos) << error;
     fs::remove_all(dir);
@@ -228,17 +235,17 @@ TEST(AtomicFile, PermissionsOfTheReplacedFileAreKept)
         const fs::path path = dir / ("mode-" + std::to_string(mode));
         put(path, "old");
         ASSERT_EQ(::chmod(path.c_str(), mode), 0);
-        ASSERT_EQ(writeFileAtomically(path.string(), [](std::ostream& out) { out << "new"; }), "");
+        ASSERT_TRUE(writeFileAtomically(path.string(), [](std::ostream& out) { out << "new"; }));
         EXPECT_EQ(modeOf(path), mode) << std::oct << mode;
         EXPECT_EQ(slurp(path), "new");
 
         // A backup has the permissions of the file it keeps.
-        ASSERT_EQ(keepCopyAtomically(path.string(), path.string() + ".bak"), "");
+        ASSERT_TRUE(keepCopyAtomically(path.string(), path.string() + ".bak"));
         EXPECT_EQ(modeOf(path.string() + ".bak"), mode) << std::oct << mode;
     }
     // A new file: 0666 less the umask, as any program's.
     const mode_t mask = ::umask(022);
-    ASSERT_EQ(writeFileAtomically((dir / "new").string(), [](std::ostream& out) { out << "x"; }), "");
+    ASSERT_TRUE(writeFileAtomically((dir / "new").string(), [](std::ostream& out) { out << "x"; }));
     ::umask(mask);
     EXPECT_EQ(modeOf(dir / "new"), 0644u);
     fs::remove_all(dir);
@@ -251,10 +258,10 @@ TEST(AtomicFile, AFailedWriteLeavesTheOldFileAndNoTemporaryAndNamesThePath)
     put(target, "old");
 
     // The content cannot be made (the stream fails)...
-    std::string error = writeFileAtomically(target.string(), [](std::ostream& out) {
+    std::string error = messageOf(writeFileAtomically(target.string(), [](std::ostream& out) {
         out << "half";
         out.setstate(std::ios::failbit);
-    });
+    }));
     EXPECT_EQ(error.rfind(target.string() + ": writing failed", 0), 0u) << error;
     // ...or its maker throws.
     EXPECT_THROW(writeFileAtomically(target.string(),
@@ -268,13 +275,13 @@ TEST(AtomicFile, AFailedWriteLeavesTheOldFileAndNoTemporaryAndNamesThePath)
 
     // Only regular files are replaced: a link to a device is refused by name.
     fs::create_symlink("/dev/full", dir / "full.wisp");
-    error = writeFileAtomically((dir / "full.wisp").string(), [](std::ostream& out) { out << "x"; });
+    error = messageOf(writeFileAtomically((dir / "full.wisp").string(), [](std::ostream& out) { out << "x"; }));
     EXPECT_EQ(error.rfind((dir / "full.wisp").string() + ": ", 0), 0u) << error;
     EXPECT_NE(error.find("not a regular file"), std::string::npos) << error;
 
     // A folder that does not exist: the system's reason, naming the path.
     const fs::path missing = dir / "no-such-folder" / "look.wisp";
-    error = writeFileAtomically(missing.string(), [](std::ostream& out) { out << "x"; });
+    error = messageOf(writeFileAtomically(missing.string(), [](std::ostream& out) { out << "x"; }));
     EXPECT_EQ(error,
         missing.string() + ": cannot write there (No such file or directory, creating a temporary file in "
             + missing.parent_path().string() + ")");

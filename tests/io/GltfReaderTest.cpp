@@ -1,5 +1,5 @@
-#include "IoTestSupport.h"
 #include "io/GltfReader.h"
+#include "IoTestSupport.h"
 #include "io/MeshReader.h"
 
 #include <glm/geometric.hpp>
@@ -130,7 +130,7 @@ class GltfBuilder {
 public:
     GltfBuilder()
     {
-        root["asset"] = {{"version", "2.0"}};
+        root["asset"] = { { "version", "2.0" } };
         root["bufferViews"] = Json::array();
         root["accessors"] = Json::array();
         root["meshes"] = Json::array();
@@ -142,7 +142,7 @@ public:
     {
         while (m_buffer.size() % 4 != 0)
             m_buffer += '\0';
-        Json v = {{"buffer", 0}, {"byteOffset", m_buffer.size()}, {"byteLength", bytes.size()}};
+        Json v = { { "buffer", 0 }, { "byteOffset", m_buffer.size() }, { "byteLength", bytes.size() } };
         if (strideBytes > 0)
             v["byteStride"] = strideBytes;
         m_buffer += bytes;
@@ -153,7 +153,7 @@ public:
     int accessor(int viewIndex, int componentType, std::size_t count, const char* type, bool normalized = false)
     {
         Json a
-            = {{"bufferView", viewIndex}, {"componentType", componentType}, {"count", count}, {"type", type}};
+            = { { "bufferView", viewIndex }, { "componentType", componentType }, { "count", count }, { "type", type } };
         if (normalized)
             a["normalized"] = true;
         root["accessors"].push_back(a);
@@ -173,10 +173,10 @@ public:
 
     int mesh(int positions, int indexAccessor, int mode = 4)
     {
-        Json primitive = {{"attributes", {{"POSITION", positions}}}, {"mode", mode}};
+        Json primitive = { { "attributes", { { "POSITION", positions } } }, { "mode", mode } };
         if (indexAccessor >= 0)
             primitive["indices"] = indexAccessor;
-        root["meshes"].push_back({{"primitives", Json::array({primitive})}});
+        root["meshes"].push_back({ { "primitives", Json::array({ primitive }) } });
         return static_cast<int>(root["meshes"].size()) - 1;
     }
 
@@ -188,7 +188,7 @@ public:
 
     void scene(std::vector<int> roots)
     {
-        root["scenes"] = Json::array({{{"nodes", roots}}});
+        root["scenes"] = Json::array({ { { "nodes", roots } } });
         root["scene"] = 0;
     }
 
@@ -196,8 +196,8 @@ public:
     std::string gltf()
     {
         Json copy = root;
-        copy["buffers"] = Json::array(
-            {{{"byteLength", m_buffer.size()}, {"uri", "data:application/octet-stream;base64," + base64(m_buffer)}}});
+        copy["buffers"] = Json::array({ { { "byteLength", m_buffer.size() },
+            { "uri", "data:application/octet-stream;base64," + base64(m_buffer) } } });
         return copy.dump();
     }
 
@@ -205,7 +205,7 @@ public:
     std::string glb()
     {
         Json copy = root;
-        copy["buffers"] = Json::array({{{"byteLength", m_buffer.size()}}});
+        copy["buffers"] = Json::array({ { { "byteLength", m_buffer.size() } } });
         std::string json = copy.dump();
         while (json.size() % 4 != 0)
             json += ' ';
@@ -239,11 +239,11 @@ private:
 };
 
 // A unit square in the z = 0 plane as four corners, counter-clockwise seen from +Z.
-const std::vector<float> squareCorners = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+const std::vector<float> squareCorners = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0 };
 
 // A closed tetrahedron (outward winding), for winding checks under mirroring transforms.
-const std::vector<float> tetraCorners = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-const std::vector<std::uint16_t> tetraIndices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+const std::vector<float> tetraCorners = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+const std::vector<std::uint16_t> tetraIndices = { 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3 };
 
 } // namespace
 
@@ -265,10 +265,10 @@ TEST(GltfReader, BoxEmbeddedAppliesTheNodeMatrix)
     // (0.5, -0.5, 0.5), (-0.5, 0.5, 0.5), on the +Z face. The root node's matrix (columns
     // (1,0,0), (0,0,-1), (0,1,0)) maps (x, y, z) to (x, z, -y), so the face moves to +Y.
     const glm::uvec3 first = mesh.triangles[0];
-    expectNear(mesh.positions[first.x], {-0.5f, 0.5f, 0.5f}, 1e-6f, "corner 0");
-    expectNear(mesh.positions[first.y], {0.5f, 0.5f, 0.5f}, 1e-6f, "corner 1");
-    expectNear(mesh.positions[first.z], {-0.5f, 0.5f, -0.5f}, 1e-6f, "corner 2");
-    expectNear(faceNormal(mesh, 0), {0.0f, 1.0f, 0.0f}, 1e-6f, "normal of the first triangle");
+    expectNear(mesh.positions[first.x], { -0.5f, 0.5f, 0.5f }, 1e-6f, "corner 0");
+    expectNear(mesh.positions[first.y], { 0.5f, 0.5f, 0.5f }, 1e-6f, "corner 1");
+    expectNear(mesh.positions[first.z], { -0.5f, 0.5f, -0.5f }, 1e-6f, "corner 2");
+    expectNear(faceNormal(mesh, 0), { 0.0f, 1.0f, 0.0f }, 1e-6f, "normal of the first triangle");
     // A unit cube wound outward.
     EXPECT_NEAR(signedVolume(mesh), 1.0, 1e-6);
     // The sample keeps glTF 1.0's accessor byteStride (Khronos' validator: UNEXPECTED_PROPERTY);
@@ -286,7 +286,7 @@ TEST(GltfReader, BoxTexturedGlbEmbeddedAndExternalGiveTheSameTriangles)
     REQUIRE_ASSET(embedded);
     REQUIRE_ASSET(external);
     std::vector<TriangleMesh> meshes;
-    for (const fs::path& path : {glb, embedded, external}) {
+    for (const fs::path& path : { glb, embedded, external }) {
         const Result<MeshReadResult> read = readMesh(path.string());
         ASSERT_TRUE(read.ok()) << read.error().toString();
         meshes.push_back(read.value().mesh);
@@ -342,8 +342,8 @@ TEST(GltfReader, SparseAccessorReplacesPositions)
     EXPECT_EQ(mesh.vertexCount(), 14u);
     // The first triangle is (0, 8, 7). Element 8 is (1, 1, 0) in the bufferView and (1, 2, 0)
     // after the sparse substitution (elements 8, 10 and 12 are replaced).
-    expectNear(mesh.positions[mesh.triangles[0].y], {1.0f, 2.0f, 0.0f}, 0.0f, "sparse element 8");
-    expectNear(mesh.positions[mesh.triangles[0].z], {0.0f, 1.0f, 0.0f}, 0.0f, "element 7, not replaced");
+    expectNear(mesh.positions[mesh.triangles[0].y], { 1.0f, 2.0f, 0.0f }, 0.0f, "sparse element 8");
+    expectNear(mesh.positions[mesh.triangles[0].z], { 0.0f, 1.0f, 0.0f }, 0.0f, "element 7, not replaced");
     const Aabb box = boundsOf(mesh);
     EXPECT_FLOAT_EQ(box.max.y, 4.0f); // element 12 became (5, 4, 0)
 }
@@ -394,8 +394,8 @@ TEST(GltfReader, TwoCylinderEngineHasEveryPrimitiveWithItsNodeTransform)
     // script (Python, float64). Without the transforms they would be
     // (-330.44, -199.18, -230.00) to (211.16, 469.65, 147.69).
     const Aabb box = boundsOf(mesh);
-    expectNear(box.min, {-371.69226f, -180.97156f, -139.99999f}, 2e-3f, "lower bounds");
-    expectNear(box.max, {371.69217f, 92.04156f, 128.0f}, 2e-3f, "upper bounds");
+    expectNear(box.min, { -371.69226f, -180.97156f, -139.99999f }, 2e-3f, "lower bounds");
+    expectNear(box.max, { 371.69217f, 92.04156f, 128.0f }, 2e-3f, "upper bounds");
 }
 
 TEST(GltfReader, InterleavedSkinnedMeshReadsItsPositions)
@@ -456,28 +456,28 @@ TEST(GltfReader, ValidatorGlbSuiteGivesAClearOutcomeForEveryFile)
     REQUIRE_ASSET(folder);
     // File -> what the message must say ("" for files the validator finds valid).
     const std::map<std::string, std::string> expected = {
-        {"bom.glb", ""}, // the validator objects to the byte-order mark; we skip it with a warning
-        {"empty_file.glb", "empty"},
-        {"empty_json_chunk.glb", "JSON chunk is empty"},
-        {"empty_json_object.glb", "'asset'"},
-        {"extra_data.glb", ""},
-        {"invalid_json_chunk.glb", "invalid JSON"},
-        {"invalid_magic.glb", "does not start with 'glTF'"},
-        {"invalid_version.glb", "GLB version 0"},
-        {"json_and_two_buffers.glb", "second BIN chunk"},
-        {"misplaced_bin_chunk.glb", "BIN chunk must directly follow"},
-        {"no_header.glb", "too short"},
-        {"only_bin_chunk.glb", "first chunk must be JSON"},
-        {"only_header.glb", "too small"},
-        {"truncated_chunk_header.glb", "too small"},
-        {"two_empty_bin_chunks.glb", "first chunk must be JSON"},
-        {"two_empty_json_chunks.glb", "JSON chunk is empty"},
-        {"two_images.glb", ""},
-        {"two_valid_json_chunks.glb", "second JSON chunk"},
-        {"unknown_chunk.glb", "first chunk must be JSON"},
-        {"valid.glb", ""},
-        {"valid_buffer.glb", ""},
-        {"zero_length.glb", "too small"},
+        { "bom.glb", "" }, // the validator objects to the byte-order mark; we skip it with a warning
+        { "empty_file.glb", "empty" },
+        { "empty_json_chunk.glb", "JSON chunk is empty" },
+        { "empty_json_object.glb", "'asset'" },
+        { "extra_data.glb", "" },
+        { "invalid_json_chunk.glb", "invalid JSON" },
+        { "invalid_magic.glb", "does not start with 'glTF'" },
+        { "invalid_version.glb", "GLB version 0" },
+        { "json_and_two_buffers.glb", "second BIN chunk" },
+        { "misplaced_bin_chunk.glb", "BIN chunk must directly follow" },
+        { "no_header.glb", "too short" },
+        { "only_bin_chunk.glb", "first chunk must be JSON" },
+        { "only_header.glb", "too small" },
+        { "truncated_chunk_header.glb", "too small" },
+        { "two_empty_bin_chunks.glb", "first chunk must be JSON" },
+        { "two_empty_json_chunks.glb", "JSON chunk is empty" },
+        { "two_images.glb", "" },
+        { "two_valid_json_chunks.glb", "second JSON chunk" },
+        { "unknown_chunk.glb", "first chunk must be JSON" },
+        { "valid.glb", "" },
+        { "valid_buffer.glb", "" },
+        { "zero_length.glb", "too small" },
     };
     std::size_t seen = 0;
     for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
@@ -485,7 +485,7 @@ TEST(GltfReader, ValidatorGlbSuiteGivesAClearOutcomeForEveryFile)
             continue;
         const std::string name = entry.path().filename().string();
         SCOPED_TRACE(name);
-        const Result<MeshReadResult> read = readMesh(entry.path().string());  // returns at all: no hang on bad input
+        const Result<MeshReadResult> read = readMesh(entry.path().string()); // returns at all: no hang on bad input
         const auto it = expected.find(name);
         ASSERT_NE(it, expected.end()) << "a new file in validator_glb/: add its expected outcome here";
         ++seen;
@@ -534,9 +534,9 @@ TEST(GltfReader, TruncatedGlbNeverCrashes)
     const std::string engineBytes = slurp(engine);
     std::uint32_t jsonBytes = 0;
     std::memcpy(&jsonBytes, engineBytes.data() + 12, 4);
-    for (std::size_t length : {std::size_t{12}, std::size_t{19}, std::size_t{20}, std::size_t{21},
-                               std::size_t{20} + jsonBytes / 2, std::size_t{20} + jsonBytes, std::size_t{28} + jsonBytes,
-                               engineBytes.size() / 2, engineBytes.size() - 4, engineBytes.size() - 1}) {
+    for (std::size_t length : { std::size_t{ 12 }, std::size_t{ 19 }, std::size_t{ 20 }, std::size_t{ 21 },
+             std::size_t{ 20 } + jsonBytes / 2, std::size_t{ 20 } + jsonBytes, std::size_t{ 28 } + jsonBytes,
+             engineBytes.size() / 2, engineBytes.size() - 4, engineBytes.size() - 1 }) {
         const fs::path cut = dir.write("cut_engine.glb", engineBytes.substr(0, length));
         const Result<MeshReadResult> read = readMesh(cut.string());
         ASSERT_FALSE(read.ok()) << "cut at " << length;
@@ -571,20 +571,20 @@ TEST(GltfReader, CorruptedBytesNeverCrash)
 TEST(GltfReader, StripsAndFansBecomeTrianglesWithOneWinding)
 {
     TempDir dir;
-    for (int mode : {5, 6}) {
+    for (int mode : { 5, 6 }) {
         GltfBuilder b;
         const int positions = b.floats(squareCorners);
         // Strip 0 1 3 2 and fan 0 1 2 3 both cover the square with two counter-clockwise triangles.
         const int indices
-            = mode == 5 ? b.indices<std::uint8_t>({0, 1, 3, 2}) : b.indices<std::uint8_t>({0, 1, 2, 3});
-        b.node({{"mesh", b.mesh(positions, indices, mode)}});
-        b.scene({0});
+            = mode == 5 ? b.indices<std::uint8_t>({ 0, 1, 3, 2 }) : b.indices<std::uint8_t>({ 0, 1, 2, 3 });
+        b.node({ { "mesh", b.mesh(positions, indices, mode) } });
+        b.scene({ 0 });
         const Result<MeshReadResult> read = readMesh(dir.write("mode.gltf", b.gltf()).string());
         ASSERT_TRUE(read.ok()) << read.error().toString();
         const TriangleMesh& mesh = read.value().mesh;
         ASSERT_EQ(mesh.triangleCount(), 2u) << "mode " << mode;
         for (std::uint32_t t = 0; t < 2; ++t)
-            expectNear(faceNormal(mesh, t), {0, 0, 1}, 1e-6f, "mode " + std::to_string(mode));
+            expectNear(faceNormal(mesh, t), { 0, 0, 1 }, 1e-6f, "mode " + std::to_string(mode));
         EXPECT_NEAR(triangleArea(mesh, 0) + triangleArea(mesh, 1), 1.0f, 1e-6f);
     }
 }
@@ -594,14 +594,14 @@ TEST(GltfReader, PointsAndLinesAreSkippedWithAWarning)
     TempDir dir;
     GltfBuilder b;
     const int positions = b.floats(squareCorners);
-    const int triangles = b.indices<std::uint16_t>({0, 1, 2, 0, 2, 3});
-    const Json pointPrimitive = {{"attributes", {{"POSITION", positions}}}, {"mode", 0}};
-    const Json linePrimitive = {{"attributes", {{"POSITION", positions}}}, {"mode", 1}};
-    const Json trianglePrimitive = {{"attributes", {{"POSITION", positions}}}, {"indices", triangles}};
-    const Json mesh = {{"primitives", Json::array({pointPrimitive, linePrimitive, trianglePrimitive})}};
+    const int triangles = b.indices<std::uint16_t>({ 0, 1, 2, 0, 2, 3 });
+    const Json pointPrimitive = { { "attributes", { { "POSITION", positions } } }, { "mode", 0 } };
+    const Json linePrimitive = { { "attributes", { { "POSITION", positions } } }, { "mode", 1 } };
+    const Json trianglePrimitive = { { "attributes", { { "POSITION", positions } } }, { "indices", triangles } };
+    const Json mesh = { { "primitives", Json::array({ pointPrimitive, linePrimitive, trianglePrimitive }) } };
     b.root["meshes"].push_back(mesh);
-    b.node({{"mesh", 0}});
-    b.scene({0});
+    b.node({ { "mesh", 0 } });
+    b.scene({ 0 });
     const Result<MeshReadResult> read = readMesh(dir.write("mixed.gltf", b.gltf()).string());
     ASSERT_TRUE(read.ok()) << read.error().toString();
     EXPECT_EQ(read.value().mesh.triangleCount(), 2u);
@@ -610,8 +610,8 @@ TEST(GltfReader, PointsAndLinesAreSkippedWithAWarning)
 
     // Only points: no triangles at all is an error that says so.
     GltfBuilder onlyPoints;
-    onlyPoints.node({{"mesh", onlyPoints.mesh(onlyPoints.floats(squareCorners), -1, 0)}});
-    onlyPoints.scene({0});
+    onlyPoints.node({ { "mesh", onlyPoints.mesh(onlyPoints.floats(squareCorners), -1, 0) } });
+    onlyPoints.scene({ 0 });
     const Result<MeshReadResult> points = readMesh(dir.write("points.gltf", onlyPoints.gltf()).string());
     ASSERT_FALSE(points.ok());
     EXPECT_EQ(points.error().message.rfind("no triangles", 0), 0u) << points.error().toString();
@@ -627,9 +627,9 @@ TEST(GltfReader, TranslationRotationScaleComposeDownTheHierarchy)
     // Parent: moves everything +10 in x.
     const double s = std::sqrt(0.5);
     const int child = b.node(
-        {{"mesh", mesh}, {"scale", {2, 2, 2}}, {"rotation", {0, s, 0, s}}, {"translation", {0, 1, 0}}});
-    const int parent = b.node({{"children", {child}}, {"translation", {10, 0, 0}}});
-    b.scene({parent});
+        { { "mesh", mesh }, { "scale", { 2, 2, 2 } }, { "rotation", { 0, s, 0, s } }, { "translation", { 0, 1, 0 } } });
+    const int parent = b.node({ { "children", { child } }, { "translation", { 10, 0, 0 } } });
+    b.scene({ parent });
     const Result<MeshReadResult> read = readMesh(dir.write("trs.gltf", b.gltf()).string());
     ASSERT_TRUE(read.ok()) << read.error().toString();
     const TriangleMesh& m = read.value().mesh;
@@ -647,8 +647,8 @@ TEST(GltfReader, MirroringTransformKeepsTrianglesOutward)
     TempDir dir;
     GltfBuilder b;
     const int mesh = b.mesh(b.floats(tetraCorners), b.indices(tetraIndices));
-    b.node({{"mesh", mesh}, {"scale", {-1, 1, 1}}});
-    b.scene({0});
+    b.node({ { "mesh", mesh }, { "scale", { -1, 1, 1 } } });
+    b.scene({ 0 });
     const Result<MeshReadResult> read = readMesh(dir.write("mirror.gltf", b.gltf()).string());
     ASSERT_TRUE(read.ok()) << read.error().toString();
     EXPECT_NEAR(signedVolume(read.value().mesh), 1.0 / 6.0, 1e-6);
@@ -659,8 +659,8 @@ TEST(GltfReader, InstancedMeshIsMergedOncePerNodeAndSceneLessFilesUseRootNodes)
     TempDir dir;
     GltfBuilder b;
     const int mesh = b.mesh(b.floats(tetraCorners), b.indices(tetraIndices));
-    b.node({{"mesh", mesh}});
-    b.node({{"mesh", mesh}, {"translation", {5, 0, 0}}});
+    b.node({ { "mesh", mesh } });
+    b.node({ { "mesh", mesh }, { "translation", { 5, 0, 0 } } });
     // No scenes: both nodes are roots.
     const Result<MeshReadResult> read = readMesh(dir.write("twice.glb", b.glb()).string());
     ASSERT_TRUE(read.ok()) << read.error().toString();
@@ -674,18 +674,18 @@ TEST(GltfReader, QuantizedAndNormalizedPositionsAndByteStride)
     TempDir dir;
     GltfBuilder b;
     // Positions as normalized unsigned shorts, 8 bytes apart (6 used, 2 padding): 65535 is 1.0.
-    std::vector<std::uint16_t> packed = {0, 0, 0, 0, 65535, 0, 0, 0, 65535, 65535, 0, 0, 0, 65535, 0, 0};
+    std::vector<std::uint16_t> packed = { 0, 0, 0, 0, 65535, 0, 0, 0, 65535, 65535, 0, 0, 0, 65535, 0, 0 };
     const int view = b.view(GltfBuilder::bytesOf(packed), 8);
     const int positions = b.accessor(view, 5123, 4, "VEC3", true);
-    b.node({{"mesh", b.mesh(positions, b.indices<std::uint32_t>({0, 1, 2, 0, 2, 3}))}});
-    b.scene({0});
-    b.root["extensionsUsed"] = {"KHR_mesh_quantization"};
-    b.root["extensionsRequired"] = {"KHR_mesh_quantization"};
+    b.node({ { "mesh", b.mesh(positions, b.indices<std::uint32_t>({ 0, 1, 2, 0, 2, 3 })) } });
+    b.scene({ 0 });
+    b.root["extensionsUsed"] = { "KHR_mesh_quantization" };
+    b.root["extensionsRequired"] = { "KHR_mesh_quantization" };
     const Result<MeshReadResult> read = readMesh(dir.write("quantized.gltf", b.gltf()).string());
     ASSERT_TRUE(read.ok()) << read.error().toString();
     const Aabb box = boundsOf(read.value().mesh);
-    expectNear(box.min, {0, 0, 0}, 0.0f, "lower bounds");
-    expectNear(box.max, {1, 1, 0}, 0.0f, "upper bounds");
+    expectNear(box.min, { 0, 0, 0 }, 0.0f, "lower bounds");
+    expectNear(box.max, { 1, 1, 0 }, 0.0f, "upper bounds");
 }
 
 TEST(GltfReader, OutOfBoundsAccessorIsAnError)
@@ -694,8 +694,8 @@ TEST(GltfReader, OutOfBoundsAccessorIsAnError)
     GltfBuilder b;
     const int positions = b.floats(squareCorners);
     b.root["accessors"][static_cast<std::size_t>(positions)]["count"] = 5; // one past the 4 stored
-    b.node({{"mesh", b.mesh(positions, b.indices<std::uint8_t>({0, 1, 2}))}});
-    b.scene({0});
+    b.node({ { "mesh", b.mesh(positions, b.indices<std::uint8_t>({ 0, 1, 2 })) } });
+    b.scene({ 0 });
     const Result<MeshReadResult> read = readMesh(dir.write("bounds.gltf", b.gltf()).string());
     ASSERT_FALSE(read.ok());
     EXPECT_NE(read.error().message.find("out of its buffer's bounds"), std::string::npos) << read.error().toString();
@@ -705,8 +705,8 @@ TEST(GltfReader, OutOfBoundsAccessorIsAnError)
     GltfBuilder far;
     const int farPositions = far.floats(squareCorners);
     far.root["bufferViews"][0]["byteOffset"] = 1u << 30;
-    far.node({{"mesh", far.mesh(farPositions, -1)}});
-    far.scene({0});
+    far.node({ { "mesh", far.mesh(farPositions, -1) } });
+    far.scene({ 0 });
     const Result<MeshReadResult> farRead = readMesh(dir.write("far.glb", far.glb()).string());
     ASSERT_FALSE(farRead.ok());
     EXPECT_NE(farRead.error().message.find("out of its buffer's bounds"), std::string::npos)
@@ -717,8 +717,8 @@ TEST(GltfReader, IndexOutOfRangeIsAnError)
 {
     TempDir dir;
     GltfBuilder b;
-    b.node({{"mesh", b.mesh(b.floats(squareCorners), b.indices<std::uint16_t>({0, 1, 4}))}});
-    b.scene({0});
+    b.node({ { "mesh", b.mesh(b.floats(squareCorners), b.indices<std::uint16_t>({ 0, 1, 4 })) } });
+    b.scene({ 0 });
     const Result<MeshReadResult> read = readMesh(dir.write("index.gltf", b.gltf()).string());
     ASSERT_FALSE(read.ok());
     EXPECT_EQ(read.error().location, "meshes[0].primitives[0]");
@@ -728,20 +728,20 @@ TEST(GltfReader, IndexOutOfRangeIsAnError)
 TEST(GltfReader, UnsupportedRequiredExtensionsAreRefusedByName)
 {
     TempDir dir;
-    for (const std::string name : {"EXT_meshopt_compression", "EXT_mesh_gpu_instancing", "VENDOR_private_geometry"}) {
+    for (const std::string name : { "EXT_meshopt_compression", "EXT_mesh_gpu_instancing", "VENDOR_private_geometry" }) {
         GltfBuilder b;
-        b.node({{"mesh", b.mesh(b.floats(squareCorners), b.indices<std::uint8_t>({0, 1, 2}))}});
-        b.scene({0});
-        b.root["extensionsRequired"] = {name};
+        b.node({ { "mesh", b.mesh(b.floats(squareCorners), b.indices<std::uint8_t>({ 0, 1, 2 })) } });
+        b.scene({ 0 });
+        b.root["extensionsRequired"] = { name };
         const Result<MeshReadResult> read = readMesh(dir.write("extension.gltf", b.gltf()).string());
         ASSERT_FALSE(read.ok()) << name;
         EXPECT_NE(read.error().message.find(name), std::string::npos) << read.error().toString();
     }
     // A required material extension changes only the look: the geometry reads.
     GltfBuilder look;
-    look.node({{"mesh", look.mesh(look.floats(squareCorners), look.indices<std::uint8_t>({0, 1, 2}))}});
-    look.scene({0});
-    look.root["extensionsRequired"] = {"KHR_materials_pbrSpecularGlossiness"};
+    look.node({ { "mesh", look.mesh(look.floats(squareCorners), look.indices<std::uint8_t>({ 0, 1, 2 })) } });
+    look.scene({ 0 });
+    look.root["extensionsRequired"] = { "KHR_materials_pbrSpecularGlossiness" };
     EXPECT_TRUE(readMesh(dir.write("look.gltf", look.gltf()).string()).ok());
 }
 
@@ -750,43 +750,43 @@ TEST(GltfReader, NodeCyclesAndBadReferencesAreErrors)
     TempDir dir;
     const auto readWith = [&dir](const std::function<void(GltfBuilder&)>& edit) {
         GltfBuilder b;
-        b.mesh(b.floats(squareCorners), b.indices<std::uint8_t>({0, 1, 2}));
+        b.mesh(b.floats(squareCorners), b.indices<std::uint8_t>({ 0, 1, 2 }));
         edit(b);
         return readMesh(dir.write("nodes.gltf", b.gltf()).string());
     };
     const auto cycle = readWith([](GltfBuilder& b) {
-        b.node({{"mesh", 0}, {"children", {1}}});
-        b.node({{"children", {0}}});
-        b.scene({0});
+        b.node({ { "mesh", 0 }, { "children", { 1 } } });
+        b.node({ { "children", { 0 } } });
+        b.scene({ 0 });
     });
     ASSERT_FALSE(cycle.ok());
     EXPECT_NE(cycle.error().message.find("reached twice"), std::string::npos) << cycle.error().toString();
 
     const auto missingChild = readWith([](GltfBuilder& b) {
-        b.node({{"mesh", 0}, {"children", {7}}});
-        b.scene({0});
+        b.node({ { "mesh", 0 }, { "children", { 7 } } });
+        b.scene({ 0 });
     });
     ASSERT_FALSE(missingChild.ok());
     EXPECT_EQ(missingChild.error().location, "nodes[0].children");
 
     const auto missingMesh = readWith([](GltfBuilder& b) {
-        b.node({{"mesh", 3}});
-        b.scene({0});
+        b.node({ { "mesh", 3 } });
+        b.scene({ 0 });
     });
     ASSERT_FALSE(missingMesh.ok());
     EXPECT_NE(missingMesh.error().message.find("meshes[3]"), std::string::npos) << missingMesh.error().toString();
 
     const auto badMatrix = readWith([](GltfBuilder& b) {
-        b.node({{"mesh", 0}, {"matrix", {1, 0, 0, 1}}});
-        b.scene({0});
+        b.node({ { "mesh", 0 }, { "matrix", { 1, 0, 0, 1 } } });
+        b.scene({ 0 });
     });
     ASSERT_FALSE(badMatrix.ok());
     EXPECT_NE(badMatrix.error().message.find("matrix has 4 numbers"), std::string::npos)
         << badMatrix.error().toString();
 
     const auto badScene = readWith([](GltfBuilder& b) {
-        b.node({{"mesh", 0}});
-        b.scene({0});
+        b.node({ { "mesh", 0 } });
+        b.scene({ 0 });
         b.root["scene"] = 4;
     });
     ASSERT_FALSE(badScene.ok());
@@ -798,8 +798,8 @@ TEST(GltfReader, OddBuffersAreErrorsNotCrashes)
     TempDir dir;
     const auto readEdited = [&dir](bool binary, const std::function<void(Json&)>& edit) {
         GltfBuilder b;
-        b.node({{"mesh", b.mesh(b.floats(squareCorners), b.indices<std::uint8_t>({0, 1, 2}))}});
-        b.scene({0});
+        b.node({ { "mesh", b.mesh(b.floats(squareCorners), b.indices<std::uint8_t>({ 0, 1, 2 })) } });
+        b.scene({ 0 });
         std::string bytes = binary ? b.glb() : b.gltf();
         // Edit the JSON after the builder has filled in the buffer.
         if (binary) {
@@ -869,8 +869,8 @@ TEST(GltfReader, BinaryFileNamedGltfStillReads)
 {
     TempDir dir;
     GltfBuilder b;
-    b.node({{"mesh", b.mesh(b.floats(squareCorners), b.indices<std::uint8_t>({0, 1, 2, 0, 2, 3}))}});
-    b.scene({0});
+    b.node({ { "mesh", b.mesh(b.floats(squareCorners), b.indices<std::uint8_t>({ 0, 1, 2, 0, 2, 3 })) } });
+    b.scene({ 0 });
     const Result<MeshReadResult> read = readMesh(dir.write("binary.gltf", b.glb()).string());
     ASSERT_TRUE(read.ok()) << read.error().toString();
     EXPECT_EQ(read.value().mesh.triangleCount(), 2u);
@@ -901,8 +901,8 @@ TEST(GltfReader, MisspelledKeysAndWrongTypesAreRefusedWithTheirKeyPath)
         GltfBuilder b;
         const int indices = b.indices<std::uint16_t>(tetraIndices);
         b.mesh(b.floats(tetraCorners), indices);
-        b.node({{"mesh", 0}});
-        b.scene({0});
+        b.node({ { "mesh", 0 } });
+        b.scene({ 0 });
         edit(b);
         return b;
     };
@@ -928,42 +928,58 @@ TEST(GltfReader, MisspelledKeysAndWrongTypesAreRefusedWithTheirKeyPath)
     EXPECT_EQ(boolRead.error().message, "must be a whole number, not true");
 
     const std::vector<std::pair<std::function<void(GltfBuilder&)>, std::pair<std::string, std::string>>> cases = {
-        {[](GltfBuilder& b) { b.root["accessors"][1]["count"] = "4"; },
-         {"accessors[1].count", "must be a whole number, not a string"}},
-        {[](GltfBuilder& b) { b.root["accessors"][1]["count"] = 2.5; }, {"accessors[1].count", "must be a whole number, not 2.5"}},
-        {[](GltfBuilder& b) { b.root["accessors"][1]["count"] = 0; }, {"accessors[1].count", "0 is outside at least 1"}},
-        {[](GltfBuilder& b) { b.root["accessors"][1].erase("componentType"); },
-         {"accessors[1].componentType", "missing; the glTF schema requires it"}},
-        {[](GltfBuilder& b) {
+        { [](GltfBuilder& b) { b.root["accessors"][1]["count"] = "4"; },
+            { "accessors[1].count", "must be a whole number, not a string" } },
+        { [](GltfBuilder& b) { b.root["accessors"][1]["count"] = 2.5; },
+            { "accessors[1].count", "must be a whole number, not 2.5" } },
+        { [](GltfBuilder& b) { b.root["accessors"][1]["count"] = 0; },
+            { "accessors[1].count", "0 is outside at least 1" } },
+        { [](GltfBuilder& b) { b.root["accessors"][1].erase("componentType"); },
+            { "accessors[1].componentType", "missing; the glTF schema requires it" } },
+        { [](GltfBuilder& b) {
              Json& primitive = b.root["meshes"][0]["primitives"][0];
              primitive["atributes"] = primitive["attributes"];
              primitive.erase("attributes");
          },
-         {"meshes[0].primitives[0].atributes", "unknown key (did you mean 'attributes'?); glTF readers ignore it, so "
-                                               "the file would not mean what it says"}},
-        {[](GltfBuilder& b) { b.root["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = "1"; },
-         {"meshes[0].primitives[0].attributes.POSITION", "must be an accessor index, not a string"}},
-        {[](GltfBuilder& b) { b.root["nodes"][0]["translaton"] = {1, 2, 3}; },
-         {"nodes[0].translaton", "unknown key (did you mean 'translation'?); glTF readers ignore it, so the file "
-                                 "would not mean what it says"}},
-        {[](GltfBuilder& b) { b.root["nodes"][0]["scale"] = {1, "2", 3}; }, {"nodes[0].scale[1]", "must be a finite number, not a string"}},
-        {[](GltfBuilder& b) { b.root["bufferViews"] = Json::object(); }, {"bufferViews", "must be a list, not an object"}},
-        {[](GltfBuilder& b) { b.root["acessors"] = b.root["accessors"]; b.root.erase("accessors"); },
-         {"acessors", "unknown top-level key (did you mean 'accessors'?); glTF readers ignore it, so the file would "
-                      "not mean what it says"}},
-        {[](GltfBuilder& b) { b.root["scene"] = -1; }, {"scene", "must be a scene index, not -1"}},
+            { "meshes[0].primitives[0].atributes",
+                "unknown key (did you mean 'attributes'?); glTF readers ignore it, so "
+                "the file would not mean what it says" } },
+        { [](GltfBuilder& b) { b.root["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = "1"; },
+            { "meshes[0].primitives[0].attributes.POSITION", "must be an accessor index, not a string" } },
+        { [](GltfBuilder& b) {
+             b.root["nodes"][0]["translaton"] = { 1, 2, 3 };
+         },
+            { "nodes[0].translaton",
+                "unknown key (did you mean 'translation'?); glTF readers ignore it, so the file "
+                "would not mean what it says" } },
+        { [](GltfBuilder& b) {
+             b.root["nodes"][0]["scale"] = { 1, "2", 3 };
+         },
+            { "nodes[0].scale[1]", "must be a finite number, not a string" } },
+        { [](GltfBuilder& b) { b.root["bufferViews"] = Json::object(); },
+            { "bufferViews", "must be a list, not an object" } },
+        { [](GltfBuilder& b) {
+             b.root["acessors"] = b.root["accessors"];
+             b.root.erase("accessors");
+         },
+            { "acessors",
+                "unknown top-level key (did you mean 'accessors'?); glTF readers ignore it, so the file would "
+                "not mean what it says" } },
+        { [](GltfBuilder& b) { b.root["scene"] = -1; }, { "scene", "must be a scene index, not -1" } },
     };
     // A number too large for a double: nlohmann's raw out_of_range text used to come through.
     const std::string overflow = "{\"asset\": {\"version\": \"2.0\"},\n \"scene\": 1e999}";
     const Result<MeshReadResult> overflowRead = readMesh(dir.write("overflow.gltf", overflow).string());
     ASSERT_FALSE(overflowRead.ok());
-    EXPECT_EQ(overflowRead.error().toString(), (dir.path() / "overflow.gltf").string() +
-                                                   ": line 2, column 11: invalid JSON: the number 1e999 is too large "
-                                                   "to hold (it overflows a double)");
+    EXPECT_EQ(overflowRead.error().toString(),
+        (dir.path() / "overflow.gltf").string()
+            + ": line 2, column 11: invalid JSON: the number 1e999 is too large "
+              "to hold (it overflows a double)");
     int n = 0;
     for (const auto& [edit, want] : cases) {
         GltfBuilder b = tetra(edit);
-        const Result<MeshReadResult> read = readMesh(dir.write("case" + std::to_string(n++) + ".gltf", b.gltf()).string());
+        const Result<MeshReadResult> read
+            = readMesh(dir.write("case" + std::to_string(n++) + ".gltf", b.gltf()).string());
         ASSERT_FALSE(read.ok()) << want.first;
         EXPECT_EQ(read.error().location, want.first);
         EXPECT_EQ(read.error().message, want.second);
@@ -976,8 +992,8 @@ TEST(GltfReader, UnalignedGlbChunkIsRefused)
     TempDir dir;
     GltfBuilder b;
     b.mesh(b.floats(tetraCorners), b.indices<std::uint16_t>(tetraIndices));
-    b.node({{"mesh", 0}});
-    b.scene({0});
+    b.node({ { "mesh", 0 } });
+    b.scene({ 0 });
     std::string glb = b.glb();
     ASSERT_TRUE(readMesh(dir.write("ok.glb", glb).string()).ok());
     // One byte off the JSON chunk's padding: its length is no longer a multiple of 4, and the BIN
@@ -1007,8 +1023,8 @@ TEST(GltfReader, BufferUrisMustStayInTheFilesFolder)
     TempDir dir;
     GltfBuilder b;
     b.mesh(b.floats(tetraCorners), b.indices<std::uint16_t>(tetraIndices));
-    b.node({{"mesh", 0}});
-    b.scene({0});
+    b.node({ { "mesh", 0 } });
+    b.scene({ 0 });
     const Json embedded = Json::parse(b.gltf());
     const std::string& bytes = b.buffer();
     fs::create_directories(dir.path() / "head");
@@ -1026,16 +1042,16 @@ TEST(GltfReader, BufferUrisMustStayInTheFilesFolder)
     EXPECT_EQ(inside.value().mesh.triangleCount(), 4u);
 
     const std::vector<std::pair<std::string, std::string>> refused = {
-        {"../secret.bin", "lies outside the glTF file's folder"},
-        {"%2E%2E/secret.bin", "lies outside the glTF file's folder"},
-        {"sub/../../secret.bin", "lies outside the glTF file's folder"},
-        {"link.bin", "lies outside the glTF file's folder"},
-        {(dir.path() / "secret.bin").string(), "is an absolute path"},
-        {"/proc/self/environ", "is an absolute path"},
-        {"/dev/zero", "is an absolute path"},
-        {"file:///etc/passwd", "is a URL"},
-        {"folder.bin", "is not a regular file"},
-        {"missing.bin", "does not exist in the glTF file's folder"},
+        { "../secret.bin", "lies outside the glTF file's folder" },
+        { "%2E%2E/secret.bin", "lies outside the glTF file's folder" },
+        { "sub/../../secret.bin", "lies outside the glTF file's folder" },
+        { "link.bin", "lies outside the glTF file's folder" },
+        { (dir.path() / "secret.bin").string(), "is an absolute path" },
+        { "/proc/self/environ", "is an absolute path" },
+        { "/dev/zero", "is an absolute path" },
+        { "file:///etc/passwd", "is a URL" },
+        { "folder.bin", "is not a regular file" },
+        { "missing.bin", "does not exist in the glTF file's folder" },
     };
     for (const auto& [bufferUri, why] : refused) {
         const Result<MeshReadResult> read = readWithUri(bufferUri);

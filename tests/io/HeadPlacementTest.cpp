@@ -1,5 +1,5 @@
-#include "IoTestSupport.h"
 #include "io/HeadPlacement.h"
+#include "IoTestSupport.h"
 #include "io/MeshReader.h"
 
 #include <glm/geometric.hpp>
@@ -25,8 +25,8 @@ TriangleMesh box(const glm::vec3& size, const glm::vec3& corner = glm::vec3(0.0f
     TriangleMesh mesh;
     for (int i = 0; i < 8; ++i)
         mesh.positions.push_back(corner + size * glm::vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1));
-    mesh.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                      {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    mesh.triangles = { { 0, 2, 1 }, { 1, 2, 3 }, { 4, 5, 6 }, { 5, 7, 6 }, { 0, 1, 4 }, { 1, 5, 4 }, { 2, 6, 3 },
+        { 3, 6, 7 }, { 0, 4, 2 }, { 2, 4, 6 }, { 1, 3, 5 }, { 3, 7, 5 } };
     return mesh;
 }
 
@@ -48,7 +48,7 @@ void expectCentred(const TriangleMesh& mesh)
 
 TEST(HeadPlacement, TwoHundredFiftyUnitsAreMillimetres)
 {
-    TriangleMesh mesh = cube(250.0f, {100.0f, -40.0f, 7.0f});
+    TriangleMesh mesh = cube(250.0f, { 100.0f, -40.0f, 7.0f });
     const HeadPlacement placed = placeHead(mesh);
     EXPECT_EQ(placed.unit, LengthUnit::Millimetres);
     EXPECT_FLOAT_EQ(placed.scale, 0.001f);
@@ -64,7 +64,7 @@ TEST(HeadPlacement, TwoHundredFiftyUnitsAreMillimetres)
 
 TEST(HeadPlacement, TwentyFiveUnitsAreCentimetres)
 {
-    TriangleMesh mesh = cube(25.0f, {-3.0f, 2.0f, 1.0f});
+    TriangleMesh mesh = cube(25.0f, { -3.0f, 2.0f, 1.0f });
     const HeadPlacement placed = placeHead(mesh);
     EXPECT_EQ(placed.unit, LengthUnit::Centimetres);
     EXPECT_FLOAT_EQ(placed.scale, 0.01f);
@@ -75,7 +75,7 @@ TEST(HeadPlacement, TwentyFiveUnitsAreCentimetres)
 
 TEST(HeadPlacement, AQuarterUnitIsMetres)
 {
-    TriangleMesh mesh = cube(0.25f, {1.0f, 1.0f, 1.0f});
+    TriangleMesh mesh = cube(0.25f, { 1.0f, 1.0f, 1.0f });
     const HeadPlacement placed = placeHead(mesh);
     EXPECT_EQ(placed.unit, LengthUnit::Metres);
     EXPECT_FLOAT_EQ(placed.scale, 1.0f);
@@ -89,8 +89,8 @@ TEST(HeadPlacement, SkullsThatAreNoHeadInAnyUnitAreScaledTo16CentimetresWide)
 {
     // 40 (or 40 of anything) tall, 32 wide: 0.32 m as centimetres is past the open upper end of
     // skull widths, and no other unit makes a skull of it. Likewise 1000 and 0.05.
-    for (const float edge : {40.0f, 1000.0f, 0.05f}) {
-        TriangleMesh mesh = box({edge * 0.8f, edge, edge * 0.6f}, glm::vec3(edge * 0.1f));
+    for (const float edge : { 40.0f, 1000.0f, 0.05f }) {
+        TriangleMesh mesh = box({ edge * 0.8f, edge, edge * 0.6f }, glm::vec3(edge * 0.1f));
         const HeadPlacement placed = placeHead(mesh);
         EXPECT_EQ(placed.unit, LengthUnit::Auto) << edge;
         EXPECT_TRUE(placed.scaledToFit) << edge;
@@ -139,7 +139,7 @@ TEST(HeadPlacement, ExplicitUnitOrScaleOverridesTheGuess)
 TEST(HeadPlacement, ZUpIsTurnedToYUpKeepingTheWinding)
 {
     // 0.2 wide, 0.1 deep, 0.3 tall along +Z, in metres.
-    TriangleMesh mesh = box({0.2f, 0.1f, 0.3f});
+    TriangleMesh mesh = box({ 0.2f, 0.1f, 0.3f });
     const glm::vec3 topCornerBefore = mesh.positions[7]; // (0.2, 0.1, 0.3)
     HeadPlacementSettings settings;
     settings.up = Axis::PosZ; // the artist's choice (Head Up Axis, --up +z, --z-up)
@@ -165,7 +165,7 @@ TEST(HeadPlacement, ZUpIsTurnedToYUpKeepingTheWinding)
 
 TEST(HeadPlacement, ApplyPlacementRepeatsWhatPlaceHeadDid)
 {
-    const TriangleMesh original = box({180.0f, 240.0f, 200.0f}, {-20.0f, 300.0f, 4.0f});
+    const TriangleMesh original = box({ 180.0f, 240.0f, 200.0f }, { -20.0f, 300.0f, 4.0f });
     TriangleMesh placedMesh = original;
     HeadPlacementSettings settings;
     settings.up = Axis::PosZ;
@@ -184,15 +184,15 @@ TEST(HeadPlacement, EmptyAndFlatMeshesAreHandled)
     EXPECT_FALSE(none.note.empty());
 
     TriangleMesh point;
-    point.positions = {{3, 3, 3}, {3, 3, 3}, {3, 3, 3}};
-    point.triangles.assign(1, glm::uvec3(0, 1, 2));  // (not a braced list: GCC 12 warns about its temporary)
+    point.positions = { { 3, 3, 3 }, { 3, 3, 3 }, { 3, 3, 3 } };
+    point.triangles.assign(1, glm::uvec3(0, 1, 2)); // (not a braced list: GCC 12 warns about its temporary)
     const HeadPlacement degenerate = placeHead(point);
     EXPECT_FLOAT_EQ(degenerate.scale, 1.0f);
     EXPECT_NE(degenerate.note.find("no extent"), std::string::npos) << degenerate.note;
     expectCentred(point);
 
     // A flat sheet (no height) 2 units wide: its width is no skull's in any unit.
-    TriangleMesh sheet = box({2.0f, 0.0f, 1.0f});
+    TriangleMesh sheet = box({ 2.0f, 0.0f, 1.0f });
     const HeadPlacement flat = placeHead(sheet);
     EXPECT_TRUE(flat.scaledToFit);
     EXPECT_NEAR(boundsOf(sheet).size().x, 0.16f, 1e-6f);
@@ -210,7 +210,7 @@ TEST(HeadPlacement, GltfFixesTheUpAxis)
 TEST(HeadPlacement, SharedHeadsLandAtHeadSize)
 {
     for (const char* name :
-        {"heads/max_planck_decimated.obj", "heads/igea_tristrips.ply", "heads/cy_woman_head.ply"}) {
+        { "heads/max_planck_decimated.obj", "heads/igea_tristrips.ply", "heads/cy_woman_head.ply" }) {
         const fs::path path = assetPath(name);
         REQUIRE_ASSET(path);
         Result<MeshReadResult> read = readMesh(path.string());
@@ -254,10 +254,10 @@ struct SharedHead {
 // Up and face of the shared heads, read off their meshes by hand (sagittal and horizontal
 // sections; for the CT2Hair head also its hair, which hangs toward -X from roots on the +X side).
 constexpr SharedHead kSharedHeads[] = {
-    {"heads/max_planck_decimated.obj", Axis::PosY, Axis::NegZ},
-    {"heads/igea_tristrips.ply", Axis::PosY, Axis::PosZ},
-    {"heads/cy_woman_head.ply", Axis::PosZ, Axis::PosX},
-    {"hair/ct2hair_bangs_head.ply", Axis::PosX, Axis::NegY},
+    { "heads/max_planck_decimated.obj", Axis::PosY, Axis::NegZ },
+    { "heads/igea_tristrips.ply", Axis::PosY, Axis::PosZ },
+    { "heads/cy_woman_head.ply", Axis::PosZ, Axis::PosX },
+    { "hair/ct2hair_bangs_head.ply", Axis::PosX, Axis::NegY },
 };
 
 } // namespace
@@ -288,10 +288,10 @@ TEST(HeadPlacement, SharedHeadsAreTurnedUprightFromTheirShape)
 TEST(HeadPlacement, RotatedCopiesOfAHeadLandTheSame)
 {
     const std::pair<const char*, glm::vec3 (*)(const glm::vec3&)> turns[] = {
-        {"+Y to +Z", [](const glm::vec3& p) { return glm::vec3(p.x, -p.z, p.y); }},
-        {"+Y to -Z", [](const glm::vec3& p) { return glm::vec3(p.x, p.z, -p.y); }},
-        {"+Y to +X", [](const glm::vec3& p) { return glm::vec3(p.y, -p.x, p.z); }},
-        {"+Y to -Y, +Z to +X", [](const glm::vec3& p) { return glm::vec3(p.z, -p.y, p.x); }},
+        { "+Y to +Z", [](const glm::vec3& p) { return glm::vec3(p.x, -p.z, p.y); } },
+        { "+Y to -Z", [](const glm::vec3& p) { return glm::vec3(p.x, p.z, -p.y); } },
+        { "+Y to +X", [](const glm::vec3& p) { return glm::vec3(p.y, -p.x, p.z); } },
+        { "+Y to -Y, +Z to +X", [](const glm::vec3& p) { return glm::vec3(p.z, -p.y, p.x); } },
     };
     for (const SharedHead& head : kSharedHeads) {
         const fs::path path = assetPath(head.name);
@@ -325,8 +325,8 @@ TEST(HeadPlacement, ABustIsSizedByItsSkullNotItsHeight)
     // Shoulders and chest: a box 420 mm wide, 200 mm tall, 200 mm deep under the neck, making the
     // mesh 540 mm tall (past the 400 mm that the whole-mesh rule took for a head).
     const Aabb head = boundsOf(bust);
-    const TriangleMesh chest = box({420.0f, 200.0f, 200.0f},
-        {head.center().x - 210.0f, head.min.y - 200.0f + 1.0f, head.center().z - 100.0f});
+    const TriangleMesh chest = box(
+        { 420.0f, 200.0f, 200.0f }, { head.center().x - 210.0f, head.min.y - 200.0f + 1.0f, head.center().z - 100.0f });
     const auto base = static_cast<std::uint32_t>(bust.positions.size());
     bust.positions.insert(bust.positions.end(), chest.positions.begin(), chest.positions.end());
     for (glm::uvec3 t : chest.triangles)
@@ -367,17 +367,17 @@ TEST(HeadPlacement, AChosenUpAxisOverridesTheShape)
 // Shapes that are no head keep their axes and say why; nothing odd in them trips the detector.
 TEST(HeadPlacement, ShapesThatAreNoHeadKeepTheirAxesAndSayWhy)
 {
-    const TriangleMesh cube = box({1.0f, 1.0f, 1.0f});
+    const TriangleMesh cube = box({ 1.0f, 1.0f, 1.0f });
     const HeadOrientation symmetric = detectHeadOrientation(cube.positions);
     EXPECT_FALSE(symmetric.found);
     EXPECT_NE(symmetric.reason.find("mirror symmetry"), std::string::npos) << symmetric.reason;
 
     std::vector<glm::vec3> odd = cube.positions;
-    odd.push_back({std::nanf(""), 0.0f, 0.0f});
+    odd.push_back({ std::nanf(""), 0.0f, 0.0f });
     EXPECT_EQ(detectHeadOrientation(odd).reason, "a vertex is not a finite point");
-    const TriangleMesh sheet = box({2.0f, 0.0f, 1.0f});
+    const TriangleMesh sheet = box({ 2.0f, 0.0f, 1.0f });
     EXPECT_EQ(detectHeadOrientation(sheet.positions).reason, "the mesh is flat or has no finite extent");
-    std::vector<glm::vec3> huge = {{-3e38f, 0, 0}, {3e38f, 1, 0}, {0, 0, 1}, {0, 1, 1}};
+    std::vector<glm::vec3> huge = { { -3e38f, 0, 0 }, { 3e38f, 1, 0 }, { 0, 0, 1 }, { 0, 1, 1 } };
     EXPECT_FALSE(detectHeadOrientation(huge).found);
     EXPECT_EQ(detectHeadOrientation(std::vector<glm::vec3>{}).reason, "too few vertices to tell which way is up");
 
@@ -393,21 +393,21 @@ TEST(HeadPlacement, ShapesThatAreNoHeadKeepTheirAxesAndSayWhy)
 // stray vertex 16,372 units away made the groom's work absurd. Both are refused once placed.
 TEST(HeadPlacement, CheckPlacedHeadRefusesFlatAndHugeHeads)
 {
-    TriangleMesh head = cube(0.2f, {-0.1f, -0.1f, -0.1f});
+    TriangleMesh head = cube(0.2f, { -0.1f, -0.1f, -0.1f });
     EXPECT_EQ(checkPlacedHead(head), "");
 
-    TriangleMesh flat = box({0.19f, 0.19f, 1e-42f});
+    TriangleMesh flat = box({ 0.19f, 0.19f, 1e-42f });
     placeHead(flat);
     EXPECT_EQ(checkPlacedHead(flat).rfind("the placed head is 0.19 x 0.19 x 1.001e-42 m: flat along z (less than "
                                           "0.01 m)",
-                                          0),
-              0u)
+                  0),
+        0u)
         << checkPlacedHead(flat);
 
     // A 0.3 m head with one vertex 16,372 units away, placed as the editor places it.
     TriangleMesh stray = cube(0.3f);
-    stray.positions.push_back({16372.0f, 0.0f, 0.0f});
-    stray.triangles.push_back({1, 8, 3});
+    stray.positions.push_back({ 16372.0f, 0.0f, 0.0f });
+    stray.triangles.push_back({ 1, 8, 3 });
     const HeadPlacement placed = placeHead(stray);
     EXPECT_TRUE(placed.scaledToFit);
     const std::string problem = checkPlacedHead(stray);
@@ -415,12 +415,13 @@ TEST(HeadPlacement, CheckPlacedHeadRefusesFlatAndHugeHeads)
     // refused either way, before any groom is built.
     EXPECT_EQ(problem.rfind("the placed head is ", 0), 0u) << problem;
     TriangleMesh unplaced = cube(0.3f);
-    unplaced.positions.push_back({16372.0f, 0.0f, 0.0f});
-    unplaced.triangles.push_back({1, 8, 3});
-    EXPECT_NE(checkPlacedHead(unplaced).find("more than 3 m at its largest"), std::string::npos) << checkPlacedHead(unplaced);
+    unplaced.positions.push_back({ 16372.0f, 0.0f, 0.0f });
+    unplaced.triangles.push_back({ 1, 8, 3 });
+    EXPECT_NE(checkPlacedHead(unplaced).find("more than 3 m at its largest"), std::string::npos)
+        << checkPlacedHead(unplaced);
 
     // Just inside both bounds is a head.
-    TriangleMesh wide = box({2.99f, 0.011f, 0.5f});
+    TriangleMesh wide = box({ 2.99f, 0.011f, 0.5f });
     EXPECT_EQ(checkPlacedHead(wide), "");
 
     TriangleMesh broken = cube(0.2f);

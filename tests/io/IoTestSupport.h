@@ -1,6 +1,8 @@
 #pragma once
 // What the io tests share: the path of a file in ../shared/assets (real files made by other
-// people), a skip with a clear message when that folder is absent, and reading a whole file.
+// people; absent: a skip, or a failure under CI, see tests/SharedAssets.h) and reading a whole file.
+
+#include "../SharedAssets.h"
 
 #include <gtest/gtest.h>
 
@@ -14,32 +16,26 @@ namespace wisp::test {
 
 inline std::filesystem::path assetPath(const std::string& relative)
 {
-    return std::filesystem::path(WISP_SHARED_ASSETS) / relative;
+    return sharedAssetsDir() / relative;
 }
 
 inline std::string slurp(const std::filesystem::path& path)
 {
     std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
 }
 
 // An empty folder of its own for the running test (named after it and this process), made anew.
 inline std::filesystem::path freshTestFolder(const std::string& prefix)
 {
     const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      (prefix + "-" + std::to_string(::getpid()) + "-" + std::string(test->name()));
+    const std::filesystem::path dir = std::filesystem::temp_directory_path()
+        / (prefix + "-" + std::to_string(::getpid()) + "-" + std::string(test->name()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
 }
 
-}  // namespace wisp::test
+} // namespace wisp::test
 
-// Skips the test, saying where the asset was expected, when it is not there.
-#define REQUIRE_ASSET(path)                                                                                  \
-    do {                                                                                                     \
-        if (!std::filesystem::exists(path))                                                                  \
-            GTEST_SKIP() << "shared test asset " << (path) << " is absent (expected beside the project in " \
-                         << WISP_SHARED_ASSETS << ")";                                                       \
-    } while (false)
+#define REQUIRE_ASSET(path) REQUIRE_SHARED_ASSET(path)

@@ -2,8 +2,8 @@
 // older version loads, a newer one is refused; every kind of bad value is refused with its key path
 // and the value as written; hostile files are refused quickly instead of hanging the editor.
 
-#include "IoTestSupport.h"
 #include "io/PresetFile.h"
+#include "IoTestSupport.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -23,15 +23,15 @@ namespace {
 
 const ParameterValues kDefaults;
 
-fs::path presetsDir() { return fs::path(WISP_PRESETS_DIR); }
+fs::path presetsDir()
+{
+    return fs::path(WISP_PRESETS_DIR);
+}
 
 // A fresh, empty folder per test, removed afterwards.
 class PresetFileTest : public ::testing::Test {
 protected:
-    void SetUp() override
-    {
-        m_dir = wisp::test::freshTestFolder("wisp-preset");
-    }
+    void SetUp() override { m_dir = wisp::test::freshTestFolder("wisp-preset"); }
     void TearDown() override { fs::remove_all(m_dir); }
 
     std::string write(const std::string& name, const std::string& text)
@@ -44,7 +44,10 @@ protected:
     fs::path m_dir;
 };
 
-Result<PresetReadResult> parse(const std::string& text) { return parsePreset(text, "test.json"); }
+Result<PresetReadResult> parse(const std::string& text)
+{
+    return parsePreset(text, "test.json");
+}
 
 // The error a text gives, as the editor would show it; "" when it loads.
 std::string errorOf(const std::string& text)
@@ -53,14 +56,17 @@ std::string errorOf(const std::string& text)
     return result ? std::string() : result.error().toString();
 }
 
-std::string v2(const std::string& body) { return R"({"format": "wisp-preset", "version": 2)" + body + "}"; }
+std::string v2(const std::string& body)
+{
+    return R"({"format": "wisp-preset", "version": 2)" + body + "}";
+}
 
 Preset unusualPreset()
 {
     Preset preset;
     preset.name = "Test «look» 1";
     preset.description = "two regions,\n\"quoted\" text and odd numbers";
-    EXPECT_EQ(preset.parameters.set(Param::Gravity, 0.1 + 0.2), "");  // 0.30000000000000004
+    EXPECT_EQ(preset.parameters.set(Param::Gravity, 0.1 + 0.2), ""); // 0.30000000000000004
     EXPECT_EQ(preset.parameters.set(Param::WindSpeed, 1.0 / 3.0), "");
     EXPECT_EQ(preset.parameters.set(Param::Segments, 97), "");
     EXPECT_EQ(preset.parameters.set(Param::Seed, 2147483647), "");
@@ -72,16 +78,16 @@ Preset unusualPreset()
     EXPECT_EQ(top.wisp.set(Param::CurlRadius, 0.0123456789), "");
     EXPECT_EQ(top.wisp.set(Param::ClumpDegree, -1.0), "");
     EXPECT_EQ(top.wisp.set(Param::WispSize, 1024), "");
-    top.rootColour = {0.123456789f, 1.0f / 3.0f, 0.0f};
-    top.tipColour = {1.0f, 0.1f, 1e-7f};
+    top.rootColour = { 0.123456789f, 1.0f / 3.0f, 0.0f };
+    top.tipColour = { 1.0f, 0.1f, 1e-7f };
     RegionLook fringe;
     fringe.name = "Fringe";
     EXPECT_EQ(fringe.wisp.set(Param::Length, 0.05), "");
-    preset.regions = {top, fringe};
+    preset.regions = { top, fringe };
     return preset;
 }
 
-}  // namespace
+} // namespace
 
 // ---- bundled presets --------------------------------------------------------------------------
 
@@ -176,11 +182,11 @@ TEST_F(PresetFileTest, WrittenJsonIsVersion2InRegistryOrderWithReadableNumbers)
 {
     Preset preset;
     preset.name = "Plain";
-    preset.regions.push_back(RegionLook{"Scalp", {}, {0.16f, 0.10f, 0.06f}, {0.45f, 0.30f, 0.17f}});
+    preset.regions.push_back(RegionLook{ "Scalp", {}, { 0.16f, 0.10f, 0.06f }, { 0.45f, 0.30f, 0.17f } });
     const std::string text = presetToJson(preset);
     EXPECT_NE(text.find(R"("version": 2)"), std::string::npos);
     EXPECT_NE(text.find(R"("root_colour": [0.16, 0.1, 0.06])"), std::string::npos) << text;
-    EXPECT_NE(text.find(R"("segments": 15,)"), std::string::npos) << text;  // integers without ".0"
+    EXPECT_NE(text.find(R"("segments": 15,)"), std::string::npos) << text; // integers without ".0"
     EXPECT_NE(text.find(R"("simulate_all_strands": false)"), std::string::npos);
     // Keys in registry order: segments, seed, gravity ... within "parameters".
     EXPECT_LT(text.find("\"seed\""), text.find("\"gravity\""));
@@ -198,10 +204,10 @@ TEST_F(PresetFileTest, MissingKeysTakeDefaults)
     const Result<PresetReadResult> result = parse(v2(R"(, "regions": [{}])"));
     ASSERT_TRUE(result) << result.error().toString();
     const Preset& preset = result.value().preset;
-    EXPECT_EQ(preset.name, "test");  // the file's stem
+    EXPECT_EQ(preset.name, "test"); // the file's stem
     EXPECT_EQ(preset.parameters, kDefaults);
     ASSERT_EQ(preset.regions.size(), 1u);
-    EXPECT_EQ(preset.regions[0], (RegionLook{"Region 1", {}, {0.16f, 0.10f, 0.06f}, {0.45f, 0.30f, 0.17f}}));
+    EXPECT_EQ(preset.regions[0], (RegionLook{ "Region 1", {}, { 0.16f, 0.10f, 0.06f }, { 0.45f, 0.30f, 0.17f } }));
     // No "regions" at all: a preset of global settings only.
     const Result<PresetReadResult> globalOnly = parse(v2(R"(, "parameters": {"gravity": 3})"));
     ASSERT_TRUE(globalOnly);
@@ -222,7 +228,7 @@ TEST_F(PresetFileTest, Version1FlatParametersBecomeOneRegion)
     EXPECT_EQ(preset.parameters.get(Param::Gravity), 4.5);
     EXPECT_EQ(preset.parameters.get(Param::Segments), 30.0);
     EXPECT_EQ(preset.parameters.get(Param::SimulateAllStrands), 1.0);
-    EXPECT_EQ(preset.parameters.get(Param::Length), kDefaults.get(Param::Length));  // wisp keys go to the region
+    EXPECT_EQ(preset.parameters.get(Param::Length), kDefaults.get(Param::Length)); // wisp keys go to the region
     ASSERT_EQ(preset.regions.size(), 1u);
     EXPECT_EQ(preset.regions[0].name, "Scalp");
     EXPECT_EQ(preset.regions[0].wisp.get(Param::Length), 0.5);
@@ -230,29 +236,31 @@ TEST_F(PresetFileTest, Version1FlatParametersBecomeOneRegion)
     EXPECT_EQ(preset.regions[0].wisp.get(Param::ClumpDegree), -0.5);
     EXPECT_EQ(preset.regions[0].wisp.get(Param::Gravity), kDefaults.get(Param::Gravity));
     // Version 1 had no regions list: one there is unknown.
-    const Result<PresetReadResult> withRegions =
-        parse(R"({"format": "wisp-preset", "version": 1, "parameters": {}, "regions": []})");
+    const Result<PresetReadResult> withRegions
+        = parse(R"({"format": "wisp-preset", "version": 1, "parameters": {}, "regions": []})");
     ASSERT_TRUE(withRegions);
-    EXPECT_EQ(withRegions.value().warnings, std::vector<std::string>{"regions: unknown key, ignored"});
+    EXPECT_EQ(withRegions.value().warnings, std::vector<std::string>{ "regions: unknown key, ignored" });
 }
 
 TEST_F(PresetFileTest, NewerVersionIsRefused)
 {
     EXPECT_EQ(errorOf(R"({"format": "wisp-preset", "version": 3, "regions": "whatever"})"),
-              "test.json: version 3 is newer than this Wisp reads (2)");
+        "test.json: version 3 is newer than this Wisp reads (2)");
     EXPECT_EQ(errorOf(R"({"format": "wisp-preset", "version": 0})"),
-              "test.json: version: 0 is not a version (they start at 1)");
-    EXPECT_EQ(errorOf(R"({"format": "wisp-preset", "version": "2"})"), "test.json: version: \"2\" is not a whole number");
+        "test.json: version: 0 is not a version (they start at 1)");
+    EXPECT_EQ(
+        errorOf(R"({"format": "wisp-preset", "version": "2"})"), "test.json: version: \"2\" is not a whole number");
     EXPECT_EQ(errorOf(R"({"format": "wisp-preset"})"), "test.json: version: missing");
 }
 
 TEST_F(PresetFileTest, OtherFormatsAreRefused)
 {
     EXPECT_EQ(errorOf(R"({"format": "wisp-project", "version": 1})"),
-              "test.json: format: this is a Wisp project, not a preset");
-    EXPECT_EQ(errorOf(R"({"format": "blender", "version": 1})"), "test.json: format: \"blender\" is not \"wisp-preset\"");
+        "test.json: format: this is a Wisp project, not a preset");
+    EXPECT_EQ(
+        errorOf(R"({"format": "blender", "version": 1})"), "test.json: format: \"blender\" is not \"wisp-preset\"");
     EXPECT_EQ(errorOf(R"({"version": 1})"),
-              "test.json: format: missing; the file should start with \"format\": \"wisp-preset\"");
+        "test.json: format: missing; the file should start with \"format\": \"wisp-preset\"");
     EXPECT_EQ(errorOf("[1, 2]"), "test.json: expected a JSON object { ... } around the whole file, found a list");
 }
 
@@ -294,35 +302,38 @@ TEST_F(PresetFileTest, BadValuesAreRefusedWithTheirKeyPath)
     const std::string region0 = R"({"name": "A"}, )";
     const std::vector<std::pair<std::string, std::string>> cases = {
         // The issue's example, verbatim: the value as written (3.0, not 3).
-        {v2(R"(, "regions": [{"name": "A"}, {"name": "B", "clump_degree": 3.0}])"),
-         "regions[1].clump_degree: 3.0 is outside -1..1"},
-        {v2(R"(, "regions": [{}, {"wisp": {"clump_degree": 3.0}}])"),
-         "regions[1].wisp.clump_degree: 3.0 is outside -1..1"},
-        {v2(R"(, "regions": [{}, {"wisp": {"clump_degree": 3}}])"), "regions[1].wisp.clump_degree: 3 is outside -1..1"},
-        {v2(R"(, "parameters": {"gravity": "strong"})"), "parameters.gravity: \"strong\" is not a number"},
-        {v2(R"(, "parameters": {"gravity": true})"), "parameters.gravity: true is not a number"},
-        {v2(R"(, "parameters": {"gravity": null})"), "parameters.gravity: null is not a number"},
-        {v2(R"(, "parameters": {"gravity": [9.81]})"), "parameters.gravity: a list is not a number"},
-        {v2(R"(, "parameters": {"time_step": 0.5})"), "parameters.time_step: 0.5 is outside 0.001..0.1"},
-        {v2(R"(, "parameters": {"seed": -1})"), "parameters.seed: -1 is outside 0..2147483647"},
-        {v2(R"(, "parameters": {"segments": 40.5})"), "parameters.segments: 40.5 is not a whole number"},
-        {v2(R"(, "parameters": {"simulate_all_strands": 2})"), "parameters.simulate_all_strands: 2 is not true or false"},
-        {v2(R"(, "parameters": {"simulate_all_strands": "yes"})"),
-         "parameters.simulate_all_strands: \"yes\" is not true or false"},
-        {v2(R"(, "regions": [{"wisp": {"wisp_size": 12.5}}])"), "regions[0].wisp.wisp_size: 12.5 is not a whole number"},
-        {v2(R"(, "regions": [{"root_colour": [0.1, 0.2]}])"), "regions[0].root_colour: expected 3 numbers 0..1"},
-        {v2(R"(, "regions": [{"root_colour": [0.1, 0.2, 1.5]}])"), "regions[0].root_colour: expected 3 numbers 0..1"},
-        {v2(R"(, "regions": [{"root_colour": "brown"}])"), "regions[0].root_colour: expected 3 numbers 0..1"},
-        {v2(R"(, "regions": [)" + region0 + R"({"tip_colour": [0, "0", 0]}])"),
-         "regions[1].tip_colour: expected 3 numbers 0..1"},
-        {v2(R"(, "regions": [{"wisp": {"length": 0.2}, "length": 0.3}])"),
-         "regions[0].length: given twice, here and at regions[0].wisp.length"},
-        {v2(R"(, "regions": {"name": "A"})"), "regions: expected a list [ ... ] of regions, found an object"},
-        {v2(R"(, "regions": [3])"), "regions[0]: expected an object { ... }, found 3"},
-        {v2(R"(, "regions": [{"wisp": [1]}])"), "regions[0].wisp: expected an object { ... }, found a list"},
-        {v2(R"(, "regions": [{"name": 7}])"), "regions[0].name: 7 is not text (text goes in double quotes)"},
-        {v2(R"(, "parameters": 9.81)"), "parameters: expected an object { ... }, found 9.81"},
-        {v2(R"(, "name": ["a"])"), "name: a list is not text (text goes in double quotes)"},
+        { v2(R"(, "regions": [{"name": "A"}, {"name": "B", "clump_degree": 3.0}])"),
+            "regions[1].clump_degree: 3.0 is outside -1..1" },
+        { v2(R"(, "regions": [{}, {"wisp": {"clump_degree": 3.0}}])"),
+            "regions[1].wisp.clump_degree: 3.0 is outside -1..1" },
+        { v2(R"(, "regions": [{}, {"wisp": {"clump_degree": 3}}])"),
+            "regions[1].wisp.clump_degree: 3 is outside -1..1" },
+        { v2(R"(, "parameters": {"gravity": "strong"})"), "parameters.gravity: \"strong\" is not a number" },
+        { v2(R"(, "parameters": {"gravity": true})"), "parameters.gravity: true is not a number" },
+        { v2(R"(, "parameters": {"gravity": null})"), "parameters.gravity: null is not a number" },
+        { v2(R"(, "parameters": {"gravity": [9.81]})"), "parameters.gravity: a list is not a number" },
+        { v2(R"(, "parameters": {"time_step": 0.5})"), "parameters.time_step: 0.5 is outside 0.001..0.1" },
+        { v2(R"(, "parameters": {"seed": -1})"), "parameters.seed: -1 is outside 0..2147483647" },
+        { v2(R"(, "parameters": {"segments": 40.5})"), "parameters.segments: 40.5 is not a whole number" },
+        { v2(R"(, "parameters": {"simulate_all_strands": 2})"),
+            "parameters.simulate_all_strands: 2 is not true or false" },
+        { v2(R"(, "parameters": {"simulate_all_strands": "yes"})"),
+            "parameters.simulate_all_strands: \"yes\" is not true or false" },
+        { v2(R"(, "regions": [{"wisp": {"wisp_size": 12.5}}])"),
+            "regions[0].wisp.wisp_size: 12.5 is not a whole number" },
+        { v2(R"(, "regions": [{"root_colour": [0.1, 0.2]}])"), "regions[0].root_colour: expected 3 numbers 0..1" },
+        { v2(R"(, "regions": [{"root_colour": [0.1, 0.2, 1.5]}])"), "regions[0].root_colour: expected 3 numbers 0..1" },
+        { v2(R"(, "regions": [{"root_colour": "brown"}])"), "regions[0].root_colour: expected 3 numbers 0..1" },
+        { v2(R"(, "regions": [)" + region0 + R"({"tip_colour": [0, "0", 0]}])"),
+            "regions[1].tip_colour: expected 3 numbers 0..1" },
+        { v2(R"(, "regions": [{"wisp": {"length": 0.2}, "length": 0.3}])"),
+            "regions[0].length: given twice, here and at regions[0].wisp.length" },
+        { v2(R"(, "regions": {"name": "A"})"), "regions: expected a list [ ... ] of regions, found an object" },
+        { v2(R"(, "regions": [3])"), "regions[0]: expected an object { ... }, found 3" },
+        { v2(R"(, "regions": [{"wisp": [1]}])"), "regions[0].wisp: expected an object { ... }, found a list" },
+        { v2(R"(, "regions": [{"name": 7}])"), "regions[0].name: 7 is not text (text goes in double quotes)" },
+        { v2(R"(, "parameters": 9.81)"), "parameters: expected an object { ... }, found 9.81" },
+        { v2(R"(, "name": ["a"])"), "name: a list is not text (text goes in double quotes)" },
     };
     for (const auto& [text, expected] : cases) {
         SCOPED_TRACE(text);
@@ -352,7 +363,7 @@ TEST_F(PresetFileTest, MalformedJsonGivesLineAndColumn)
 
     const Result<PresetReadResult> cut = parse("{\n  \"format\": \"wisp-pre");
     ASSERT_FALSE(cut);
-    EXPECT_EQ(cut.error().location, "line 2, column 22");  // one past the last character
+    EXPECT_EQ(cut.error().location, "line 2, column 22"); // one past the last character
 }
 
 TEST_F(PresetFileTest, EmptyAndMissingFilesAreRefused)
@@ -401,13 +412,13 @@ TEST_F(PresetFileTest, HostileFilesAreRefusedWithoutHanging)
 
     // A long description under the file limit is refused by its own limit.
     EXPECT_EQ(errorOf(v2(R"(, "description": ")" + std::string(1u << 20, 'a') + "\"")),
-              "test.json: description: the text is 1048576 bytes long; at most 65536 are allowed");
+        "test.json: description: the text is 1048576 bytes long; at most 65536 are allowed");
     EXPECT_EQ(errorOf(v2(R"(, "name": ")" + std::string(300, 'n') + "\"")),
-              "test.json: name: the text is 300 bytes long; at most 256 are allowed");
+        "test.json: name: the text is 300 bytes long; at most 256 are allowed");
 
     // Deep nesting neither overflows the stack while parsing nor while freeing.
-    const std::string deep = v2(R"(, "parameters": {"gravity": )" + std::string(1'000'000, '[') +
-                                std::string(1'000'000, ']') + "}");
+    const std::string deep
+        = v2(R"(, "parameters": {"gravity": )" + std::string(1'000'000, '[') + std::string(1'000'000, ']') + "}");
     EXPECT_EQ(errorOf(deep), "test.json: parameters.gravity: a list is not a number");
 
     // Text that is not UTF-8 is a syntax error with a place.
@@ -419,10 +430,10 @@ TEST_F(PresetFileTest, HostileFilesAreRefusedWithoutHanging)
 TEST_F(PresetFileTest, WritingIntoAMissingFolderFailsCleanly)
 {
     const std::string path = (m_dir / "missing" / "look.json").string();
-    const Result<std::monostate> result = writePreset(path, Preset{});
+    const Result<void> result = writePreset(path, Preset{});
     ASSERT_FALSE(result);
     EXPECT_EQ(result.error().file, path);
-    EXPECT_EQ(result.error().message.find(path), std::string::npos);  // the path is said once, as the file
+    EXPECT_EQ(result.error().message.find(path), std::string::npos); // the path is said once, as the file
     EXPECT_FALSE(fs::exists(m_dir / "missing"));
     EXPECT_TRUE(fs::is_empty(m_dir));
 }
@@ -444,7 +455,7 @@ TEST_F(PresetFileTest, RangeEndsAsWrittenAreAccepted)
 
 TEST_F(PresetFileTest, TheBodyToggleRoundTrips)
 {
-    for (bool on : {false, true}) {
+    for (bool on : { false, true }) {
         Preset preset;
         ASSERT_EQ(preset.parameters.set(Param::Body, on ? 1 : 0), "");
         const std::string path = (m_dir / "body.json").string();
@@ -470,6 +481,7 @@ TEST(PresetFileErrors, NumberOverflowNamesTheLineAndColumn)
 {
     const std::string text = "{\"format\": \"wisp-preset\", \"version\": 2,\n \"name\": \"1e999\",\n"
                              " \"parameters\": {\"gravity\": -1e999}}";
-    EXPECT_EQ(errorOf(text), "test.json: line 3, column 28: the number -1e999 is too large to hold (it overflows a double)");
+    EXPECT_EQ(
+        errorOf(text), "test.json: line 3, column 28: the number -1e999 is too large to hold (it overflows a double)");
     EXPECT_EQ(errorOf(text).find("json.exception"), std::string::npos);
 }

@@ -33,18 +33,46 @@ using test::freshTestFolder;
 std::string errorOf(const std::string& reader, const std::string& path)
 {
     const std::map<std::string, std::function<std::string()>> readers = {
-        {"mesh", [&] { auto r = readMesh(path); return r ? std::string() : r.error().toString(); }},
-        {"gltf", [&] { auto r = readGltf(path); return r ? std::string() : r.error().toString(); }},
-        {"hair", [&] { auto r = readHair(path); return r ? std::string() : r.error().toString(); }},
-        {"preset", [&] { auto r = readPreset(path); return r ? std::string() : r.error().toString(); }},
-        {"project", [&] { auto r = readProject(path); return r ? std::string() : r.error().toString(); }},
-        {"params", [&] { auto r = readParameterText(path); return r ? std::string() : r.error().toString(); }},
-        {"strands", [&] { auto r = readStrandText(path); return r ? std::string() : r.error().toString(); }},
+        { "mesh",
+            [&] {
+                auto r = readMesh(path);
+                return r ? std::string() : r.error().toString();
+            } },
+        { "gltf",
+            [&] {
+                auto r = readGltf(path);
+                return r ? std::string() : r.error().toString();
+            } },
+        { "hair",
+            [&] {
+                auto r = readHair(path);
+                return r ? std::string() : r.error().toString();
+            } },
+        { "preset",
+            [&] {
+                auto r = readPreset(path);
+                return r ? std::string() : r.error().toString();
+            } },
+        { "project",
+            [&] {
+                auto r = readProject(path);
+                return r ? std::string() : r.error().toString();
+            } },
+        { "params",
+            [&] {
+                auto r = readParameterText(path);
+                return r ? std::string() : r.error().toString();
+            } },
+        { "strands",
+            [&] {
+                auto r = readStrandText(path);
+                return r ? std::string() : r.error().toString();
+            } },
     };
     return readers.at(reader)();
 }
 
-const char* const kReaders[] = {"mesh", "gltf", "hair", "preset", "project", "params", "strands"};
+const char* const kReaders[] = { "mesh", "gltf", "hair", "preset", "project", "params", "strands" };
 
 // The extension each reader dispatches on, so that the FIFO's name is what an artist would type.
 std::string nameFor(const std::string& reader)
@@ -106,10 +134,10 @@ TEST(SpecialFiles, SizeCapIsCheckedBeforeReading)
         std::ofstream out(big);
         out << "# padding\n";
     }
-    fs::resize_file(big, kMaxTextFileBytes + 1);  // sparse: costs no disk
+    fs::resize_file(big, kMaxTextFileBytes + 1); // sparse: costs no disk
     const std::string error = errorOf("params", big.string());
     EXPECT_NE(error.find("a parameter file is at most 1 MB"), std::string::npos) << error;
-    const Result<std::string> within = readRegularFile(big.string(), {kMaxTextFileBytes + 1, "test", false});
+    const Result<std::string> within = readRegularFile(big.string(), { kMaxTextFileBytes + 1, "test", false });
     ASSERT_TRUE(within) << within.error().toString();
     EXPECT_EQ(within.value().size(), kMaxTextFileBytes + 1);
     fs::remove_all(dir);
@@ -128,10 +156,11 @@ TEST(SpecialFiles, ObjMaterialLibraryIsNeverOpened)
     ASSERT_TRUE(read) << read.error().toString();
     EXPECT_EQ(read.value().mesh.triangleCount(), 4u);
     const std::vector<std::string>& warnings = read.value().warnings;
-    EXPECT_NE(std::find(warnings.begin(), warnings.end(), "ignored the material library 'skin.mtl': Wisp reads no materials"),
-              warnings.end());
+    EXPECT_NE(
+        std::find(warnings.begin(), warnings.end(), "ignored the material library 'skin.mtl': Wisp reads no materials"),
+        warnings.end());
     fs::remove_all(dir);
 }
 
-}  // namespace
-}  // namespace wisp::io
+} // namespace
+} // namespace wisp::io

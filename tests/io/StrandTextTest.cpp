@@ -1,8 +1,8 @@
 // wisp-strands text (io/StrandText): a strand's point count that is negative or past the header's
 // total is refused with its line, before anything is allocated for it.
 
-#include "IoTestSupport.h"
 #include "io/StrandText.h"
+#include "IoTestSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -34,9 +34,9 @@ TEST(StrandText, ReadsWhatTheHeaderPromises)
 // around and passed: the reader then asked for 4 billion points (48 GB). Found by fuzz/fuzz_hair.
 TEST(StrandText, RefusesANegativeOrOversizedPointCount)
 {
-    for (const char* count : {"-2", "-1", "18446744073709551615", "3"}) {
-        const Result<HairCurves> read =
-            readText(std::string("wisp-strands 1\nstrands 2 points 4\n2 0 0 0 0 0.1 0\n") + count + " 0 0 0 0 0 0\n");
+    for (const char* count : { "-2", "-1", "18446744073709551615", "3" }) {
+        const Result<HairCurves> read
+            = readText(std::string("wisp-strands 1\nstrands 2 points 4\n2 0 0 0 0 0.1 0\n") + count + " 0 0 0 0 0 0\n");
         ASSERT_FALSE(read) << count;
         EXPECT_EQ(read.error().location, "line 4") << count;
         EXPECT_NE(read.error().message.find("point count"), std::string::npos) << read.error().toString();
@@ -47,7 +47,8 @@ TEST(StrandText, RefusesANegativeOrOversizedPointCount)
 // at its end, its size read as the largest number, and a claim of a trillion points was reserved.
 TEST(StrandText, AHeaderWithoutANewlineCannotClaimMorePointsThanTheFileHolds)
 {
-    for (const char* text : {"wisp-strands 1\nstrands 1 points 1000000000000", "wisp-strands 1\nstrands 1 points 1000000000000\n"}) {
+    for (const char* text :
+        { "wisp-strands 1\nstrands 1 points 1000000000000", "wisp-strands 1\nstrands 1 points 1000000000000\n" }) {
         const Result<HairCurves> read = readText(text);
         ASSERT_FALSE(read);
         EXPECT_EQ(read.error().location, "line 2");
@@ -55,4 +56,4 @@ TEST(StrandText, AHeaderWithoutANewlineCannotClaimMorePointsThanTheFileHolds)
     }
 }
 
-}  // namespace
+} // namespace

@@ -103,9 +103,9 @@ TEST(MeshBvh, ClosestPointMatchesBruteForceOnSphere)
 
 TEST(MeshBvh, ClosestPointMatchesBruteForceOnRealHead)
 {
+    REQUIRE_SHARED_ASSET(planckPath());
     const TriangleMesh head = planckHead();
-    if (head.triangles.empty())
-        GTEST_SKIP() << "no test assets at " << WISP_SHARED_ASSETS << "/heads/max_planck_decimated.obj";
+    ASSERT_FALSE(head.triangles.empty()) << planckPath();
     ASSERT_EQ(validateMesh(head), "");
     expectClosestMatchesBruteForce(head, 1000, 0.05f, 2);
     // Points right on the surface (the hard case for pruning: many boxes at distance ~0).
@@ -239,38 +239,28 @@ TEST(MeshBvh, BuildsOnASubnormalThickness)
     EXPECT_NEAR(hit->t, 1.0f, 1e-6f);
 }
 
-// A ~330k-triangle mesh stays interactive: the build and single queries are timed and printed;
-// the assertions are loose so slow (sanitizer, debug) builds still pass.
+// A ~330k-triangle mesh: rays from inside hit it, closest points come back. Its build and query
+// times are figures in tests/bench (wisp_benchmarks), not assertions here.
 TEST(MeshBvh, LargeMeshQueriesAnswer)
 {
     const TriangleMesh sphere = makeIcosphere(0.12f, 7);  // 327,680 triangles
-    using Clock = std::chrono::steady_clock;
-    const auto t0 = Clock::now();
     const MeshBvh bvh(sphere);
-    const double buildMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 
     std::mt19937 rng(5);
     std::normal_distribution<float> gauss;
     constexpr int kRays = 20000;
     int hits = 0;
-    const auto t1 = Clock::now();
     for (int i = 0; i < kRays; ++i) {
         const glm::vec3 d = glm::normalize(glm::vec3(gauss(rng), gauss(rng), gauss(rng)) + glm::vec3(1e-6f));
         hits += bvh.raycast(-0.5f * d + 0.05f * glm::vec3(gauss(rng), gauss(rng), gauss(rng)), d, 1.0f).has_value();
     }
-    const double rayUs = std::chrono::duration<double, std::micro>(Clock::now() - t1).count() / kRays;
-    const auto t2 = Clock::now();
     float sum = 0.0f;
     for (int i = 0; i < kRays; ++i) {  // within a few centimetres of the surface, where grooming asks
         const glm::vec3 d = glm::normalize(glm::vec3(gauss(rng), gauss(rng), gauss(rng)) + glm::vec3(1e-6f));
         sum += bvh.closestPoint((0.12f + 0.01f * gauss(rng)) * d).distance;
     }
-    const double closestUs = std::chrono::duration<double, std::micro>(Clock::now() - t2).count() / kRays;
-    std::printf("[ timing   ] BVH over %zu triangles: build %.1f ms, raycast %.2f us, closest point %.2f us\n",
-                sphere.triangleCount(), buildMs, rayUs, closestUs);
     EXPECT_GT(hits, kRays * 9 / 10);
     EXPECT_GT(sum, 0.0f);
-    // Timings are printed, not asserted: shared machines are noisy (see the README's figures).
 }
 
 // A nearly flat mesh whose triangle centroids span a subnormal, non-zero extent in z: kBins /

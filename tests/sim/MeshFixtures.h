@@ -4,6 +4,8 @@
 
 #include "sim/TriangleMesh.h"
 
+#include "../SharedAssets.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -88,7 +90,7 @@ inline TriangleMesh readObj(const std::filesystem::path& path, float scale)
 // Where Max Planck's head (in millimetres) lies in the shared test assets; the file may be absent.
 inline std::filesystem::path planckPath()
 {
-    return std::filesystem::path(WISP_SHARED_ASSETS) / "heads" / "max_planck_decimated.obj";
+    return wisp::test::sharedAssetsDir() / "heads" / "max_planck_decimated.obj";
 }
 
 }  // namespace wisp::test

@@ -379,37 +379,5 @@ TEST(ScalpBrush, MalformedMeshesAreSafe)
     EXPECT_TRUE(hugeBrush.verticesNear(huge.positions[2], 1.0f).empty());
 }
 
-// Prints (does not assert) the cost of a dab: 100 dabs along the crown of the default head, and on
-// an icosphere about as dense as a 270k-triangle scan of a head.
-TEST(ScalpBrush, Timing)
-{
-    using Clock = std::chrono::steady_clock;
-    auto time = [](const TriangleMesh& mesh, const ScalpBrush& b, const char* what) {
-        std::vector<float> w(mesh.vertexCount(), 0.3f);
-        std::vector<glm::vec3> centres;  // surface points (vertices) on the upper half
-        std::mt19937 rng(9);
-        while (centres.size() < 100)
-            if (const glm::vec3 p = mesh.positions[rng() % mesh.positions.size()]; p.y > 0.03f)
-                centres.push_back(p);
-        for (BrushMode mode : {BrushMode::Add, BrushMode::Smooth}) {
-            std::size_t touched = 0;
-            const auto t0 = Clock::now();
-            for (const glm::vec3& c : centres)
-                touched += b.dab(c, BrushSettings{.radiusMetres = 0.02f, .mode = mode}, w).size();
-            const double us = std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / 100.0;
-            std::printf("[ timing   ] %s (%zu vertices): %s dab of 2 cm, mirrored: %.1f us, %zu vertices changed\n",
-                        what, mesh.vertexCount(), mode == BrushMode::Add ? "add" : "smooth", us, touched / 100);
-        }
-    };
-    time(head(), brush(), "default head");
-
-    const TriangleMesh dense = test::makeIcosphere(0.1f, 7);  // 327,680 triangles on a 10 cm sphere
-    const auto t0 = Clock::now();
-    const ScalpBrush denseBrush(dense);
-    std::printf("[ timing   ] brush over %zu vertices prepared in %.1f ms\n", dense.vertexCount(),
-                std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-    time(dense, denseBrush, "icosphere");
-}
-
 }  // namespace
 }  // namespace wisp

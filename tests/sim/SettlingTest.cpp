@@ -188,9 +188,10 @@ TEST_P(DrawnStrands, KeepTheirLengthAndStayOutOfTheHead)
     }
     if (c.windSpeed > 0.0f)
         v.set(Param::Turbulence, 0.5);
+    if (c.planck)
+        REQUIRE_SHARED_ASSET(planckPath());
     TriangleMesh head = c.planck ? placedPlanck() : defaultHead().mesh;
-    if (head.triangles.empty())
-        GTEST_SKIP() << "no test assets at " << planckPath();
+    ASSERT_FALSE(head.triangles.empty());
     HairSimulation sim;
     const std::vector<float> weights = c.planck ? scalpGrowth(head) : defaultHead().growthWeights;
     ASSERT_EQ(sim.setup(head, weights, v), "");

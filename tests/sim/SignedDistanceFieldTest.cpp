@@ -222,8 +222,7 @@ TEST(SignedDistanceField, GridAlignedCubeHasExactSigns)
 
 TEST(SignedDistanceField, RealHeadSignsMatchExactWindingNumber)
 {
-    if (!std::filesystem::exists(planckPath()))
-        GTEST_SKIP() << "no test assets at " << planckPath();
+    REQUIRE_SHARED_ASSET(planckPath());
     const TriangleMesh head = readObj(planckPath(), 0.001f);
     ASSERT_EQ(validateMesh(head), "");
     std::string error;
@@ -374,43 +373,6 @@ TEST(SignedDistanceField, GradientIsNeverNaN)
         const glm::vec3 g = field.gradient(p);
         EXPECT_TRUE(std::isfinite(g.x) && std::isfinite(g.y) && std::isfinite(g.z));
         EXPECT_NEAR(glm::length(g), 1.0f, 1e-4f);
-    }
-}
-
-// Bake time for a head-sized collider (printed): the real head scaled to a 0.25 m box, and the
-// same head split to four times the triangles, at 2.5 mm cells with a 2 cm margin.
-TEST(SignedDistanceField, HeadBakeTime)
-{
-    if (!std::filesystem::exists(planckPath()))
-        GTEST_SKIP() << "no test assets at " << planckPath();
-    TriangleMesh head = readObj(planckPath(), 1.0f);
-    const Aabb box = boundsOf(head);
-    const float scale = 0.25f / std::max(box.size().x, std::max(box.size().y, box.size().z));
-    for (glm::vec3& p : head.positions)
-        p = (p - box.center()) * scale;
-    TriangleMesh fine = head;  // each triangle split in four at its edge midpoints
-    fine.triangles.clear();
-    std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;
-    auto midpoint = [&](unsigned a, unsigned b) {
-        const auto key = std::minmax(a, b);
-        if (auto it = midpoints.find(key); it != midpoints.end())
-            return it->second;
-        fine.positions.push_back(0.5f * (fine.positions[a] + fine.positions[b]));
-        return midpoints[key] = static_cast<unsigned>(fine.positions.size() - 1);
-    };
-    for (const glm::uvec3& t : head.triangles) {
-        const unsigned ab = midpoint(t.x, t.y), bc = midpoint(t.y, t.z), ca = midpoint(t.z, t.x);
-        fine.triangles.insert(fine.triangles.end(), {{t.x, ab, ca}, {t.y, bc, ab}, {t.z, ca, bc}, {ab, bc, ca}});
-    }
-    for (const TriangleMesh* mesh : {&head, &fine}) {
-        const auto t0 = std::chrono::steady_clock::now();
-        std::string error;
-        const SignedDistanceField field = SignedDistanceField::bake(*mesh, 0.0025f, 0.02f, &error);
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        ASSERT_FALSE(field.empty()) << error;
-        std::printf("[ timing   ] SDF bake, %zu triangles, %d x %d x %d samples at 2.5 mm: %.1f ms\n", mesh->triangleCount(),
-                    field.dims().x, field.dims().y, field.dims().z, ms);
-        // Printed only: speed is a figure, not a test (machines are shared and noisy).
     }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Shared by HairFiles.cpp, CyHair.cpp, UscHairData.cpp and HairExport.cpp; not part of io/'s API.
 
+#include "io/GltfReader.h"
 #include "io/HairFiles.h"
 
 #include <bit>
@@ -74,6 +75,8 @@ std::string skippedStrandsWarning(const std::vector<std::uint64_t>& strands, con
 
 Result<HairReadResult> readCyHair(const std::string& path);
 Result<HairReadResult> readUscData(const std::string& path);
+Result<HairReadResult> readObjPolylines(const std::string& path);  // ObjPolylines.cpp
+Result<HairReadResult> readGltfStrands(const std::string& path);   // ObjPolylines.cpp, through io/GltfReader
 std::optional<IoError> writeCyHair(const std::string& path, const HairCurves& strands);
 std::optional<IoError> writeUscData(const std::string& path, const HairCurves& strands);
 std::optional<IoError> writeObjPolylines(const std::string& path, const HairCurves& strands,

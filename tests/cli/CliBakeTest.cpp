@@ -151,3 +151,23 @@ TEST_F(CliBake, BadValuesAndUsageAreRefusedClearly)
     }
     EXPECT_FALSE(fs::exists(at("x.usda")));
 }
+
+TEST_F(CliBake, ConvertReadsBackTheGltfGlbAndObjStrandsWispWrites)
+{
+    ASSERT_EQ(cli("bake --frames 1:1 --no-drape --density 1 --out " + at("s.#.hair"), 300).status, 0);
+    const std::string original = bytesOf(at("s.1.hair"));
+    for (const char* ext : {"gltf", "glb", "obj"}) {
+        SCOPED_TRACE(ext);
+        const std::string there = at(std::string("s.") + ext), back = at(std::string("back-") + ext + ".hair");
+        const CliRun out = cli("convert " + at("s.1.hair") + " " + there);
+        ASSERT_EQ(out.status, 0) << out.output;
+        const CliRun in = cli("convert " + there + " " + back);
+        ASSERT_EQ(in.status, 0) << in.output;
+        EXPECT_EQ(bytesOf(back), original) << "float32 survives the round trip exactly";
+    }
+    std::ofstream(at("broken.obj")) << "v 0 0 0\nl 1 2\n";
+    const CliRun broken = cli("convert " + at("broken.obj") + " " + at("x.hair"));
+    EXPECT_EQ(broken.status, 1);
+    EXPECT_NE(broken.output.find(at("broken.obj") + ": line 2: vertex 2 does not exist (the file has 1)"), std::string::npos)
+        << broken.output;
+}

@@ -1,6 +1,6 @@
 #pragma once
 // How the head moves over time: keyframes on its rigid transform, and a procedural motion (turn,
-// nod, shake, walk) layered on top. Evaluated at a time in seconds; the bake and the editor give
+// nod, shake, walk) layered on top. Evaluated at a time in seconds; the bake (HairBake.h) gives
 // the result to Solver::setHeadTransform before each step, so roots follow and the hair swings.
 //
 // The head's velocity is continuous everywhere, because the hair feels the head through its roots:

@@ -142,6 +142,130 @@ Json parsedJson(std::string_view text, bool binary, std::size_t jsonOffset, cons
 
 } // namespace
 
+namespace {
+
+// The strands of every LINES and LINE_STRIP primitive, in mesh and primitive order: a LINES
+// primitive's index pairs are chained while each segment starts where the last one ended (Wisp's
+// writer gives each strand's segments in order), a new strand begins where one does not.
+GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warnings)
+{
+    GltfLines out;
+    bool widthsEverywhere = true;
+    std::size_t lineMeshes = 0;
+    for (std::size_t m = 0; m < model.meshes.size(); ++m) {
+        bool hasLines = false;
+        for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
+            const tinygltf::Primitive& primitive = model.meshes[m].primitives[p];
+            const std::string location = indexed("meshes", m) + "." + indexed("primitives", p);
+            if (primitive.mode != TINYGLTF_MODE_LINE && primitive.mode != TINYGLTF_MODE_LINE_STRIP)
+                continue;
+            hasLines = true;
+            const auto position = primitive.attributes.find("POSITION");
+            if (position == primitive.attributes.end())
+                fail(location, "a LINES primitive without POSITION");
+            const AccessorValues positions = readAccessor(model, position->second, "POSITION of " + location);
+            if (positions.components != 3)
+                fail(location, "POSITION is not VEC3");
+            for (double v : positions.values)
+                if (!std::isfinite(static_cast<float>(v)))
+                    fail(location, "a POSITION is not a finite number");
+            std::vector<double> widths;
+            if (const auto width = primitive.attributes.find("_WIDTH"); width != primitive.attributes.end()) {
+                AccessorValues w = readAccessor(model, width->second, "_WIDTH of " + location);
+                if (w.components != 1 || w.count != positions.count)
+                    fail(location, "_WIDTH must be one SCALAR per POSITION (" + std::to_string(positions.count) + ")");
+                for (double v : w.values)
+                    if (!(v >= 0.0) || !std::isfinite(static_cast<float>(v)))
+                        fail(location, "a _WIDTH is negative or not a finite number");
+                widths = std::move(w.values);
+            } else {
+                widthsEverywhere = false;
+            }
+            std::vector<std::uint32_t> indices;
+            if (primitive.indices >= 0) {
+                const AccessorValues values = readAccessor(model, primitive.indices, "indices of " + location);
+                indices.reserve(values.values.size());
+                for (std::size_t i = 0; i < values.values.size(); ++i) {
+                    const double v = values.values[i];
+                    if (!(v >= 0.0 && v < static_cast<double>(positions.count)) || std::floor(v) != v)
+                        fail(location, "index " + std::to_string(i) + " is out of range: the POSITION accessor has " +
+                                           plural(positions.count, "vertex", "vertices"));
+                    indices.push_back(static_cast<std::uint32_t>(v));
+                }
+            } else {
+                for (std::size_t i = 0; i < positions.count; ++i)
+                    indices.push_back(static_cast<std::uint32_t>(i));
+            }
+            auto point = [&](std::uint32_t i) {
+                out.strands.positions.push_back(glm::vec3(static_cast<float>(positions.values[3 * i]),
+                                                          static_cast<float>(positions.values[3 * i + 1]),
+                                                          static_cast<float>(positions.values[3 * i + 2])));
+                out.widthsMetres.push_back(widths.empty() ? 0.0f : static_cast<float>(widths[i]));
+            };
+            auto endStrand = [&] {
+                if (out.strands.positions.size() > out.strands.offsets.back())
+                    out.strands.offsets.push_back(static_cast<std::uint32_t>(out.strands.positions.size()));
+            };
+            if (primitive.mode == TINYGLTF_MODE_LINE_STRIP) {
+                for (std::uint32_t i : indices)
+                    point(i);
+                endStrand();
+                continue;
+            }
+            if (indices.size() % 2 != 0)
+                fail(location, "LINES needs an even number of indices, not " + std::to_string(indices.size()));
+            for (std::size_t k = 0; k < indices.size(); k += 2) {
+                if (k == 0 || indices[k] != indices[k - 1]) {
+                    endStrand();
+                    point(indices[k]);
+                }
+                point(indices[k + 1]);
+            }
+            endStrand();
+        }
+        lineMeshes += hasLines;
+    }
+    for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+        const tinygltf::Node& node = model.nodes[n];
+        if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < model.meshes.size() &&
+            localTransform(node, n) != glm::dmat4(1.0))
+            for (const tinygltf::Primitive& p : model.meshes[static_cast<std::size_t>(node.mesh)].primitives)
+                if (p.mode == TINYGLTF_MODE_LINE || p.mode == TINYGLTF_MODE_LINE_STRIP) {
+                    warnings.push_back(indexed("nodes", n) + " transforms its lines; strands are read as stored");
+                    break;
+                }
+    }
+    if (out.strands.strandCount() == 0)
+        fail({}, "no strands: the file has no LINES or LINE_STRIP primitive");
+    if (!widthsEverywhere)
+        out.widthsMetres.clear();
+    (void)lineMeshes;
+    return out;
+}
+
+} // namespace
+
+Result<GltfLines> readGltfLines(const std::string& path)
+{
+    try {
+        std::string problem;
+        const std::string bytes = readGltfFile(path, problem);
+        if (!problem.empty())
+            fail({}, problem);
+        std::vector<std::string> warnings;
+        const tinygltf::Model model = loadWithTinyGltf(path, bytes, warnings);
+        GltfLines lines = readLines(model, warnings);
+        lines.warnings = std::move(warnings);
+        return lines;
+    } catch (const ReadFailure& failure) {
+        return IoError{path, failure.location, failure.message};
+    } catch (const std::bad_alloc&) {
+        return IoError{path, {}, "not enough memory to read this glTF file"};
+    } catch (const std::exception& e) {
+        return IoError{path, {}, "unexpected error while reading: " + withoutJsonPrefix(e.what())};
+    }
+}
+
 Result<MeshReadResult> readGltf(const std::string& path)
 {
     try {

@@ -36,13 +36,27 @@
 
 #include "io/IoError.h"
 #include "io/MeshReader.h"
+#include "sim/HairCurves.h"
 
 #include <string>
+#include <vector>
 
 namespace wisp::io {
 
 // Reads `path` as glTF 2.0. The binary container (GLB) is recognised by its 'glTF' magic, so a
 // binary file named .gltf still reads (with a warning); a .glb without the magic is refused.
 Result<MeshReadResult> readGltf(const std::string& path);
+
+// Strands from the LINES and LINE_STRIP primitives of a .gltf or .glb (hair as Wisp and other tools
+// write it), with the same container, JSON and accessor checks. A LINES primitive's index pairs
+// are chained into one strand while each segment starts where the one before ended. Node
+// transforms are not applied (Wisp writes none; a transformed lines node gives a warning).
+// `widthsMetres` holds the per-point `_WIDTH` when every lines primitive has one, else is empty.
+struct GltfLines {
+    HairCurves strands;
+    std::vector<float> widthsMetres;
+    std::vector<std::string> warnings;
+};
+Result<GltfLines> readGltfLines(const std::string& path);
 
 } // namespace wisp::io

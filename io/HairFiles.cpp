@@ -75,7 +75,7 @@ std::optional<HairFormat> hairFormatForPath(const std::string& path)
 
 const std::vector<std::string>& hairReadExtensions()
 {
-    static const std::vector<std::string> extensions{ "hair", "data" };
+    static const std::vector<std::string> extensions{"hair", "data", "obj", "gltf", "glb"};
     return extensions;
 }
 
@@ -92,6 +92,10 @@ Result<HairReadResult> readHair(const std::string& path)
         return hair_detail::readCyHair(path);
     if (format == HairFormat::UscData)
         return hair_detail::readUscData(path);
+    if (format == HairFormat::ObjPolylines)
+        return hair_detail::readObjPolylines(path);
+    if (format == HairFormat::Gltf || format == HairFormat::Glb)
+        return hair_detail::readGltfStrands(path);
     const std::string readable = "Wisp reads hair from " + describe(hairReadExtensions());
     if (format)
         return IoError{ path, "",

@@ -7,13 +7,15 @@
 //          any thickness, transparency and colour arrays it reads (their sizes are checked).
 //   .data  USC-HairSalon: int32 strand count, then per strand int32 n and n x 3 float32.
 //          Read and written.
-//   .obj   polylines: `v x y z` lines and one `l i j k ...` line per strand (written only);
-//          the head, when given, follows as a second object of triangles.
-//   .gltf  glTF 2.0 with the buffer embedded as base64, and .glb (binary glTF); written only.
+//   .obj   polylines: `v x y z` lines and one `l i j k ...` line per strand; the head, when
+//          given, follows as a second object of triangles. Read back: every `l` line of two
+//          vertices or more is a strand (faces and `p` points are skipped with a warning).
+//   .gltf  glTF 2.0 with the buffer embedded as base64, and .glb (binary glTF).
 //          The strands are one LINES primitive (an index pair per segment) with POSITION and a
 //          custom per-point `_WIDTH` float attribute (metres, tapering linearly from the root
 //          width to the tip width along each strand); the head, when given, is a second mesh
-//          on its own node. glTF is in metres with +Y up, as Wisp is.
+//          on its own node. glTF is in metres with +Y up, as Wisp is. Read back through
+//          io/GltfReader's checks (readGltfLines): LINES and LINE_STRIP primitives, `_WIDTH` kept.
 // Binary formats are little-endian. The extension picks the format, case-insensitively.
 //
 // Coordinates are kept exactly as stored (no unit scaling, no axis change): a file made in
@@ -43,6 +45,8 @@ struct HairReadResult {
     // What the reader skipped but the artist may want to know (one-point strands, colour
     // arrays, bytes after the data). Empty for a clean file. Never fatal.
     std::vector<std::string> warnings;
+    // Per point, metres: glTF `_WIDTH` where the file has it; empty otherwise.
+    std::vector<float> widthsMetres;
 };
 
 enum class HairFormat { CyHair, UscData, ObjPolylines, Gltf, Glb };
@@ -50,7 +54,7 @@ enum class HairFormat { CyHair, UscData, ObjPolylines, Gltf, Glb };
 // The format the extension of `path` names (case-insensitive), or nullopt.
 std::optional<HairFormat> hairFormatForPath(const std::string& path);
 
-// Reads .hair or .data strands. On failure the IoError names the file, the place ("byte 3728")
+// Reads .hair, .data, .obj, .gltf or .glb strands. On failure the IoError names the file, the place ("byte 3728")
 // and the problem; an extension Wisp cannot read gives a message listing the ones it can.
 Result<HairReadResult> readHair(const std::string& path);
 
@@ -66,7 +70,7 @@ struct HairExportOptions {
 Result<void> writeHair(const std::string& path, const HairCurves& strands, const HairExportOptions& options = {});
 
 // Lower-case extensions without the dot, in the order a file dialog should offer them.
-const std::vector<std::string>& hairReadExtensions(); // hair, data
+const std::vector<std::string>& hairReadExtensions(); // hair, data, obj, gltf, glb
 const std::vector<std::string>& hairWriteExtensions(); // hair, data, obj, gltf, glb
 
 } // namespace wisp::io

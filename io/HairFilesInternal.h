@@ -1,6 +1,7 @@
 #pragma once
 // Shared by HairFiles.cpp, CyHair.cpp, UscHairData.cpp and HairExport.cpp; not part of io/'s API.
 
+#include "io/GltfReader.h"
 #include "io/HairFiles.h"
 #include "io/ReadFailure.h"
 #include "io/RegularFile.h"
@@ -85,6 +86,8 @@ std::string skippedStrandsWarning(const std::vector<std::uint64_t>& strands, con
 
 Result<HairReadResult> readCyHair(const std::string& path);
 Result<HairReadResult> readUscData(const std::string& path);
+Result<HairReadResult> readObjPolylines(const std::string& path); // ObjPolylines.cpp
+Result<HairReadResult> readGltfStrands(const std::string& path); // ObjPolylines.cpp, through io/GltfReader
 Result<void> writeCyHair(const std::string& path, const HairCurves& strands);
 Result<void> writeUscData(const std::string& path, const HairCurves& strands);
 Result<void> writeObjPolylines(const std::string& path, const HairCurves& strands, const HairExportOptions& options);

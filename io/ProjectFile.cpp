@@ -2,6 +2,7 @@
 #include "io/HeadPlacement.h"
 #include "io/JsonErrors.h"
 #include "io/MeshReader.h"
+#include "io/MotionJson.h"
 
 #include "io/AtomicFile.h"
 #include "io/Base64.h"
@@ -119,6 +120,10 @@ void checkProject(const Project& project)
     if (project.soloRegion != kNoSolo && !indexOfId.contains(project.soloRegion))
         throw Refusal{ "solo_region", std::to_string(project.soloRegion) + " is the id of no region" };
 
+    if (std::string e = project.motion.validate(); !e.empty())
+        throw Refusal{"motion", e};
+    if (std::string e = validateBakeRange(project.timeline); !e.empty())
+        throw Refusal{"timeline", e};
     if (!(project.displayDensity >= kMinDisplayDensity && project.displayDensity <= kMaxDisplayDensity))
         throw Refusal{ "display_density", "the display density must be 0.25 to 4" };
     const CameraState& camera = project.camera;
@@ -476,7 +481,8 @@ Project readProjectJson(
 {
     checkFormatAndVersion(root, "wisp-project", "project", kProjectVersion, "wisp-preset", "a Wisp preset");
     warnUnknownKeys(root, "",
-        { "format", "version", "head", "parameters", "regions", "solo_region", "camera", "display_density", "style" },
+        { "format", "version", "head", "parameters", "regions", "solo_region", "camera", "display_density", "style",
+            "motion", "timeline" },
         warnings);
     Project project;
     readHead(root, projectPath, projectFolder(projectPath), loadHead, project, warnings);
@@ -506,6 +512,10 @@ Project readProjectJson(
         project.displayDensity = readFloat(*density, "display_density");
     if (const json* style = find(root, "style"))
         readStyle(*style, project.style, warnings);
+    if (const json* motion = find(root, "motion"))
+        project.motion = readMotion(*motion, "motion", warnings);
+    if (const json* timeline = find(root, "timeline"))
+        project.timeline = readTimeline(*timeline, "timeline", warnings);
     checkProject(project);
     return project;
 }
@@ -626,6 +636,10 @@ std::string projectToJson(const Project& project, const std::string& projectPath
     }
     if (!style.empty())
         root["style"] = std::move(style);
+    if (!(project.motion == HeadMotion{}))
+        root["motion"] = motionToJson(project.motion);
+    if (!(project.timeline == BakeRange{}))
+        root["timeline"] = timelineToJson(project.timeline);
     return dumpPretty(root);
 }
 

@@ -21,6 +21,8 @@
 //     "style": [ { "strand": "4294967298", "length": 0.2, "curl_radius": 0.01, "curl_turns": 6,
 //                  "stiffness_scale": 3, "wetness": 0.5, "shape": "<base64>" } ] }
 //
+// "motion" and "timeline" (io/MotionJson.h) hold the head's motion and the timeline's range.
+//
 // "style" holds the artist's salon edits (sim/StyleEdits.h), one entry per edited strand in
 // identity order; it is left out when there are none, and a missing "style" means no edits (older
 // projects). "strand" is the strand identity (Groom::strandIdentity) as a decimal string, since a
@@ -47,6 +49,8 @@
 #include "io/HeadOrientation.h"
 #include "io/IoError.h"
 #include "sim/GrowthRegion.h"
+#include "sim/HairBake.h"
+#include "sim/HeadMotion.h"
 #include "sim/Parameters.h"
 #include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
@@ -108,6 +112,11 @@ struct Project {
     // The salon edits (cut, comb, perm, hairspray, wet brush) per strand identity; entries must pass
     // validateStrandStyle. Default entries (isDefault) are not saved.
     StyleEdits style;
+    // The head's keyframes and procedural motion, and the timeline's frame range and fps
+    // (io/MotionJson.h: "motion" and "timeline", written only when not the defaults; older files
+    // read as no motion, frames 1..48 at 24 fps).
+    HeadMotion motion;
+    BakeRange timeline;
 };
 
 struct ProjectReadResult {

@@ -45,4 +45,6 @@ fi
 
 cmake -S . -B "$build_dir" "${cmake_args[@]}" > /dev/null
 cmake --build "$build_dir" -j"$(nproc)"
+# The independent USD reader the tests use (npm tinyusdz, pinned), into the build folder.
+if [ "${1:-}" != "--fuzz" ]; then tests/usd/install-tinyusdz.sh "$build_dir/tinyusdz" || true; fi
 echo "== built in $build_dir/"

@@ -535,12 +535,24 @@ void HairSimulation::buildFrame(HairCurves& out) const
         for (std::size_t w = 0; w < m_wetness.size(); ++w)
             wetClump[w] = wetClumping(m_wetness[w]);
     }
+    // Members are rebuilt in world space: the head's transform turns their root offsets and places
+    // the head and the body they are kept out of (a moving head, HeadMotion.h).
+    const glm::mat4& headToWorld = m_solver.headTransform();
+    const glm::mat3 rotation(headToWorld);
+    const glm::vec3 translation(headToWorld[3]);
     MemberContact contact;
     contact.head = m_sdf.get();
+    contact.headRotation = rotation;
+    contact.headTranslation = translation;
     contact.offsetMetres = m_solver.settings().hairOffsetMetres;
-    if (m_bodyOn)
-        contact.body = m_body;
-    buildMembers(m_groom, keys, glm::mat3(1.0f), out, wetClump, &contact);
+    std::vector<Capsule> bodyWorld;
+    if (m_bodyOn) {
+        bodyWorld.reserve(m_body.size());
+        for (const Capsule& c : m_body)
+            bodyWorld.push_back({rotation * c.a + translation, rotation * c.b + translation, c.radiusMetres});
+        contact.body = bodyWorld;
+    }
+    buildMembers(m_groom, keys, rotation, out, wetClump, &contact);
 }
 
 }  // namespace wisp

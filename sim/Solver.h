@@ -60,6 +60,7 @@ public:
     void setCapsules(std::vector<Capsule> capsules);
     // Rigid transform (rotation + translation) from head space to world space; roots follow it.
     void setHeadTransform(const glm::mat4& headToWorld);
+    const glm::mat4& headTransform() const { return m_headToWorld; }
 
     // Advances one time step (settings().substeps substeps).
     void step();

@@ -25,19 +25,12 @@ constexpr float kRadiusStep = 1.15f;  // [ and ] scale the radius by this
 PaintTool::PaintTool(Document* document, Viewport* viewport, QObject* parent)
     : ViewportBrush(viewport, parent), m_document(document)
 {
-    rebuildForHead();
-    connect(m_document, &Document::headChanged, this, &PaintTool::rebuildForHead);
+    connect(m_document, &Document::headChanged, this, &PaintTool::endStroke);
 }
 
 PaintTool::~PaintTool() = default;
 
-void PaintTool::rebuildForHead()
-{
-    endStroke();
-    const TriangleMesh& head = m_document->head();
-    m_bvh = std::make_unique<MeshBvh>(head);
-    m_brush = std::make_unique<ScalpBrush>(head);
-}
+float PaintTool::mirrorPlaneX() const { return m_document->headModel()->mirrorPlaneX(); }
 
 void PaintTool::setActive(bool active)
 {
@@ -96,16 +89,10 @@ void PaintTool::setMirror(bool mirror)
 std::optional<PaintTool::Hit> PaintTool::hitAt(QPointF widgetPosition) const
 {
     const ViewRay ray = viewport()->rayAt(widgetPosition);
-    const auto hit = m_bvh->raycast(ray.origin, ray.direction, 1e4f);
+    const auto hit = m_document->headModel()->hitAlong(ray.origin, ray.direction);
     if (!hit)
         return std::nullopt;
-    const TriangleMesh& head = m_document->head();
-    const glm::uvec3 tri = head.triangles[hit->surface.triangle];
-    glm::vec3 n = glm::cross(head.positions[tri.y] - head.positions[tri.x], head.positions[tri.z] - head.positions[tri.x]);
-    n = glm::length(n) > 0.0f ? glm::normalize(n) : -glm::normalize(ray.direction);
-    if (glm::dot(n, ray.direction) > 0.0f)  // the face we look at
-        n = -n;
-    return Hit{hit->point, n};
+    return Hit{hit->point, hit->normal};
 }
 
 // Held modifiers change the mode for as long as they are held: Ctrl erases, Shift smooths.
@@ -142,13 +129,14 @@ void PaintTool::dabAlong(const Hit& to, Qt::KeyboardModifiers modifiers)
 {
     BrushSettings s = m_settings;
     s.mode = modeFor(modifiers);
+    const ScalpBrush& brush = m_document->headModel()->scalp();
     std::vector<float>& weights = m_document->strokeWeights();
-    if (weights.size() != m_brush->vertexCount())
+    if (weights.size() != brush.vertexCount())
         return;
     const float spacing = kDabSpacing * s.radiusMetres;
     bool changed = false;
     if (!m_lastDab) {
-        changed = !m_brush->dab(to.point, s, weights).empty();
+        changed = !brush.dab(to.point, s, weights).empty();
         m_lastDab = to.point;
     } else {
         const glm::vec3 from = *m_lastDab;
@@ -156,7 +144,7 @@ void PaintTool::dabAlong(const Hit& to, Qt::KeyboardModifiers modifiers)
         const int steps = static_cast<int>(length / spacing);
         for (int i = 1; i <= steps; ++i) {
             const glm::vec3 p = glm::mix(from, to.point, static_cast<float>(i) * spacing / length);
-            changed = !m_brush->dab(p, s, weights).empty() || changed;
+            changed = !brush.dab(p, s, weights).empty() || changed;
             m_lastDab = p;
         }
     }

@@ -1,5 +1,7 @@
 #include "app/editor/SimulationHost.h"
 
+#include "sim/style/BrushContext.h"
+
 #include "app/editor/SettledScene.h"
 
 #include "app/editor/SimulationHostPacer.h"
@@ -275,21 +277,7 @@ private:
         m_groomedWith = values;
         m_refusedGroom.reset();
         ++m_groomVersion;
-        auto shape = std::make_shared<GroomShape>();
-        shape->rest = m_sim->groom().rest;
-        shape->keyStrands = m_sim->simulatesAllStrands() ? std::vector<std::uint32_t>{} : m_sim->groom().keyStrand;
-        if (m_sim->simulatesAllStrands())
-            for (std::uint32_t i = 0; i < m_sim->groom().strandCount(); ++i)
-                shape->keyStrands.push_back(i);
-        std::sort(shape->keyStrands.begin(), shape->keyStrands.end());
-        const Groom& groom = m_sim->groom();
-        shape->identities.resize(groom.strandCount());
-        for (std::size_t i = 0; i < groom.strandCount(); ++i)
-            shape->identities[i] = groom.strandIdentity(i);
-        shape->wispOf = groom.wispOf;
-        shape->keyOfWisp = groom.keyStrand;
-        shape->lengths = groom.lengths;
-        m_groomShape = std::move(shape);
+        m_groomShape = groomShapeOf(*m_sim);
         m_pacer.setRequestedSubsteps(values.getInt(Param::Substeps));
         m_sim->applyForces(withSubsteps(values, m_pacer.substeps()));
         m_host.m_effectiveSubsteps.store(m_pacer.substeps());

@@ -7,5 +7,6 @@ int runSimulate(int argc, char** argv);
 int runBench(int argc, char** argv);
 int runConvert(int argc, char** argv);
 int runValidate(int argc, char** argv);
+int runStyle(int argc, char** argv);
 
 }  // namespace wisp::cli

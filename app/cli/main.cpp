@@ -16,6 +16,7 @@ const char* kUsage =
     "  bench      time the solver on standard workloads (table, or --json lines)\n"
     "  convert    hair from one format to another: wisp-cli convert IN OUT\n"
     "  validate   say what a head, hair, preset or project file holds, or what is wrong with it\n"
+    "  style      replay a salon brush stroke on a project: wisp-cli style PROJECT --brush comb --stroke ...\n"
     "\n"
     "'wisp-cli COMMAND --help' lists a command's options.\n"
     "exit status: 0 success, 1 bad input (a file or a value), 2 wrong usage\n";
@@ -42,6 +43,8 @@ int main(int argc, char** argv)
             return wisp::cli::runConvert(argc, argv);
         if (!std::strcmp(command, "validate"))
             return wisp::cli::runValidate(argc, argv);
+        if (!std::strcmp(command, "style"))
+            return wisp::cli::runStyle(argc, argv);
     } catch (const wisp::cli::CliError& e) {
         std::cerr << "wisp-cli " << command << ": " << e.message << "\n";
         return e.exitCode;

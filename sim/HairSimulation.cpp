@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <cassert>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -80,10 +81,13 @@ std::string HairSimulation::start(Groom groom, const ParameterValues& values)
     solveCombedRest(groom, values, simulated);
     if (std::string error = m_solver.setStrands(simulated); !error.empty())
         return error;
-    m_solver.setSettings(settings);
+    if (std::string error = m_solver.setSettings(settings); !error.empty())
+        return error;
     m_solver.setCollider(m_sdf);
     setBody(values);
-    m_solver.setStrandVolume(drawnStrandsPerSimulated(groom, allStrands), scalpAreaOf(groom));
+    if (std::string error = m_solver.setStrandVolume(drawnStrandsPerSimulated(groom, allStrands), scalpAreaOf(groom));
+        !error.empty())
+        return error;
     m_groom = std::move(groom);
     m_dryingHalfLife = values.getFloat(Param::DryingTime);
     m_simulatedOf.clear();
@@ -272,8 +276,10 @@ void HairSimulation::updateMaterial(bool force)
         scales[s] = m_baseStiffness[s] * wetStiffnessFactor(w);
         volumeTargets[s] = wetVolumeFactor(w);
     }
-    m_solver.setStiffnessScales(scales);
-    m_solver.setVolumeTargetScales(volumeTargets);
+    // Both are sized to the solver's strands, which the solver cannot refuse.
+    [[maybe_unused]] const bool accepted =
+        m_solver.setStiffnessScales(scales).empty() && m_solver.setVolumeTargetScales(volumeTargets).empty();
+    assert(accepted);
 }
 
 void HairSimulation::wet(std::span<const std::uint64_t> keyIdentities, float wetness)
@@ -329,7 +335,9 @@ void HairSimulation::step()
             for (std::size_t s = 0; s < count; ++s)
                 drag[s] = wetDragFactor(m_wetness[wispOfSimulated(s)]);
         }
-        m_solver.setStrandAir(drag, air);
+        // Sized to the solver's strands (drag) and the drawn ones (air), as it asks.
+        [[maybe_unused]] const bool accepted = m_solver.setStrandAir(drag, air).empty();
+        assert(accepted);
         m_airInSolver = !m_dryers.empty() || wet;
         updateMaterial(false);
     }
@@ -349,7 +357,9 @@ int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::func
         still.substeps = substeps;
     if (!m_solver.setSettings(still).empty())
         return 0;
-    m_solver.setStrandAir({}, {});  // no dryer; wet hair keeps its softness (the stiffness scales)
+    // No dryer; wet hair keeps its softness (the stiffness scales). Empty spans are always taken.
+    [[maybe_unused]] const bool noAir = m_solver.setStrandAir({}, {}).empty();
+    assert(noAir);
     m_airInSolver = false;          // step() gives the air back where wetness or a dryer needs it
     std::vector<glm::vec3> before, now;
     m_solver.copyPositions(before);
@@ -366,7 +376,9 @@ int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::func
             break;
         before.swap(now);
     }
-    m_solver.setSettings(settings);
+    // The settings the solver held before the drape: accepted then, accepted now.
+    [[maybe_unused]] const bool restored = m_solver.setSettings(settings).empty();
+    assert(restored);
     return steps;
 }
 

@@ -35,14 +35,14 @@ public:
     // Grooms `head` where `growthWeights` allow (one region with the Wisp-group entries of
     // `values`), bakes its collider and starts the solver at rest. On error returns the message and
     // keeps what it had.
-    std::string setup(const TriangleMesh& head, std::span<const float> growthWeights, const ParameterValues& values);
+    [[nodiscard]] std::string setup(const TriangleMesh& head, std::span<const float> growthWeights, const ParameterValues& values);
     // The editor's groom: the growing regions of `regions` (see growingRegions) on `head`.
-    std::string setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
+    [[nodiscard]] std::string setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
                       const ParameterValues& values);
     // Regrooms on the same head (painted weights, wisp or groom parameters changed) while the hair
     // moves: every simulated strand that still exists keeps its motion, new strands start at rest,
     // removed ones vanish, nothing else jumps. On error returns the message and keeps running as before.
-    std::string regroom(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values);
+    [[nodiscard]] std::string regroom(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values);
     // Strands whose motion the last regroom carried over, and strands it started at rest.
     std::size_t carriedStrands() const { return m_carried; }
     std::size_t startedStrands() const { return m_started; }
@@ -53,10 +53,10 @@ public:
     // How each groom region's hair looks (per entry of groom().regionIds).
     const std::vector<StrandLook>& looks() const { return m_looks; }
     // The first paper's grid layout (see buildGridGroom); every strand simulated.
-    std::string setupGrid(const TriangleMesh& head, int width, int height, int particlesPerStrand, float lengthMetres,
+    [[nodiscard]] std::string setupGrid(const TriangleMesh& head, int width, int height, int particlesPerStrand, float lengthMetres,
                           const ParameterValues& values);
     // Forces and solver parameters only; takes effect at the next step.
-    std::string applyForces(const ParameterValues& values);
+    [[nodiscard]] std::string applyForces(const ParameterValues& values);
 
     // --- Salon edits (StyleEdits.h) --------------------------------------------------------------
     // The artist's edits by strand identity; used by the next setup or regroom (call one after).
@@ -125,11 +125,11 @@ public:
     static constexpr float kColliderCellsAcross = 96.0f;
 
 private:
-    std::string prepareHead(const TriangleMesh& head);
-    std::string start(Groom groom, const ParameterValues& values);
-    std::string groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values,
+    [[nodiscard]] std::string prepareHead(const TriangleMesh& head);
+    [[nodiscard]] std::string start(Groom groom, const ParameterValues& values);
+    [[nodiscard]] std::string groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values,
                              const Groom* previous, Groom& out, std::vector<StrandLook>& looks);
-    std::string setStrandStiffness(const Groom& groom);
+    [[nodiscard]] std::string setStrandStiffness(const Groom& groom);
     void solveCombedRest(const Groom& groom, const ParameterValues& values, HairCurves& simulated);
     const StrandStyle* styleOf(std::size_t strand) const;
     std::size_t wispOfSimulated(std::size_t s) const { return m_allStrands ? m_groom.wispOf[s] : s; }

@@ -114,10 +114,10 @@ bool isWithinRange(const ParameterInfo& info, double value);
 // Empty when value is acceptable for the parameter; otherwise a message such as
 // "clump_degree: 3 is outside -1..1", "gravity: nan is not a finite number", "substeps: 2.5 is not
 // a whole number" (integer parameters) or "simulate_all_strands: 0.5 is not 0 or 1" (toggles).
-std::string checkParameterValue(Param id, double value);
+[[nodiscard]] std::string checkParameterValue(Param id, double value);
 
 // The first refusal among (parameter, value) pairs, or empty when every value is acceptable.
-std::string checkParameterValues(std::initializer_list<std::pair<Param, double>> values);
+[[nodiscard]] std::string checkParameterValues(std::initializer_list<std::pair<Param, double>> values);
 
 // One value for every parameter, starting at the registry's defaults.
 class ParameterValues {

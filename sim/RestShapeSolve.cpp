@@ -53,10 +53,9 @@ void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessS
     one.substeps = 1;
     one.wind = glm::vec3(0.0f);
     one.turbulence = 0.0f;
-    if (!solver.setStrands(rest).empty() || !solver.setSettings(one).empty())
+    if (!solver.setStrands(rest).empty() || !solver.setSettings(one).empty() ||
+        (!stiffnessScales.empty() && !solver.setStiffnessScales(stiffnessScales).empty()))
         return;
-    if (!stiffnessScales.empty())
-        solver.setStiffnessScales(stiffnessScales);
 
     // Per segment: the gain that turns a missed angle into a rest turn.
     std::vector<float> gain(targets.positions.size(), 0.0f);
@@ -149,10 +148,9 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
     HairCurves best = out.rest;
     std::vector<float> previousGap(count, 1e30f);
     for (int k = 0; k < maxIterations; ++k) {
-        if (!solver.setStrands(out.rest).empty() || !solver.setSettings(settle).empty())
+        if (!solver.setStrands(out.rest).empty() || !solver.setSettings(settle).empty() ||
+            (!stiffnessScales.empty() && !solver.setStiffnessScales(stiffnessScales).empty()))
             break;
-        if (!stiffnessScales.empty())
-            solver.setStiffnessScales(stiffnessScales);
         // Start at the target, at rest: once R is right, nothing moves.
         for (std::size_t i = 0; i < targets.strandCount(); ++i)
             solver.setStrandState(i, targets.strand(i), targets.strand(i));

@@ -12,6 +12,7 @@
 #include <QMetaObject>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -279,7 +280,9 @@ private:
         ++m_groomVersion;
         m_groomShape = groomShapeOf(*m_sim);
         m_pacer.setRequestedSubsteps(values.getInt(Param::Substeps));
-        m_sim->applyForces(withSubsteps(values, m_pacer.substeps()));
+        // The groom just took these values, so the solver takes them with fewer substeps too.
+        [[maybe_unused]] const bool applied = m_sim->applyForces(withSubsteps(values, m_pacer.substeps())).empty();
+        assert(applied);
         m_host.m_effectiveSubsteps.store(m_pacer.substeps());
         if (drape)
             m_sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); },
@@ -311,7 +314,9 @@ private:
             frame->timeScale = report.timeScale;
             if (report.substepsChanged) {
                 // The requested values were accepted before, so fewer substeps are too.
-                m_sim->applyForces(withSubsteps(m_values, m_pacer.substeps()));
+                [[maybe_unused]] const bool applied =
+                    m_sim->applyForces(withSubsteps(m_values, m_pacer.substeps())).empty();
+                assert(applied);
                 m_host.m_effectiveSubsteps.store(m_pacer.substeps());
             }
         }

@@ -17,11 +17,15 @@
 
 namespace wisp {
 
-HairSimulation::HairSimulation(int threadCount) : m_solver(threadCount), m_bvh(std::make_unique<MeshBvh>()) {}
+HairSimulation::HairSimulation(int threadCount)
+    : m_solver(threadCount), m_head(std::make_shared<const HeadModel>(TriangleMesh{}))
+{
+}
 HairSimulation::~HairSimulation() = default;
 
-std::string HairSimulation::prepareHead(const TriangleMesh& head)
+std::string HairSimulation::prepareHead(HeadModelPtr model)
 {
+    const TriangleMesh& head = model->mesh();
     if (std::string error = validateMesh(head); !error.empty())
         return "head: " + error;
     const Aabb box = boundsOf(head);
@@ -32,10 +36,9 @@ std::string HairSimulation::prepareHead(const TriangleMesh& head)
         SignedDistanceField::bake(head, extent / kColliderCellsAcross, 0.1f * extent + 0.01f, &error));
     if (sdf->empty())
         return "head: cannot build its collider: " + error;
-    m_head = head;
+    m_head = std::move(model);
     m_sdf = std::move(sdf);
-    m_bvh = std::make_unique<MeshBvh>(m_head);
-    m_body = defaultBody(m_head);
+    m_body = defaultBody(m_head->mesh());
     m_builder.forgetHead();
     return {};
 }
@@ -389,14 +392,15 @@ std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& region
     std::vector<GroomRegionInput> inputs;
     looks.clear();
     for (const GrowthRegion* r : growingRegions(regions, soloId)) {
-        if (std::string error = validateRegion(*r, m_head.positions.size()); !error.empty())
+        if (std::string error = validateRegion(*r, m_head->mesh().positions.size()); !error.empty())
             return error;
         inputs.push_back({r->id, r->weights, groomSettingsFrom(r->values), r->values.getFloat(Param::StiffnessScale),
                           r->importedStrands.get()});
         looks.push_back({r->rootColour, r->tipColour, r->values.getFloat(Param::HairThickness)});
     }
     GroomResult result =
-        m_builder.build(m_head, inputs, groomSettingsFrom(values), m_sdf.get(), previous, m_bvh.get(), m_style.get());
+        m_builder.build(m_head->mesh(), inputs, groomSettingsFrom(values), m_sdf.get(), previous, &m_head->bvh(),
+                        m_style.get());
     if (!result.ok())
         return result.error;
     m_groomWarnings = std::move(result.warnings);
@@ -407,9 +411,21 @@ std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& region
 std::string HairSimulation::setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions,
                                   std::uint32_t soloId, const ParameterValues& values)
 {
+    return setup(std::make_shared<const HeadModel>(head), regions, soloId, values);
+}
+
+std::string HairSimulation::setup(const TriangleMesh& head, std::span<const float> growthWeights,
+                                  const ParameterValues& values)
+{
+    return setup(std::make_shared<const HeadModel>(head), growthWeights, values);
+}
+
+std::string HairSimulation::setup(HeadModelPtr head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
+                                  const ParameterValues& values)
+{
     if (std::string error = validateSolverSettings(solverSettingsFrom(values)); !error.empty())
         return error;
-    if (std::string error = prepareHead(head); !error.empty())
+    if (std::string error = prepareHead(std::move(head)); !error.empty())
         return error;
     Groom groom;
     std::vector<StrandLook> looks;
@@ -479,7 +495,7 @@ std::string HairSimulation::regroom(const std::vector<GrowthRegion>& regions, st
     return {};
 }
 
-std::string HairSimulation::setup(const TriangleMesh& head, std::span<const float> growthWeights,
+std::string HairSimulation::setup(HeadModelPtr head, std::span<const float> growthWeights,
                                   const ParameterValues& values)
 {
     if (std::string error = validateSolverSettings(solverSettingsFrom(values)); !error.empty())
@@ -487,9 +503,9 @@ std::string HairSimulation::setup(const TriangleMesh& head, std::span<const floa
     const GroomSettings groomSettings = groomSettingsFrom(values);
     if (std::string error = validateGroomSettings(groomSettings); !error.empty())
         return error;
-    if (std::string error = prepareHead(head); !error.empty())
+    if (std::string error = prepareHead(std::move(head)); !error.empty())
         return error;
-    GroomResult groom = buildGroom(m_head, growthWeights, groomSettings, m_sdf.get());
+    GroomResult groom = buildGroom(m_head->mesh(), growthWeights, groomSettings, m_sdf.get());
     if (!groom.ok())
         return groom.error;
     m_groomWarnings = std::move(groom.warnings);
@@ -502,9 +518,9 @@ std::string HairSimulation::setupGrid(const TriangleMesh& head, int width, int h
 {
     if (std::string error = validateSolverSettings(solverSettingsFrom(values)); !error.empty())
         return error;
-    if (std::string error = prepareHead(head); !error.empty())
+    if (std::string error = prepareHead(std::make_shared<const HeadModel>(head)); !error.empty())
         return error;
-    GroomResult groom = buildGridGroom(m_head, *m_bvh, width, height, particlesPerStrand, lengthMetres, m_sdf.get());
+    GroomResult groom = buildGridGroom(m_head->mesh(), m_head->bvh(), width, height, particlesPerStrand, lengthMetres, m_sdf.get());
     if (!groom.ok())
         return groom.error;
     ParameterValues all = values;

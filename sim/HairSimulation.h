@@ -12,6 +12,7 @@
 #include "sim/Parameters.h"
 #include "sim/Solver.h"
 #include "sim/StyleEdits.h"
+#include "sim/HeadModel.h"
 #include "sim/TriangleMesh.h"
 
 #include <functional>
@@ -39,6 +40,11 @@ public:
     // The editor's groom: the growing regions of `regions` (see growingRegions) on `head`.
     [[nodiscard]] std::string setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
                       const ParameterValues& values);
+    // The same on a head model already built (the editor's document shares its BVH): only the
+    // collider is baked here. `head` must not be null.
+    [[nodiscard]] std::string setup(HeadModelPtr head, std::span<const float> growthWeights, const ParameterValues& values);
+    [[nodiscard]] std::string setup(HeadModelPtr head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
+                                    const ParameterValues& values);
     // Regrooms on the same head (painted weights, wisp or groom parameters changed) while the hair
     // moves: every simulated strand that still exists keeps its motion, new strands start at rest,
     // removed ones vanish, nothing else jumps. On error returns the message and keeps running as before.
@@ -103,9 +109,10 @@ public:
     void copySimulated(std::vector<glm::vec3>& out) const { m_solver.copyPositions(out); }
 
     const Groom& groom() const { return m_groom; }
-    const TriangleMesh& head() const { return m_head; }
+    const TriangleMesh& head() const { return m_head->mesh(); }
+    const HeadModelPtr& headModel() const { return m_head; }
     const SignedDistanceField* collider() const { return m_sdf.get(); }
-    const MeshBvh& bvh() const { return *m_bvh; }
+    const MeshBvh& bvh() const { return m_head->bvh(); }
     Solver& solver() { return m_solver; }
     const Solver& solver() const { return m_solver; }
     bool simulatesAllStrands() const { return m_allStrands; }
@@ -125,7 +132,7 @@ public:
     static constexpr float kColliderCellsAcross = 96.0f;
 
 private:
-    [[nodiscard]] std::string prepareHead(const TriangleMesh& head);
+    [[nodiscard]] std::string prepareHead(HeadModelPtr head);
     [[nodiscard]] std::string start(Groom groom, const ParameterValues& values);
     [[nodiscard]] std::string groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values,
                              const Groom* previous, Groom& out, std::vector<StrandLook>& looks);
@@ -139,9 +146,8 @@ private:
     void setBody(const ParameterValues& values);  // the solver collides with m_body or not
 
     Solver m_solver;
-    TriangleMesh m_head;
+    HeadModelPtr m_head;  // never null: an empty head until the first setup
     std::shared_ptr<SignedDistanceField> m_sdf;
-    std::unique_ptr<MeshBvh> m_bvh;
     std::vector<Capsule> m_body;  // head space
     bool m_bodyOn = false;        // the solver and the drawn members collide with m_body
     Groom m_groom;

@@ -100,6 +100,11 @@ double snappedSliderValue(const SliderRange& range, double value);
 // limits themselves are ScalpBrush.h's and StyleEdits.h's, which check them.
 enum class ToolSetting { BrushRadius, BrushStrength, BrushFalloff, PermRadius, PermTurns };
 SliderRange toolSettingRange(ToolSetting setting);
+// `value` clamped to the setting's range (what the tools keep when given more or less).
+double clampToToolSetting(ToolSetting setting, double value);
+// Empty when `value` is finite and inside the setting's range; otherwise "<what>: <value> is
+// outside <min>..<max>" (or "is not a finite number").
+[[nodiscard]] std::string checkToolSetting(ToolSetting setting, double value, std::string_view what);
 
 constexpr std::size_t kParamCount = static_cast<std::size_t>(Param::Count);
 

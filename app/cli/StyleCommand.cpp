@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
+#include <tuple>
 
 namespace wisp::cli {
 
@@ -135,10 +136,10 @@ int runStyle(int argc, char** argv)
         throw CliError{kBadInput, problem};
     context.curlRadiusMetres = static_cast<float>(args.real("curl-radius", 0.01));
     context.curlTurnsPerMetre = static_cast<float>(args.real("curl-turns", 10.0));
-    if (!(context.curlRadiusMetres >= 0.0f && context.curlRadiusMetres <= kStyleMaxCurlRadiusMetres))
-        throw CliError{kBadInput, "--curl-radius: " + *args.text("curl-radius") + " is outside 0..0.05 m"};
-    if (!(context.curlTurnsPerMetre >= 0.0f && context.curlTurnsPerMetre <= kStyleMaxCurlTurnsPerMetre))
-        throw CliError{kBadInput, "--curl-turns: " + *args.text("curl-turns") + " is outside 0..200 turns/m"};
+    for (const auto& [setting, value, what] : {std::tuple{ToolSetting::PermRadius, context.curlRadiusMetres, "--curl-radius"},
+                                               std::tuple{ToolSetting::PermTurns, context.curlTurnsPerMetre, "--curl-turns"}})
+        if (const std::string problem = checkToolSetting(setting, value, what); !problem.empty())
+            throw CliError{kBadInput, problem};
 
     const std::string& path = args.positional().front();
     io::Result<io::ProjectReadResult> read = io::readProject(path, io::readHeadFile);

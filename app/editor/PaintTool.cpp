@@ -1,6 +1,7 @@
 #include "app/editor/PaintTool.h"
 
 #include "app/editor/Document.h"
+#include "sim/Parameters.h"
 #include "widgets/Viewport.h"
 
 #include <glm/geometric.hpp>
@@ -47,7 +48,7 @@ void PaintTool::setActive(bool active)
 
 void PaintTool::setRadius(double metres)
 {
-    const float r = std::clamp(static_cast<float>(metres), kBrushRadiusMinMetres, kBrushRadiusMaxMetres);
+    const float r = static_cast<float>(clampToToolSetting(ToolSetting::BrushRadius, metres));
     if (!std::isfinite(metres) || r == m_settings.radiusMetres)
         return;
     m_settings.radiusMetres = r;
@@ -60,7 +61,7 @@ void PaintTool::setStrength(double strength)
 {
     if (!std::isfinite(strength))
         return;
-    m_settings.strength = std::clamp(static_cast<float>(strength), 0.0f, 1.0f);
+    m_settings.strength = static_cast<float>(clampToToolSetting(ToolSetting::BrushStrength, strength));
     emit settingsChanged();
 }
 
@@ -68,7 +69,7 @@ void PaintTool::setFalloff(double falloff)
 {
     if (!std::isfinite(falloff))
         return;
-    m_settings.falloff = std::clamp(static_cast<float>(falloff), 0.0f, 1.0f);
+    m_settings.falloff = static_cast<float>(clampToToolSetting(ToolSetting::BrushFalloff, falloff));
     emit settingsChanged();
 }
 

@@ -53,10 +53,6 @@ public:
     // when `e` was one of them.
     bool resizeByKey(const QKeyEvent* e);
 
-    // Brush limits, metres.
-    static constexpr float kMinRadius = 0.001f;
-    static constexpr float kMaxRadius = 0.2f;
-
 public slots:
     void setActive(bool active);
     void setRadius(double metres);

@@ -175,8 +175,9 @@ private:
         const Regions& r = scene.regions;
         std::string error;
         try {
-            error = r.fromParameters ? next->setup(scene.head, r.regions.front().weights, scene.values)
-                                     : next->setup(scene.head, r.regions, r.soloId, scene.values);
+            HeadModelPtr head = scene.head ? scene.head : std::make_shared<const HeadModel>(std::move(scene.mesh));
+            error = r.fromParameters ? next->setup(std::move(head), r.regions.front().weights, scene.values)
+                                     : next->setup(std::move(head), r.regions, r.soloId, scene.values);
         } catch (const std::exception& e) {
             error = std::string("groom: ") + e.what();  // sim/ does not throw, but memory can run out
         }
@@ -408,7 +409,8 @@ void SimulationHost::setScene(TriangleMesh head, std::vector<float> growthWeight
     std::optional<Scene> superseded;  // freed after unlocking: the simulation thread never waits on a free
     {
         std::lock_guard lock(m_mutex);
-        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), std::move(regions), std::move(values)});
+        superseded =
+            std::exchange(m_inbox.scene, Scene{nullptr, std::move(head), std::move(regions), std::move(values)});
         m_inbox.parameters.reset();  // the scene's values are newer
         m_inbox.regions.reset();
     }
@@ -421,7 +423,21 @@ void SimulationHost::setScene(TriangleMesh head, std::vector<GrowthRegion> regio
     std::optional<Scene> superseded;
     {
         std::lock_guard lock(m_mutex);
-        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), Regions{std::move(regions), soloId, false},
+        superseded = std::exchange(m_inbox.scene, Scene{nullptr, std::move(head), Regions{std::move(regions), soloId, false},
+                                                        std::move(values)});
+        m_inbox.parameters.reset();
+        m_inbox.regions.reset();
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::setScene(HeadModelPtr head, std::vector<GrowthRegion> regions, std::uint32_t soloId,
+                              ParameterValues values)
+{
+    std::optional<Scene> superseded;
+    {
+        std::lock_guard lock(m_mutex);
+        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), {}, Regions{std::move(regions), soloId, false},
                                                         std::move(values)});
         m_inbox.parameters.reset();
         m_inbox.regions.reset();

@@ -46,7 +46,7 @@ void StyleTool::setCurlRadiusMetres(double metres)
 {
     if (!std::isfinite(metres))
         return;
-    m_curlRadius = std::clamp(static_cast<float>(metres), 0.0f, kStyleMaxCurlRadiusMetres);
+    m_curlRadius = static_cast<float>(clampToToolSetting(ToolSetting::PermRadius, metres));
     emit curlChanged();
 }
 
@@ -54,7 +54,7 @@ void StyleTool::setCurlTurnsPerMetre(double turns)
 {
     if (!std::isfinite(turns))
         return;
-    m_curlTurns = std::clamp(static_cast<float>(turns), 0.0f, kStyleMaxCurlTurnsPerMetre);
+    m_curlTurns = static_cast<float>(clampToToolSetting(ToolSetting::PermTurns, turns));
     emit curlChanged();
 }
 

@@ -17,7 +17,7 @@ glm::vec3 rotateShortestArc(const glm::vec3& a, const glm::vec3& b, const glm::v
 {
     const glm::vec3 k = glm::cross(a, b);
     const float c = glm::dot(a, b);
-    if (c < -0.9999f) {  // opposite: a half-turn about any axis across a
+    if (c < -0.9999f) { // opposite: a half-turn about any axis across a
         const glm::vec3 axis = anyPerpendicular(a);
         return 2.0f * glm::dot(v, axis) * axis - v;
     }
@@ -26,8 +26,8 @@ glm::vec3 rotateShortestArc(const glm::vec3& a, const glm::vec3& b, const glm::v
 
 glm::mat3 shortestArcMatrix(const glm::vec3& a, const glm::vec3& b)
 {
-    return glm::mat3(rotateShortestArc(a, b, {1, 0, 0}), rotateShortestArc(a, b, {0, 1, 0}),
-                     rotateShortestArc(a, b, {0, 0, 1}));
+    return glm::mat3(rotateShortestArc(a, b, { 1, 0, 0 }), rotateShortestArc(a, b, { 0, 1, 0 }),
+        rotateShortestArc(a, b, { 0, 0, 1 }));
 }
 
 glm::vec3 turnShortestArc(const glm::vec3& a, const glm::vec3& b, const glm::vec3& v, float share, float maxRadians)
@@ -42,4 +42,4 @@ glm::vec3 turnShortestArc(const glm::vec3& a, const glm::vec3& b, const glm::vec
     return v * c + glm::cross(k, v) * s + k * (glm::dot(k, v) * (1.0f - c));
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -24,7 +24,7 @@ glm::mat3 shortestArcMatrix(const glm::vec3& a, const glm::vec3& b);
 
 // v turned about a x b by `share` of the angle from unit a to unit b, by at most maxRadians. For a
 // and b parallel or antiparallel (|a x b| < 1e-7) v is returned unchanged.
-glm::vec3 turnShortestArc(const glm::vec3& a, const glm::vec3& b, const glm::vec3& v, float share,
-                          float maxRadians = 3.2f);
+glm::vec3 turnShortestArc(
+    const glm::vec3& a, const glm::vec3& b, const glm::vec3& v, float share, float maxRadians = 3.2f);
 
-}  // namespace wisp
+} // namespace wisp

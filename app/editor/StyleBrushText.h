@@ -13,4 +13,4 @@ namespace wisp {
 QString styleBrushName(StyleBrush brush);
 QString styleBrushHelp(StyleBrush brush);
 
-}  // namespace wisp
+} // namespace wisp

@@ -15,12 +15,15 @@
 namespace wisp {
 
 namespace {
-constexpr double kDabSpacingPixels = 6.0;  // the dab brushes (length, curl, wet, spray) dab this often
-}  // namespace
+constexpr double kDabSpacingPixels = 6.0; // the dab brushes (length, curl, wet, spray) dab this often
+} // namespace
 
-StyleTool::StyleTool(Document* document, Viewport* viewport, SimulationHost* simulation, PaintTool* brushSettings,
-                     QObject* parent)
-    : ViewportBrush(viewport, parent), m_document(document), m_simulation(simulation), m_brushSettings(brushSettings)
+StyleTool::StyleTool(
+    Document* document, Viewport* viewport, SimulationHost* simulation, PaintTool* brushSettings, QObject* parent)
+    : ViewportBrush(viewport, parent)
+    , m_document(document)
+    , m_simulation(simulation)
+    , m_brushSettings(brushSettings)
 {
     connect(m_document, &Document::headChanged, this, &StyleTool::cancel);
 }
@@ -31,7 +34,7 @@ void StyleTool::setBrush(std::optional<StyleBrush> brush)
 {
     if (brush == m_brush)
         return;
-    if (isStroking()) {  // put down mid-stroke: the stroke ends here
+    if (isStroking()) { // put down mid-stroke: the stroke ends here
         stopStroking();
         end();
     }
@@ -94,7 +97,7 @@ void StyleTool::showCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifie
     if (const auto hit = m_brushSettings->hitAt(widgetPosition)) {
         cursor.centre = hit->point;
         cursor.normal = hit->normal;
-    } else if (comb && comb->catchDepthMetres()) {  // the comb off the head: at the hair
+    } else if (comb && comb->catchDepthMetres()) { // the comb off the head: at the hair
         const ViewRay ray = viewport()->rayAt(widgetPosition);
         cursor.centre = ray.origin + ray.direction * *comb->catchDepthMetres();
         cursor.normal = -ray.direction;
@@ -105,7 +108,7 @@ void StyleTool::showCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifie
     const float plane = m_brushSettings->mirrorPlaneX();
     cursor.mirrorCentre = mirroredPoint(cursor.centre, plane);
     cursor.mirrorNormal = mirroredDirection(cursor.normal);
-    if (m_brush == StyleBrush::BlowDry) {  // the cone of air, from the nozzle to where it aims
+    if (m_brush == StyleBrush::BlowDry) { // the cone of air, from the nozzle to where it aims
         const HairDryer dryer = dryersFor(context(), sampleAt(widgetPosition, modifiers)).front();
         cursor.dryer = true;
         cursor.dryerNozzle = dryer.nozzle;
@@ -124,7 +127,7 @@ bool StyleTool::beginStroke(QPointF position, Qt::KeyboardModifiers modifiers)
         return false;
     }
     m_lastPosition = position;
-    emit message(QString());  // the last stroke's news (or warning) is old now
+    emit message(QString()); // the last stroke's news (or warning) is old now
     m_document->beginStyleStroke();
     m_operation = makeStyleOperation(*m_brush);
     passOn(m_operation->begin(c, sampleAt(position, modifiers), m_document->strokeStyle()));
@@ -165,7 +168,7 @@ void StyleTool::passOn(const StyleEffects& effects)
     if (effects.held) {
         std::vector<SimulationHost::HeldStrand> held;
         for (const HeldStrand& h : *effects.held)
-            held.push_back({h.identity, h.positions_ws});
+            held.push_back({ h.identity, h.positions_ws });
         m_simulation->holdStrands(std::move(held));
     }
     if (!effects.wettedKeys.empty())
@@ -201,7 +204,10 @@ void StyleTool::cancel()
         m_document->endStyleStroke(brushName());
 }
 
-void StyleTool::continueStroke(QPointF position, Qt::KeyboardModifiers modifiers) { drag(position, modifiers); }
+void StyleTool::continueStroke(QPointF position, Qt::KeyboardModifiers modifiers)
+{
+    drag(position, modifiers);
+}
 
 void StyleTool::finishStroke(QPointF position, Qt::KeyboardModifiers modifiers)
 {
@@ -209,6 +215,9 @@ void StyleTool::finishStroke(QPointF position, Qt::KeyboardModifiers modifiers)
     end();
 }
 
-bool StyleTool::keyPressed(const QKeyEvent* event) { return m_brushSettings->resizeByKey(event); }
+bool StyleTool::keyPressed(const QKeyEvent* event)
+{
+    return m_brushSettings->resizeByKey(event);
+}
 
-}  // namespace wisp
+} // namespace wisp

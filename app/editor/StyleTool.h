@@ -41,7 +41,7 @@ class StyleTool : public ViewportBrush {
 public:
     // `brushSettings` lends its radius, strength, falloff and mirror.
     StyleTool(Document* document, Viewport* viewport, SimulationHost* simulation, PaintTool* brushSettings,
-              QObject* parent = nullptr);
+        QObject* parent = nullptr);
     ~StyleTool() override;
 
     std::optional<StyleBrush> brush() const { return m_brush; }
@@ -52,7 +52,7 @@ public:
     const std::vector<HairDryer>& dryers() const { return m_dryers; }
 
 public slots:
-    void setBrush(std::optional<wisp::StyleBrush> brush);  // nullopt: no styling tool
+    void setBrush(std::optional<wisp::StyleBrush> brush); // nullopt: no styling tool
     void setCurlRadiusMetres(double metres);
     void setCurlTurnsPerMetre(double turns);
 
@@ -86,9 +86,9 @@ private:
     float m_curlRadius = 0.01f;
     float m_curlTurns = 10.0f;
 
-    std::unique_ptr<StyleOperation> m_operation;  // of the stroke going on
-    QPointF m_lastPosition;                       // of its last sample
+    std::unique_ptr<StyleOperation> m_operation; // of the stroke going on
+    QPointF m_lastPosition; // of its last sample
     std::vector<HairDryer> m_dryers;
 };
 
-}  // namespace wisp
+} // namespace wisp

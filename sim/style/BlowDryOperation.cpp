@@ -36,7 +36,7 @@ StyleEffects BlowDryOperation::end(const BrushContext& context, StyleEdits& edit
         if (key == keyOf.end())
             continue;
         const float now = frame.wetness.empty() ? 0.0f : frame.wetness[key->second];
-        if (now < applied - 0.005f) {  // dried noticeably: kept to a thousandth
+        if (now < applied - 0.005f) { // dried noticeably: kept to a thousandth
             edits[id].wetness = std::round(now * 1000.0f) / 1000.0f;
             effects.editsChanged = true;
         }
@@ -44,4 +44,4 @@ StyleEffects BlowDryOperation::end(const BrushContext& context, StyleEdits& edit
     return effects;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -17,7 +17,7 @@ public:
     StyleEffects end(const BrushContext& context, StyleEdits& edits) override;
 
 private:
-    std::map<std::uint64_t, float> m_wetBefore;  // key identity -> wetness applied as the stroke began
+    std::map<std::uint64_t, float> m_wetBefore; // key identity -> wetness applied as the stroke began
 };
 
-}  // namespace wisp
+} // namespace wisp

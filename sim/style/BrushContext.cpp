@@ -10,8 +10,8 @@
 namespace wisp {
 
 namespace {
-constexpr float kFarMetres = 1.0e4f;  // a ray that meets no head
-}  // namespace
+constexpr float kFarMetres = 1.0e4f; // a ray that meets no head
+} // namespace
 
 std::vector<BrushRay> brushRays(const BrushContext& context, const BrushSample& sample)
 {
@@ -19,10 +19,10 @@ std::vector<BrushRay> brushRays(const BrushContext& context, const BrushSample& 
     if (context.head)
         if (const auto hit = context.head->hitAlong(sample.eye_ws, sample.direction_ws))
             maxDepth = hit->distanceMetres + context.brush.radiusMetres;
-    std::vector<BrushRay> rays{{sample.eye_ws, sample.direction_ws, maxDepth}};
+    std::vector<BrushRay> rays{ { sample.eye_ws, sample.direction_ws, maxDepth } };
     if (context.brush.mirrorX) {
         const float plane = context.head ? context.head->mirrorPlaneX() : 0.0f;
-        rays.push_back({mirroredPoint(sample.eye_ws, plane), mirroredDirection(sample.direction_ws), maxDepth});
+        rays.push_back({ mirroredPoint(sample.eye_ws, plane), mirroredDirection(sample.direction_ws), maxDepth });
     }
     return rays;
 }
@@ -33,8 +33,8 @@ bool hasStyledHair(const BrushContext& context)
     return frame && frame->groomShape && frame->groomShape->identities.size() == frame->strands.strandCount();
 }
 
-float strandLengthNow(const BrushContext& context, const StyleEdits& edits, std::uint64_t identity,
-                      std::uint32_t strand)
+float strandLengthNow(
+    const BrushContext& context, const StyleEdits& edits, std::uint64_t identity, std::uint32_t strand)
 {
     if (const auto found = edits.find(identity); found != edits.end()) {
         if (!found->second.shape.empty())
@@ -63,7 +63,7 @@ std::vector<HairDryer> dryersFor(const BrushContext& context, const BrushSample&
     HairDryer dryer;
     dryer.direction = glm::normalize(aim - sample.eye_ws);
     dryer.nozzle = aim - dryer.direction * kDryerDistanceMetres;
-    std::vector<HairDryer> dryers{dryer};
+    std::vector<HairDryer> dryers{ dryer };
     if (context.brush.mirrorX) {
         const float plane = context.head ? context.head->mirrorPlaneX() : 0.0f;
         dryer.nozzle = mirroredPoint(dryer.nozzle, plane);
@@ -94,4 +94,4 @@ std::shared_ptr<const GroomShape> groomShapeOf(const HairSimulation& simulation)
     return shape;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -25,27 +25,27 @@ class HairSimulation;
 enum class StyleBrush { Comb, Cut, Length, Curl, Wet, Hairspray, BlowDry };
 
 struct BrushContext {
-    FramePtr frame;       // the newest frame; its groomShape names its strands (the caller refreshes it)
-    HeadModelPtr head;    // picking, the mirror plane, the cut's line of sight; may be null (no head)
-    BrushSettings brush;  // radius, strength, falloff, X mirror (mode is the growth brush's only)
-    bool everyStrandSimulated = false;  // Param::SimulateAllStrands: else only key hairs are simulated
-    float curlRadiusMetres = 0.01f;     // the perm's curl
+    FramePtr frame; // the newest frame; its groomShape names its strands (the caller refreshes it)
+    HeadModelPtr head; // picking, the mirror plane, the cut's line of sight; may be null (no head)
+    BrushSettings brush; // radius, strength, falloff, X mirror (mode is the growth brush's only)
+    bool everyStrandSimulated = false; // Param::SimulateAllStrands: else only key hairs are simulated
+    float curlRadiusMetres = 0.01f; // the perm's curl
     float curlTurnsPerMetre = 10.0f;
 };
 
 // One point of a stroke: the view ray through it.
 struct BrushSample {
-    glm::vec3 eye_ws{0.0f};                   // where the ray starts, metres
-    glm::vec3 direction_ws{0.0f, 0.0f, -1.0f};  // unit
-    float aimDepthMetres = 1.0f;  // along the ray: where the dryer aims when the ray misses the head
-    bool inverted = false;        // Ctrl: shrink, take the perm out, towel-dry, wash the spray out
+    glm::vec3 eye_ws{ 0.0f }; // where the ray starts, metres
+    glm::vec3 direction_ws{ 0.0f, 0.0f, -1.0f }; // unit
+    float aimDepthMetres = 1.0f; // along the ray: where the dryer aims when the ray misses the head
+    bool inverted = false; // Ctrl: shrink, take the perm out, towel-dry, wash the spray out
 };
 
 // A ray a brush picks strands along, and how deep it reaches (the head's surface under it plus the
 // brush radius: hair behind the head is not touched).
 struct BrushRay {
-    glm::vec3 origin_ws{0.0f};
-    glm::vec3 direction_ws{0.0f, 0.0f, -1.0f};
+    glm::vec3 origin_ws{ 0.0f };
+    glm::vec3 direction_ws{ 0.0f, 0.0f, -1.0f };
     float maxDepthMetres = 1.0e4f;
 };
 
@@ -56,8 +56,8 @@ std::vector<BrushRay> brushRays(const BrushContext& context, const BrushSample& 
 bool hasStyledHair(const BrushContext& context);
 
 // The strand's length now (metres): what `edits` set for it, else its groomed length.
-float strandLengthNow(const BrushContext& context, const StyleEdits& edits, std::uint64_t identity,
-                      std::uint32_t strand);
+float strandLengthNow(
+    const BrushContext& context, const StyleEdits& edits, std::uint64_t identity, std::uint32_t strand);
 
 // The strand a brush holds for `strand`: itself when every strand is simulated (or it has no wisp),
 // else its wisp's key hair (members follow their key).
@@ -74,4 +74,4 @@ std::vector<HairDryer> dryersFor(const BrushContext& context, const BrushSample&
 // identities, wisps, lengths. Thread: the simulation's.
 std::shared_ptr<const GroomShape> groomShapeOf(const HairSimulation& simulation);
 
-}  // namespace wisp
+} // namespace wisp

@@ -19,16 +19,16 @@ StyleEffects CombOperation::begin(const BrushContext& context, const BrushSample
     const GroomShape& shape = *frame.groomShape;
     const BrushSettings& s = context.brush;
     const std::vector<BrushRay> rays = brushRays(context, sample);
-    std::map<std::uint32_t, std::size_t> caughtOf;  // simulated strand -> its entry in m_caught
+    std::map<std::uint32_t, std::size_t> caughtOf; // simulated strand -> its entry in m_caught
     for (std::size_t r = 0; r < rays.size(); ++r) {
         const BrushRay& ray = rays[r];
-        for (const StrandPick& pick : strandsNearRay(frame.strands, {}, ray.origin_ws, ray.direction_ws,
-                                                     s.radiusMetres, s.falloff, ray.maxDepthMetres)) {
+        for (const StrandPick& pick : strandsNearRay(
+                 frame.strands, {}, ray.origin_ws, ray.direction_ws, s.radiusMetres, s.falloff, ray.maxDepthMetres)) {
             const std::uint32_t held = heldStrandOf(context, pick.strand);
             const float weight = pick.weight * (0.5f + 0.5f * s.strength);
             if (const auto found = caughtOf.find(held); found != caughtOf.end()) {
                 Caught& c = m_caught[found->second];
-                if (c.mirrored == (r == 1) && weight > c.weight) {  // under both rings: the first one's
+                if (c.mirrored == (r == 1) && weight > c.weight) { // under both rings: the first one's
                     c.weight = weight;
                     c.depthMetres = pick.depth;
                 }
@@ -55,7 +55,7 @@ StyleEffects CombOperation::begin(const BrushContext& context, const BrushSample
         return effects;
     effects.held.emplace();
     for (const Caught& c : m_caught)
-        effects.held->push_back({c.identity, c.positions_ws});
+        effects.held->push_back({ c.identity, c.positions_ws });
     return effects;
 }
 
@@ -72,10 +72,10 @@ StyleEffects CombOperation::step(const BrushContext& context, const BrushSample&
     for (Caught& c : m_caught) {
         const std::size_t r = c.mirrored && before.size() > 1 && after.size() > 1 ? 1 : 0;
         // The point of the strand under the comb follows the cursor at the depth it was caught.
-        const glm::vec3 delta_ws = (after[r].origin_ws + after[r].direction_ws * c.depthMetres) -
-                                   (before[r].origin_ws + before[r].direction_ws * c.depthMetres);
+        const glm::vec3 delta_ws = (after[r].origin_ws + after[r].direction_ws * c.depthMetres)
+            - (before[r].origin_ws + before[r].direction_ws * c.depthMetres);
         combStrand(c.positions_ws, c.segmentLengthsMetres, delta_ws, c.weight);
-        effects.held->push_back({c.identity, c.positions_ws});
+        effects.held->push_back({ c.identity, c.positions_ws });
     }
     return effects;
 }
@@ -86,7 +86,7 @@ StyleEffects CombOperation::end(const BrushContext&, StyleEdits& edits)
     // sags onto it, and lets go of them.
     StyleEffects effects;
     for (const Caught& c : m_caught)
-        edits[c.identity].shape = c.positions_ws;  // world = head space while the head stands still
+        edits[c.identity].shape = c.positions_ws; // world = head space while the head stands still
     effects.editsChanged = true;
     effects.held.emplace();
     m_caught.clear();
@@ -100,4 +100,4 @@ std::optional<float> CombOperation::catchDepthMetres() const
     return m_caught.front().depthMetres;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -35,4 +35,4 @@ private:
     BrushSample m_last;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -48,9 +48,10 @@ StyleEffects CutOperation::step(const BrushContext& context, const BrushSample& 
             const float distance = glm::length(toX);
             return !context.head->bvh().raycast(eye_ws, toX / distance, distance - kSkinToleranceMetres).has_value();
         };
-        std::map<std::uint32_t, float> keyLength;  // wisp -> its cut key hair's new length
+        std::map<std::uint32_t, float> keyLength; // wisp -> its cut key hair's new length
         std::set<std::uint32_t> cutNow;
-        for (const StrandCut& cut : strandsCutBy(frame.strands, eye_ws, a[r].direction_ws, b[r].direction_ws, visible)) {
+        for (const StrandCut& cut :
+            strandsCutBy(frame.strands, eye_ws, a[r].direction_ws, b[r].direction_ws, visible)) {
             // The cut's share of the strand as drawn, of its groomed length (a member's drawn length
             // differs a little from it; both blades of a mirrored stroke may cross it).
             const float drawn = strandLength(frame.strands.strand(cut.strand));
@@ -60,8 +61,8 @@ StyleEffects CutOperation::step(const BrushContext& context, const BrushSample& 
             cutNow.insert(cut.strand);
             const std::uint32_t wisp = shape.wispOf[cut.strand];
             if (shape.keyOfWisp[wisp] == cut.strand)
-                keyLength[wisp] = std::max(std::min(length, keyLength.count(wisp) ? keyLength[wisp] : length),
-                                           kStyleMinLengthMetres);
+                keyLength[wisp] = std::max(
+                    std::min(length, keyLength.count(wisp) ? keyLength[wisp] : length), kStyleMinLengthMetres);
         }
         if (!keyLength.empty())
             for (std::uint32_t i = 0; i < shape.wispOf.size(); ++i)
@@ -71,4 +72,4 @@ StyleEffects CutOperation::step(const BrushContext& context, const BrushSample& 
     return effects;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -21,4 +21,4 @@ private:
     BrushSample m_last;
 };
 
-}  // namespace wisp
+} // namespace wisp

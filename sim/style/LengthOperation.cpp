@@ -15,13 +15,13 @@ StyleEffects LengthOperation::step(const BrushContext& context, const BrushSampl
     const Frame& frame = *context.frame;
     const BrushSettings& s = context.brush;
     for (const BrushRay& ray : brushRays(context, sample))
-        for (const StrandPick& pick : strandsNearRay(frame.strands, {}, ray.origin_ws, ray.direction_ws, s.radiusMetres,
-                                                     s.falloff, ray.maxDepthMetres)) {
+        for (const StrandPick& pick : strandsNearRay(
+                 frame.strands, {}, ray.origin_ws, ray.direction_ws, s.radiusMetres, s.falloff, ray.maxDepthMetres)) {
             const std::uint64_t id = frame.groomShape->identities[pick.strand];
             const float now = strandLengthNow(context, edits, id, pick.strand);
             const float share = kStepShare * s.strength * pick.weight;
-            const float length = std::clamp(now * (sample.inverted ? 1.0f - share : 1.0f + share),
-                                            kStyleMinLengthMetres, kStyleMaxLengthMetres);
+            const float length = std::clamp(
+                now * (sample.inverted ? 1.0f - share : 1.0f + share), kStyleMinLengthMetres, kStyleMaxLengthMetres);
             if (std::abs(length - now) < 1e-5f)
                 continue;
             StrandStyle& e = edits[id];
@@ -33,4 +33,4 @@ StyleEffects LengthOperation::step(const BrushContext& context, const BrushSampl
     return effects;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -19,4 +19,4 @@ public:
     static constexpr float kStepShare = 0.06f;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -28,11 +28,11 @@ struct HeldStrand {
 
 // What one call did, beyond the edits.
 struct StyleEffects {
-    bool editsChanged = false;                           // `edits` changed: the hair should follow
-    std::optional<std::vector<HeldStrand>> held;         // hold these now (an empty list lets go)
-    std::vector<std::uint64_t> wettedKeys;               // wet these wisps' key hairs now, at `wetness`
+    bool editsChanged = false; // `edits` changed: the hair should follow
+    std::optional<std::vector<HeldStrand>> held; // hold these now (an empty list lets go)
+    std::vector<std::uint64_t> wettedKeys; // wet these wisps' key hairs now, at `wetness`
     float wetness = 0.0f;
-    std::optional<std::vector<HairDryer>> dryers;        // blow these now (an empty list puts them down)
+    std::optional<std::vector<HairDryer>> dryers; // blow these now (an empty list puts them down)
 };
 
 class StyleOperation {
@@ -56,4 +56,4 @@ public:
 
 [[nodiscard]] std::unique_ptr<StyleOperation> makeStyleOperation(StyleBrush brush);
 
-}  // namespace wisp
+} // namespace wisp

@@ -21,8 +21,8 @@ StyleEffects WispDabOperation::step(const BrushContext& context, const BrushSamp
     const GroomShape& shape = *frame.groomShape;
     const BrushSettings& s = context.brush;
     for (const BrushRay& ray : brushRays(context, sample))
-        for (const StrandPick& pick : strandsNearRay(frame.strands, {}, ray.origin_ws, ray.direction_ws, s.radiusMetres,
-                                                     s.falloff, ray.maxDepthMetres)) {
+        for (const StrandPick& pick : strandsNearRay(
+                 frame.strands, {}, ray.origin_ws, ray.direction_ws, s.radiusMetres, s.falloff, ray.maxDepthMetres)) {
             if (pick.strand >= shape.wispOf.size())
                 continue;
             const std::uint32_t key = shape.keyOfWisp[shape.wispOf[pick.strand]];
@@ -35,8 +35,8 @@ StyleEffects WispDabOperation::step(const BrushContext& context, const BrushSamp
     return effects;
 }
 
-void CurlOperation::applyToWisp(const BrushContext& context, const BrushSample& sample, std::uint32_t, float,
-                                StrandStyle& edit, StyleEffects&)
+void CurlOperation::applyToWisp(
+    const BrushContext& context, const BrushSample& sample, std::uint32_t, float, StrandStyle& edit, StyleEffects&)
 {
     edit.curlRadiusMetres = sample.inverted ? -1.0f : context.curlRadiusMetres;
     edit.curlTurnsPerMetre = sample.inverted ? -1.0f : context.curlTurnsPerMetre;
@@ -44,7 +44,7 @@ void CurlOperation::applyToWisp(const BrushContext& context, const BrushSample& 
 }
 
 void WetOperation::applyToWisp(const BrushContext& context, const BrushSample& sample, std::uint32_t key, float,
-                               StrandStyle& edit, StyleEffects& effects)
+    StrandStyle& edit, StyleEffects& effects)
 {
     const float strength = context.brush.strength;
     edit.wetness = sample.inverted ? 0.0f : std::max(edit.wetness, strength);
@@ -56,7 +56,7 @@ void WetOperation::applyToWisp(const BrushContext& context, const BrushSample& s
 }
 
 void HairsprayOperation::applyToWisp(const BrushContext& context, const BrushSample& sample, std::uint32_t key,
-                                     float weight, StrandStyle& edit, StyleEffects&)
+    float weight, StrandStyle& edit, StyleEffects&)
 {
     if (sample.inverted) {
         edit.stiffnessScale = 1.0f;
@@ -65,10 +65,10 @@ void HairsprayOperation::applyToWisp(const BrushContext& context, const BrushSam
     }
     // A spray covers its cone about evenly: the falloff softens only the rim.
     const float cover = std::max(weight, 0.5f);
-    edit.stiffnessScale = std::clamp(edit.stiffnessScale * (1.0f + kStiffening * context.brush.strength * cover), 1.0f,
-                                     kStyleMaxStiffnessScale);
-    const auto points_ws = context.frame->strands.strand(key);  // the shape it has now is the one to hold
+    edit.stiffnessScale = std::clamp(
+        edit.stiffnessScale * (1.0f + kStiffening * context.brush.strength * cover), 1.0f, kStyleMaxStiffnessScale);
+    const auto points_ws = context.frame->strands.strand(key); // the shape it has now is the one to hold
     edit.shape.assign(points_ws.begin(), points_ws.end());
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -18,10 +18,11 @@ public:
 protected:
     // Changes the edit of the wisp whose key hair is `key` (picked with `weight`, the falloff there).
     virtual void applyToWisp(const BrushContext& context, const BrushSample& sample, std::uint32_t key, float weight,
-                             StrandStyle& edit, StyleEffects& effects) = 0;
+        StrandStyle& edit, StyleEffects& effects)
+        = 0;
 
 private:
-    std::set<std::uint64_t> m_touched;  // key hairs this stroke already changed
+    std::set<std::uint64_t> m_touched; // key hairs this stroke already changed
 };
 
 // Perm: the touched wisps take the context's curl radius and turns (inverted: the region's again).
@@ -29,7 +30,7 @@ private:
 class CurlOperation : public WispDabOperation {
 protected:
     void applyToWisp(const BrushContext& context, const BrushSample& sample, std::uint32_t key, float weight,
-                     StrandStyle& edit, StyleEffects& effects) override;
+        StrandStyle& edit, StyleEffects& effects) override;
 };
 
 // Wet: the touched wisps become at least as wet as the brush's strength, at once in the simulation
@@ -37,7 +38,7 @@ protected:
 class WetOperation : public WispDabOperation {
 protected:
     void applyToWisp(const BrushContext& context, const BrushSample& sample, std::uint32_t key, float weight,
-                     StrandStyle& edit, StyleEffects& effects) override;
+        StrandStyle& edit, StyleEffects& effects) override;
 };
 
 // Hairspray: the touched wisps hold the shape they have now, stiffer by the strength (inverted:
@@ -49,7 +50,7 @@ public:
 
 protected:
     void applyToWisp(const BrushContext& context, const BrushSample& sample, std::uint32_t key, float weight,
-                     StrandStyle& edit, StyleEffects& effects) override;
+        StrandStyle& edit, StyleEffects& effects) override;
 };
 
-}  // namespace wisp
+} // namespace wisp

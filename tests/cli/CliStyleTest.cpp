@@ -57,7 +57,7 @@ protected:
 // Behind the head, level with the middle of the hair hanging down the back.
 const std::string kEye = "--eye 0,-0.12,-0.6";
 
-}  // namespace
+} // namespace
 
 TEST_F(CliStyle, CombMovesTheCaughtStrandsAlongTheStroke)
 {
@@ -66,9 +66,9 @@ TEST_F(CliStyle, CombMovesTheCaughtStrandsAlongTheStroke)
     // The same catch without a move, for where the strands were; then 30 mm to the right (+x).
     CliRun r = cli("style " + project + common + " --stroke '0,-0.12,-0.125;0,-0.12,-0.125' --out " + still, 120);
     ASSERT_EQ(r.status, 0) << r.output;
-    r = cli("style " + project + common + " --stroke '0,-0.12,-0.125;0.015,-0.12,-0.125;0.03,-0.12,-0.125' --out " +
-                combed,
-            120);
+    r = cli(
+        "style " + project + common + " --stroke '0,-0.12,-0.125;0.015,-0.12,-0.125;0.03,-0.12,-0.125' --out " + combed,
+        120);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("comb: "), std::string::npos) << r.output;
     const wisp::StyleEdits before = styleOf(still), after = styleOf(combed);
@@ -91,9 +91,9 @@ TEST_F(CliStyle, CombMovesTheCaughtStrandsAlongTheStroke)
 TEST_F(CliStyle, LengthGrowsTheStrandsUnderTheBrushBySixPercent)
 {
     const std::string out = (dir / "grown.wisp").string();
-    const CliRun r = cli("style " + project + " --brush length --strength 1 --falloff 0 --radius 0.01 --no-drape " +
-                             kEye + " --stroke '0,-0.12,-0.125' --out " + out,
-                         120);
+    const CliRun r = cli("style " + project + " --brush length --strength 1 --falloff 0 --radius 0.01 --no-drape "
+            + kEye + " --stroke '0,-0.12,-0.125' --out " + out,
+        120);
     ASSERT_EQ(r.status, 0) << r.output;
     const wisp::StyleEdits grown = styleOf(out);
     ASSERT_FALSE(grown.empty());
@@ -104,9 +104,9 @@ TEST_F(CliStyle, LengthGrowsTheStrandsUnderTheBrushBySixPercent)
 TEST_F(CliStyle, CutShortensTheStrandsTheBladeCrosses)
 {
     const std::string out = (dir / "cut.wisp").string();
-    const CliRun r = cli("style " + project + " --brush cut --no-drape " + kEye +
-                             " --stroke '-0.03,-0.12,-0.125;0.03,-0.12,-0.125' --out " + out,
-                         120);
+    const CliRun r = cli("style " + project + " --brush cut --no-drape " + kEye
+            + " --stroke '-0.03,-0.12,-0.125;0.03,-0.12,-0.125' --out " + out,
+        120);
     ASSERT_EQ(r.status, 0) << r.output;
     const wisp::StyleEdits cut = styleOf(out);
     ASSERT_FALSE(cut.empty());
@@ -145,4 +145,14 @@ TEST_F(CliStyle, BadStrokesAreRefusedWithTheReason)
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.output.find("missing.wisp"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(out)) << "nothing is written for a refused stroke";
+}
+
+TEST_F(CliStyle, APermOutsideItsRangeIsRefusedWithTheRange)
+{
+    const std::string out = (dir / "permed.wisp").string();
+    const CliRun r
+        = cli("style " + project + " --brush curl --curl-radius 0.2 --stroke '0,-0.12,-0.125' --out " + out, 60);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.output.find("--curl-radius: 0.2 is outside 0..0.05"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out));
 }

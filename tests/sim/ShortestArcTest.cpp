@@ -19,7 +19,7 @@ void expectNear(const glm::vec3& got, const glm::vec3& want, float tolerance = 1
     EXPECT_NEAR(got.z, want.z, tolerance);
 }
 
-}  // namespace
+} // namespace
 
 TEST(ShortestArc, TakesAOntoBAndTurnsOtherVectorsRigidly)
 {
@@ -48,12 +48,12 @@ TEST(ShortestArc, ParallelInputsTurnNothing)
 
 TEST(ShortestArc, AntiparallelInputsTakeTheHalfTurnAboutAFixedPerpendicular)
 {
-    for (const glm::vec3 a : {glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::normalize(glm::vec3(0.3f, -0.2f, 0.9f))}) {
+    for (const glm::vec3 a : { glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::normalize(glm::vec3(0.3f, -0.2f, 0.9f)) }) {
         const glm::vec3 axis = anyPerpendicular(a);
         EXPECT_NEAR(glm::dot(axis, a), 0.0f, 1e-6f);
         EXPECT_NEAR(glm::length(axis), 1.0f, 1e-6f);
-        expectNear(rotateShortestArc(a, -a, a), -a);      // a still lands on b
-        expectNear(rotateShortestArc(a, -a, axis), axis);  // about that axis
+        expectNear(rotateShortestArc(a, -a, a), -a); // a still lands on b
+        expectNear(rotateShortestArc(a, -a, axis), axis); // about that axis
         const glm::vec3 across = glm::cross(a, axis);
         expectNear(rotateShortestArc(a, -a, across), -across);
         EXPECT_NEAR(glm::determinant(shortestArcMatrix(a, -a)), 1.0f, 1e-5f) << "a rotation, not a reflection";
@@ -70,7 +70,7 @@ TEST(ShortestArc, TurnsAShareOfTheAngleUpToTheLimit)
 {
     const glm::vec3 x(1, 0, 0), y(0, 1, 0);
     const float h = std::sqrt(0.5f);
-    expectNear(turnShortestArc(x, y, x, 0.5f), glm::vec3(h, h, 0.0f));  // half of 90 degrees
+    expectNear(turnShortestArc(x, y, x, 0.5f), glm::vec3(h, h, 0.0f)); // half of 90 degrees
     expectNear(turnShortestArc(x, y, x, 1.0f), y);
     const glm::vec3 limited = turnShortestArc(x, y, x, 1.0f, 0.3f);
     EXPECT_NEAR(std::acos(glm::dot(limited, x)), 0.3f, 1e-5f);

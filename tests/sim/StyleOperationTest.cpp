@@ -43,8 +43,8 @@ FramePtr restFrame()
 // The brush context on that frame, and a key hair with members hanging at the back.
 struct Salon {
     BrushContext context;
-    std::uint32_t key = 0;      // a key hair at the back of the head
-    glm::vec3 middle_ws{0.0f};  // its point halfway along
+    std::uint32_t key = 0; // a key hair at the back of the head
+    glm::vec3 middle_ws{ 0.0f }; // its point halfway along
 
     Salon()
     {
@@ -59,8 +59,8 @@ struct Salon {
         for (std::uint32_t k : frame->groomShape->keyOfWisp) {
             const auto points = frame->strands.strand(k);
             const glm::vec3 mid = points[points.size() / 2];
-            const auto members = std::count(frame->groomShape->wispOf.begin(), frame->groomShape->wispOf.end(),
-                                            frame->groomShape->wispOf[k]);
+            const auto members = std::count(
+                frame->groomShape->wispOf.begin(), frame->groomShape->wispOf.end(), frame->groomShape->wispOf[k]);
             if (mid.z < backmost && std::abs(mid.x) < 0.03f && members > 1) {
                 backmost = mid.z;
                 key = k;
@@ -82,7 +82,7 @@ struct Salon {
     }
 };
 
-}  // namespace
+} // namespace
 
 TEST(StyleOperation, FactoryMakesOneOperationPerBrush)
 {
@@ -99,10 +99,10 @@ TEST(StyleOperation, NothingHappensBeforeTheHairIsGroomed)
 {
     Salon salon;
     BrushContext empty = salon.context;
-    empty.frame = std::make_shared<Frame>();  // no groom shape: a frame from before the first groom
+    empty.frame = std::make_shared<Frame>(); // no groom shape: a frame from before the first groom
     StyleEdits edits;
-    for (StyleBrush brush : {StyleBrush::Comb, StyleBrush::Cut, StyleBrush::Length, StyleBrush::Curl, StyleBrush::Wet,
-                             StyleBrush::Hairspray}) {
+    for (StyleBrush brush : { StyleBrush::Comb, StyleBrush::Cut, StyleBrush::Length, StyleBrush::Curl, StyleBrush::Wet,
+             StyleBrush::Hairspray }) {
         auto op = makeStyleOperation(brush);
         EXPECT_FALSE(op->begin(empty, Salon::lookAt(salon.middle_ws), edits).editsChanged);
         EXPECT_FALSE(op->step(empty, Salon::lookAt(salon.middle_ws + glm::vec3(0.02f, 0, 0)), edits).editsChanged);
@@ -244,12 +244,13 @@ TEST(LengthOperation, GrowsByTheStepShareAndShrinksWhenInverted)
     EXPECT_NEAR(edits.at(salon.id(salon.key)).lengthMetres, groomed * (1.0f + LengthOperation::kStepShare), 1e-5f);
     grow.step(salon.context, Salon::lookAt(salon.middle_ws), edits);
     EXPECT_NEAR(edits.at(salon.id(salon.key)).lengthMetres,
-                groomed * (1.0f + LengthOperation::kStepShare) * (1.0f + LengthOperation::kStepShare), 1e-5f);
+        groomed * (1.0f + LengthOperation::kStepShare) * (1.0f + LengthOperation::kStepShare), 1e-5f);
     StyleEdits shrunk;
     LengthOperation shrink;
     salon.context.brush.strength = 0.5f;
     shrink.begin(salon.context, Salon::lookAt(salon.middle_ws, true), shrunk);
-    EXPECT_NEAR(shrunk.at(salon.id(salon.key)).lengthMetres, groomed * (1.0f - 0.5f * LengthOperation::kStepShare), 1e-5f);
+    EXPECT_NEAR(
+        shrunk.at(salon.id(salon.key)).lengthMetres, groomed * (1.0f - 0.5f * LengthOperation::kStepShare), 1e-5f);
     EXPECT_TRUE(grow.dabs());
 }
 
@@ -259,7 +260,7 @@ TEST(CurlOperation, PermsEachTouchedWispOncePerStrokeAndInvertedTakesItOut)
     salon.context.curlRadiusMetres = 0.02f;
     salon.context.curlTurnsPerMetre = 25.0f;
     StyleEdits edits;
-    edits[salon.id(salon.key)].shape = {glm::vec3(0.0f), glm::vec3(0.0f, -0.1f, 0.0f)};  // combed before
+    edits[salon.id(salon.key)].shape = { glm::vec3(0.0f), glm::vec3(0.0f, -0.1f, 0.0f) }; // combed before
     CurlOperation perm;
     EXPECT_TRUE(perm.begin(salon.context, Salon::lookAt(salon.middle_ws), edits).editsChanged);
     const StrandStyle& e = edits.at(salon.id(salon.key));
@@ -289,8 +290,8 @@ TEST(WetOperation, WetsTheWispsAtTheStrengthAndAsksTheSimulationToWetThemNow)
     const StyleEffects effects = wet.begin(salon.context, Salon::lookAt(salon.middle_ws), edits);
     EXPECT_FLOAT_EQ(edits.at(salon.id(salon.key)).wetness, 0.7f);
     EXPECT_FLOAT_EQ(effects.wetness, 0.7f);
-    EXPECT_NE(std::find(effects.wettedKeys.begin(), effects.wettedKeys.end(), salon.id(salon.key)),
-              effects.wettedKeys.end());
+    EXPECT_NE(
+        std::find(effects.wettedKeys.begin(), effects.wettedKeys.end(), salon.id(salon.key)), effects.wettedKeys.end());
     EXPECT_EQ(effects.wettedKeys.size(), edits.size());
     WetOperation towel;
     const StyleEffects dried = towel.begin(salon.context, Salon::lookAt(salon.middle_ws, true), edits);
@@ -310,7 +311,7 @@ TEST(HairsprayOperation, StiffensByTheStrengthAndHoldsTheShapeItHasNow)
     EXPECT_FLOAT_EQ(e.stiffnessScale, 5.5f);
     const auto now = salon.context.frame->strands.strand(salon.key);
     EXPECT_EQ(e.shape, std::vector<glm::vec3>(now.begin(), now.end()));
-    HairsprayOperation again;  // a second stroke stiffens further, up to the limit
+    HairsprayOperation again; // a second stroke stiffens further, up to the limit
     again.begin(salon.context, Salon::lookAt(salon.middle_ws), edits);
     EXPECT_FLOAT_EQ(edits.at(salon.id(salon.key)).stiffnessScale, std::min(5.5f * 5.5f, kStyleMaxStiffnessScale));
     HairsprayOperation wash;

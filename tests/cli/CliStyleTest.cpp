@@ -110,11 +110,20 @@ TEST_F(CliStyle, CutShortensTheStrandsTheBladeCrosses)
     ASSERT_EQ(r.status, 0) << r.output;
     const wisp::StyleEdits cut = styleOf(out);
     ASSERT_FALSE(cut.empty());
-    // The blade crosses the hanging hair about 0.13 m below the roots (y 0.015 down to -0.12).
+    // The blade lies in the plane y = -0.12 m (the eye and both points are at that height); each
+    // crossed strand keeps its part from the root down to the plane, shorter than its 0.3 m. The
+    // strands rooted at the back of the crown (y about 0.015 m, hanging straight down) cross it
+    // after about 0.135 m of arc.
+    bool backOfCrown = false;
+    std::string lengths;
     for (const auto& [id, style] : cut) {
-        EXPECT_GT(style.lengthMetres, 0.06f) << "strand " << id;
-        EXPECT_LT(style.lengthMetres, 0.22f) << "strand " << id;
+        EXPECT_GT(style.lengthMetres, wisp::kStyleMinLengthMetres) << "strand " << id;
+        EXPECT_LT(style.lengthMetres, 0.299f) << "strand " << id;
+        backOfCrown = backOfCrown || (style.lengthMetres > 0.12f && style.lengthMetres < 0.16f);
+        lengths += std::to_string(style.lengthMetres) + " ";
     }
+    EXPECT_TRUE(backOfCrown) << lengths;
+}
 }
 
 TEST_F(CliStyle, BadStrokesAreRefusedWithTheReason)

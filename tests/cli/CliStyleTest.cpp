@@ -124,7 +124,6 @@ TEST_F(CliStyle, CutShortensTheStrandsTheBladeCrosses)
     }
     EXPECT_TRUE(backOfCrown) << lengths;
 }
-}
 
 TEST_F(CliStyle, BadStrokesAreRefusedWithTheReason)
 {

@@ -1,5 +1,7 @@
 #include "sim/Groom.h"
 
+#include "sim/ShortestArc.h"
+
 #include "sim/MeshBvh.h"
 #include "sim/Random.h"
 #include "sim/SignedDistanceField.h"
@@ -149,30 +151,6 @@ std::vector<Pore> poreSet(const TriangleMesh& head, float densityPerM2, std::uin
     return pores;
 }
 
-glm::vec3 anyPerpendicular(const glm::vec3& n)
-{
-    const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-    return glm::normalize(glm::cross(n, helper));
-}
-
-// Rotation taking unit vector a onto unit vector b by the shortest arc, applied to v (Rodrigues:
-// R v = v c + k x v + k (k.v) / (1 + c), k = a x b, c = a.b).
-glm::vec3 rotateMinimal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& v)
-{
-    const glm::vec3 k = glm::cross(a, b);
-    const float c = glm::dot(a, b);
-    if (c < -0.9999f) {  // opposite: a half-turn about any axis perpendicular to a
-        const glm::vec3 axis = anyPerpendicular(a);
-        return 2.0f * glm::dot(v, axis) * axis - v;
-    }
-    return v * c + glm::cross(k, v) + k * (glm::dot(k, v) / (1.0f + c));
-}
-
-glm::mat3 minimalRotationMatrix(const glm::vec3& a, const glm::vec3& b)
-{
-    return glm::mat3(rotateMinimal(a, b, {1, 0, 0}), rotateMinimal(a, b, {0, 1, 0}), rotateMinimal(a, b, {0, 0, 1}));
-}
-
 // Pushes p out of the collider to `offset` above the skin (Lee et al. 3.4: nodes inside the head move out).
 glm::vec3 pushOut(const SignedDistanceField* collider, glm::vec3 p, float offset)
 {
@@ -258,7 +236,7 @@ void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float partX, f
     glm::vec3 u = anyPerpendicular(tangent[0]);
     for (std::size_t j = 0; j < out.size(); ++j) {
         if (j > 0)
-            u = glm::normalize(rotateMinimal(tangent[j - 1], tangent[j], u));
+            u = glm::normalize(rotateShortestArc(tangent[j - 1], tangent[j], u));
         const glm::vec3 v = glm::cross(tangent[j], u);
         const float angle = helix.anglePerSegment * static_cast<float>(j) + curlPhase;
         out[j] = centre[j] + radiusAt(j) * (std::cos(angle) * u + std::sin(angle) * v);
@@ -1032,7 +1010,7 @@ void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::ui
         const glm::vec3 d = key[b] - key[a];
         const float len = glm::length(d);
         tangent[j] = len > 1e-9f ? d / len : (j > 0 ? tangent[j - 1] : glm::vec3(0, 1, 0));
-        transport[j] = j == 0 ? headRotation : minimalRotationMatrix(tangent[j - 1], tangent[j]) * transport[j - 1];
+        transport[j] = j == 0 ? headRotation : shortestArcMatrix(tangent[j - 1], tangent[j]) * transport[j - 1];
     }
     const float keyLength = groom.lengths[k];
     const glm::vec3 keyRoot = groom.rootPositions[k];

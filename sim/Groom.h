@@ -40,7 +40,7 @@ struct GroomSettings {
 GroomSettings groomSettingsFrom(const ParameterValues& values);
 
 // Empty when usable; otherwise names the setting and the problem ("segments: 1 is outside 2..127").
-std::string validateGroomSettings(const GroomSettings& settings);
+[[nodiscard]] std::string validateGroomSettings(const GroomSettings& settings);
 
 // The helix a curl winds along (the perm of Lee et al.), counted per metre of hair: the hair (arc
 // length along the helix) makes `turnsPerMetre` turns per metre. A turn takes 1 / T of hair, of

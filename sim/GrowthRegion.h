@@ -49,6 +49,6 @@ std::vector<glm::vec4> scalpCoverage(const std::vector<GrowthRegion>& regions, s
 
 // Empty when usable; otherwise names the region and the problem
 // ("region 'Fringe': weight 12 is not a finite number", "region 'Top': clump_degree: 3 is outside -1..1").
-std::string validateRegion(const GrowthRegion& region, std::size_t vertexCount);
+[[nodiscard]] std::string validateRegion(const GrowthRegion& region, std::size_t vertexCount);
 
 }  // namespace wisp

@@ -11,16 +11,21 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <cassert>
 #include <unordered_map>
 #include <unordered_set>
 
 namespace wisp {
 
-HairSimulation::HairSimulation(int threadCount) : m_solver(threadCount), m_bvh(std::make_unique<MeshBvh>()) {}
+HairSimulation::HairSimulation(int threadCount)
+    : m_solver(threadCount), m_head(std::make_shared<const HeadModel>(TriangleMesh{}))
+{
+}
 HairSimulation::~HairSimulation() = default;
 
-std::string HairSimulation::prepareHead(const TriangleMesh& head)
+std::string HairSimulation::prepareHead(HeadModelPtr model)
 {
+    const TriangleMesh& head = model->mesh();
     if (std::string error = validateMesh(head); !error.empty())
         return "head: " + error;
     const Aabb box = boundsOf(head);
@@ -31,10 +36,9 @@ std::string HairSimulation::prepareHead(const TriangleMesh& head)
         SignedDistanceField::bake(head, extent / kColliderCellsAcross, 0.1f * extent + 0.01f, &error));
     if (sdf->empty())
         return "head: cannot build its collider: " + error;
-    m_head = head;
+    m_head = std::move(model);
     m_sdf = std::move(sdf);
-    m_bvh = std::make_unique<MeshBvh>(m_head);
-    m_body = defaultBody(m_head);
+    m_body = defaultBody(m_head->mesh());
     m_builder.forgetHead();
     return {};
 }
@@ -80,10 +84,13 @@ std::string HairSimulation::start(Groom groom, const ParameterValues& values)
     solveCombedRest(groom, values, simulated);
     if (std::string error = m_solver.setStrands(simulated); !error.empty())
         return error;
-    m_solver.setSettings(settings);
+    if (std::string error = m_solver.setSettings(settings); !error.empty())
+        return error;
     m_solver.setCollider(m_sdf);
     setBody(values);
-    m_solver.setStrandVolume(drawnStrandsPerSimulated(groom, allStrands), scalpAreaOf(groom));
+    if (std::string error = m_solver.setStrandVolume(drawnStrandsPerSimulated(groom, allStrands), scalpAreaOf(groom));
+        !error.empty())
+        return error;
     m_groom = std::move(groom);
     m_dryingHalfLife = values.getFloat(Param::DryingTime);
     m_simulatedOf.clear();
@@ -275,8 +282,10 @@ void HairSimulation::updateMaterial(bool force)
         scales[s] = m_baseStiffness[s] * wetStiffnessFactor(w);
         volumeTargets[s] = std::max(m_baseVolumeFactor[s], wetVolumeFactor(w));
     }
-    m_solver.setStiffnessScales(scales);
-    m_solver.setVolumeTargetScales(volumeTargets);
+    // Both are sized to the solver's strands, which the solver cannot refuse.
+    [[maybe_unused]] const bool accepted =
+        m_solver.setStiffnessScales(scales).empty() && m_solver.setVolumeTargetScales(volumeTargets).empty();
+    assert(accepted);
 }
 
 void HairSimulation::wet(std::span<const std::uint64_t> keyIdentities, float wetness)
@@ -332,7 +341,9 @@ void HairSimulation::step()
             for (std::size_t s = 0; s < count; ++s)
                 drag[s] = wetDragFactor(m_wetness[wispOfSimulated(s)]);
         }
-        m_solver.setStrandAir(drag, air);
+        // Sized to the solver's strands (drag) and the drawn ones (air), as it asks.
+        [[maybe_unused]] const bool accepted = m_solver.setStrandAir(drag, air).empty();
+        assert(accepted);
         m_airInSolver = !m_dryers.empty() || wet;
         updateMaterial(false);
     }
@@ -352,7 +363,9 @@ int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::func
         still.substeps = substeps;
     if (!m_solver.setSettings(still).empty())
         return 0;
-    m_solver.setStrandAir({}, {});  // no dryer; wet hair keeps its softness (the stiffness scales)
+    // No dryer; wet hair keeps its softness (the stiffness scales). Empty spans are always taken.
+    [[maybe_unused]] const bool noAir = m_solver.setStrandAir({}, {}).empty();
+    assert(noAir);
     m_airInSolver = false;          // step() gives the air back where wetness or a dryer needs it
     std::vector<glm::vec3> before, now;
     m_solver.copyPositions(before);
@@ -369,7 +382,9 @@ int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::func
             break;
         before.swap(now);
     }
-    m_solver.setSettings(settings);
+    // The settings the solver held before the drape: accepted then, accepted now.
+    [[maybe_unused]] const bool restored = m_solver.setSettings(settings).empty();
+    assert(restored);
     return steps;
 }
 
@@ -380,14 +395,15 @@ std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& region
     std::vector<GroomRegionInput> inputs;
     looks.clear();
     for (const GrowthRegion* r : growingRegions(regions, soloId)) {
-        if (std::string error = validateRegion(*r, m_head.positions.size()); !error.empty())
+        if (std::string error = validateRegion(*r, m_head->mesh().positions.size()); !error.empty())
             return error;
         inputs.push_back({r->id, r->weights, groomSettingsFrom(r->values), r->values.getFloat(Param::StiffnessScale),
                           r->importedStrands.get()});
         looks.push_back({r->rootColour, r->tipColour, r->values.getFloat(Param::HairThickness)});
     }
     GroomResult result =
-        m_builder.build(m_head, inputs, groomSettingsFrom(values), m_sdf.get(), previous, m_bvh.get(), m_style.get());
+        m_builder.build(m_head->mesh(), inputs, groomSettingsFrom(values), m_sdf.get(), previous, &m_head->bvh(),
+                        m_style.get());
     if (!result.ok())
         return result.error;
     m_groomWarnings = std::move(result.warnings);
@@ -398,9 +414,21 @@ std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& region
 std::string HairSimulation::setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions,
                                   std::uint32_t soloId, const ParameterValues& values)
 {
+    return setup(std::make_shared<const HeadModel>(head), regions, soloId, values);
+}
+
+std::string HairSimulation::setup(const TriangleMesh& head, std::span<const float> growthWeights,
+                                  const ParameterValues& values)
+{
+    return setup(std::make_shared<const HeadModel>(head), growthWeights, values);
+}
+
+std::string HairSimulation::setup(HeadModelPtr head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
+                                  const ParameterValues& values)
+{
     if (std::string error = validateSolverSettings(solverSettingsFrom(values)); !error.empty())
         return error;
-    if (std::string error = prepareHead(head); !error.empty())
+    if (std::string error = prepareHead(std::move(head)); !error.empty())
         return error;
     Groom groom;
     std::vector<StrandLook> looks;
@@ -470,7 +498,7 @@ std::string HairSimulation::regroom(const std::vector<GrowthRegion>& regions, st
     return {};
 }
 
-std::string HairSimulation::setup(const TriangleMesh& head, std::span<const float> growthWeights,
+std::string HairSimulation::setup(HeadModelPtr head, std::span<const float> growthWeights,
                                   const ParameterValues& values)
 {
     if (std::string error = validateSolverSettings(solverSettingsFrom(values)); !error.empty())
@@ -478,9 +506,9 @@ std::string HairSimulation::setup(const TriangleMesh& head, std::span<const floa
     const GroomSettings groomSettings = groomSettingsFrom(values);
     if (std::string error = validateGroomSettings(groomSettings); !error.empty())
         return error;
-    if (std::string error = prepareHead(head); !error.empty())
+    if (std::string error = prepareHead(std::move(head)); !error.empty())
         return error;
-    GroomResult groom = buildGroom(m_head, growthWeights, groomSettings, m_sdf.get());
+    GroomResult groom = buildGroom(m_head->mesh(), growthWeights, groomSettings, m_sdf.get());
     if (!groom.ok())
         return groom.error;
     m_groomWarnings = std::move(groom.warnings);
@@ -493,9 +521,9 @@ std::string HairSimulation::setupGrid(const TriangleMesh& head, int width, int h
 {
     if (std::string error = validateSolverSettings(solverSettingsFrom(values)); !error.empty())
         return error;
-    if (std::string error = prepareHead(head); !error.empty())
+    if (std::string error = prepareHead(std::make_shared<const HeadModel>(head)); !error.empty())
         return error;
-    GroomResult groom = buildGridGroom(m_head, *m_bvh, width, height, particlesPerStrand, lengthMetres, m_sdf.get());
+    GroomResult groom = buildGridGroom(m_head->mesh(), m_head->bvh(), width, height, particlesPerStrand, lengthMetres, m_sdf.get());
     if (!groom.ok())
         return groom.error;
     ParameterValues all = values;

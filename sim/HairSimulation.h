@@ -12,6 +12,7 @@
 #include "sim/Parameters.h"
 #include "sim/Solver.h"
 #include "sim/StyleEdits.h"
+#include "sim/HeadModel.h"
 #include "sim/TriangleMesh.h"
 
 #include <functional>
@@ -35,14 +36,19 @@ public:
     // Grooms `head` where `growthWeights` allow (one region with the Wisp-group entries of
     // `values`), bakes its collider and starts the solver at rest. On error returns the message and
     // keeps what it had.
-    std::string setup(const TriangleMesh& head, std::span<const float> growthWeights, const ParameterValues& values);
+    [[nodiscard]] std::string setup(const TriangleMesh& head, std::span<const float> growthWeights, const ParameterValues& values);
     // The editor's groom: the growing regions of `regions` (see growingRegions) on `head`.
-    std::string setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
+    [[nodiscard]] std::string setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
                       const ParameterValues& values);
+    // The same on a head model already built (the editor's document shares its BVH): only the
+    // collider is baked here. `head` must not be null.
+    [[nodiscard]] std::string setup(HeadModelPtr head, std::span<const float> growthWeights, const ParameterValues& values);
+    [[nodiscard]] std::string setup(HeadModelPtr head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
+                                    const ParameterValues& values);
     // Regrooms on the same head (painted weights, wisp or groom parameters changed) while the hair
     // moves: every simulated strand that still exists keeps its motion, new strands start at rest,
     // removed ones vanish, nothing else jumps. On error returns the message and keeps running as before.
-    std::string regroom(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values);
+    [[nodiscard]] std::string regroom(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values);
     // Strands whose motion the last regroom carried over, and strands it started at rest.
     std::size_t carriedStrands() const { return m_carried; }
     std::size_t startedStrands() const { return m_started; }
@@ -53,10 +59,10 @@ public:
     // How each groom region's hair looks (per entry of groom().regionIds).
     const std::vector<StrandLook>& looks() const { return m_looks; }
     // The first paper's grid layout (see buildGridGroom); every strand simulated.
-    std::string setupGrid(const TriangleMesh& head, int width, int height, int particlesPerStrand, float lengthMetres,
+    [[nodiscard]] std::string setupGrid(const TriangleMesh& head, int width, int height, int particlesPerStrand, float lengthMetres,
                           const ParameterValues& values);
     // Forces and solver parameters only; takes effect at the next step.
-    std::string applyForces(const ParameterValues& values);
+    [[nodiscard]] std::string applyForces(const ParameterValues& values);
 
     // --- Salon edits (StyleEdits.h) --------------------------------------------------------------
     // The artist's edits by strand identity; used by the next setup or regroom (call one after).
@@ -103,9 +109,10 @@ public:
     void copySimulated(std::vector<glm::vec3>& out) const { m_solver.copyPositions(out); }
 
     const Groom& groom() const { return m_groom; }
-    const TriangleMesh& head() const { return m_head; }
+    const TriangleMesh& head() const { return m_head->mesh(); }
+    const HeadModelPtr& headModel() const { return m_head; }
     const SignedDistanceField* collider() const { return m_sdf.get(); }
-    const MeshBvh& bvh() const { return *m_bvh; }
+    const MeshBvh& bvh() const { return m_head->bvh(); }
     Solver& solver() { return m_solver; }
     const Solver& solver() const { return m_solver; }
     bool simulatesAllStrands() const { return m_allStrands; }
@@ -130,11 +137,11 @@ public:
     static constexpr float kColliderCellsAcross = 96.0f;
 
 private:
-    std::string prepareHead(const TriangleMesh& head);
-    std::string start(Groom groom, const ParameterValues& values);
-    std::string groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values,
+    [[nodiscard]] std::string prepareHead(HeadModelPtr head);
+    [[nodiscard]] std::string start(Groom groom, const ParameterValues& values);
+    [[nodiscard]] std::string groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values,
                              const Groom* previous, Groom& out, std::vector<StrandLook>& looks);
-    std::string setStrandStiffness(const Groom& groom);
+    [[nodiscard]] std::string setStrandStiffness(const Groom& groom);
     void solveCombedRest(const Groom& groom, const ParameterValues& values, HairCurves& simulated);
     const StrandStyle* styleOf(std::size_t strand) const;
     std::size_t wispOfSimulated(std::size_t s) const { return m_allStrands ? m_groom.wispOf[s] : s; }
@@ -144,9 +151,8 @@ private:
     void setBody(const ParameterValues& values);  // the solver collides with m_body or not
 
     Solver m_solver;
-    TriangleMesh m_head;
+    HeadModelPtr m_head;  // never null: an empty head until the first setup
     std::shared_ptr<SignedDistanceField> m_sdf;
-    std::unique_ptr<MeshBvh> m_bvh;
     std::vector<Capsule> m_body;  // head space
     bool m_bodyOn = false;        // the solver and the drawn members collide with m_body
     Groom m_groom;

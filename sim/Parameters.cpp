@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 namespace wisp {
 namespace {
@@ -259,6 +260,26 @@ SliderRange toolSettingRange(ToolSetting setting)
     case ToolSetting::BrushFalloff: return {0.0, 1.0, SliderScale::Linear, false};
     case ToolSetting::PermRadius: return {0.0, kStyleMaxCurlRadiusMetres, SliderScale::Log, false};
     case ToolSetting::PermTurns: return {0.0, kStyleMaxCurlTurnsPerMetre, SliderScale::Log, false};
+    }
+    return {};
+}
+
+double clampToToolSetting(ToolSetting setting, double value)
+{
+    const SliderRange range = toolSettingRange(setting);
+    return std::clamp(value, range.minimum, range.maximum);
+}
+
+std::string checkToolSetting(ToolSetting setting, double value, std::string_view what)
+{
+    const SliderRange range = toolSettingRange(setting);
+    std::ostringstream message;
+    message << what << ": " << value;
+    if (!std::isfinite(value))
+        return message.str() + " is not a finite number";
+    if (value < range.minimum || value > range.maximum) {
+        message << " is outside " << range.minimum << ".." << range.maximum;
+        return message.str();
     }
     return {};
 }

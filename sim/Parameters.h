@@ -104,6 +104,11 @@ double snappedSliderValue(const SliderRange& range, double value);
 // limits themselves are ScalpBrush.h's and StyleEdits.h's, which check them.
 enum class ToolSetting { BrushRadius, BrushStrength, BrushFalloff, PermRadius, PermTurns };
 SliderRange toolSettingRange(ToolSetting setting);
+// `value` clamped to the setting's range (what the tools keep when given more or less).
+double clampToToolSetting(ToolSetting setting, double value);
+// Empty when `value` is finite and inside the setting's range; otherwise "<what>: <value> is
+// outside <min>..<max>" (or "is not a finite number").
+[[nodiscard]] std::string checkToolSetting(ToolSetting setting, double value, std::string_view what);
 
 constexpr std::size_t kParamCount = static_cast<std::size_t>(Param::Count);
 
@@ -118,10 +123,10 @@ bool isWithinRange(const ParameterInfo& info, double value);
 // Empty when value is acceptable for the parameter; otherwise a message such as
 // "clump_degree: 3 is outside -1..1", "gravity: nan is not a finite number", "substeps: 2.5 is not
 // a whole number" (integer parameters) or "simulate_all_strands: 0.5 is not 0 or 1" (toggles).
-std::string checkParameterValue(Param id, double value);
+[[nodiscard]] std::string checkParameterValue(Param id, double value);
 
 // The first refusal among (parameter, value) pairs, or empty when every value is acceptable.
-std::string checkParameterValues(std::initializer_list<std::pair<Param, double>> values);
+[[nodiscard]] std::string checkParameterValues(std::initializer_list<std::pair<Param, double>> values);
 
 // One value for every parameter, starting at the registry's defaults.
 class ParameterValues {

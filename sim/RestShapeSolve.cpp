@@ -1,5 +1,7 @@
 #include "sim/RestShapeSolve.h"
 
+#include "sim/ShortestArc.h"
+
 #include "sim/BendingModel.h"
 #include "sim/Solver.h"
 
@@ -34,21 +36,6 @@ constexpr float kMaxTurnRadians = 0.3f;
 // accelerate from iteration to iteration.
 constexpr float kVelocityKept = 0.5f;
 
-// v turned about the axis a x b by `share` of the angle between unit a and unit b (Rodrigues), by
-// at most maxRadians.
-glm::vec3 turnedLike(const glm::vec3& a, const glm::vec3& b, const glm::vec3& v, float share,
-                     float maxRadians = 3.2f)
-{
-    const glm::vec3 axis = glm::cross(a, b);
-    const float sine = glm::length(axis);
-    if (sine < 1e-7f)
-        return v;  // aligned, or opposite (no shortest rotation: left to the next iteration)
-    const glm::vec3 k = axis / sine;
-    const float angle = std::min(share * std::atan2(sine, glm::dot(a, b)), maxRadians);
-    const float c = std::cos(angle), s = std::sin(angle);
-    return v * c + glm::cross(k, v) * s + k * (glm::dot(k, v) * (1.0f - c));
-}
-
 // The rest shapes whose static equilibrium in the solver is exactly `targets`, found with the
 // solver itself, so the answer is the solver's whatever its bending, length and contact do. At
 // rest nothing moves between substeps: the state (x = target, previous) must come back from one
@@ -66,10 +53,9 @@ void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessS
     one.substeps = 1;
     one.wind = glm::vec3(0.0f);
     one.turbulence = 0.0f;
-    if (!solver.setStrands(rest).empty() || !solver.setSettings(one).empty())
+    if (!solver.setStrands(rest).empty() || !solver.setSettings(one).empty() ||
+        (!stiffnessScales.empty() && !solver.setStiffnessScales(stiffnessScales).empty()))
         return;
-    if (!stiffnessScales.empty())
-        solver.setStiffnessScales(stiffnessScales);
 
     // Per segment: the gain that turns a missed angle into a rest turn.
     std::vector<float> gain(targets.positions.size(), 0.0f);
@@ -119,8 +105,8 @@ void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessS
                 const float length = glm::distance(t[j], t[j - 1]);
                 const glm::vec3 want = (t[j] - t[j - 1]) / length;
                 const glm::vec3 got = glm::normalize(positions[p] - positions[p - 1]);
-                tau[p] = glm::normalize(turnedLike(got, want, tau[p], gain[p], kMaxTurnRadians));
-                restDirection = j == 1 ? tau[p] : glm::normalize(turnedLike(combedParent, restDirection, tau[p], 1.0f));
+                tau[p] = glm::normalize(turnShortestArc(got, want, tau[p], gain[p], kMaxTurnRadians));
+                restDirection = j == 1 ? tau[p] : glm::normalize(turnShortestArc(combedParent, restDirection, tau[p], 1.0f));
                 combedParent = want;
                 r[j] = r[j - 1] + restDirection * length;
             }
@@ -164,10 +150,9 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
     HairCurves best = out.rest;
     std::vector<float> previousGap(count, 1e30f);
     for (int k = 0; k < maxIterations; ++k) {
-        if (!solver.setStrands(out.rest).empty() || !solver.setSettings(settle).empty())
+        if (!solver.setStrands(out.rest).empty() || !solver.setSettings(settle).empty() ||
+            (!stiffnessScales.empty() && !solver.setStiffnessScales(stiffnessScales).empty()))
             break;
-        if (!stiffnessScales.empty())
-            solver.setStiffnessScales(stiffnessScales);
         // Start at the target, at rest: once R is right, nothing moves.
         for (std::size_t i = 0; i < targets.strandCount(); ++i)
             solver.setStrandState(i, targets.strand(i), targets.strand(i));
@@ -210,7 +195,7 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
                 const glm::vec3 de = glm::normalize(settled[first + j] - settled[first + j - 1]);
                 const glm::vec3 dr = glm::normalize(r[j] - previousRest);
                 // The rotation that takes the settled direction onto the target's, applied to the rest.
-                const glm::vec3 turned = turnedLike(de, dt, dr, kRelaxation);
+                const glm::vec3 turned = turnShortestArc(de, dt, dr, kRelaxation);
                 previousRest = r[j];
                 r[j] = r[j - 1] + turned * length;
             }

@@ -32,7 +32,7 @@ struct BrushSettings {
 
 // Empty when usable; otherwise names the field and the problem
 // ("brush radius: 0 is outside 0.0005..0.5 m", "brush strength: nan is not a finite number").
-std::string validateBrush(const BrushSettings& settings);
+[[nodiscard]] std::string validateBrush(const BrushSettings& settings);
 
 // The brush's weight at distance `distanceOverRadius` (0 at the centre, 1 at the rim) from the
 // centre, 0..1. The inner (1 - falloff) of the radius gets full weight, the rest falls to 0 at the

@@ -1,5 +1,7 @@
 #include "sim/Solver.h"
 
+#include "sim/ShortestArc.h"
+
 #include "sim/BendingModel.h"
 #include "sim/HairVolumeGrid.h"
 #include "sim/SignedDistanceField.h"
@@ -466,8 +468,7 @@ void storeRestFrames(Solver::Block& block, int lane)
     const ShapeRow* shape = block.shape.data();
     auto dir = [&](std::uint32_t j) { return glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]); };
     glm::vec3 d = dir(1);
-    const glm::vec3 helper = std::abs(d.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-    glm::vec3 e = glm::normalize(glm::cross(d, helper));
+    glm::vec3 e = anyPerpendicular(d);
     rest[0].lx[lane] = e.x;
     rest[0].ly[lane] = e.y;
     rest[0].lz[lane] = e.z;
@@ -478,9 +479,7 @@ void storeRestFrames(Solver::Block& block, int lane)
         rest[j].ly[lane] = glm::dot(r, e);
         rest[j].lz[lane] = glm::dot(r, b);
         // Transport (d, e) onto r: the shortest rotation taking d to r.
-        const glm::vec3 axis = glm::cross(d, r);
-        const float cosine = glm::dot(d, r);
-        e = e * cosine + glm::cross(axis, e) + axis * (glm::dot(axis, e) / std::max(1.0f + cosine, 1e-2f));
+        e = rotateShortestArc(d, r, e);
         e = glm::normalize(e - r * glm::dot(e, r));
         d = r;
     }

@@ -53,8 +53,8 @@ public:
     // Rest shapes in head space; the first point of each strand is its root, pinned to the head.
     // Every strand needs at least 2 points and finite, non-coincident neighbours. Returns an error
     // (and keeps the previous strands) otherwise. Particles start at rest.
-    std::string setStrands(const HairCurves& rest);
-    std::string setSettings(const SolverSettings& settings);
+    [[nodiscard]] std::string setStrands(const HairCurves& rest);
+    [[nodiscard]] std::string setSettings(const SolverSettings& settings);
     const SolverSettings& settings() const { return m_settings; }
     void setCollider(std::shared_ptr<const SignedDistanceField> headSdf);  // null: no head collision
     void setCapsules(std::vector<Capsule> capsules);
@@ -73,22 +73,22 @@ public:
 
     // Per strand (the layout of setStrands): multiplies settings().stiffness, the product capped at
     // 1 (a region's stiffness scale, hairspray). All 1 after setStrands.
-    std::string setStiffnessScales(std::span<const float> perStrand);
+    [[nodiscard]] std::string setStiffnessScales(std::span<const float> perStrand);
 
     // Per strand: scales the drag toward the wind (wet hair is heavier, so the same air moves it
     // less) and adds a wind of its own, m/s world space (a hair dryer's cone). An empty span means
     // 1 and no wind of its own. Both 1 and none after setStrands.
-    std::string setStrandAir(std::span<const float> dragScale, std::span<const glm::vec3> extraWind);
+    [[nodiscard]] std::string setStrandAir(std::span<const float> dragScale, std::span<const glm::vec3> extraWind);
 
     // Hair-hair interaction (settings().volume > 0; HairVolumeGrid.h): per strand, how many drawn
     // strands it stands for (a key hair and its members; empty: 1 each), so the density matches
     // what is drawn; and the scalp area (m²) the drawn hair grows from, which with the hair's
     // length sets the density the hair keeps (0: estimated from the simulated roots). Both as
     // after setStrands until set again.
-    std::string setStrandVolume(std::span<const float> drawnStrands, float scalpAreaSquareMetres);
+    [[nodiscard]] std::string setStrandVolume(std::span<const float> drawnStrands, float scalpAreaSquareMetres);
     // Per strand: multiplies the density the hair may reach before it pushes its neighbours away
     // (wet hair: above 1, so it takes less room). Empty: 1 for every strand.
-    std::string setVolumeTargetScales(std::span<const float> perStrand);
+    [[nodiscard]] std::string setVolumeTargetScales(std::span<const float> perStrand);
     // Drawn hair per scalp area (metres of hair per m²) and the density it keeps at this volume
     // (metres of hair per m³; 0 when the volume is off), for tests and the README.
     float hairPerScalpArea() const { return m_hairPerScalpArea; }

@@ -38,6 +38,6 @@ glm::vec3 windVelocity(float speed, float azimuthDegrees, float elevationDegrees
 SolverSettings solverSettingsFrom(const ParameterValues& values);
 
 // Empty when usable; otherwise names the setting and what is wrong with it.
-std::string validateSolverSettings(const SolverSettings& settings);
+[[nodiscard]] std::string validateSolverSettings(const SolverSettings& settings);
 
 }  // namespace wisp

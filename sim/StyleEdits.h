@@ -54,7 +54,7 @@ constexpr std::size_t kStyleMaxShapePoints = 1024;
 
 // Empty when usable; otherwise names the strand and the problem
 // ("strand 4294967298: wetness 3 is outside 0..1").
-std::string validateStrandStyle(std::uint64_t identity, const StrandStyle& style);
+[[nodiscard]] std::string validateStrandStyle(std::uint64_t identity, const StrandStyle& style);
 
 // A hash of everything that changes a strand's rest shape (length, curl, shape); 0 for none.
 std::uint64_t restShapeHash(const StrandStyle& style);

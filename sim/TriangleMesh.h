@@ -34,7 +34,7 @@ struct SurfacePoint {
 
 // Empty string when the mesh is usable for grooming and collision; otherwise what is wrong with it
 // (no triangles, an index out of range, a non-finite coordinate).
-std::string validateMesh(const TriangleMesh& mesh);
+[[nodiscard]] std::string validateMesh(const TriangleMesh& mesh);
 
 Aabb boundsOf(const TriangleMesh& mesh);
 

@@ -138,7 +138,8 @@ BenchResult sphereWorkload(const RunOptions& o)
     s.stiffness = 0.0f;
     s.friction = 0.0f;
     s.hairOffsetMetres = 0.0f;
-    solver.setSettings(s);
+    if (const std::string error = solver.setSettings(s); !error.empty())
+        throw CliError{kBadInput, "sphere workload: " + error};
     solver.setCapsules({Capsule{{0, 0, 0}, {0, 0, 0}, 0.1f}});
     BenchResult r{"sphere"};
     r.particles = solver.particleCount();

@@ -8,5 +8,6 @@ int runBench(int argc, char** argv);
 int runConvert(int argc, char** argv);
 int runValidate(int argc, char** argv);
 int runBake(int argc, char** argv);
+int runStyle(int argc, char** argv);
 
 }  // namespace wisp::cli

@@ -17,6 +17,7 @@ const char* kUsage =
     "  convert    hair from one format to another: wisp-cli convert IN OUT\n"
     "  validate   say what a head, hair, preset or project file holds, or what is wrong with it\n"
     "  bake       simulate frames with the head moving, write USD (.usda) or a .hair sequence\n"
+    "  style      replay a salon brush stroke on a project: wisp-cli style PROJECT --brush comb --stroke ...\n"
     "\n"
     "'wisp-cli COMMAND --help' lists a command's options.\n"
     "exit status: 0 success, 1 bad input (a file or a value), 2 wrong usage\n";
@@ -45,6 +46,8 @@ int main(int argc, char** argv)
             return wisp::cli::runValidate(argc, argv);
         if (!std::strcmp(command, "bake"))
             return wisp::cli::runBake(argc, argv);
+        if (!std::strcmp(command, "style"))
+            return wisp::cli::runStyle(argc, argv);
     } catch (const wisp::cli::CliError& e) {
         std::cerr << "wisp-cli " << command << ": " << e.message << "\n";
         return e.exitCode;

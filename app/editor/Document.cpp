@@ -25,7 +25,7 @@ GrowthRegion firstRegion(std::vector<float> weights)
 Document::Document(QObject* parent) : QObject(parent)
 {
     DefaultHead d = makeDefaultHead();
-    m_head = std::move(d.mesh);
+    m_head = std::make_shared<const HeadModel>(std::move(d.mesh));
     m_regions.push_back(firstRegion(std::move(d.growthWeights)));
     m_current = 0;
 }
@@ -90,7 +90,7 @@ int Document::addRegion(const QString& name)
     GrowthRegion r;
     r.id = nextRegionId();
     r.name = name.toStdString();
-    r.weights.assign(m_head.positions.size(), 0.0f);
+    r.weights.assign(head().positions.size(), 0.0f);
     if (m_current >= 0) {  // a new layer starts from the look being edited, as artists expect
         r.values = region(m_current).values;
         r.rootColour = region(m_current).rootColour;
@@ -225,7 +225,8 @@ void Document::replaceHead(TriangleMesh head, std::vector<float> growthWeights, 
                            const QString& source, const io::HeadPlacement& placement)
 {
     std::vector<GrowthRegion> regions{firstRegion(std::move(growthWeights))};
-    auto* command = new ReplaceHeadCommand(this, m_head, m_regions, std::move(head), std::move(regions), name);
+    auto* command = new ReplaceHeadCommand(this, m_head, m_regions, std::make_shared<const HeadModel>(std::move(head)),
+                                           std::move(regions), name);
     command->setOrigins({m_headSource, m_headPlacement}, {source, placement});
     if (m_style->empty()) {
         m_undoStack.push(command);
@@ -279,7 +280,7 @@ int Document::addImportedHair(std::shared_ptr<const HairCurves> strands, const Q
     GrowthRegion r;
     r.id = nextRegionId();
     r.name = name.toStdString();
-    r.weights.assign(m_head.positions.size(), 0.0f);
+    r.weights.assign(head().positions.size(), 0.0f);
     r.importedStrands = std::move(strands);
     after.push_back(std::move(r));
     m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
@@ -291,7 +292,7 @@ int Document::addImportedHair(std::shared_ptr<const HairCurves> strands, const Q
 io::Project Document::toProject() const
 {
     io::Project p;
-    p.head = m_head;
+    p.head = head();
     p.headSource = m_headSource.toStdString();
     p.headEmbedded = true;  // a project opens even when the head file has moved
     p.headImportScale = m_headPlacement.scale;
@@ -319,7 +320,7 @@ void Document::loadProject(io::Project project)
     m_styleStroke.reset();
     m_styleBefore.reset();
     m_style = std::make_shared<const StyleEdits>(std::move(project.style));
-    applyHead(std::move(project.head), std::move(project.regions));
+    applyHead(std::make_shared<const HeadModel>(std::move(project.head)), std::move(project.regions));
     if (project.soloRegion != kNoSolo && indexOfRegion(project.soloRegion) >= 0)
         m_soloId = project.soloRegion;
     emit parametersReplaced();
@@ -483,7 +484,7 @@ void Document::applyLook(const ParameterValues& parameters, std::vector<GrowthRe
     applyRegions(std::move(regions), m_soloId);
 }
 
-void Document::applyHead(TriangleMesh head, std::vector<GrowthRegion> regions)
+void Document::applyHead(HeadModelPtr head, std::vector<GrowthRegion> regions)
 {
     m_head = std::move(head);
     m_regions = std::move(regions);

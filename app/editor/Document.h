@@ -9,6 +9,7 @@
 #include "io/PresetFile.h"
 #include "io/ProjectFile.h"
 #include "sim/GrowthRegion.h"
+#include "sim/HeadModel.h"
 #include "sim/Parameters.h"
 #include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
@@ -30,7 +31,9 @@ public:
     // Starts on the built-in head with one region ("Scalp") painted with its default growth map.
     explicit Document(QObject* parent = nullptr);
 
-    const TriangleMesh& head() const { return m_head; }
+    const TriangleMesh& head() const { return m_head->mesh(); }
+    // The head with its BVH and brush grid, built once per head and shared (brushes, simulation).
+    const HeadModelPtr& headModel() const { return m_head; }
     const ParameterValues& parameters() const { return m_parameters; }
     QUndoStack* undoStack() { return &m_undoStack; }
 
@@ -117,7 +120,7 @@ public:
     void applyRegions(std::vector<GrowthRegion> regions, std::uint32_t soloId);  // structure changes
     void applyRegionWeights(std::uint32_t regionId, const std::vector<std::uint32_t>& vertices,
                             const std::vector<float>& values);
-    void applyHead(TriangleMesh head, std::vector<GrowthRegion> regions);
+    void applyHead(HeadModelPtr head, std::vector<GrowthRegion> regions);
     void applyHeadOrigin(const QString& source, const io::HeadPlacement& placement);
     void applyLook(const ParameterValues& parameters, std::vector<GrowthRegion> regions);  // presets
     // Per strand identity, the style it gets (nullopt: no edit).
@@ -136,7 +139,7 @@ signals:
     void styleChanged();                         // the salon edits changed
 
 private:
-    TriangleMesh m_head;
+    HeadModelPtr m_head;  // never null
     QString m_headSource;
     io::HeadPlacement m_headPlacement;
     ParameterValues m_parameters;

@@ -127,8 +127,8 @@ void StyleStrokeCommand::redo()
     m_applied = true;
 }
 
-ReplaceHeadCommand::ReplaceHeadCommand(Document* document, TriangleMesh oldHead, std::vector<GrowthRegion> oldRegions,
-                                       TriangleMesh newHead, std::vector<GrowthRegion> newRegions, const QString& name)
+ReplaceHeadCommand::ReplaceHeadCommand(Document* document, HeadModelPtr oldHead, std::vector<GrowthRegion> oldRegions,
+                                       HeadModelPtr newHead, std::vector<GrowthRegion> newRegions, const QString& name)
     : m_document(document), m_oldHead(std::move(oldHead)), m_newHead(std::move(newHead)),
       m_oldRegions(std::move(oldRegions)), m_newRegions(std::move(newRegions))
 {

@@ -4,6 +4,7 @@
 
 #include "io/HeadPlacement.h"
 #include "sim/GrowthRegion.h"
+#include "sim/HeadModel.h"
 #include "sim/Parameters.h"
 #include "sim/StyleEdits.h"
 #include "sim/TriangleMesh.h"
@@ -109,8 +110,9 @@ private:
 
 class ReplaceHeadCommand : public QUndoCommand {
 public:
-    ReplaceHeadCommand(Document* document, TriangleMesh oldHead, std::vector<GrowthRegion> oldRegions,
-                       TriangleMesh newHead, std::vector<GrowthRegion> newRegions, const QString& name);
+    // The heads are shared, not copied: undo and redo swap them without rebuilding their BVHs.
+    ReplaceHeadCommand(Document* document, HeadModelPtr oldHead, std::vector<GrowthRegion> oldRegions,
+                       HeadModelPtr newHead, std::vector<GrowthRegion> newRegions, const QString& name);
     struct Origin {
         QString source;
         io::HeadPlacement placement;
@@ -121,7 +123,7 @@ public:
 
 private:
     Document* m_document;
-    TriangleMesh m_oldHead, m_newHead;
+    HeadModelPtr m_oldHead, m_newHead;
     std::vector<GrowthRegion> m_oldRegions, m_newRegions;
     Origin m_oldOrigin, m_newOrigin;
 };

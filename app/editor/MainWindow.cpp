@@ -83,7 +83,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent)
     statusBar()->showMessage(tr("Space plays or pauses · Alt+drag or middle-drag orbits · Shift+middle-drag pans · "
                                 "wheel zooms · F frames the head · B paints where hair grows · C X G P W S D style the hair"));
     showGrowthOverlay();
-    m_simulation->setScene(m_document->head(), m_document->regions(), m_document->soloRegion(), m_document->parameters());
+    m_simulation->setScene(m_document->headModel(), m_document->regions(), m_document->soloRegion(), m_document->parameters());
     m_simulation->play();
 }
 
@@ -318,7 +318,7 @@ void MainWindow::createDocks()
         m_viewport->setHead(m_document->head());
         showBody();
         m_viewport->frameHead();
-        m_simulation->setScene(m_document->head(), m_document->regions(), m_document->soloRegion(),
+        m_simulation->setScene(m_document->headModel(), m_document->regions(), m_document->soloRegion(),
                                m_document->parameters());
         showGrowthOverlay();
     });

@@ -1,6 +1,7 @@
 #include "app/editor/PaintTool.h"
 
 #include "app/editor/Document.h"
+#include "sim/Parameters.h"
 #include "widgets/Viewport.h"
 
 #include <glm/geometric.hpp>
@@ -25,19 +26,12 @@ constexpr float kRadiusStep = 1.15f;  // [ and ] scale the radius by this
 PaintTool::PaintTool(Document* document, Viewport* viewport, QObject* parent)
     : ViewportBrush(viewport, parent), m_document(document)
 {
-    rebuildForHead();
-    connect(m_document, &Document::headChanged, this, &PaintTool::rebuildForHead);
+    connect(m_document, &Document::headChanged, this, &PaintTool::endStroke);
 }
 
 PaintTool::~PaintTool() = default;
 
-void PaintTool::rebuildForHead()
-{
-    endStroke();
-    const TriangleMesh& head = m_document->head();
-    m_bvh = std::make_unique<MeshBvh>(head);
-    m_brush = std::make_unique<ScalpBrush>(head);
-}
+float PaintTool::mirrorPlaneX() const { return m_document->headModel()->mirrorPlaneX(); }
 
 void PaintTool::setActive(bool active)
 {
@@ -54,7 +48,7 @@ void PaintTool::setActive(bool active)
 
 void PaintTool::setRadius(double metres)
 {
-    const float r = std::clamp(static_cast<float>(metres), kBrushRadiusMinMetres, kBrushRadiusMaxMetres);
+    const float r = static_cast<float>(clampToToolSetting(ToolSetting::BrushRadius, metres));
     if (!std::isfinite(metres) || r == m_settings.radiusMetres)
         return;
     m_settings.radiusMetres = r;
@@ -67,7 +61,7 @@ void PaintTool::setStrength(double strength)
 {
     if (!std::isfinite(strength))
         return;
-    m_settings.strength = std::clamp(static_cast<float>(strength), 0.0f, 1.0f);
+    m_settings.strength = static_cast<float>(clampToToolSetting(ToolSetting::BrushStrength, strength));
     emit settingsChanged();
 }
 
@@ -75,7 +69,7 @@ void PaintTool::setFalloff(double falloff)
 {
     if (!std::isfinite(falloff))
         return;
-    m_settings.falloff = std::clamp(static_cast<float>(falloff), 0.0f, 1.0f);
+    m_settings.falloff = static_cast<float>(clampToToolSetting(ToolSetting::BrushFalloff, falloff));
     emit settingsChanged();
 }
 
@@ -96,16 +90,10 @@ void PaintTool::setMirror(bool mirror)
 std::optional<PaintTool::Hit> PaintTool::hitAt(QPointF widgetPosition) const
 {
     const ViewRay ray = viewport()->rayAt(widgetPosition);
-    const auto hit = m_bvh->raycast(ray.origin, ray.direction, 1e4f);
+    const auto hit = m_document->headModel()->hitAlong(ray.origin, ray.direction);
     if (!hit)
         return std::nullopt;
-    const TriangleMesh& head = m_document->head();
-    const glm::uvec3 tri = head.triangles[hit->surface.triangle];
-    glm::vec3 n = glm::cross(head.positions[tri.y] - head.positions[tri.x], head.positions[tri.z] - head.positions[tri.x]);
-    n = glm::length(n) > 0.0f ? glm::normalize(n) : -glm::normalize(ray.direction);
-    if (glm::dot(n, ray.direction) > 0.0f)  // the face we look at
-        n = -n;
-    return Hit{hit->point, n};
+    return Hit{hit->point, hit->normal};
 }
 
 // Held modifiers change the mode for as long as they are held: Ctrl erases, Shift smooths.
@@ -142,13 +130,14 @@ void PaintTool::dabAlong(const Hit& to, Qt::KeyboardModifiers modifiers)
 {
     BrushSettings s = m_settings;
     s.mode = modeFor(modifiers);
+    const ScalpBrush& brush = m_document->headModel()->scalp();
     std::vector<float>& weights = m_document->strokeWeights();
-    if (weights.size() != m_brush->vertexCount())
+    if (weights.size() != brush.vertexCount())
         return;
     const float spacing = kDabSpacing * s.radiusMetres;
     bool changed = false;
     if (!m_lastDab) {
-        changed = !m_brush->dab(to.point, s, weights).empty();
+        changed = !brush.dab(to.point, s, weights).empty();
         m_lastDab = to.point;
     } else {
         const glm::vec3 from = *m_lastDab;
@@ -156,7 +145,7 @@ void PaintTool::dabAlong(const Hit& to, Qt::KeyboardModifiers modifiers)
         const int steps = static_cast<int>(length / spacing);
         for (int i = 1; i <= steps; ++i) {
             const glm::vec3 p = glm::mix(from, to.point, static_cast<float>(i) * spacing / length);
-            changed = !m_brush->dab(p, s, weights).empty() || changed;
+            changed = !brush.dab(p, s, weights).empty() || changed;
             m_lastDab = p;
         }
     }

@@ -5,7 +5,8 @@
 //   Ctrl + left drag            erase (hold Ctrl to erase, as Blender's brushes invert)
 //   Shift + left drag           smooth
 //   [ and ]                     smaller and larger brush
-// The surface under the cursor is found by a ray cast through a BVH of the head, so it stays
+// The surface under the cursor is found by a ray cast through the head's BVH (the document's
+// HeadModel, built once per head), so it stays
 // interactive on a 270k-triangle head. X-mirror symmetry is on by default. While the tool is
 // active, Alt + drag and the middle button still move the camera (the viewport handles those).
 //
@@ -14,7 +15,7 @@
 // Thread: GUI.
 
 #include "app/editor/ViewportBrush.h"
-#include "sim/MeshBvh.h"
+#include "sim/HeadModel.h"
 #include "sim/ScalpBrush.h"
 
 #include <glm/vec3.hpp>
@@ -40,7 +41,7 @@ public:
 
     bool isActive() const { return m_active; }
     const BrushSettings& settings() const { return m_settings; }
-    float mirrorPlaneX() const { return m_brush ? m_brush->mirrorPlaneX() : 0.0f; }
+    float mirrorPlaneX() const;
 
     // Where the cursor's ray meets the head (the styling tools use it too).
     struct Hit {
@@ -48,14 +49,9 @@ public:
         glm::vec3 normal;  // unit, facing the camera
     };
     std::optional<Hit> hitAt(QPointF widgetPosition) const;
-    const MeshBvh& headBvh() const { return *m_bvh; }
     // [ and ] make the brush smaller and larger, for every tool that shares these settings; true
     // when `e` was one of them.
     bool resizeByKey(const QKeyEvent* e);
-
-    // Brush limits, metres.
-    static constexpr float kMinRadius = 0.001f;
-    static constexpr float kMaxRadius = 0.2f;
 
 public slots:
     void setActive(bool active);
@@ -78,14 +74,11 @@ protected:
     bool keyPressed(const QKeyEvent* event) override { return resizeByKey(event); }
 
 private:
-    void rebuildForHead();
     BrushMode modeFor(Qt::KeyboardModifiers modifiers) const;
     void dabAlong(const Hit& to, Qt::KeyboardModifiers modifiers);
     void endStroke();
 
     Document* m_document;
-    std::unique_ptr<MeshBvh> m_bvh;
-    std::unique_ptr<ScalpBrush> m_brush;
     BrushSettings m_settings;
     bool m_active = false;
     std::optional<glm::vec3> m_lastDab;  // of the stroke going on

@@ -1,5 +1,7 @@
 #include "app/editor/SimulationHost.h"
 
+#include "sim/style/BrushContext.h"
+
 #include "app/editor/SettledScene.h"
 
 #include "app/editor/SimulationHostPacer.h"
@@ -10,6 +12,7 @@
 #include <QMetaObject>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -172,8 +175,9 @@ private:
         const Regions& r = scene.regions;
         std::string error;
         try {
-            error = r.fromParameters ? next->setup(scene.head, r.regions.front().weights, scene.values)
-                                     : next->setup(scene.head, r.regions, r.soloId, scene.values);
+            HeadModelPtr head = scene.head ? scene.head : std::make_shared<const HeadModel>(std::move(scene.mesh));
+            error = r.fromParameters ? next->setup(std::move(head), r.regions.front().weights, scene.values)
+                                     : next->setup(std::move(head), r.regions, r.soloId, scene.values);
         } catch (const std::exception& e) {
             error = std::string("groom: ") + e.what();  // sim/ does not throw, but memory can run out
         }
@@ -275,23 +279,11 @@ private:
         m_groomedWith = values;
         m_refusedGroom.reset();
         ++m_groomVersion;
-        auto shape = std::make_shared<GroomShape>();
-        shape->rest = m_sim->groom().rest;
-        shape->keyStrands = m_sim->simulatesAllStrands() ? std::vector<std::uint32_t>{} : m_sim->groom().keyStrand;
-        if (m_sim->simulatesAllStrands())
-            for (std::uint32_t i = 0; i < m_sim->groom().strandCount(); ++i)
-                shape->keyStrands.push_back(i);
-        std::sort(shape->keyStrands.begin(), shape->keyStrands.end());
-        const Groom& groom = m_sim->groom();
-        shape->identities.resize(groom.strandCount());
-        for (std::size_t i = 0; i < groom.strandCount(); ++i)
-            shape->identities[i] = groom.strandIdentity(i);
-        shape->wispOf = groom.wispOf;
-        shape->keyOfWisp = groom.keyStrand;
-        shape->lengths = groom.lengths;
-        m_groomShape = std::move(shape);
+        m_groomShape = groomShapeOf(*m_sim);
         m_pacer.setRequestedSubsteps(values.getInt(Param::Substeps));
-        m_sim->applyForces(withSubsteps(values, m_pacer.substeps()));
+        // The groom just took these values, so the solver takes them with fewer substeps too.
+        [[maybe_unused]] const bool applied = m_sim->applyForces(withSubsteps(values, m_pacer.substeps())).empty();
+        assert(applied);
         m_host.m_effectiveSubsteps.store(m_pacer.substeps());
         if (drape)
             m_sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); },
@@ -323,7 +315,9 @@ private:
             frame->timeScale = report.timeScale;
             if (report.substepsChanged) {
                 // The requested values were accepted before, so fewer substeps are too.
-                m_sim->applyForces(withSubsteps(m_values, m_pacer.substeps()));
+                [[maybe_unused]] const bool applied =
+                    m_sim->applyForces(withSubsteps(m_values, m_pacer.substeps())).empty();
+                assert(applied);
                 m_host.m_effectiveSubsteps.store(m_pacer.substeps());
             }
         }
@@ -415,7 +409,8 @@ void SimulationHost::setScene(TriangleMesh head, std::vector<float> growthWeight
     std::optional<Scene> superseded;  // freed after unlocking: the simulation thread never waits on a free
     {
         std::lock_guard lock(m_mutex);
-        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), std::move(regions), std::move(values)});
+        superseded =
+            std::exchange(m_inbox.scene, Scene{nullptr, std::move(head), std::move(regions), std::move(values)});
         m_inbox.parameters.reset();  // the scene's values are newer
         m_inbox.regions.reset();
     }
@@ -428,7 +423,21 @@ void SimulationHost::setScene(TriangleMesh head, std::vector<GrowthRegion> regio
     std::optional<Scene> superseded;
     {
         std::lock_guard lock(m_mutex);
-        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), Regions{std::move(regions), soloId, false},
+        superseded = std::exchange(m_inbox.scene, Scene{nullptr, std::move(head), Regions{std::move(regions), soloId, false},
+                                                        std::move(values)});
+        m_inbox.parameters.reset();
+        m_inbox.regions.reset();
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::setScene(HeadModelPtr head, std::vector<GrowthRegion> regions, std::uint32_t soloId,
+                              ParameterValues values)
+{
+    std::optional<Scene> superseded;
+    {
+        std::lock_guard lock(m_mutex);
+        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), {}, Regions{std::move(regions), soloId, false},
                                                         std::move(values)});
         m_inbox.parameters.reset();
         m_inbox.regions.reset();

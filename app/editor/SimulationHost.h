@@ -25,6 +25,7 @@
 #include "sim/HairDryer.h"
 #include "sim/Parameters.h"
 #include "sim/StyleEdits.h"
+#include "sim/HeadModel.h"
 #include "sim/TriangleMesh.h"
 
 #include <QObject>
@@ -70,6 +71,8 @@ public:
     void setScene(TriangleMesh head, std::vector<float> growthWeights, ParameterValues values);
     // The editor's scene: `head` grown by its regions (see growingRegions for soloId).
     void setScene(TriangleMesh head, std::vector<GrowthRegion> regions, std::uint32_t soloId, ParameterValues values);
+    // The same on the document's head model (its BVH is shared, not built again).
+    void setScene(HeadModelPtr head, std::vector<GrowthRegion> regions, std::uint32_t soloId, ParameterValues values);
     // Thread: GUI; returns at once. New regions for the running head (a brush dab, a wisp slider, a
     // region shown or hidden): regroomed on the simulation thread while the hair keeps moving; the
     // strands that still exist keep their motion, new ones start at rest. Only the newest matters.
@@ -150,7 +153,8 @@ private:
         bool fromParameters = false;
     };
     struct Scene {
-        TriangleMesh head;
+        HeadModelPtr head;  // null: built from `mesh` on the simulation thread
+        TriangleMesh mesh;
         Regions regions;
         ParameterValues values;
     };

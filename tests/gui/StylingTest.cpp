@@ -506,7 +506,7 @@ TEST_F(StylingTest, TheDryerBlowsTheHairInItsConeAwayFromTheCursorAndDriesIt)
     const auto hit = window->paintTool()->hitAt(at);
     ASSERT_TRUE(hit.has_value()) << "the dryer was not aimed at the head";
     const float hitDepth = glm::dot(hit->point - view->rayAt(at).origin, axis);
-    dryer.nozzle = view->rayAt(at).origin + axis * (hitDepth - StyleTool::kDryerDistanceMetres);
+    dryer.nozzle = view->rayAt(at).origin + axis * (hitDepth - kDryerDistanceMetres);
     const TriangleMesh& head = document()->head();
     const float extent = std::max({box.size().x, box.size().y, box.size().z});
     const SignedDistanceField field = SignedDistanceField::bake(head, extent / 96.0f, 0.1f * extent + 0.01f);
@@ -878,7 +878,7 @@ TEST_F(StylingTest, TheDryerBlowsFromTheEyeTowardTheSurfaceAndShowsItsCone)
     ASSERT_TRUE(hit.has_value());
     const float hitDepth = glm::dot(hit->point - ray.origin, ray.direction);
     // The cone: from a nozzle between the eye and the surface to a rim around the aimed point.
-    EXPECT_NEAR(glm::distance(cursor.dryerNozzle, hit->point), StyleTool::kDryerDistanceMetres, 1e-4f);
+    EXPECT_NEAR(glm::distance(cursor.dryerNozzle, hit->point), kDryerDistanceMetres, 1e-4f);
     EXPECT_LT(glm::distance(cursor.dryerNozzle, ray.origin), hitDepth);
     EXPECT_GT(cursor.radiusMetres, 0.02f);
     const std::vector<GuideVertex> cone =

@@ -164,3 +164,15 @@ TEST(Parameters, CtrlSnapGoesToRoundValuesInsideTheRange)
     EXPECT_EQ(radius.scale, SliderScale::Log);
     EXPECT_GE(snappedSliderValue(radius, 0.0001), radius.minimum);
 }
+
+TEST(Parameters, ToolSettingsAreClampedAndCheckedAgainstTheirOneRange)
+{
+    // The brush radius's range is ScalpBrush.h's limits, 0.0005..0.5 m.
+    EXPECT_DOUBLE_EQ(clampToToolSetting(ToolSetting::BrushRadius, 3.0), 0.5);
+    EXPECT_NEAR(clampToToolSetting(ToolSetting::BrushRadius, 0.0), 0.0005, 1e-9);
+    EXPECT_DOUBLE_EQ(clampToToolSetting(ToolSetting::BrushStrength, 0.25), 0.25);
+    EXPECT_DOUBLE_EQ(clampToToolSetting(ToolSetting::PermTurns, 500.0), 200.0);
+    EXPECT_EQ(checkToolSetting(ToolSetting::PermRadius, 0.01, "--curl-radius"), "");
+    EXPECT_EQ(checkToolSetting(ToolSetting::PermRadius, 0.2, "--curl-radius"), "--curl-radius: 0.2 is outside 0..0.05");
+    EXPECT_EQ(checkToolSetting(ToolSetting::BrushFalloff, std::nan(""), "falloff"), "falloff: nan is not a finite number");
+}

@@ -188,8 +188,9 @@ GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warn
                 for (std::size_t i = 0; i < values.values.size(); ++i) {
                     const double v = values.values[i];
                     if (!(v >= 0.0 && v < static_cast<double>(positions.count)) || std::floor(v) != v)
-                        fail(location, "index " + std::to_string(i) + " is out of range: the POSITION accessor has " +
-                                           plural(positions.count, "vertex", "vertices"));
+                        fail(location,
+                            "index " + std::to_string(i) + " is out of range: the POSITION accessor has "
+                                + plural(positions.count, "vertex", "vertices"));
                     indices.push_back(static_cast<std::uint32_t>(v));
                 }
             } else {
@@ -198,8 +199,7 @@ GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warn
             }
             auto point = [&](std::uint32_t i) {
                 out.strands.positions.push_back(glm::vec3(static_cast<float>(positions.values[3 * i]),
-                                                          static_cast<float>(positions.values[3 * i + 1]),
-                                                          static_cast<float>(positions.values[3 * i + 2])));
+                    static_cast<float>(positions.values[3 * i + 1]), static_cast<float>(positions.values[3 * i + 2])));
                 out.widthsMetres.push_back(widths.empty() ? 0.0f : static_cast<float>(widths[i]));
             };
             auto endStrand = [&] {
@@ -227,8 +227,8 @@ GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warn
     }
     for (std::size_t n = 0; n < model.nodes.size(); ++n) {
         const tinygltf::Node& node = model.nodes[n];
-        if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < model.meshes.size() &&
-            localTransform(node, n) != glm::dmat4(1.0))
+        if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < model.meshes.size()
+            && localTransform(node, n) != glm::dmat4(1.0))
             for (const tinygltf::Primitive& p : model.meshes[static_cast<std::size_t>(node.mesh)].primitives)
                 if (p.mode == TINYGLTF_MODE_LINE || p.mode == TINYGLTF_MODE_LINE_STRIP) {
                     warnings.push_back(indexed("nodes", n) + " transforms its lines; strands are read as stored");
@@ -258,11 +258,11 @@ Result<GltfLines> readGltfLines(const std::string& path)
         lines.warnings = std::move(warnings);
         return lines;
     } catch (const ReadFailure& failure) {
-        return IoError{path, failure.location, failure.message};
+        return IoError{ path, failure.location, failure.message };
     } catch (const std::bad_alloc&) {
-        return IoError{path, {}, "not enough memory to read this glTF file"};
+        return IoError{ path, {}, "not enough memory to read this glTF file" };
     } catch (const std::exception& e) {
-        return IoError{path, {}, "unexpected error while reading: " + withoutJsonPrefix(e.what())};
+        return IoError{ path, {}, "unexpected error while reading: " + withoutJsonPrefix(e.what()) };
     }
 }
 

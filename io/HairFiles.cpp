@@ -75,7 +75,7 @@ std::optional<HairFormat> hairFormatForPath(const std::string& path)
 
 const std::vector<std::string>& hairReadExtensions()
 {
-    static const std::vector<std::string> extensions{"hair", "data", "obj", "gltf", "glb"};
+    static const std::vector<std::string> extensions{ "hair", "data", "obj", "gltf", "glb" };
     return extensions;
 }
 

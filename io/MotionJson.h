@@ -26,4 +26,4 @@ nlohmann::ordered_json timelineToJson(const BakeRange& timeline);
 HeadMotion readMotion(const nlohmann::json& value, const std::string& path, Warnings& warnings);
 BakeRange readTimeline(const nlohmann::json& value, const std::string& path, Warnings& warnings);
 
-}  // namespace wisp::io::detail
+} // namespace wisp::io::detail

@@ -27,7 +27,7 @@ std::string_view nextToken(std::string_view& line)
     return token;
 }
 
-}  // namespace
+} // namespace
 
 Result<HairReadResult> readObjPolylines(const std::string& path)
 {
@@ -37,7 +37,7 @@ Result<HairReadResult> readObjPolylines(const std::string& path)
     const std::string& text = file.value();
     std::vector<glm::vec3> vertices;
     HairReadResult result;
-    std::vector<std::vector<std::int64_t>> lines;  // raw indices, resolved once all vertices are known
+    std::vector<std::vector<std::int64_t>> lines; // raw indices, resolved once all vertices are known
     std::vector<std::size_t> lineNumbers;
     std::size_t faces = 0, points = 0, shortLines = 0;
     std::size_t lineNumber = 0;
@@ -57,20 +57,20 @@ Result<HairReadResult> readObjPolylines(const std::string& path)
                 float value = 0.0f;
                 const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
                 if (token.empty() || ec != std::errc() || ptr != token.data() + token.size())
-                    return IoError{path, where, "a vertex needs 3 numbers; '" + std::string(token) + "' is not one"};
+                    return IoError{ path, where, "a vertex needs 3 numbers; '" + std::string(token) + "' is not one" };
                 if (!std::isfinite(value))
-                    return IoError{path, where, "a vertex coordinate is not a finite number"};
+                    return IoError{ path, where, "a vertex coordinate is not a finite number" };
                 p[c] = value;
             }
             vertices.push_back(p);
         } else if (keyword == "l") {
             std::vector<std::int64_t> indices;
             for (std::string_view token = nextToken(line); !token.empty(); token = nextToken(line)) {
-                token = token.substr(0, token.find('/'));  // "v/vt": the vertex
+                token = token.substr(0, token.find('/')); // "v/vt": the vertex
                 std::int64_t index = 0;
                 const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), index);
                 if (token.empty() || ec != std::errc() || ptr != token.data() + token.size() || index == 0)
-                    return IoError{path, where, "'" + std::string(token) + "' is not a vertex number"};
+                    return IoError{ path, where, "'" + std::string(token) + "' is not a vertex number" };
                 // A negative index counts back from the vertices read so far (the OBJ spec).
                 if (index < 0)
                     index += static_cast<std::int64_t>(vertices.size()) + 1;
@@ -92,17 +92,18 @@ Result<HairReadResult> readObjPolylines(const std::string& path)
     for (std::size_t l = 0; l < lines.size(); ++l) {
         for (std::int64_t index : lines[l]) {
             if (index < 1 || index > static_cast<std::int64_t>(vertices.size()))
-                return IoError{path, "line " + std::to_string(lineNumbers[l]),
-                               "vertex " + std::to_string(index) + " does not exist (the file has " +
-                                   std::to_string(vertices.size()) + ")"};
+                return IoError{ path, "line " + std::to_string(lineNumbers[l]),
+                    "vertex " + std::to_string(index) + " does not exist (the file has "
+                        + std::to_string(vertices.size()) + ")" };
             strands.positions.push_back(vertices[static_cast<std::size_t>(index - 1)]);
         }
         strands.offsets.push_back(static_cast<std::uint32_t>(strands.positions.size()));
     }
     if (strands.strandCount() == 0)
-        return IoError{path, "", "no strands: an OBJ polyline is an 'l' line of two vertices or more"};
+        return IoError{ path, "", "no strands: an OBJ polyline is an 'l' line of two vertices or more" };
     if (faces > 0)
-        result.warnings.push_back("skipped " + std::to_string(faces) + " faces (a mesh, such as a head written beside the hair)");
+        result.warnings.push_back(
+            "skipped " + std::to_string(faces) + " faces (a mesh, such as a head written beside the hair)");
     if (points > 0)
         result.warnings.push_back("skipped " + std::to_string(points) + " 'p' points (strands of one point)");
     if (shortLines > 0)
@@ -123,4 +124,4 @@ Result<HairReadResult> readGltfStrands(const std::string& path)
     return result;
 }
 
-}  // namespace wisp::io::hair_detail
+} // namespace wisp::io::hair_detail

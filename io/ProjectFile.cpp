@@ -121,9 +121,9 @@ void checkProject(const Project& project)
         throw Refusal{ "solo_region", std::to_string(project.soloRegion) + " is the id of no region" };
 
     if (std::string e = project.motion.validate(); !e.empty())
-        throw Refusal{"motion", e};
+        throw Refusal{ "motion", e };
     if (std::string e = validateBakeRange(project.timeline); !e.empty())
-        throw Refusal{"timeline", e};
+        throw Refusal{ "timeline", e };
     if (!(project.displayDensity >= kMinDisplayDensity && project.displayDensity <= kMaxDisplayDensity))
         throw Refusal{ "display_density", "the display density must be 0.25 to 4" };
     const CameraState& camera = project.camera;

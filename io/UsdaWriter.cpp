@@ -36,7 +36,10 @@ void appendPoint(std::string& out, const glm::vec3& p)
     out += ')';
 }
 
-bool finite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+bool finite(const glm::vec3& p)
+{
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
 
 // USD matrices act on row vectors (translation in the last row): its rows are glm's columns.
 void appendMatrix(std::string& out, const glm::mat4& m)
@@ -54,10 +57,10 @@ void appendMatrix(std::string& out, const glm::mat4& m)
     out += ')';
 }
 
-}  // namespace
+} // namespace
 
-std::vector<float> taperedWidths(std::span<const std::uint32_t> offsets, std::span<const float> rootWidthOfStrand,
-                                 float tipRatio)
+std::vector<float> taperedWidths(
+    std::span<const std::uint32_t> offsets, std::span<const float> rootWidthOfStrand, float tipRatio)
 {
     std::vector<float> widths(offsets.empty() ? 0 : offsets.back());
     for (std::size_t s = 0; s + 1 < offsets.size(); ++s) {
@@ -101,8 +104,8 @@ std::string usdaText(const UsdaScene& scene, std::string* error)
         appendNumber(timeCode, frame.timeCode);
         const std::string which = "frame " + std::to_string(f) + " (time code " + timeCode + ")";
         if (frame.positions.size() != points)
-            return refuse(which + ": " + std::to_string(frame.positions.size()) + " points for strands of " +
-                          std::to_string(points));
+            return refuse(which + ": " + std::to_string(frame.positions.size()) + " points for strands of "
+                + std::to_string(points));
         if (!std::isfinite(frame.timeCode) || (f > 0 && !(frame.timeCode > scene.frames[f - 1].timeCode)))
             return refuse(which + ": time codes must be finite and increasing");
         for (std::size_t i = 0; i < points; ++i)
@@ -128,10 +131,10 @@ std::string usdaText(const UsdaScene& scene, std::string* error)
 
     std::string out;
     out.reserve(64 + scene.frames.size() * keptPoints * 36);
-    out += "#usda 1.0\n(\n    defaultPrim = \"Wisp\"\n    doc = \"Wisp hair: " + std::to_string(kept.size()) +
-           " strands, " + std::to_string(keptPoints) + " points" +
-           (scene.animated ? ", " + std::to_string(scene.frames.size()) + " frames" : std::string()) +
-           "; metres, +Y up\"\n    metersPerUnit = 1\n    upAxis = \"Y\"\n";
+    out += "#usda 1.0\n(\n    defaultPrim = \"Wisp\"\n    doc = \"Wisp hair: " + std::to_string(kept.size())
+        + " strands, " + std::to_string(keptPoints) + " points"
+        + (scene.animated ? ", " + std::to_string(scene.frames.size()) + " frames" : std::string())
+        + "; metres, +Y up\"\n    metersPerUnit = 1\n    upAxis = \"Y\"\n";
     if (scene.animated) {
         out += "    startTimeCode = ";
         appendNumber(out, scene.frames.front().timeCode);
@@ -241,9 +244,9 @@ Result<void> writeUsda(const std::string& path, const UsdaScene& scene)
     std::string error;
     const std::string text = usdaText(scene, &error);
     if (!error.empty())
-        return IoError{path, "", error};
+        return IoError{ path, "", error };
     return writeFileAtomically(
         path, [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
 }
 
-}  // namespace wisp::io
+} // namespace wisp::io

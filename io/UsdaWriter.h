@@ -31,24 +31,24 @@
 namespace wisp::io {
 
 struct UsdaFrame {
-    double timeCode = 1.0;                 // the frame number
-    std::span<const glm::vec3> positions;  // world space, metres, in the layout of UsdaScene::offsets
-    glm::mat4 headToWorld{1.0f};
+    double timeCode = 1.0; // the frame number
+    std::span<const glm::vec3> positions; // world space, metres, in the layout of UsdaScene::offsets
+    glm::mat4 headToWorld{ 1.0f };
 };
 
 struct UsdaScene {
-    std::vector<std::uint32_t> offsets{0};  // strand i owns points offsets[i] .. offsets[i+1]-1
-    std::vector<float> widthsMetres;        // per point (USD "vertex" interpolation)
-    std::vector<UsdaFrame> frames;          // at least one, time codes increasing
-    bool animated = true;                   // false: one frame written as plain values (a still)
+    std::vector<std::uint32_t> offsets{ 0 }; // strand i owns points offsets[i] .. offsets[i+1]-1
+    std::vector<float> widthsMetres; // per point (USD "vertex" interpolation)
+    std::vector<UsdaFrame> frames; // at least one, time codes increasing
+    bool animated = true; // false: one frame written as plain values (a still)
     double framesPerSecond = 24.0;
-    const TriangleMesh* head = nullptr;     // head space; null: no head
+    const TriangleMesh* head = nullptr; // head space; null: no head
 };
 
 // Widths tapering linearly from each strand's root width to `tipRatio` times it at its tip, per
 // point of `offsets`' layout.
-std::vector<float> taperedWidths(std::span<const std::uint32_t> offsets, std::span<const float> rootWidthOfStrand,
-                                 float tipRatio);
+std::vector<float> taperedWidths(
+    std::span<const std::uint32_t> offsets, std::span<const float> rootWidthOfStrand, float tipRatio);
 
 // Writes `scene` to `path` (any name; the caller picks .usda). success, or what
 // was wrong with the scene (a count that does not match, a non-finite point, no frame) or the write.
@@ -58,4 +58,4 @@ Result<void> writeUsda(const std::string& path, const UsdaScene& scene);
 // set when the scene is refused.
 std::string usdaText(const UsdaScene& scene, std::string* error);
 
-}  // namespace wisp::io
+} // namespace wisp::io

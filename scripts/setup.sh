@@ -19,6 +19,9 @@ packages=(
 )
 # Only the fuzz build uses clang (libFuzzer); every other build is g++.
 if [ "${1:-}" = "--fuzz" ]; then packages+=(clang-14 libclang-rt-14-dev); fi
+# The tests read the USD export back with an independent parser (npm tinyusdz): node and npm from
+# Debian unless a node is already installed (a NodeSource node brings its own npm).
+if [ "${1:-}" != "--fuzz" ] && ! command -v node > /dev/null; then packages+=(nodejs npm); fi
 
 missing=()
 for p in "${packages[@]}"; do

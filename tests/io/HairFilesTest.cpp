@@ -690,8 +690,8 @@ TEST_F(HairFiles, TruncatedAndCorruptedCopiesNeverCrash)
 
 TEST_F(HairFiles, UnknownExtensionsListTheSupportedOnes)
 {
-    EXPECT_EQ((std::vector<std::string>{"hair", "data", "obj", "gltf", "glb"}), hairReadExtensions());
-    EXPECT_EQ((std::vector<std::string>{"hair", "data", "obj", "gltf", "glb"}), hairWriteExtensions());
+    EXPECT_EQ((std::vector<std::string>{ "hair", "data", "obj", "gltf", "glb" }), hairReadExtensions());
+    EXPECT_EQ((std::vector<std::string>{ "hair", "data", "obj", "gltf", "glb" }), hairWriteExtensions());
     EXPECT_EQ(HairFormat::CyHair, hairFormatForPath("a/b.HaIr"));
     EXPECT_EQ(HairFormat::Glb, hairFormatForPath("x.GLB"));
     EXPECT_FALSE(hairFormatForPath("x.abc").has_value());
@@ -699,11 +699,12 @@ TEST_F(HairFiles, UnknownExtensionsListTheSupportedOnes)
 
     Result<HairReadResult> r = readHair((dir / "groom.abc").string());
     ASSERT_FALSE(r.ok());
-    EXPECT_EQ((dir / "groom.abc").string() +
-                  ": '.abc' is not a hair file extension Wisp knows; Wisp reads hair from .hair (cyHair), .data (USC-HairSalon), "
-                  ".obj (OBJ polylines), .gltf (glTF), .glb (binary glTF)",
-              r.error().toString());
-    r = readHair((dir / "groom.glb").string());  // a readable format, but no such file
+    EXPECT_EQ((dir / "groom.abc").string()
+            + ": '.abc' is not a hair file extension Wisp knows; Wisp reads hair from .hair (cyHair), .data "
+              "(USC-HairSalon), "
+              ".obj (OBJ polylines), .gltf (glTF), .glb (binary glTF)",
+        r.error().toString());
+    r = readHair((dir / "groom.glb").string()); // a readable format, but no such file
     ASSERT_FALSE(r.ok());
     EXPECT_EQ(r.error().file, (dir / "groom.glb").string());
 

@@ -19,19 +19,21 @@ namespace {
 HairCurves groom()
 {
     HairCurves c;
-    const std::uint32_t counts[] = {2, 7, 4, 16};
+    const std::uint32_t counts[] = { 2, 7, 4, 16 };
     for (std::uint32_t n : counts) {
         const std::size_t s = c.addStrand(n);
         std::span<glm::vec3> p = c.strandForWrite(s);
         for (std::uint32_t i = 0; i < n; ++i)
-            p[i] = {0.0123456f * float(s) + 1e-7f * float(i), 0.1f - 0.0121f * float(i) / 3.0f, -0.003f * float(s * i)};
+            p[i] = { 0.0123456f * float(s) + 1e-7f * float(i), 0.1f - 0.0121f * float(i) / 3.0f,
+                -0.003f * float(s * i) };
     }
     return c;
 }
 
 TriangleMesh head()
 {
-    return {{{0, 0, 0}, {0.1f, 0, 0}, {0, 0.1f, 0}, {0, 0, 0.1f}}, {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}};
+    return { { { 0, 0, 0 }, { 0.1f, 0, 0 }, { 0, 0.1f, 0 }, { 0, 0, 0.1f } },
+        { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } } };
 }
 
 void writeText(const std::filesystem::path& path, const std::string& text)
@@ -39,7 +41,7 @@ void writeText(const std::filesystem::path& path, const std::string& text)
     std::ofstream(path, std::ios::binary) << text;
 }
 
-}  // namespace
+} // namespace
 
 TEST(HairReadBack, ObjGltfAndGlbStrandsComeBackWithin1e6Metres)
 {
@@ -48,7 +50,7 @@ TEST(HairReadBack, ObjGltfAndGlbStrandsComeBackWithin1e6Metres)
     const TriangleMesh h = head();
     HairExportOptions options;
     options.head = &h;
-    for (const char* name : {"s.obj", "s.gltf", "s.glb"}) {
+    for (const char* name : { "s.obj", "s.gltf", "s.glb" }) {
         SCOPED_TRACE(name);
         const std::string path = (dir / name).string();
         ASSERT_TRUE(writeHair(path, written, options).ok());
@@ -60,13 +62,13 @@ TEST(HairReadBack, ObjGltfAndGlbStrandsComeBackWithin1e6Metres)
             ASSERT_LT(glm::distance(back.positions[i], written.positions[i]), 1e-6f) << "point " << i;
         if (std::string(name) == "s.obj") {
             EXPECT_TRUE(read.value().widthsMetres.empty());
-            ASSERT_EQ(read.value().warnings.size(), 1u);  // the head's faces
+            ASSERT_EQ(read.value().warnings.size(), 1u); // the head's faces
             EXPECT_EQ(read.value().warnings[0], "skipped 4 faces (a mesh, such as a head written beside the hair)");
         } else {
             const std::vector<float>& w = read.value().widthsMetres;
             ASSERT_EQ(w.size(), written.pointCount());
             EXPECT_FLOAT_EQ(w[0], options.rootWidthMetres);
-            EXPECT_FLOAT_EQ(w[1], options.tipWidthMetres);  // a 2-point strand: root, tip
+            EXPECT_FLOAT_EQ(w[1], options.tipWidthMetres); // a 2-point strand: root, tip
             EXPECT_FLOAT_EQ(w[written.offsets[4] - 1], options.tipWidthMetres);
         }
     }
@@ -85,7 +87,7 @@ TEST(HairReadBack, BrokenFilesNameTheFileThePlaceAndTheProblem)
     EXPECT_EQ(error("a.obj", "v 0 0 0\nv 0 x 0\nl 1 2\n"), obj + ": line 2: a vertex needs 3 numbers; 'x' is not one");
     EXPECT_EQ(error("a.obj", "v 0 0 0\nv 0 1 0\nl 1 two\n"), obj + ": line 3: 'two' is not a vertex number");
     EXPECT_EQ(error("a.obj", "v 0 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n"),
-              obj + ": no strands: an OBJ polyline is an 'l' line of two vertices or more");
+        obj + ": no strands: an OBJ polyline is an 'l' line of two vertices or more");
     // Negative indices count back from the last vertex (the OBJ spec).
     writeText(dir / "b.obj", "v 0 0 0\nv 0 1 0\nl -2 -1\n");
     const Result<HairReadResult> relative = readHair((dir / "b.obj").string());

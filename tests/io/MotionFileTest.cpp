@@ -26,26 +26,27 @@ io::Project headOnly()
 HeadMotion someMotion()
 {
     HeadMotion m;
-    m.setKey(0.25, {glm::vec3(0.01f, -0.02f, 0.003f), glm::angleAxis(0.3f, glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f)))});
-    m.setKey(1.0 / 3.0, {glm::vec3(0.1f, 0.0f, 0.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f)});
-    m.setProcedural({MotionKind::Walk, 0.035, 1.1, 0.5});
+    m.setKey(
+        0.25, { glm::vec3(0.01f, -0.02f, 0.003f), glm::angleAxis(0.3f, glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f))) });
+    m.setKey(1.0 / 3.0, { glm::vec3(0.1f, 0.0f, 0.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f) });
+    m.setProcedural({ MotionKind::Walk, 0.035, 1.1, 0.5 });
     return m;
 }
 
-}  // namespace
+} // namespace
 
 TEST(MotionFile, KeysMotionAndTimelineRoundTripExactly)
 {
     const auto dir = freshTestFolder("wisp-motion");
     io::Project project = headOnly();
     project.motion = someMotion();
-    project.timeline = {10, 120, 30.0};
+    project.timeline = { 10, 120, 30.0 };
     const std::string path = (dir / "m.wisp").string();
     ASSERT_TRUE(writeProject(path, project));
     const Result<ProjectReadResult> read = readProject(path);
     ASSERT_TRUE(read) << read.error().toString();
     EXPECT_TRUE(read.value().warnings.empty());
-    EXPECT_EQ(read.value().project.motion, project.motion);  // bit for bit: times, translations, quaternions
+    EXPECT_EQ(read.value().project.motion, project.motion); // bit for bit: times, translations, quaternions
     EXPECT_EQ(read.value().project.timeline, project.timeline);
     const nlohmann::json json = nlohmann::json::parse(slurp(path));
     EXPECT_EQ(json["motion"]["procedural"]["kind"], "walk");
@@ -83,7 +84,7 @@ TEST(MotionFile, BadMotionIsRefusedWithItsKeyPath)
     j["motion"]["keys"][1]["time"] = 0.1;
     EXPECT_EQ(refusal(j), path + ": motion.keys[1].time: keys must be in increasing time");
     j = json;
-    j["motion"]["keys"][0]["rotation"] = {2, 0, 0, 0};
+    j["motion"]["keys"][0]["rotation"] = { 2, 0, 0, 0 };
     EXPECT_EQ(refusal(j), path + ": motion: keys[0]: rotation is not a unit quaternion (length 2)");
     j = json;
     j["motion"]["procedural"]["kind"] = "spin";
@@ -92,29 +93,30 @@ TEST(MotionFile, BadMotionIsRefusedWithItsKeyPath)
     j["motion"]["procedural"]["amplitude"] = 5;
     EXPECT_EQ(refusal(j), path + ": motion.procedural: amplitude 5 is outside 0..0.2 m");
     j = json;
-    j["timeline"] = {{"first_frame", 9}, {"last_frame", 3}};
+    j["timeline"] = { { "first_frame", 9 }, { "last_frame", 3 } };
     EXPECT_EQ(refusal(j), path + ": timeline: frames 9:3: the last frame comes before the first");
     j = json;
-    j["timeline"] = {{"fps", "fast"}};
+    j["timeline"] = { { "fps", "fast" } };
     EXPECT_NE(refusal(j).find(path + ": timeline.fps: "), std::string::npos);
 }
 
 TEST(UsdaWriter, AnimatedCurvesHaveOneSamplePerFrameAndExactNumbers)
 {
     UsdaScene scene;
-    scene.offsets = {0, 3, 3, 4, 6};  // an empty strand and a one-point strand are left out
-    scene.widthsMetres = taperedWidths(scene.offsets, std::vector<float>{80e-6f, 1e-4f, 1e-4f, 60e-6f}, 0.25f);
+    scene.offsets = { 0, 3, 3, 4, 6 }; // an empty strand and a one-point strand are left out
+    scene.widthsMetres = taperedWidths(scene.offsets, std::vector<float>{ 80e-6f, 1e-4f, 1e-4f, 60e-6f }, 0.25f);
     ASSERT_EQ(scene.widthsMetres.size(), 6u);
     EXPECT_FLOAT_EQ(scene.widthsMetres[0], 80e-6f);
     EXPECT_FLOAT_EQ(scene.widthsMetres[2], 20e-6f);
-    std::vector<glm::vec3> a = {{0, 1, 0}, {0, 0.9f, 0}, {0, 0.8f, 0.1f}, {5, 5, 5}, {0.1f, 1, 0}, {0.1f, 0.7f, 1.0f / 3.0f}};
+    std::vector<glm::vec3> a
+        = { { 0, 1, 0 }, { 0, 0.9f, 0 }, { 0, 0.8f, 0.1f }, { 5, 5, 5 }, { 0.1f, 1, 0 }, { 0.1f, 0.7f, 1.0f / 3.0f } };
     std::vector<glm::vec3> b = a;
     b[2].z = -0.25f;
     glm::mat4 moved(1.0f);
     moved[3] = glm::vec4(0.5f, 0.0f, -2.0f, 1.0f);
-    scene.frames = {{1.0, a, glm::mat4(1.0f)}, {2.0, b, moved}};
+    scene.frames = { { 1.0, a, glm::mat4(1.0f) }, { 2.0, b, moved } };
     scene.framesPerSecond = 24.0;
-    const TriangleMesh head = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}}};
+    const TriangleMesh head = { { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } }, { { 0, 1, 2 } } };
     scene.head = &head;
     std::string error;
     const std::string text = usdaText(scene, &error);
@@ -123,12 +125,14 @@ TEST(UsdaWriter, AnimatedCurvesHaveOneSamplePerFrameAndExactNumbers)
     EXPECT_NE(text.find("upAxis = \"Y\"\n"), std::string::npos);
     EXPECT_NE(text.find("startTimeCode = 1\n    endTimeCode = 2\n    timeCodesPerSecond = 24\n"), std::string::npos);
     EXPECT_NE(text.find("int[] curveVertexCounts = [3, 2]\n"), std::string::npos);
-    EXPECT_NE(text.find("            1: [(0, 1, 0), (0, 0.9, 0), (0, 0.8, 0.1), (0.1, 1, 0), (0.1, 0.7, 0.33333334)],\n"),
-              std::string::npos)
+    EXPECT_NE(
+        text.find("            1: [(0, 1, 0), (0, 0.9, 0), (0, 0.8, 0.1), (0.1, 1, 0), (0.1, 0.7, 0.33333334)],\n"),
+        std::string::npos)
         << text;
     EXPECT_NE(text.find("            2: [(0, 1, 0), (0, 0.9, 0), (0, 0.8, -0.25), "), std::string::npos);
-    EXPECT_NE(text.find("float[] widths = [8e-05, 5e-05, 2e-05, 6e-05, 1.5e-05] (\n            interpolation = \"vertex\""),
-              std::string::npos)
+    EXPECT_NE(
+        text.find("float[] widths = [8e-05, 5e-05, 2e-05, 6e-05, 1.5e-05] (\n            interpolation = \"vertex\""),
+        std::string::npos)
         << text;
     EXPECT_NE(text.find("2: ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0.5, 0, -2, 1)),"), std::string::npos) << text;
     EXPECT_NE(text.find("int[] faceVertexIndices = [0, 1, 2]"), std::string::npos);
@@ -147,22 +151,22 @@ TEST(UsdaWriter, RefusesWhatItCannotWriteAndLeavesNoFile)
 {
     const auto dir = freshTestFolder("wisp-usda");
     UsdaScene scene;
-    scene.offsets = {0, 2};
-    scene.widthsMetres = {1e-4f, 1e-4f};
-    std::vector<glm::vec3> p = {{0, 0, 0}, {0, NAN, 0}};
-    scene.frames = {{1.0, p, glm::mat4(1.0f)}};
+    scene.offsets = { 0, 2 };
+    scene.widthsMetres = { 1e-4f, 1e-4f };
+    std::vector<glm::vec3> p = { { 0, 0, 0 }, { 0, NAN, 0 } };
+    scene.frames = { { 1.0, p, glm::mat4(1.0f) } };
     const std::string path = (dir / "x.usda").string();
     const Result<void> e = writeUsda(path, scene);
     ASSERT_FALSE(e.ok());
     EXPECT_EQ(e.error().toString(), path + ": frame 0 (time code 1): point 1 is not finite");
     EXPECT_FALSE(std::filesystem::exists(path));
     p[1].y = 1.0f;
-    scene.widthsMetres = {1e-4f};
+    scene.widthsMetres = { 1e-4f };
     EXPECT_EQ(writeUsda(path, scene).error().message, "1 widths for 2 points");
-    scene.widthsMetres = {1e-4f, 1e-4f};
+    scene.widthsMetres = { 1e-4f, 1e-4f };
     scene.frames.clear();
     EXPECT_EQ(writeUsda(path, scene).error().message, "there is no frame to write");
-    scene.frames = {{1.0, p, glm::mat4(1.0f)}};
+    scene.frames = { { 1.0, p, glm::mat4(1.0f) } };
     EXPECT_FALSE(writeUsda((dir / "missing" / "x.usda").string(), scene).ok());
     EXPECT_TRUE(writeUsda(path, scene).ok());
     EXPECT_TRUE(std::filesystem::exists(path));

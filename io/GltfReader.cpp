@@ -5,12 +5,14 @@
 #include "io/ReadFailure.h"
 #include "io/RegularFile.h"
 #include "io/gltf/GlbContainer.h"
+#include "io/gltf/GltfAccessors.h"
 #include "io/gltf/GltfDocument.h"
 #include "io/gltf/SceneMerger.h"
 
 #include <nlohmann/json.hpp>
 
 #include <bit>
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <new>
@@ -140,6 +142,28 @@ Json parsedJson(std::string_view text, bool binary, std::size_t jsonOffset, cons
     return root;
 }
 
+// The file at `path` read once: the container split (the magic decides, so that a binary file
+// misnamed .gltf still reads; a .glb without it goes to the container check, which says what is
+// wrong), the JSON parsed and checked once, the geometry parts and buffers loaded. Throws
+// io::ReadFailure. Meshes and strands both read through it.
+gltf::Document readDocumentOf(const std::string& path, std::vector<std::string>& warnings)
+{
+    const std::string bytes = readRegularFileOrFail(path, { kMaxMeshFileBytes, "glTF", false });
+    const bool namedGlb = lowerExtension(path) == "glb";
+    const bool binary = namedGlb || gltf::startsWithGlbMagic(bytes);
+    std::error_code ec;
+    const fs::path folder = fs::absolute(fs::path(path), ec).parent_path();
+    gltf::GlbParts parts;
+    if (binary)
+        parts = gltf::splitGlb(bytes, warnings);
+    else
+        parts.json = bytes;
+    const Json root = parsedJson(parts.json, binary, parts.jsonOffset, folder, warnings);
+    if (binary && !namedGlb)
+        warnings.push_back("this is a binary glTF (GLB) file named .gltf; read it as binary");
+    return gltf::readDocument(root, binary, parts.bin, folder, warnings);
+}
+
 } // namespace
 
 namespace {
@@ -147,23 +171,21 @@ namespace {
 // The strands of every LINES and LINE_STRIP primitive, in mesh and primitive order: a LINES
 // primitive's index pairs are chained while each segment starts where the last one ended (Wisp's
 // writer gives each strand's segments in order), a new strand begins where one does not.
-GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warnings)
+GltfLines readLines(const gltf::Document& model, std::vector<std::string>& warnings)
 {
     GltfLines out;
     bool widthsEverywhere = true;
-    std::size_t lineMeshes = 0;
     for (std::size_t m = 0; m < model.meshes.size(); ++m) {
-        bool hasLines = false;
         for (std::size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
-            const tinygltf::Primitive& primitive = model.meshes[m].primitives[p];
-            const std::string location = indexed("meshes", m) + "." + indexed("primitives", p);
-            if (primitive.mode != TINYGLTF_MODE_LINE && primitive.mode != TINYGLTF_MODE_LINE_STRIP)
+            const gltf::Primitive& primitive = model.meshes[m].primitives[p];
+            const std::string location = gltf::indexed("meshes", m) + "." + gltf::indexed("primitives", p);
+            if (primitive.mode != gltf::mode::Lines && primitive.mode != gltf::mode::LineStrip)
                 continue;
-            hasLines = true;
             const auto position = primitive.attributes.find("POSITION");
             if (position == primitive.attributes.end())
                 fail(location, "a LINES primitive without POSITION");
-            const AccessorValues positions = readAccessor(model, position->second, "POSITION of " + location);
+            const gltf::AccessorValues positions
+                = gltf::readAccessor(model, position->second, "POSITION of " + location);
             if (positions.components != 3)
                 fail(location, "POSITION is not VEC3");
             for (double v : positions.values)
@@ -171,7 +193,7 @@ GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warn
                     fail(location, "a POSITION is not a finite number");
             std::vector<double> widths;
             if (const auto width = primitive.attributes.find("_WIDTH"); width != primitive.attributes.end()) {
-                AccessorValues w = readAccessor(model, width->second, "_WIDTH of " + location);
+                gltf::AccessorValues w = gltf::readAccessor(model, width->second, "_WIDTH of " + location);
                 if (w.components != 1 || w.count != positions.count)
                     fail(location, "_WIDTH must be one SCALAR per POSITION (" + std::to_string(positions.count) + ")");
                 for (double v : w.values)
@@ -182,8 +204,9 @@ GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warn
                 widthsEverywhere = false;
             }
             std::vector<std::uint32_t> indices;
-            if (primitive.indices >= 0) {
-                const AccessorValues values = readAccessor(model, primitive.indices, "indices of " + location);
+            if (primitive.indices != gltf::kAbsent) {
+                const gltf::AccessorValues values
+                    = gltf::readAccessor(model, primitive.indices, "indices of " + location);
                 indices.reserve(values.values.size());
                 for (std::size_t i = 0; i < values.values.size(); ++i) {
                     const double v = values.values[i];
@@ -206,7 +229,7 @@ GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warn
                 if (out.strands.positions.size() > out.strands.offsets.back())
                     out.strands.offsets.push_back(static_cast<std::uint32_t>(out.strands.positions.size()));
             };
-            if (primitive.mode == TINYGLTF_MODE_LINE_STRIP) {
+            if (primitive.mode == gltf::mode::LineStrip) {
                 for (std::uint32_t i : indices)
                     point(i);
                 endStrand();
@@ -223,15 +246,15 @@ GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warn
             }
             endStrand();
         }
-        lineMeshes += hasLines;
     }
     for (std::size_t n = 0; n < model.nodes.size(); ++n) {
-        const tinygltf::Node& node = model.nodes[n];
-        if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < model.meshes.size()
-            && localTransform(node, n) != glm::dmat4(1.0))
-            for (const tinygltf::Primitive& p : model.meshes[static_cast<std::size_t>(node.mesh)].primitives)
-                if (p.mode == TINYGLTF_MODE_LINE || p.mode == TINYGLTF_MODE_LINE_STRIP) {
-                    warnings.push_back(indexed("nodes", n) + " transforms its lines; strands are read as stored");
+        const gltf::Node& node = model.nodes[n];
+        const bool transforms
+            = !node.matrix.empty() || !node.translation.empty() || !node.rotation.empty() || !node.scale.empty();
+        if (transforms && node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < model.meshes.size())
+            for (const gltf::Primitive& p : model.meshes[static_cast<std::size_t>(node.mesh)].primitives)
+                if (p.mode == gltf::mode::Lines || p.mode == gltf::mode::LineStrip) {
+                    warnings.push_back(gltf::indexed("nodes", n) + " transforms its lines; strands are read as stored");
                     break;
                 }
     }
@@ -239,7 +262,6 @@ GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warn
         fail({}, "no strands: the file has no LINES or LINE_STRIP primitive");
     if (!widthsEverywhere)
         out.widthsMetres.clear();
-    (void)lineMeshes;
     return out;
 }
 
@@ -248,13 +270,9 @@ GltfLines readLines(const tinygltf::Model& model, std::vector<std::string>& warn
 Result<GltfLines> readGltfLines(const std::string& path)
 {
     try {
-        std::string problem;
-        const std::string bytes = readGltfFile(path, problem);
-        if (!problem.empty())
-            fail({}, problem);
         std::vector<std::string> warnings;
-        const tinygltf::Model model = loadWithTinyGltf(path, bytes, warnings);
-        GltfLines lines = readLines(model, warnings);
+        const gltf::Document document = readDocumentOf(path, warnings);
+        GltfLines lines = readLines(document, warnings);
         lines.warnings = std::move(warnings);
         return lines;
     } catch (const ReadFailure& failure) {
@@ -269,23 +287,8 @@ Result<GltfLines> readGltfLines(const std::string& path)
 Result<MeshReadResult> readGltf(const std::string& path)
 {
     try {
-        const std::string bytes = readRegularFileOrFail(path, { kMaxMeshFileBytes, "glTF", false });
         MeshReadResult result;
-        // The magic decides, so that a binary file misnamed .gltf still reads; a .glb without it
-        // goes to the container check, which says what is wrong.
-        const bool namedGlb = lowerExtension(path) == "glb";
-        const bool binary = namedGlb || gltf::startsWithGlbMagic(bytes);
-        std::error_code ec;
-        const fs::path folder = fs::absolute(fs::path(path), ec).parent_path();
-        gltf::GlbParts parts;
-        if (binary)
-            parts = gltf::splitGlb(bytes, result.warnings);
-        else
-            parts.json = bytes;
-        const Json root = parsedJson(parts.json, binary, parts.jsonOffset, folder, result.warnings);
-        if (binary && !namedGlb)
-            result.warnings.push_back("this is a binary glTF (GLB) file named .gltf; read it as binary");
-        const gltf::Document document = gltf::readDocument(root, binary, parts.bin, folder, result.warnings);
+        const gltf::Document document = readDocumentOf(path, result.warnings);
         result.mesh = gltf::mergeScene(document, result.warnings);
         if (const std::string invalid = validateMesh(result.mesh); !invalid.empty())
             fail({}, invalid);

@@ -31,7 +31,7 @@ std::string_view nextToken(std::string_view& line)
 
 Result<HairReadResult> readObjPolylines(const std::string& path)
 {
-    Result<std::string> file = readWholeFile(path);
+    Result<std::string> file = readRegularFile(path, kHairFileRules);
     if (!file)
         return file.error();
     const std::string& text = file.value();

@@ -1,10 +1,10 @@
 #include "fuzz/FuzzSupport.h"
 
 #include "io/HeadPlacement.h"
-#include "sim/Body.h"
-#include "sim/GrowthMap.h"
-#include "sim/MeshBvh.h"
-#include "sim/SignedDistanceField.h"
+#include "sim/geometry/Body.h"
+#include "sim/groom/GrowthMap.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/geometry/SignedDistanceField.h"
 
 #include <cmath>
 #include <cstdio>

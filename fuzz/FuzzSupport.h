@@ -2,7 +2,7 @@
 // What the fuzz targets share: handing libFuzzer's bytes to readers that take a path, and doing
 // with a mesh what the editor does with a head it has just read.
 
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <cstddef>
 #include <cstdint>

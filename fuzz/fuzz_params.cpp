@@ -3,8 +3,8 @@
 
 #include "fuzz/FuzzSupport.h"
 #include "io/ParameterText.h"
-#include "sim/Parameters.h"
-#include "sim/SolverSettings.h"
+#include "sim/params/Parameters.h"
+#include "sim/solver/SolverSettings.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

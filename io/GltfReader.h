@@ -36,7 +36,7 @@
 
 #include "io/IoError.h"
 #include "io/MeshReader.h"
-#include "sim/HairCurves.h"
+#include "sim/geometry/HairCurves.h"
 
 #include <string>
 #include <vector>

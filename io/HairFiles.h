@@ -31,8 +31,8 @@
 // Thread safety: all functions may be called from any thread; they share no state.
 
 #include "io/IoError.h"
-#include "sim/HairCurves.h"
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/HairCurves.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <optional>
 #include <string>

@@ -1,5 +1,5 @@
 #include "io/HeadPlacement.h"
-#include "sim/NumberText.h"
+#include "sim/util/NumberText.h"
 
 #include <glm/common.hpp>
 

@@ -26,7 +26,7 @@
 // orbit centre and the head coincide, and hair parameters that are positions (wind sources,
 // brush radii) mean the same on every head. The scalp therefore sits above y = 0.
 
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include "io/HeadOrientation.h"
 

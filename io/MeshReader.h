@@ -19,7 +19,7 @@
 // Thread safety: readMesh may be called from any thread; it keeps no state between calls.
 
 #include "io/IoError.h"
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <string>
 #include <vector>

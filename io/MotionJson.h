@@ -13,8 +13,8 @@
 // Thread safety: any thread; no state.
 
 #include "io/PresetFile.h"
-#include "sim/HairBake.h"
-#include "sim/HeadMotion.h"
+#include "sim/motion/HairBake.h"
+#include "sim/motion/HeadMotion.h"
 
 #include <nlohmann/json.hpp>
 

@@ -7,7 +7,7 @@
 //   wind_speed = 12
 
 #include "io/IoError.h"
-#include "sim/Parameters.h"
+#include "sim/params/Parameters.h"
 
 #include <string>
 #include <vector>

@@ -31,7 +31,7 @@
 
 #include "io/IoError.h"
 #include "io/ReadFailure.h"
-#include "sim/Parameters.h"
+#include "sim/params/Parameters.h"
 
 #include <glm/vec3.hpp>
 #include <nlohmann/json_fwd.hpp>

@@ -23,7 +23,7 @@
 //
 // "motion" and "timeline" (io/MotionJson.h) hold the head's motion and the timeline's range.
 //
-// "style" holds the artist's salon edits (sim/StyleEdits.h), one entry per edited strand in
+// "style" holds the artist's salon edits (sim/style/StyleEdits.h), one entry per edited strand in
 // identity order; it is left out when there are none, and a missing "style" means no edits (older
 // projects). "strand" is the strand identity (Groom::strandIdentity) as a decimal string, since a
 // 64-bit identity does not fit a JSON number exactly. An entry holds only the fields that differ
@@ -48,12 +48,12 @@
 
 #include "io/HeadOrientation.h"
 #include "io/IoError.h"
-#include "sim/GrowthRegion.h"
-#include "sim/HairBake.h"
-#include "sim/HeadMotion.h"
-#include "sim/Parameters.h"
-#include "sim/StyleEdits.h"
-#include "sim/TriangleMesh.h"
+#include "sim/groom/GrowthRegion.h"
+#include "sim/motion/HairBake.h"
+#include "sim/motion/HeadMotion.h"
+#include "sim/params/Parameters.h"
+#include "sim/style/StyleEdits.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <glm/vec3.hpp>
 

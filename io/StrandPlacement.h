@@ -15,7 +15,7 @@
 // Thread safety: pure function, callable from any thread.
 
 #include "io/HeadPlacement.h"
-#include "sim/HairCurves.h"
+#include "sim/geometry/HairCurves.h"
 
 #include <string>
 

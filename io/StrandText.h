@@ -9,7 +9,7 @@
 // Lines starting with '#' are comments. Real interchange formats (cyHair .hair, glTF) come with the files work.
 
 #include "io/IoError.h"
-#include "sim/HairCurves.h"
+#include "sim/geometry/HairCurves.h"
 
 #include <string>
 

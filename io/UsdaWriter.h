@@ -17,7 +17,7 @@
 // Thread safety: any thread; no shared state.
 
 #include "io/IoError.h"
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

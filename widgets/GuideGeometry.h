@@ -5,7 +5,7 @@
 //
 // Thread: any.
 
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -55,7 +55,7 @@ struct BrushCursor {
     bool mirrored = false; // X-symmetric painting: a second, dimmer ring at mirrorCentre
     glm::vec3 mirrorCentre{ 0.0f };
     glm::vec3 mirrorNormal{ 0.0f, 1.0f, 0.0f };
-    // The blow-dryer (sim/HairDryer.h): its cone of air from the nozzle (the apex) along the axis
+    // The blow-dryer (sim/style/HairDryer.h): its cone of air from the nozzle (the apex) along the axis
     // to the ring, drawn translucent with its edges; the mirror dryer's is mirrored across the same
     // plane as the mirror ring (x), toward mirrorCentre.
     bool dryer = false;

@@ -11,7 +11,7 @@
 //
 // Pure C++ (no GL, no Qt): tested without a context. Thread: any (one object per thread).
 
-#include "sim/HairCurves.h"
+#include "sim/geometry/HairCurves.h"
 
 #include <glm/vec3.hpp>
 

@@ -226,7 +226,7 @@ void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16
             continue;
         }
         const bool hasLook = withLooks && lookOfStrand[s] < m_looks.size();
-        // Wet hair (sim/HairDryer.h) is drawn darker: its wetness rides in the tag's fraction.
+        // Wet hair (sim/style/HairDryer.h) is drawn darker: its wetness rides in the tag's fraction.
         const float wet = wetness.size() == strands.strandCount() ? std::clamp(wetness[s], 0.0f, 1.0f) : 0.0f;
         const float tag = (hasLook ? kFirstLookTag + static_cast<float>(lookOfStrand[s]) : kStyleTag) + kWetTagScale * wet;
         for (std::uint32_t i = begin; i < end; ++i) {

@@ -17,9 +17,9 @@
 //
 // Thread: GUI, with the viewport's GL context current (every member function).
 
-#include "sim/Frame.h"
-#include "sim/HairCurves.h"
-#include "sim/TriangleMesh.h"
+#include "sim/solver/Frame.h"
+#include "sim/geometry/HairCurves.h"
+#include "sim/geometry/TriangleMesh.h"
 #include "widgets/GlSupport.h"
 #include "widgets/HairStripLayout.h"
 #include "widgets/RenderView.h"

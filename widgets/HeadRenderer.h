@@ -9,7 +9,7 @@
 //
 // Thread: GUI. initialize(), release() and draw() need the viewport's context current.
 
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 #include "widgets/GlSupport.h"
 #include "widgets/RenderView.h"
 
@@ -38,7 +38,7 @@ public:
     // weights may arrive in either order.
     void setGrowthWeights(std::vector<float> weights);
     // Per vertex: sRGB root colour of the hair growing there and its weight (scalpCoverage in
-    // sim/GrowthRegion.h); the skin is tinted toward it (the scalp under the hair). Shown while
+    // sim/groom/GrowthRegion.h); the skin is tinted toward it (the scalp under the hair). Shown while
     // its count equals the mesh's vertices.
     void setScalpCoverage(std::vector<glm::vec4> coverage);
     bool hasGrowthOverlay() const { return !m_weights.empty() && m_weights.size() == m_vertices.size(); }

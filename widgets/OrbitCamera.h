@@ -6,7 +6,7 @@
 //
 // Thread: GUI (owned by the viewport).
 
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>

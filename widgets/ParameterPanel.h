@@ -1,11 +1,11 @@
 #pragma once
 // A panel of parameter rows, each a slider with a spin box (SliderRow: the registry's slider scale,
 // Shift + drag fine, Ctrl + drag snaps), its unit and a tooltip, all taken from the parameter
-// registry (sim/Parameters.h): panels state no range, default, scale or help of their own.
+// registry (sim/params/Parameters.h): panels state no range, default, scale or help of their own.
 //
 // Thread: GUI.
 
-#include "sim/Parameters.h"
+#include "sim/params/Parameters.h"
 
 #include <QWidget>
 

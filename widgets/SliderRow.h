@@ -1,6 +1,6 @@
 #pragma once
 // One row of a settings panel: a slider and a spin box showing the same value. The slider spreads
-// its range as the registry says (SliderRange in sim/Parameters.h: linear, log or centred); the spin
+// its range as the registry says (SliderRange in sim/params/Parameters.h: linear, log or centred); the spin
 // box gives the exact value. Every panel's numbers use it: the parameter panels and the Brush panel.
 //
 // Dragging the slider is relative, as in Blender's number fields: pressing does not jump, and a
@@ -10,7 +10,7 @@
 //
 // Thread: GUI.
 
-#include "sim/Parameters.h"
+#include "sim/params/Parameters.h"
 
 #include <QSlider>
 #include <QString>

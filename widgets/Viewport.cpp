@@ -1,6 +1,6 @@
 #include "widgets/Viewport.h"
 
-#include "sim/Body.h"
+#include "sim/geometry/Body.h"
 
 #include "widgets/GuideGeometry.h"
 #include "widgets/ViewportOverlay.h"

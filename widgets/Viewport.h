@@ -23,8 +23,8 @@
 //
 // Thread: GUI, every member function.
 
-#include "sim/Frame.h"
-#include "sim/TriangleMesh.h"
+#include "sim/solver/Frame.h"
+#include "sim/geometry/TriangleMesh.h"
 #include "widgets/BackgroundRenderer.h"
 #include "widgets/FrameCompositor.h"
 #include "widgets/GlCanvas.h"
@@ -34,7 +34,7 @@
 #include "widgets/HairDetail.h"
 #include "widgets/HairRenderer.h"
 #include "widgets/HairShadowMap.h"
-#include "sim/Solver.h"
+#include "sim/solver/Solver.h"
 #include "widgets/HeadRenderer.h"
 #include "widgets/OrbitCamera.h"
 
@@ -100,7 +100,7 @@ public:
     // Copies the head; uploads it on the next paint. Until the artist moves the camera, the view
     // follows the head (start-up 3/4 view, framed).
     void setHead(const TriangleMesh& head);
-    // The neck and shoulders under the head (sim/Body.h, head space), drawn as shaded capsules a
+    // The neck and shoulders under the head (sim/geometry/Body.h, head space), drawn as shaded capsules a
     // little darker than the skin; none hides them.
     void setBody(const std::vector<Capsule>& capsules);
     // The newest simulation frame (null: no hair). Keeps the shared_ptr (no copy of the points)
@@ -132,7 +132,7 @@ public:
     // to the GPU in the next paint.
     void setGrowthOverlay(std::vector<float> weights);
     void setShowGrowthOverlay(bool show);
-    // The scalp under the hair, per head vertex (scalpCoverage in sim/GrowthRegion.h): the skin is
+    // The scalp under the hair, per head vertex (scalpCoverage in sim/groom/GrowthRegion.h): the skin is
     // tinted toward the hair's root colour there.
     void setScalpCoverage(std::vector<glm::vec4> coverage);
     bool showGrowthOverlay() const { return m_showGrowthOverlay; }

@@ -4,7 +4,7 @@
 //
 // Thread: GUI.
 
-#include "sim/Frame.h"
+#include "sim/solver/Frame.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

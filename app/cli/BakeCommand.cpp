@@ -1,7 +1,7 @@
 // wisp-cli bake: simulate a frame range with the head moving and write it as USD (.usda, every
 // frame a time sample) or as a cyHair .hair sequence (one file per frame, written as it is
 // simulated). Deterministic: the same inputs give byte-identical files, whatever --threads says,
-// and any part of a range gives the frames the whole range gives (sim/HairBake.h).
+// and any part of a range gives the frames the whole range gives (sim/motion/HairBake.h).
 
 #include "app/cli/CommandLine.h"
 #include "app/cli/Commands.h"
@@ -10,9 +10,9 @@
 #include "io/HairFiles.h"
 #include "io/ProjectFile.h"
 #include "io/UsdaWriter.h"
-#include "sim/DefaultHead.h"
-#include "sim/HairBake.h"
-#include "sim/HairSimulation.h"
+#include "sim/geometry/DefaultHead.h"
+#include "sim/motion/HairBake.h"
+#include "sim/solver/HairSimulation.h"
 
 #include <chrono>
 #include <cstdio>

@@ -7,12 +7,12 @@
 
 #include "io/HeadPlacement.h"
 #include "io/MeshReader.h"
-#include "sim/DefaultHead.h"
-#include "sim/GrowthMap.h"
-#include "sim/HairSimulation.h"
-#include "sim/MeshBvh.h"
-#include "sim/ScalpBrush.h"
-#include "sim/StyleEdits.h"
+#include "sim/geometry/DefaultHead.h"
+#include "sim/groom/GrowthMap.h"
+#include "sim/solver/HairSimulation.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/groom/ScalpBrush.h"
+#include "sim/style/StyleEdits.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>

@@ -2,7 +2,7 @@
 // Option parsing for wisp-cli's commands: "--name value", "--name=value" and "--flag".
 // Wrong usage (unknown option, missing value) is exit status 2; a bad value is exit status 1.
 
-#include "sim/Parameters.h"
+#include "sim/params/Parameters.h"
 
 #include <map>
 #include <optional>

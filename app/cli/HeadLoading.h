@@ -4,7 +4,7 @@
 // unless --up says, centred). What was decided goes to stdout, the placement's warnings to stderr.
 
 #include "io/HeadPlacement.h"
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <optional>
 #include <string>

@@ -12,9 +12,9 @@
 #include "io/ParameterText.h"
 #include "io/StrandPlacement.h"
 #include "io/StrandText.h"
-#include "sim/DefaultHead.h"
-#include "sim/GrowthMap.h"
-#include "sim/HairSimulation.h"
+#include "sim/geometry/DefaultHead.h"
+#include "sim/groom/GrowthMap.h"
+#include "sim/solver/HairSimulation.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>

@@ -5,7 +5,7 @@
 #include "app/cli/Commands.h"
 #include "app/cli/OutputCheck.h"
 #include "io/ProjectFile.h"
-#include "sim/HairSimulation.h"
+#include "sim/solver/HairSimulation.h"
 #include "sim/style/StyleOperation.h"
 
 #include <glm/geometric.hpp>

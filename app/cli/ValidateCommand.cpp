@@ -9,8 +9,8 @@
 #include "io/MeshReader.h"
 #include "io/PresetFile.h"
 #include "io/ProjectFile.h"
-#include "sim/GrowthMap.h"
-#include "sim/HairSimulation.h"
+#include "sim/groom/GrowthMap.h"
+#include "sim/solver/HairSimulation.h"
 
 #include <glm/common.hpp>
 

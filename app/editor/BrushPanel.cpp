@@ -1,7 +1,7 @@
 #include "app/editor/BrushPanel.h"
 
 #include "app/editor/PaintTool.h"
-#include "sim/Parameters.h"
+#include "sim/params/Parameters.h"
 #include "widgets/SliderRow.h"
 
 #include <QCheckBox>

@@ -1,7 +1,7 @@
 #include "app/editor/Document.h"
 
 #include "app/editor/DocumentCommands.h"
-#include "sim/DefaultHead.h"
+#include "sim/geometry/DefaultHead.h"
 
 #include <glm/common.hpp>
 

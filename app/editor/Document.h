@@ -8,11 +8,11 @@
 #include "io/HeadPlacement.h"
 #include "io/PresetFile.h"
 #include "io/ProjectFile.h"
-#include "sim/GrowthRegion.h"
-#include "sim/HeadModel.h"
-#include "sim/Parameters.h"
-#include "sim/StyleEdits.h"
-#include "sim/TriangleMesh.h"
+#include "sim/groom/GrowthRegion.h"
+#include "sim/geometry/HeadModel.h"
+#include "sim/params/Parameters.h"
+#include "sim/style/StyleEdits.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <QObject>
 #include <QString>
@@ -76,7 +76,7 @@ public:
     void endStroke(const QString& text);
     bool inStroke() const { return m_strokeRegion >= 0; }
 
-    // --- Salon edits (styling on live hair; sim/StyleEdits.h) -----------------------------------
+    // --- Salon edits (styling on live hair; sim/style/StyleEdits.h) -----------------------------------
     // Per strand: cut length, perm, hairspray, wetness, combed shape. Presets never touch them.
     const StyleEditsPtr& style() const { return m_style; }
     // A styling stroke, like a paint stroke: begin, change strokeStyle() and call

@@ -3,11 +3,11 @@
 // Commands name regions by id, not index, so they stay right after reordering.
 
 #include "io/HeadPlacement.h"
-#include "sim/GrowthRegion.h"
-#include "sim/HeadModel.h"
-#include "sim/Parameters.h"
-#include "sim/StyleEdits.h"
-#include "sim/TriangleMesh.h"
+#include "sim/groom/GrowthRegion.h"
+#include "sim/geometry/HeadModel.h"
+#include "sim/params/Parameters.h"
+#include "sim/style/StyleEdits.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <QUndoCommand>
 

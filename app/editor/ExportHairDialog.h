@@ -4,7 +4,7 @@
 //
 // Thread: GUI.
 
-#include "sim/Frame.h"
+#include "sim/solver/Frame.h"
 
 #include <QDialog>
 

@@ -10,7 +10,7 @@
 #include "io/HeadPlacement.h"
 #include "io/MeshReader.h"
 #include "io/StrandPlacement.h"
-#include "sim/GrowthMap.h"
+#include "sim/groom/GrowthMap.h"
 #include "widgets/Viewport.h"
 
 #include <QAbstractButton>

@@ -10,7 +10,7 @@
 // Thread: GUI, except the worker, which touches only its own Job.
 
 #include "io/HeadPlacement.h"
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <QObject>
 #include <QString>

@@ -1,6 +1,6 @@
 #include "app/editor/MainWindow.h"
 
-#include "sim/Body.h"
+#include "sim/geometry/Body.h"
 
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
@@ -16,7 +16,7 @@
 #include "app/editor/StyleTool.h"
 #include "app/editor/WispPanel.h"
 #include "io/MeshReader.h"
-#include "sim/GrowthMap.h"
+#include "sim/groom/GrowthMap.h"
 #include "widgets/ParameterPanel.h"
 #include "widgets/Viewport.h"
 

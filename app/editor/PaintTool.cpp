@@ -1,7 +1,7 @@
 #include "app/editor/PaintTool.h"
 
 #include "app/editor/Document.h"
-#include "sim/Parameters.h"
+#include "sim/params/Parameters.h"
 #include "widgets/Viewport.h"
 
 #include <glm/geometric.hpp>

@@ -15,8 +15,8 @@
 // Thread: GUI.
 
 #include "app/editor/ViewportBrush.h"
-#include "sim/HeadModel.h"
-#include "sim/ScalpBrush.h"
+#include "sim/geometry/HeadModel.h"
+#include "sim/groom/ScalpBrush.h"
 
 #include <glm/vec3.hpp>
 

@@ -4,7 +4,7 @@
 #include "app/editor/ImageFiles.h"
 #include "app/editor/SettledScene.h"
 #include "io/PresetFile.h"
-#include "sim/Body.h"
+#include "sim/geometry/Body.h"
 #include "widgets/Viewport.h"
 
 #include <QCryptographicHash>

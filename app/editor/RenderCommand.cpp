@@ -7,8 +7,8 @@
 #include "io/MeshReader.h"
 #include "io/PresetFile.h"
 #include "io/ProjectFile.h"
-#include "sim/Body.h"
-#include "sim/GrowthMap.h"
+#include "sim/geometry/Body.h"
+#include "sim/groom/GrowthMap.h"
 #include "widgets/Viewport.h"
 
 #include <QFileInfo>

@@ -1,7 +1,7 @@
 #include "app/editor/SettledScene.h"
 
-#include "sim/HairSimulation.h"
-#include "sim/SolverSettings.h"
+#include "sim/solver/HairSimulation.h"
+#include "sim/solver/SolverSettings.h"
 
 #include <cmath>
 #include <exception>

@@ -9,11 +9,11 @@
 //
 // Thread: any; settleScene owns its simulation for the call.
 
-#include "sim/Frame.h"
-#include "sim/GrowthRegion.h"
-#include "sim/Parameters.h"
-#include "sim/StyleEdits.h"
-#include "sim/TriangleMesh.h"
+#include "sim/solver/Frame.h"
+#include "sim/groom/GrowthRegion.h"
+#include "sim/params/Parameters.h"
+#include "sim/style/StyleEdits.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <cstdint>
 #include <functional>

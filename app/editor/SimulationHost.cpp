@@ -5,9 +5,9 @@
 #include "app/editor/SettledScene.h"
 
 #include "app/editor/SimulationHostPacer.h"
-#include "sim/HairSimulation.h"
-#include "sim/SolverSettings.h"
-#include "sim/ThreadName.h"
+#include "sim/solver/HairSimulation.h"
+#include "sim/solver/SolverSettings.h"
+#include "sim/util/ThreadName.h"
 
 #include <QMetaObject>
 

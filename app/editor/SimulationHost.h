@@ -20,13 +20,13 @@
 //
 // Thread: the object lives on the GUI thread; each function says where it runs.
 
-#include "sim/Frame.h"
-#include "sim/GrowthRegion.h"
-#include "sim/HairDryer.h"
-#include "sim/Parameters.h"
-#include "sim/StyleEdits.h"
-#include "sim/HeadModel.h"
-#include "sim/TriangleMesh.h"
+#include "sim/solver/Frame.h"
+#include "sim/groom/GrowthRegion.h"
+#include "sim/style/HairDryer.h"
+#include "sim/params/Parameters.h"
+#include "sim/style/StyleEdits.h"
+#include "sim/geometry/HeadModel.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <QObject>
 #include <QString>

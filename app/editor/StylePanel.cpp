@@ -1,6 +1,6 @@
 #include "app/editor/StylePanel.h"
 
-#include "sim/Parameters.h"
+#include "sim/params/Parameters.h"
 #include "widgets/SliderRow.h"
 
 #include <QAction>
@@ -61,7 +61,7 @@ StylePanel::StylePanel(StyleTool* tool, QWidget* parent) : QWidget(parent), m_to
     }
     form->addRow(grid);
 
-    // The perm's curl: slider-and-spin-box rows over the tool settings' ranges (sim/Parameters.h).
+    // The perm's curl: slider-and-spin-box rows over the tool settings' ranges (sim/params/Parameters.h).
     SliderRowSpec radius;
     radius.range = toolSettingRange(ToolSetting::PermRadius);
     radius.range.minimum *= 1000.0;  // shown in millimetres

@@ -3,7 +3,7 @@
 #include "app/editor/Document.h"
 #include "app/editor/PaintTool.h"
 #include "app/editor/SimulationHost.h"
-#include "sim/StrandPicking.h"
+#include "sim/style/StrandPicking.h"
 #include "sim/style/CombOperation.h"
 #include "widgets/Viewport.h"
 

@@ -19,7 +19,7 @@
 
 #include "app/editor/StyleBrushText.h"
 #include "app/editor/ViewportBrush.h"
-#include "sim/HairDryer.h"
+#include "sim/style/HairDryer.h"
 #include "sim/style/StyleOperation.h"
 
 #include <QObject>

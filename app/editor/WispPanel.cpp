@@ -1,7 +1,7 @@
 #include "app/editor/WispPanel.h"
 
 #include "app/editor/Document.h"
-#include "sim/GrowthRegion.h"
+#include "sim/groom/GrowthRegion.h"
 #include "widgets/ParameterPanel.h"
 
 #include <QColorDialog>

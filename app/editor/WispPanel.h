@@ -8,7 +8,7 @@
 //
 // Thread: GUI.
 
-#include "sim/Parameters.h"
+#include "sim/params/Parameters.h"
 
 #include <QWidget>
 

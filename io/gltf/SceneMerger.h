@@ -3,7 +3,7 @@
 // transform applied, merged into one TriangleMesh (see io/GltfReader.h for the rules).
 
 #include "io/gltf/GltfDocument.h"
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <string>
 #include <vector>

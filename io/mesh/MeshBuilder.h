@@ -2,7 +2,7 @@
 // Collects vertices and polygons from any of the mesh readers and triangulates polygons as fans
 // from their first corner (fine for the convex polygons modellers export; a concave one may fold).
 
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <cstddef>
 #include <cstdint>

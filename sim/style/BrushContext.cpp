@@ -1,7 +1,7 @@
 #include "sim/style/BrushContext.h"
 
-#include "sim/HairSimulation.h"
-#include "sim/StrandPicking.h"
+#include "sim/solver/HairSimulation.h"
+#include "sim/style/StrandPicking.h"
 
 #include <glm/geometric.hpp>
 

@@ -5,11 +5,11 @@
 // stroke point gives it in wisp-cli). Frames are world space; brush edits (StyleEdits) are head
 // space. The head does not move yet, so the two are the same frame; names say which one they mean.
 
-#include "sim/Frame.h"
-#include "sim/HairDryer.h"
-#include "sim/HeadModel.h"
-#include "sim/ScalpBrush.h"
-#include "sim/StyleEdits.h"
+#include "sim/solver/Frame.h"
+#include "sim/style/HairDryer.h"
+#include "sim/geometry/HeadModel.h"
+#include "sim/groom/ScalpBrush.h"
+#include "sim/style/StyleEdits.h"
 
 #include <glm/vec3.hpp>
 

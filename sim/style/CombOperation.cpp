@@ -1,6 +1,6 @@
 #include "sim/style/CombOperation.h"
 
-#include "sim/StrandPicking.h"
+#include "sim/style/StrandPicking.h"
 
 #include <glm/geometric.hpp>
 

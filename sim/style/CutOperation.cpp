@@ -1,6 +1,6 @@
 #include "sim/style/CutOperation.h"
 
-#include "sim/StrandPicking.h"
+#include "sim/style/StrandPicking.h"
 
 #include <glm/geometric.hpp>
 

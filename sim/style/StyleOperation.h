@@ -8,8 +8,8 @@
 //
 // Thread: any, one stroke on one thread. Never throws, never logs.
 
-#include "sim/HairDryer.h"
-#include "sim/StyleEdits.h"
+#include "sim/style/HairDryer.h"
+#include "sim/style/StyleEdits.h"
 #include "sim/style/BrushContext.h"
 
 #include <cstdint>

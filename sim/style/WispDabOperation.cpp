@@ -1,6 +1,6 @@
 #include "sim/style/WispDabOperation.h"
 
-#include "sim/StrandPicking.h"
+#include "sim/style/StrandPicking.h"
 
 #include <algorithm>
 

@@ -2,10 +2,10 @@
 // a scalp-brush dab, a signed-distance-field bake and BVH queries. CI builds, never times them.
 
 #include "../sim/MeshFixtures.h"
-#include "sim/DefaultHead.h"
-#include "sim/MeshBvh.h"
-#include "sim/ScalpBrush.h"
-#include "sim/SignedDistanceField.h"
+#include "sim/geometry/DefaultHead.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/groom/ScalpBrush.h"
+#include "sim/geometry/SignedDistanceField.h"
 
 #include <benchmark/benchmark.h>
 #include <glm/geometric.hpp>

@@ -3,7 +3,7 @@
 // clear refusals (exit status 1 for bad values, 2 for wrong usage).
 #include "io/HairFiles.h"
 #include "io/ProjectFile.h"
-#include "sim/DefaultHead.h"
+#include "sim/geometry/DefaultHead.h"
 
 #include "CliRunner.h"
 

@@ -2,7 +2,7 @@
 // project holds the stroke's edits, measured in millimetres and metres; bad strokes are refused
 // with a message naming what is wrong.
 #include "io/ProjectFile.h"
-#include "sim/DefaultHead.h"
+#include "sim/geometry/DefaultHead.h"
 
 #include "CliRunner.h"
 

@@ -1,6 +1,6 @@
 // wisp-cli as a user runs it: real processes, exit statuses, messages and output files.
 #include "io/StrandText.h"
-#include "sim/DefaultHead.h"
+#include "sim/geometry/DefaultHead.h"
 
 #include "CliRunner.h"
 

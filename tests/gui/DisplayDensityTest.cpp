@@ -7,7 +7,7 @@
 #include "app/editor/ProjectController.h"
 #include "io/ProjectFile.h"
 #include "app/editor/SettledScene.h"
-#include "sim/Body.h"
+#include "sim/geometry/Body.h"
 #include "widgets/HairChildren.h"
 #include "widgets/HairDetail.h"
 #include "widgets/Viewport.h"

@@ -12,7 +12,7 @@
 #include "app/editor/ShortcutsDialog.h"
 #include "app/editor/SimulationHost.h"
 #include "app/editor/StyleTool.h"
-#include "sim/StrandPicking.h"
+#include "sim/style/StrandPicking.h"
 #include "widgets/ParameterPanel.h"
 #include "widgets/SliderRow.h"
 #include "widgets/Viewport.h"

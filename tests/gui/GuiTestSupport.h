@@ -5,7 +5,7 @@
 #include "app/editor/FileMenu.h"
 #include "app/editor/MainWindow.h"
 #include "app/editor/SimulationHost.h"
-#include "sim/Frame.h"
+#include "sim/solver/Frame.h"
 #include "widgets/ParameterPanel.h"
 
 #include <QDoubleSpinBox>

@@ -7,8 +7,8 @@
 #include "app/editor/SimulationHost.h"
 #include "app/editor/WispPanel.h"
 #include "GuiTestSupport.h"
-#include "sim/MeshBvh.h"
-#include "sim/StrandPicking.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/style/StrandPicking.h"
 #include "widgets/ParameterPanel.h"
 #include "widgets/Viewport.h"
 

@@ -13,7 +13,7 @@
 #include "../SharedAssets.h"
 #include "io/HairFiles.h"
 #include "io/ProjectFile.h"
-#include "sim/MeshBvh.h"
+#include "sim/geometry/MeshBvh.h"
 #include "widgets/Viewport.h"
 
 #include <QAbstractButton>

@@ -5,8 +5,8 @@
 #include "app/editor/SimulationHost.h"
 #include "GuiTestSupport.h"
 #include "app/editor/SimulationHostPacer.h"
-#include "sim/DefaultHead.h"
-#include "sim/SolverSettings.h"
+#include "sim/geometry/DefaultHead.h"
+#include "sim/solver/SolverSettings.h"
 
 #include <QSignalSpy>
 #include <QTest>

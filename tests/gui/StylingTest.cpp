@@ -12,9 +12,9 @@
 #include "app/editor/StylePanel.h"
 #include "app/editor/StyleTool.h"
 #include "GuiTestSupport.h"
-#include "sim/HairDryer.h"
-#include "sim/SignedDistanceField.h"
-#include "sim/StrandPicking.h"
+#include "sim/style/HairDryer.h"
+#include "sim/geometry/SignedDistanceField.h"
+#include "sim/style/StrandPicking.h"
 #include "widgets/Viewport.h"
 
 #include <QAction>

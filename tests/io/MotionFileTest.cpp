@@ -2,7 +2,7 @@
 #include "IoTestSupport.h"
 #include "io/ProjectFile.h"
 #include "io/UsdaWriter.h"
-#include "sim/DefaultHead.h"
+#include "sim/geometry/DefaultHead.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

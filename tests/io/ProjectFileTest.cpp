@@ -6,7 +6,7 @@
 #include "IoTestSupport.h"
 #include "io/Base64.h"
 #include "io/MeshReader.h"
-#include "sim/DefaultHead.h"
+#include "sim/geometry/DefaultHead.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,12 +1,12 @@
-// The growth area Wisp makes for an imported head (sim/GrowthMap.h's scalpGrowth) is the scalp,
+// The growth area Wisp makes for an imported head (sim/groom/GrowthMap.h's scalpGrowth) is the scalp,
 // on the real heads as the importer places them: no root on the face or below the nose line, and
 // the crown and the back of the skull covered. Landmarks are measured here, on the placed mesh.
 #include "IoTestSupport.h"
 #include "io/HeadPlacement.h"
 #include "io/MeshReader.h"
-#include "sim/Groom.h"
-#include "sim/GrowthMap.h"
-#include "sim/Parameters.h"
+#include "sim/groom/Groom.h"
+#include "sim/groom/GrowthMap.h"
+#include "sim/params/Parameters.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include "io/HairFiles.h"
 #include "io/HeadPlacement.h"
 #include "io/MeshReader.h"
-#include "sim/MeshBvh.h"
+#include "sim/geometry/MeshBvh.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

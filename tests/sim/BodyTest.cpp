@@ -1,9 +1,9 @@
-// The neck and shoulders under the head (sim/Body.h): long hair settles on them without entering
+// The neck and shoulders under the head (sim/geometry/Body.h): long hair settles on them without entering
 // them, and passes through where they are when the body is off.
 
 #include "SimFixtures.h"
 
-#include "sim/Body.h"
+#include "sim/geometry/Body.h"
 
 #include <glm/geometric.hpp>
 

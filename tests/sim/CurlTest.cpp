@@ -3,8 +3,8 @@
 
 #include "SimFixtures.h"
 
-#include "sim/Groom.h"
-#include "sim/SolverSettings.h"
+#include "sim/groom/Groom.h"
+#include "sim/solver/SolverSettings.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>

@@ -1,4 +1,4 @@
-#include "sim/DefaultHead.h"
+#include "sim/geometry/DefaultHead.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>

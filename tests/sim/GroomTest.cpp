@@ -1,6 +1,6 @@
 #include "SimFixtures.h"
 
-#include "sim/Groom.h"
+#include "sim/groom/Groom.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // the same frames whether a range is baked whole or in parts.
 #include "SimFixtures.h"
 
-#include "sim/HairBake.h"
+#include "sim/motion/HairBake.h"
 
 #include <gtest/gtest.h>
 

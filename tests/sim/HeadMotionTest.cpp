@@ -3,7 +3,7 @@
 // catch up.
 #include "SimFixtures.h"
 
-#include "sim/HeadMotion.h"
+#include "sim/motion/HeadMotion.h"
 
 #include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>

@@ -4,10 +4,10 @@
 // inside (here, before the fix: up to 1.9 mm inside).
 #include "MeshFixtures.h"
 
-#include "sim/Groom.h"
-#include "sim/MeshBvh.h"
-#include "sim/SignedDistanceField.h"
-#include "sim/Solver.h"
+#include "sim/groom/Groom.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/geometry/SignedDistanceField.h"
+#include "sim/solver/Solver.h"
 
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>

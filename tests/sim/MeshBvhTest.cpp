@@ -1,6 +1,6 @@
 #include "MeshFixtures.h"
-#include "sim/MeshBvh.h"
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

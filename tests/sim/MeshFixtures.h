@@ -2,7 +2,7 @@
 // Shared meshes for the BVH and SDF tests: an icosphere, a minimal OBJ reader and the path of the
 // Max Planck head in the test assets.
 
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include "../SharedAssets.h"
 

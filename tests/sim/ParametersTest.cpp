@@ -1,6 +1,6 @@
-#include "sim/Groom.h"
-#include "sim/Parameters.h"
-#include "sim/SolverSettings.h"
+#include "sim/groom/Groom.h"
+#include "sim/params/Parameters.h"
+#include "sim/solver/SolverSettings.h"
 
 #include <gtest/gtest.h>
 

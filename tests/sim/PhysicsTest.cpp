@@ -1,8 +1,8 @@
 // Tests that the solver's motion is the physics the papers describe, by numbers.
 #include "SimFixtures.h"
 
-#include "sim/MeshBvh.h"
-#include "sim/SignedDistanceField.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/geometry/SignedDistanceField.h"
 
 #include <gtest/gtest.h>
 

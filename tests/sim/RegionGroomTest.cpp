@@ -2,10 +2,10 @@
 // running simulation.
 #include "SimFixtures.h"
 
-#include "sim/GrowthRegion.h"
-#include "sim/HairSimulation.h"
-#include "sim/MeshBvh.h"
-#include "sim/ScalpBrush.h"
+#include "sim/groom/GrowthRegion.h"
+#include "sim/solver/HairSimulation.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/groom/ScalpBrush.h"
 
 #include <gtest/gtest.h>
 

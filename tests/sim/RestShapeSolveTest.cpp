@@ -1,9 +1,9 @@
-// The combed rest-shape solve (sim/RestShapeSolve.*): strands are solved independently, so one
+// The combed rest-shape solve (sim/solver/RestShapeSolve.*): strands are solved independently, so one
 // that cannot be held must not leave the others half solved.
-#include "sim/RestShapeSolve.h"
-#include "sim/HairCurves.h"
-#include "sim/Solver.h"
-#include "sim/SolverSettings.h"
+#include "sim/solver/RestShapeSolve.h"
+#include "sim/geometry/HairCurves.h"
+#include "sim/solver/Solver.h"
+#include "sim/solver/SolverSettings.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>

@@ -1,6 +1,6 @@
 #include "MeshFixtures.h"
-#include "sim/DefaultHead.h"
-#include "sim/ScalpBrush.h"
+#include "sim/geometry/DefaultHead.h"
+#include "sim/groom/ScalpBrush.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

@@ -4,9 +4,9 @@
 #include "MeshFixtures.h"
 #include "SimFixtures.h"
 
-#include "sim/GrowthMap.h"
-#include "sim/MeshBvh.h"
-#include "sim/SignedDistanceField.h"
+#include "sim/groom/GrowthMap.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/geometry/SignedDistanceField.h"
 
 #include <gtest/gtest.h>
 

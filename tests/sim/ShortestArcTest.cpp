@@ -1,5 +1,5 @@
-// The one shortest-arc rotation (sim/ShortestArc.h): generic, parallel and antiparallel inputs.
-#include "sim/ShortestArc.h"
+// The one shortest-arc rotation (sim/geometry/ShortestArc.h): generic, parallel and antiparallel inputs.
+#include "sim/geometry/ShortestArc.h"
 
 #include <gtest/gtest.h>
 

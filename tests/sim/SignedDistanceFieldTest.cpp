@@ -1,7 +1,7 @@
 #include "MeshFixtures.h"
-#include "sim/MeshBvh.h"
-#include "sim/SignedDistanceField.h"
-#include "sim/TriangleMesh.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/geometry/SignedDistanceField.h"
+#include "sim/geometry/TriangleMesh.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

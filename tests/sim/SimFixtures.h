@@ -1,8 +1,8 @@
 #pragma once
 // Shared set-ups for the sim tests: the default head with its groom, and small measurements.
 
-#include "sim/DefaultHead.h"
-#include "sim/HairSimulation.h"
+#include "sim/geometry/DefaultHead.h"
+#include "sim/solver/HairSimulation.h"
 
 #include <glm/geometric.hpp>
 

@@ -1,5 +1,5 @@
 // The solver on its own, without a head: curls, spheres and capsules, and input checks.
-#include "sim/Solver.h"
+#include "sim/solver/Solver.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>

@@ -2,7 +2,7 @@
 // groom, measured on the edits it leaves and the live effects it asks for.
 #include "SimFixtures.h"
 
-#include "sim/StrandPicking.h"
+#include "sim/style/StrandPicking.h"
 #include "sim/style/BlowDryOperation.h"
 #include "sim/style/CombOperation.h"
 #include "sim/style/CutOperation.h"

@@ -2,13 +2,13 @@
 // with a solved rest shape, perm, hairspray, wet hair drying, the blow-dryer.
 #include "SimFixtures.h"
 
-#include "sim/Groom.h"
-#include "sim/GrowthRegion.h"
-#include "sim/HairDryer.h"
-#include "sim/StrandPicking.h"
-#include "sim/HairSimulation.h"
-#include "sim/SignedDistanceField.h"
-#include "sim/StyleEdits.h"
+#include "sim/groom/Groom.h"
+#include "sim/groom/GrowthRegion.h"
+#include "sim/style/HairDryer.h"
+#include "sim/style/StrandPicking.h"
+#include "sim/solver/HairSimulation.h"
+#include "sim/geometry/SignedDistanceField.h"
+#include "sim/style/StyleEdits.h"
 
 #include <gtest/gtest.h>
 

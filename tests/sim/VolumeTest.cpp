@@ -1,11 +1,11 @@
-// Hair with volume (issue 13): hair-hair interaction through the volume grid (sim/HairVolumeGrid.h).
+// Hair with volume (issue 13): hair-hair interaction through the volume grid (sim/solver/HairVolumeGrid.h).
 // The grid's own arithmetic, and the figures of the issue's "Done means", asserted on real numbers:
 // standing off the scalp on top, one lock resting on another, settling, determinism, cost-free off.
 #include "SimFixtures.h"
 
-#include "sim/HairVolumeGrid.h"
-#include "sim/MeshBvh.h"
-#include "sim/ThreadPool.h"
+#include "sim/solver/HairVolumeGrid.h"
+#include "sim/geometry/MeshBvh.h"
+#include "sim/util/ThreadPool.h"
 
 #include <gtest/gtest.h>
 

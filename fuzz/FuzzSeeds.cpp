@@ -25,20 +25,21 @@ void writeText(const fs::path& path, const std::string& text)
 TriangleMesh tetrahedron()
 {
     TriangleMesh mesh;
-    mesh.positions = {{0.0f, 0.0f, 0.0f}, {0.2f, 0.0f, 0.0f}, {0.0f, 0.2f, 0.0f}, {0.0f, 0.0f, 0.2f}};
-    mesh.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    mesh.positions = { { 0.0f, 0.0f, 0.0f }, { 0.2f, 0.0f, 0.0f }, { 0.0f, 0.2f, 0.0f }, { 0.0f, 0.0f, 0.2f } };
+    mesh.triangles = { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } };
     return mesh;
 }
 
 HairCurves twoStrands()
 {
     HairCurves strands;
-    strands.offsets = {0, 3, 5};
-    strands.positions = {{0.0f, 0.2f, 0.0f}, {0.0f, 0.25f, 0.01f}, {0.0f, 0.3f, 0.03f}, {0.1f, 0.1f, 0.0f}, {0.15f, 0.05f, 0.0f}};
+    strands.offsets = { 0, 3, 5 };
+    strands.positions = { { 0.0f, 0.2f, 0.0f }, { 0.0f, 0.25f, 0.01f }, { 0.0f, 0.3f, 0.03f }, { 0.1f, 0.1f, 0.0f },
+        { 0.15f, 0.05f, 0.0f } };
     return strands;
 }
 
-}  // namespace
+} // namespace
 
 int main(int argc, char** argv)
 {
@@ -47,7 +48,7 @@ int main(int argc, char** argv)
         return 2;
     }
     const fs::path root = argv[1];
-    for (const char* target : {"project", "preset", "hair"})
+    for (const char* target : { "project", "preset", "hair" })
         fs::create_directories(root / target);
 
     // Projects: an embedded head with two regions (one painted, one of imported strands), a solo,
@@ -58,13 +59,13 @@ int main(int argc, char** argv)
     GrowthRegion painted;
     painted.id = 1;
     painted.name = "crown";
-    painted.weights = {1.0f, 0.5f, 0.0f, 0.25f};
+    painted.weights = { 1.0f, 0.5f, 0.0f, 0.25f };
     GrowthRegion imported;
     imported.id = 2;
     imported.name = "bangs";
     imported.weights = std::vector<float>(4, 0.0f);
     imported.importedStrands = std::make_shared<const HairCurves>(twoStrands());
-    project.regions = {painted, imported};
+    project.regions = { painted, imported };
     project.soloRegion = 2;
     StrandStyle style;
     style.lengthMetres = 0.1f;
@@ -72,7 +73,7 @@ int main(int argc, char** argv)
     style.curlTurnsPerMetre = 20.0f;
     style.stiffnessScale = 2.0f;
     style.wetness = 0.5f;
-    style.shape = {{0.0f, 0.2f, 0.0f}, {0.0f, 0.1f, 0.05f}};
+    style.shape = { { 0.0f, 0.2f, 0.0f }, { 0.0f, 0.1f, 0.05f } };
     project.style[(std::uint64_t(1) << 32) | 7] = style;
     const std::string projectPath = (root / "project" / "seed.wisp").string();
     writeText(root / "project" / "embedded.wisp", io::projectToJson(project, projectPath));
@@ -93,9 +94,9 @@ int main(int argc, char** argv)
 
     // Strands in every format the hair target reads.
     const HairCurves strands = twoStrands();
-    bool ok = io::writeHair((root / "hair" / "two.hair").string(), strands).ok() &&
-              io::writeHair((root / "hair" / "two.data").string(), strands).ok() &&
-              io::writeStrandText((root / "hair" / "two-strands.txt").string(), strands).ok();
+    bool ok = io::writeHair((root / "hair" / "two.hair").string(), strands).ok()
+        && io::writeHair((root / "hair" / "two.data").string(), strands).ok()
+        && io::writeStrandText((root / "hair" / "two-strands.txt").string(), strands).ok();
     if (!ok) {
         std::fprintf(stderr, "wisp_fuzz_seeds: cannot write the hair seeds in %s\n", (root / "hair").c_str());
         return 1;

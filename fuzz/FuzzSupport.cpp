@@ -2,9 +2,9 @@
 
 #include "io/HeadPlacement.h"
 #include "sim/geometry/Body.h"
-#include "sim/groom/GrowthMap.h"
 #include "sim/geometry/MeshBvh.h"
 #include "sim/geometry/SignedDistanceField.h"
+#include "sim/groom/GrowthMap.h"
 
 #include <cmath>
 #include <cstdio>
@@ -39,9 +39,12 @@ struct TempFolder {
     }
 };
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec3& v)
+{
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
-}  // namespace
+} // namespace
 
 void fail(const std::string& what)
 {
@@ -65,7 +68,7 @@ void placeAndExerciseHead(TriangleMesh mesh, bool zUp)
 {
     io::HeadPlacementSettings settings;
     if (zUp)
-        settings.up = io::Axis::PosZ;  // the artist's choice; otherwise found from the shape
+        settings.up = io::Axis::PosZ; // the artist's choice; otherwise found from the shape
     const io::HeadPlacement placement = io::placeHead(mesh, settings);
     (void)io::describePlacement(placement);
     exerciseHead(mesh);
@@ -74,7 +77,7 @@ void placeAndExerciseHead(TriangleMesh mesh, bool zUp)
 void exerciseHead(const TriangleMesh& mesh)
 {
     if (!validateMesh(mesh).empty())
-        return;  // the importer refuses it with that message
+        return; // the importer refuses it with that message
     // validateMesh promises finite coordinates and indices in range: everything below relies on it.
     for (const glm::vec3& p : mesh.positions)
         if (!finite(p))
@@ -83,8 +86,8 @@ void exerciseHead(const TriangleMesh& mesh)
     const MeshBvh bvh(mesh);
     const std::vector<float> growth = scalpGrowth(mesh);
     if (growth.size() != mesh.vertexCount())
-        fail("scalpGrowth gave " + std::to_string(growth.size()) + " weights for " +
-             std::to_string(mesh.vertexCount()) + " vertices");
+        fail("scalpGrowth gave " + std::to_string(growth.size()) + " weights for " + std::to_string(mesh.vertexCount())
+            + " vertices");
     (void)defaultBody(mesh);
     (void)vertexNormals(mesh);
 
@@ -106,8 +109,9 @@ void exerciseHead(const TriangleMesh& mesh)
     if (bvh.empty())
         return;
     const bool checked = !sdf.empty();
-    for (const glm::vec3& p : {box.center(), box.max + glm::vec3(0.01f), box.min})
-        if (const MeshBvh::ClosestPoint c = bvh.closestPoint(p); checked && (!finite(c.point) || !std::isfinite(c.distance)))
+    for (const glm::vec3& p : { box.center(), box.max + glm::vec3(0.01f), box.min })
+        if (const MeshBvh::ClosestPoint c = bvh.closestPoint(p);
+            checked && (!finite(c.point) || !std::isfinite(c.distance)))
             fail("MeshBvh::closestPoint gave a non-finite point");
     (void)bvh.closestPointWithin(box.center(), 0.01f);
     const glm::vec3 eye = box.center() + glm::vec3(0.0f, 0.0f, 1.0f);
@@ -115,4 +119,4 @@ void exerciseHead(const TriangleMesh& mesh)
         fail("MeshBvh::raycast gave a non-finite hit");
 }
 
-}  // namespace wisp::fuzz
+} // namespace wisp::fuzz

@@ -26,4 +26,4 @@ void placeAndExerciseHead(TriangleMesh mesh, bool zUp);
 // Stops the run with a message libFuzzer keeps with the input (a broken promise, not a crash).
 [[noreturn]] void fail(const std::string& what);
 
-}  // namespace wisp::fuzz
+} // namespace wisp::fuzz

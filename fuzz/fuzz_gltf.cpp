@@ -11,6 +11,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     wisp::io::Result<wisp::io::MeshReadResult> read = wisp::io::readGltf(path);
     if (!read)
         return 0;
-    wisp::fuzz::placeAndExerciseHead(std::move(read).value().mesh, false);  // glTF is +Y up: no turn
+    wisp::fuzz::placeAndExerciseHead(std::move(read).value().mesh, false); // glTF is +Y up: no turn
     return 0;
 }

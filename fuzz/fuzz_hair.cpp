@@ -30,7 +30,7 @@ bool startsWith(const std::uint8_t* data, std::size_t size, const char* magic)
     return size >= n && std::memcmp(data, magic, n) == 0;
 }
 
-}  // namespace
+} // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
@@ -40,7 +40,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             checkStrands(read.value());
         return 0;
     }
-    const std::string path = wisp::fuzz::writeInput(startsWith(data, size, "HAIR") ? "strands.hair" : "strands.data", data, size);
+    const std::string path
+        = wisp::fuzz::writeInput(startsWith(data, size, "HAIR") ? "strands.hair" : "strands.data", data, size);
     if (const wisp::io::Result<wisp::io::HairReadResult> read = wisp::io::readHair(path))
         checkStrands(read.value().strands);
     return 0;

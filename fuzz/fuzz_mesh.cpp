@@ -11,8 +11,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
     if (size < 1)
-        return -1;  // not worth keeping in the corpus
-    static const char* const kNames[] = {"head.obj", "head.ply", "head.off", "head.stl"};
+        return -1; // not worth keeping in the corpus
+    static const char* const kNames[] = { "head.obj", "head.ply", "head.off", "head.stl" };
     const std::string path = wisp::fuzz::writeInput(kNames[data[0] % 4], data + 1, size - 1);
     wisp::io::Result<wisp::io::MeshReadResult> read = wisp::io::readMesh(path);
     if (!read)

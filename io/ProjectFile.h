@@ -48,12 +48,12 @@
 
 #include "io/HeadOrientation.h"
 #include "io/IoError.h"
+#include "sim/geometry/TriangleMesh.h"
 #include "sim/groom/GrowthRegion.h"
 #include "sim/motion/HairBake.h"
 #include "sim/motion/HeadMotion.h"
 #include "sim/params/Parameters.h"
 #include "sim/style/StyleEdits.h"
-#include "sim/geometry/TriangleMesh.h"
 
 #include <glm/vec3.hpp>
 

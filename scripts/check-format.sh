@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
 # Checks that the C++ files in the listed folders match .clang-format (clang-format 14, Debian 12).
 # CI runs it before the tests (scripts/test.sh). A folder joins the list once it has been formatted
-# whole; extend `folders` as more of the tree is.
+# whole: the whole tree is.
 #
 #   scripts/check-format.sh         list the files that differ and exit 1 (nothing is changed)
 #   scripts/check-format.sh --fix   format those files in place
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
-folders=(io tests/io)
+folders=(sim io widgets app tests fuzz)
 
 mapfile -t files < <(find "${folders[@]}" -type f \( -name '*.cpp' -o -name '*.h' \) | sort)
 if [ "${1:-}" = "--fix" ]; then

@@ -27,17 +27,17 @@ inline bool sharedAssetsRequired()
     return ci != nullptr && (std::string_view(ci) == "true" || std::string_view(ci) == "1");
 }
 
-}  // namespace wisp::test
+} // namespace wisp::test
 
 // Use at the top of a test (or a fixture's SetUp) that needs `path` from the shared assets.
-#define REQUIRE_SHARED_ASSET(path)                                                                             \
-    do {                                                                                                       \
-        if (!std::filesystem::exists(path)) {                                                                  \
-            if (::wisp::test::sharedAssetsRequired())                                                          \
-                FAIL() << "shared test asset " << (path) << " is absent, and CI=true requires every asset ("   \
-                       << ::wisp::test::sharedAssetsDir() << ")";                                              \
-            else                                                                                               \
-                GTEST_SKIP() << "shared test asset " << (path) << " is absent (expected in "                  \
-                             << ::wisp::test::sharedAssetsDir() << "); CI=true would fail here";               \
-        }                                                                                                      \
+#define REQUIRE_SHARED_ASSET(path)                                                                                     \
+    do {                                                                                                               \
+        if (!std::filesystem::exists(path)) {                                                                          \
+            if (::wisp::test::sharedAssetsRequired())                                                                  \
+                FAIL() << "shared test asset " << (path) << " is absent, and CI=true requires every asset ("           \
+                       << ::wisp::test::sharedAssetsDir() << ")";                                                      \
+            else                                                                                                       \
+                GTEST_SKIP() << "shared test asset " << (path) << " is absent (expected in "                           \
+                             << ::wisp::test::sharedAssetsDir() << "); CI=true would fail here";                       \
+        }                                                                                                              \
     } while (false)

@@ -23,7 +23,8 @@ QByteArray shaderSource(const QString& path)
     for (const QByteArray& line : file.readAll().split('\n')) {
         const QByteArray trimmed = line.trimmed();
         if (trimmed.startsWith("#include \"") && trimmed.endsWith('"')) {
-            const QByteArray included = shaderSource(QStringLiteral(":/shaders/") + QString::fromUtf8(trimmed.mid(10, trimmed.size() - 11)));
+            const QByteArray included
+                = shaderSource(QStringLiteral(":/shaders/") + QString::fromUtf8(trimmed.mid(10, trimmed.size() - 11)));
             if (included.isEmpty())
                 return {};
             out += included;

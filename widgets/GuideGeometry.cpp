@@ -77,8 +77,8 @@ std::vector<GuideVertex> buildBrushRings(const BrushCursor& cursor, float bandMe
     return triangles;
 }
 
-std::vector<GuideVertex> buildDryerCone(const glm::vec3& nozzle, const glm::vec3& aim, float halfAngleRadians,
-    float bandMetres, float alpha)
+std::vector<GuideVertex> buildDryerCone(
+    const glm::vec3& nozzle, const glm::vec3& aim, float halfAngleRadians, float bandMetres, float alpha)
 {
     std::vector<GuideVertex> out;
     const glm::vec3 along = aim - nozzle;
@@ -108,16 +108,19 @@ std::vector<GuideVertex> buildDryerCone(const glm::vec3& nozzle, const glm::vec3
         const glm::vec3 out0 = around(a);
         const glm::vec3 side = glm::cross(axis, out0) * halfBand;
         const glm::vec3 tip = aim + rim * out0;
-        out.insert(out.end(), { { nozzle - side, none, edge }, { tip - side, none, edge }, { tip + side, none, edge } });
-        out.insert(out.end(), { { nozzle - side, none, edge }, { tip + side, none, edge }, { nozzle + side, none, edge } });
+        out.insert(
+            out.end(), { { nozzle - side, none, edge }, { tip - side, none, edge }, { tip + side, none, edge } });
+        out.insert(
+            out.end(), { { nozzle - side, none, edge }, { tip + side, none, edge }, { nozzle + side, none, edge } });
     }
     // The nozzle: a small bright disc where the air leaves the dryer.
     const float nozzleRadius = std::max(2.0f * halfBand, 0.004f);
     for (int i = 0; i < kDryerConeSides; ++i) {
         const float a0 = glm::two_pi<float>() * static_cast<float>(i) / kDryerConeSides;
         const float a1 = glm::two_pi<float>() * static_cast<float>(i + 1) / kDryerConeSides;
-        out.insert(out.end(), { { nozzle, none, edge }, { nozzle + nozzleRadius * around(a0), none, edge },
-                                  { nozzle + nozzleRadius * around(a1), none, edge } });
+        out.insert(out.end(),
+            { { nozzle, none, edge }, { nozzle + nozzleRadius * around(a0), none, edge },
+                { nozzle + nozzleRadius * around(a1), none, edge } });
     }
     return out;
 }

@@ -81,7 +81,7 @@ constexpr int kDryerConeEdges = 8; // lines from the nozzle to the rim, so the c
 // The dryer's cone as GL_TRIANGLES: a translucent surface from `nozzle` to the circle of the
 // cone's radius at `aim` (perpendicular to nozzle -> aim), kDryerConeEdges edges `bandMetres`
 // wide, and a small disc at the nozzle. Empty when nozzle and aim coincide or are not finite.
-std::vector<GuideVertex> buildDryerCone(const glm::vec3& nozzle, const glm::vec3& aim, float halfAngleRadians,
-    float bandMetres, float alpha);
+std::vector<GuideVertex> buildDryerCone(
+    const glm::vec3& nozzle, const glm::vec3& aim, float halfAngleRadians, float bandMetres, float alpha);
 
 } // namespace wisp

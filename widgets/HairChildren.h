@@ -35,8 +35,8 @@ public:
     // `strands` followed by the children (positions of this frame), with each child's look and
     // wetness its parent's. `strands` must have the layout prepare() was given.
     void interpolate(const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand,
-                     std::span<const float> wetness, HairCurves& out, std::vector<std::uint16_t>& outLooks,
-                     std::vector<float>& outWetness) const;
+        std::span<const float> wetness, HairCurves& out, std::vector<std::uint16_t>& outLooks,
+        std::vector<float>& outWetness) const;
     std::size_t childCount() const { return m_children.size(); }
 
 private:

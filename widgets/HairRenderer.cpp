@@ -34,7 +34,8 @@ bool offsetsUsable(const HairCurves& strands)
 bool sameLooks(std::span<const StrandLook> a, std::span<const StrandLook> b)
 {
     return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const StrandLook& x, const StrandLook& y) {
-        return x.rootColour == y.rootColour && x.tipColour == y.tipColour && x.rootThicknessMetres == y.rootThicknessMetres;
+        return x.rootColour == y.rootColour && x.tipColour == y.tipColour
+            && x.rootThicknessMetres == y.rootThicknessMetres;
     });
 }
 
@@ -156,7 +157,9 @@ void HairRenderer::uploadLooks()
     std::vector<glm::vec4> texels(2 * std::max<std::size_t>(m_looks.size(), 1), glm::vec4(0.0f));
     m_thickestLookMetres = 0.0f;
     for (std::size_t k = 0; k < m_looks.size(); ++k) {
-        const float thickness = std::isfinite(m_looks[k].rootThicknessMetres) ? std::clamp(m_looks[k].rootThicknessMetres, 0.0f, 0.01f) : 0.0f;
+        const float thickness = std::isfinite(m_looks[k].rootThicknessMetres)
+            ? std::clamp(m_looks[k].rootThicknessMetres, 0.0f, 0.01f)
+            : 0.0f;
         m_thickestLookMetres = std::max(m_thickestLookMetres, thickness);
         texels[2 * k] = glm::vec4(linearFromSrgb(m_looks[k].rootColour), thickness);
         texels[2 * k + 1] = glm::vec4(linearFromSrgb(m_looks[k].tipColour), 1.0f);
@@ -171,8 +174,8 @@ void HairRenderer::uploadLooks()
     checkGlErrors(m_gl, "HairRenderer::uploadLooks");
 }
 
-void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand,
-                          std::span<const float> wetness)
+void HairRenderer::upload(
+    const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand, std::span<const float> wetness)
 {
     if (!m_program)
         return;
@@ -228,7 +231,8 @@ void HairRenderer::upload(const HairCurves& strands, std::span<const std::uint16
         const bool hasLook = withLooks && lookOfStrand[s] < m_looks.size();
         // Wet hair (sim/style/HairDryer.h) is drawn darker: its wetness rides in the tag's fraction.
         const float wet = wetness.size() == strands.strandCount() ? std::clamp(wetness[s], 0.0f, 1.0f) : 0.0f;
-        const float tag = (hasLook ? kFirstLookTag + static_cast<float>(lookOfStrand[s]) : kStyleTag) + kWetTagScale * wet;
+        const float tag
+            = (hasLook ? kFirstLookTag + static_cast<float>(lookOfStrand[s]) : kStyleTag) + kWetTagScale * wet;
         for (std::uint32_t i = begin; i < end; ++i) {
             out[i] = glm::vec4(points[i], tag);
             low = glm::min(low, points[i]);

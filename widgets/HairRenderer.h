@@ -17,9 +17,9 @@
 //
 // Thread: GUI, with the viewport's GL context current (every member function).
 
-#include "sim/solver/Frame.h"
 #include "sim/geometry/HairCurves.h"
 #include "sim/geometry/TriangleMesh.h"
+#include "sim/solver/Frame.h"
 #include "widgets/GlSupport.h"
 #include "widgets/HairStripLayout.h"
 #include "widgets/RenderView.h"
@@ -72,7 +72,7 @@ public:
     // index per strand, or empty (or of another count) for the style's colours everywhere; a
     // strand whose index has no look also takes the style's colours.
     void upload(const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand = {},
-                std::span<const float> wetness = {});
+        std::span<const float> wetness = {});
     void clear();
     // Draws `fraction` (0..1) of the strands, an even sample, each made wider to make up for the
     // rest; `coarse` draws one sample per segment (the points themselves) whatever the zoom.

@@ -132,7 +132,8 @@ void HeadRenderer::uploadCoverage()
             linear[i] = glm::vec4(linearFromSrgb(glm::clamp(glm::vec3(c), 0.0f, 1.0f)), w);
         }
     m_gl->glBindBuffer(GL_ARRAY_BUFFER, m_coverageBuffer);
-    m_gl->glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(linear.size() * sizeof(glm::vec4)), linear.data());
+    m_gl->glBufferSubData(
+        GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(linear.size() * sizeof(glm::vec4)), linear.data());
     m_gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
     checkGlErrors(m_gl, "HeadRenderer::uploadCoverage");
 }

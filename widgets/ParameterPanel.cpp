@@ -43,22 +43,23 @@ QString tooltipFor(const ParameterInfo& p)
     const double scale = shownScale(p);
     return QStringLiteral("<b>%1</b>%2<br>%3<br><small>%4 … %5, default %6</small>")
         .arg(QString::fromUtf8(p.label.data(), static_cast<int>(p.label.size())),
-             unit.isEmpty() ? QString() : QStringLiteral(" (%1)").arg(unit),
-             QString::fromUtf8(p.help.data(), static_cast<int>(p.help.size())))
+            unit.isEmpty() ? QString() : QStringLiteral(" (%1)").arg(unit),
+            QString::fromUtf8(p.help.data(), static_cast<int>(p.help.size())))
         .arg(p.minimum * scale)
         .arg(p.maximum * scale)
         .arg(p.defaultValue * scale);
 }
 
-}  // namespace
+} // namespace
 
-ParameterPanel::ParameterPanel(std::vector<Param> parameters, QWidget* parent) : QWidget(parent)
+ParameterPanel::ParameterPanel(std::vector<Param> parameters, QWidget* parent)
+    : QWidget(parent)
 {
     auto* form = new QFormLayout(this);
     form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
     for (Param id : parameters) {
         const ParameterInfo& p = parameterInfo(id);
-        Row row{id};
+        Row row{ id };
         const QString tooltip = tooltipFor(p);
         auto* label = new QLabel(QString::fromUtf8(p.label.data(), static_cast<int>(p.label.size())), this);
         label->setToolTip(tooltip);
@@ -148,4 +149,4 @@ SliderRow* ParameterPanel::rowFor(Param id) const
     return row ? row->numbers : nullptr;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -15,7 +15,6 @@ class QDoubleSpinBox;
 class QSlider;
 class QCheckBox;
 
-
 namespace wisp {
 
 class SliderRow;
@@ -29,10 +28,10 @@ public:
     void setValues(const ParameterValues& values);
     double value(Param id) const;
 
-    QSlider* sliderFor(Param id) const;         // for tests and keyboard focus
-    QDoubleSpinBox* spinBoxFor(Param id) const;  // null for toggles; in the shown unit (displayUnit)
-    QCheckBox* checkBoxFor(Param id) const;      // null for numbers
-    SliderRow* rowFor(Param id) const;           // null for toggles
+    QSlider* sliderFor(Param id) const; // for tests and keyboard focus
+    QDoubleSpinBox* spinBoxFor(Param id) const; // null for toggles; in the shown unit (displayUnit)
+    QCheckBox* checkBoxFor(Param id) const; // null for numbers
+    SliderRow* rowFor(Param id) const; // null for toggles
 
 signals:
     // The artist changed a value. `dragging` is true while a slider is held, so that one drag can
@@ -52,4 +51,4 @@ private:
     bool m_updating = false;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -180,10 +180,10 @@ void Viewport::setHead(const TriangleMesh& head)
 
 void Viewport::setBody(const std::vector<Capsule>& capsules)
 {
-    const bool same = capsules.size() == m_bodyCapsules.size() &&
-                      std::equal(capsules.begin(), capsules.end(), m_bodyCapsules.begin(), [](const Capsule& x, const Capsule& y) {
-                          return x.a == y.a && x.b == y.b && x.radiusMetres == y.radiusMetres;
-                      });
+    const bool same = capsules.size() == m_bodyCapsules.size()
+        && std::equal(capsules.begin(), capsules.end(), m_bodyCapsules.begin(), [](const Capsule& x, const Capsule& y) {
+               return x.a == y.a && x.b == y.b && x.radiusMetres == y.radiusMetres;
+           });
     if (same)
         return;
     m_bodyCapsules = capsules;
@@ -923,8 +923,8 @@ void Viewport::uploadFrameIfChanged()
         return;
     m_frameDirty = false;
     if (m_frame && m_children.prepare(m_frame->strands, m_frame->lookOfStrand, m_displayDensity) > 0) {
-        m_children.interpolate(m_frame->strands, m_frame->lookOfStrand, m_frame->wetness, m_drawnStrands, m_drawnLooks,
-            m_drawnWetness);
+        m_children.interpolate(
+            m_frame->strands, m_frame->lookOfStrand, m_frame->wetness, m_drawnStrands, m_drawnLooks, m_drawnWetness);
         m_hair.setLooks(m_frame->looks);
         m_hair.upload(m_drawnStrands, m_drawnLooks, m_drawnWetness);
         m_hairMoved = true;

@@ -23,8 +23,9 @@
 //
 // Thread: GUI, every member function.
 
-#include "sim/solver/Frame.h"
 #include "sim/geometry/TriangleMesh.h"
+#include "sim/solver/Frame.h"
+#include "sim/solver/Solver.h"
 #include "widgets/BackgroundRenderer.h"
 #include "widgets/FrameCompositor.h"
 #include "widgets/GlCanvas.h"
@@ -34,7 +35,6 @@
 #include "widgets/HairDetail.h"
 #include "widgets/HairRenderer.h"
 #include "widgets/HairShadowMap.h"
-#include "sim/solver/Solver.h"
 #include "widgets/HeadRenderer.h"
 #include "widgets/OrbitCamera.h"
 
@@ -164,7 +164,8 @@ public:
     // Drawn density (HairChildren): `density` times the frame's strands are drawn, 0.25..4. Above 1
     // render-time children are interpolated between neighbouring strands, each drawn thinner by the
     // square root of the density, so the hair looks finer and fuller; below 1 an even sample is
-    // drawn, widened to keep the coverage. The preview while things move draws a fraction of these, widened to keep the coverage.
+    // drawn, widened to keep the coverage. The preview while things move draws a fraction of these, widened to keep the
+    // coverage.
     void setDisplayDensity(float density);
     float displayDensity() const { return m_displayDensity; }
     double lastPaintMilliseconds() const { return m_lastPaintMs; } // GL work of the last paint

@@ -155,7 +155,8 @@ QImage paintGizmoImage(const glm::mat4& view, double ratio, const glm::vec3& win
     return image;
 }
 
-void drawWindIndicator(QPainter& painter, const QRectF& area, const glm::mat4& view, const glm::vec3& windMetresPerSecond)
+void drawWindIndicator(
+    QPainter& painter, const QRectF& area, const glm::mat4& view, const glm::vec3& windMetresPerSecond)
 {
     const float speed = glm::length(windMetresPerSecond);
     if (!std::isfinite(speed) || speed <= 1e-3f)

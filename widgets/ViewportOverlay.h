@@ -23,8 +23,8 @@ namespace wisp {
 // fraction of strands drawn when that is not all of them: " · preview 40%".
 // Paused: "paused · 4582 strands · 7632 particles" (no frame rate or solver time, which would only
 // be the last ones measured before the pause).
-QString composeHudText(const Frame* frame, double framesPerSecond, double drawnFraction = 1.0, bool preview = false,
-    bool paused = false);
+QString composeHudText(
+    const Frame* frame, double framesPerSecond, double drawnFraction = 1.0, bool preview = false, bool paused = false);
 
 // Top-left corner, light text on a translucent dark panel so it reads on any background.
 void drawHud(QPainter& painter, const QString& text);
@@ -36,7 +36,8 @@ void drawAxisGizmo(QPainter& painter, const QRectF& area, const glm::mat4& view)
 // The wind as the camera sees it, in `area` beside the gizmo: an arrow along the wind's direction
 // on screen (shorter as it blows toward or away from the viewer) and its speed. Drawn in a corner
 // rather than in the scene, so it never covers the head or the hair.
-void drawWindIndicator(QPainter& painter, const QRectF& area, const glm::mat4& view, const glm::vec3& windMetresPerSecond);
+void drawWindIndicator(
+    QPainter& painter, const QRectF& area, const glm::mat4& view, const glm::vec3& windMetresPerSecond);
 
 // The same as images, transparent around what they show, `ratio` device pixels per logical pixel.
 // The heads-up line's image belongs at the view's top-left corner; the gizmo's (kGizmoImageSize

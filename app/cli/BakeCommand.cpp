@@ -27,17 +27,18 @@ namespace {
 std::vector<OptionSpec> bakeOptions()
 {
     std::vector<OptionSpec> options = {
-        {"help", "", "show this help"},
-        {"frames", "A:B", "the frames to write, 1 or more (frame 1 is 0 s; default: the project's timeline)"},
-        {"fps", "N", "frames per second (default: the project's, else 24)"},
-        {"motion", "KIND", "turn, nod, shake, walk or none: the procedural motion, replacing the project's"},
-        {"amplitude", "X", "the motion's amplitude: degrees (turn, nod, shake) or metres (walk)"},
-        {"frequency", "HZ", "the motion's frequency, cycles per second"},
-        {"threads", "N", "solver threads (default: one per core; the result does not depend on it)"},
-        {"memory-mib", "N", "the most a .usda bake may keep in memory, MiB (default 2048)"},
-        {"no-drape", "", "start from the groom's rest shape instead of the hair settled under gravity"},
-        {"out", "FILE", "FILE.usda (USD text, every frame a time sample; one frame: a still), or PATTERN.hair "
-                        "with # for the frame number (hair.####.hair: hair.0001.hair, ...)"},
+        { "help", "", "show this help" },
+        { "frames", "A:B", "the frames to write, 1 or more (frame 1 is 0 s; default: the project's timeline)" },
+        { "fps", "N", "frames per second (default: the project's, else 24)" },
+        { "motion", "KIND", "turn, nod, shake, walk or none: the procedural motion, replacing the project's" },
+        { "amplitude", "X", "the motion's amplitude: degrees (turn, nod, shake) or metres (walk)" },
+        { "frequency", "HZ", "the motion's frequency, cycles per second" },
+        { "threads", "N", "solver threads (default: one per core; the result does not depend on it)" },
+        { "memory-mib", "N", "the most a .usda bake may keep in memory, MiB (default 2048)" },
+        { "no-drape", "", "start from the groom's rest shape instead of the hair settled under gravity" },
+        { "out", "FILE",
+            "FILE.usda (USD text, every frame a time sample; one frame: a still), or PATTERN.hair "
+            "with # for the frame number (hair.####.hair: hair.0001.hair, ...)" },
     };
     const std::vector<OptionSpec> parameters = parameterOptions();
     options.insert(options.end(), parameters.begin(), parameters.end());
@@ -50,8 +51,8 @@ std::pair<int, int> parseFrames(const std::string& text)
     int a = 0, b = 0;
     char tail = 0;
     if (std::sscanf(text.c_str(), "%d:%d%c", &a, &b, &tail) != 2)
-        throw CliError{kBadInput, "--frames: '" + text + "' is not A:B (e.g. 1:48)"};
-    return {a, b};
+        throw CliError{ kBadInput, "--frames: '" + text + "' is not A:B (e.g. 1:48)" };
+    return { a, b };
 }
 
 // The file name of `frame` in a pattern whose last run of '#' is the frame number, zero-padded.
@@ -90,7 +91,7 @@ std::vector<float> rootWidths(const HairSimulation& sim)
     return widths;
 }
 
-}  // namespace
+} // namespace
 
 int runBake(int argc, char** argv)
 {
@@ -107,12 +108,14 @@ int runBake(int argc, char** argv)
     }
     const auto out = args.text("out");
     if (!out)
-        throw CliError{kUsage, "needs --out FILE.usda or --out PATTERN.hair (see --help)"};
-    checkOutputPath(*out, "--out", {"usda", "hair"});
+        throw CliError{ kUsage, "needs --out FILE.usda or --out PATTERN.hair (see --help)" };
+    checkOutputPath(*out, "--out", { "usda", "hair" });
     const bool usd = extensionOf(*out) == "usda";
     if (!usd && std::filesystem::path(*out).filename().string().find('#') == std::string::npos)
-        throw CliError{kBadInput, "--out: " + *out + ": a .hair sequence needs # in the file name for the frame "
-                                                      "number (e.g. hair.####.hair)"};
+        throw CliError{ kBadInput,
+            "--out: " + *out
+                + ": a .hair sequence needs # in the file name for the frame "
+                  "number (e.g. hair.####.hair)" };
 
     // The scene: a project, or the built-in head with the default groom.
     HeadMotion motion;
@@ -124,11 +127,11 @@ int runBake(int argc, char** argv)
         const std::string& path = args.positional().front();
         io::Result<io::ProjectReadResult> read = io::readProject(path, io::readHeadFile);
         if (!read)
-            throw CliError{kBadInput, read.error().toString()};
+            throw CliError{ kBadInput, read.error().toString() };
         for (const std::string& warning : read.value().warnings)
             std::cerr << "wisp-cli bake: " << path << ": " << warning << "\n";
         io::Project p = std::move(read).value().project;
-        args.applyParameters(p.parameters);  // options win over the project's (every region's wisp too)
+        args.applyParameters(p.parameters); // options win over the project's (every region's wisp too)
         for (GrowthRegion& region : p.regions)
             for (const ParameterInfo& info : allParameters())
                 if (info.group == ParamGroup::Wisp && args.has(std::string(info.key)))
@@ -139,7 +142,7 @@ int runBake(int argc, char** argv)
         if (error.empty())
             error = sim->applyForces(p.parameters);
         if (!error.empty())
-            throw CliError{kBadInput, path + ": " + error};
+            throw CliError{ kBadInput, path + ": " + error };
         motion = p.motion;
         range = p.timeline;
         rangeGiven = true;
@@ -149,7 +152,7 @@ int runBake(int argc, char** argv)
         args.applyParameters(values);
         error = sim->setup(head.mesh, head.growthWeights, values);
         if (!error.empty())
-            throw CliError{kBadInput, error};
+            throw CliError{ kBadInput, error };
     }
     for (const std::string& warning : sim->groomWarnings())
         std::cerr << "wisp-cli bake: warning: " << warning << "\n";
@@ -159,16 +162,16 @@ int runBake(int argc, char** argv)
         rangeGiven = true;
     }
     if (!rangeGiven)
-        throw CliError{kUsage, "needs --frames A:B (or a project with a timeline)"};
+        throw CliError{ kUsage, "needs --frames A:B (or a project with a timeline)" };
     if (args.has("fps"))
         range.fps = args.real("fps", range.fps);
     if (std::string e = validateBakeRange(range); !e.empty())
-        throw CliError{kBadInput, "--frames/--fps: " + e};
+        throw CliError{ kBadInput, "--frames/--fps: " + e };
 
     if (const auto name = args.text("motion")) {
         const std::optional<MotionKind> kind = motionFromName(*name);
         if (!kind)
-            throw CliError{kBadInput, "--motion: '" + *name + "' is not turn, nod, shake, walk or none"};
+            throw CliError{ kBadInput, "--motion: '" + *name + "' is not turn, nod, shake, walk or none" };
         motion.setProcedural(motionPreset(*kind));
     }
     ProceduralMotion procedural = motion.procedural();
@@ -178,7 +181,7 @@ int runBake(int argc, char** argv)
         procedural.frequencyHz = args.real("frequency", procedural.frequencyHz);
     if (procedural.kind != MotionKind::None)
         if (std::string e = HeadMotion::validateProcedural(procedural); !e.empty())
-            throw CliError{kBadInput, "--motion " + std::string(motionName(procedural.kind)) + ": " + e};
+            throw CliError{ kBadInput, "--motion " + std::string(motionName(procedural.kind)) + ": " + e };
     motion.setProcedural(procedural);
 
     BakeOptions bake;
@@ -224,11 +227,11 @@ int runBake(int argc, char** argv)
     const auto end = Clock::now();
     // Wall-clock: the drape (frame 1), then each later frame (its steps and its frame built).
     const double drapeMs = std::chrono::duration<double, std::milli>(afterFrameOne - start).count();
-    const double frameMs = range.lastFrame > 1 ? std::chrono::duration<double, std::milli>(end - afterFrameOne).count() /
-                                                     (range.lastFrame - 1)
-                                               : 0.0;
+    const double frameMs = range.lastFrame > 1
+        ? std::chrono::duration<double, std::milli>(end - afterFrameOne).count() / (range.lastFrame - 1)
+        : 0.0;
     if (!result.error.empty())
-        throw CliError{kBadInput, result.error};
+        throw CliError{ kBadInput, result.error };
 
     const std::size_t points = result.cache.pointCount();
     if (usd) {
@@ -239,19 +242,18 @@ int runBake(int argc, char** argv)
         scene.animated = range.frameCount() > 1;
         scene.head = &sim->head();
         for (const BakedFrame& f : result.cache.frames)
-            scene.frames.push_back({static_cast<double>(f.frame), f.positions, f.headToWorld});
+            scene.frames.push_back({ static_cast<double>(f.frame), f.positions, f.headToWorld });
         if (const io::Result<void> usdWritten = io::writeUsda(*out, scene); !usdWritten)
-            throw CliError{kBadInput, usdWritten.error().toString()};
+            throw CliError{ kBadInput, usdWritten.error().toString() };
         written = 1;
     }
     std::cout << "baked frames " << range.firstFrame << ":" << range.lastFrame << " at " << range.fps << " fps ("
-              << result.cache.stepsPerFrame << " steps of " << result.cache.stepSeconds * 1000.0 << " ms a frame, motion "
-              << motionName(motion.procedural().kind) << ", " << motion.keys().size() << " keys): "
-              << result.cache.offsets.size() - 1 << " strands, " << points << " points, "
+              << result.cache.stepsPerFrame << " steps of " << result.cache.stepSeconds * 1000.0
+              << " ms a frame, motion " << motionName(motion.procedural().kind) << ", " << motion.keys().size()
+              << " keys): " << result.cache.offsets.size() - 1 << " strands, " << points << " points, "
               << bytesPerBakedFrame(points) << " bytes a cached frame; drape " << drapeMs << " ms, then " << frameMs
-              << " ms a frame; wrote " << (usd ? *out : std::to_string(written) + " files " + *out)
-              << "\n";
+              << " ms a frame; wrote " << (usd ? *out : std::to_string(written) + " files " + *out) << "\n";
     return kSuccess;
 }
 
-}  // namespace wisp::cli
+} // namespace wisp::cli

@@ -8,10 +8,10 @@
 #include "io/HeadPlacement.h"
 #include "io/MeshReader.h"
 #include "sim/geometry/DefaultHead.h"
-#include "sim/groom/GrowthMap.h"
-#include "sim/solver/HairSimulation.h"
 #include "sim/geometry/MeshBvh.h"
+#include "sim/groom/GrowthMap.h"
 #include "sim/groom/ScalpBrush.h"
+#include "sim/solver/HairSimulation.h"
 #include "sim/style/StyleEdits.h"
 
 #include <glm/gtc/constants.hpp>
@@ -51,7 +51,7 @@ double peakRssMb()
     std::string line;
     while (std::getline(status, line))
         if (line.rfind("VmHWM:", 0) == 0)
-            return std::stod(line.substr(6)) / 1024.0;  // kB
+            return std::stod(line.substr(6)) / 1024.0; // kB
     return 0.0;
 }
 
@@ -60,12 +60,11 @@ struct RunOptions {
     int warmupSteps = 20;
     int measuredSteps = 100;
     std::size_t sphereStrands = 10'000;
-    std::string headPath;  // brush-dab: a head file instead of the default head
-    double volume = -1.0;  // the volume parameter (hair-hair interaction); below 0: the default
+    std::string headPath; // brush-dab: a head file instead of the default head
+    double volume = -1.0; // the volume parameter (hair-hair interaction); below 0: the default
 };
 
-template <typename StepFn>
-void timeSteps(const RunOptions& o, StepFn&& step, BenchResult& r)
+template <typename StepFn> void timeSteps(const RunOptions& o, StepFn&& step, BenchResult& r)
 {
     for (int i = 0; i < o.warmupSteps; ++i)
         step();
@@ -96,14 +95,15 @@ BenchResult gridWorkload(const std::string& name, int width, int height, int par
         v.set(Param::Volume, o.volume);
     HairSimulation sim(o.threads);
     if (std::string error = sim.setupGrid(head.mesh, width, height, particles, 0.3f, v); !error.empty())
-        throw CliError{kBadInput, name + ": " + error};
-    BenchResult r{name};
+        throw CliError{ kBadInput, name + ": " + error };
+    BenchResult r{ name };
     r.particles = sim.solver().particleCount();
     r.strands = sim.solver().strandCount();
     r.threads = sim.solver().threadCount();
     r.substeps = sim.solver().settings().substeps;
     r.solverBytesPerParticle = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(r.particles);
-    timeSteps(o, [&] { sim.step(); }, r);
+    timeSteps(
+        o, [&] { sim.step(); }, r);
     return r;
 }
 
@@ -127,27 +127,28 @@ BenchResult sphereWorkload(const RunOptions& o)
     }
     Solver solver(o.threads);
     if (std::string error = solver.setStrands(rest); !error.empty())
-        throw CliError{kBadInput, "sphere: " + error};
+        throw CliError{ kBadInput, "sphere: " + error };
     SolverSettings s;
     s.timeStepSeconds = 1.0f / 60.0f;
     s.substeps = 1;
-    s.gravity = {0.0f, -9.81f, 0.0f};
+    s.gravity = { 0.0f, -9.81f, 0.0f };
     s.dragPerSecond = 0.5f;
-    s.wind = {2.0f, 0.0f, 0.5f};
+    s.wind = { 2.0f, 0.0f, 0.5f };
     s.dampingPerSecond = 0.0f;
     s.stiffness = 0.0f;
     s.friction = 0.0f;
     s.hairOffsetMetres = 0.0f;
     if (const std::string error = solver.setSettings(s); !error.empty())
-        throw CliError{kBadInput, "sphere workload: " + error};
-    solver.setCapsules({Capsule{{0, 0, 0}, {0, 0, 0}, 0.1f}});
-    BenchResult r{"sphere"};
+        throw CliError{ kBadInput, "sphere workload: " + error };
+    solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
+    BenchResult r{ "sphere" };
     r.particles = solver.particleCount();
     r.strands = solver.strandCount();
     r.threads = solver.threadCount();
     r.substeps = s.substeps;
     r.solverBytesPerParticle = static_cast<double>(solver.memoryBytes()) / static_cast<double>(r.particles);
-    timeSteps(o, [&] { solver.step(); }, r);
+    timeSteps(
+        o, [&] { solver.step(); }, r);
     return r;
 }
 
@@ -159,7 +160,7 @@ TriangleMesh benchHead(const std::string& path)
         return makeDefaultHead().mesh;
     io::Result<io::MeshReadResult> read = io::readMesh(path);
     if (!read)
-        throw CliError{kBadInput, read.error().toString()};
+        throw CliError{ kBadInput, read.error().toString() };
     TriangleMesh mesh = std::move(read).value().mesh;
     io::HeadPlacementSettings settings;
     if (io::formatFixesUpAxis(path))
@@ -188,32 +189,37 @@ BenchResult brushWorkload(const RunOptions& o)
     const ParameterValues v;
     HairSimulation sim(o.threads);
     if (std::string error = sim.setup(head, regions, kNoSolo, v); !error.empty())
-        throw CliError{kBadInput, "brush-dab: " + error};
+        throw CliError{ kBadInput, "brush-dab: " + error };
     const ScalpBrush brush(head);
     const Aabb box = boundsOf(head);
     std::vector<glm::vec3> path;
     for (int i = 0; i < 48; ++i) {
         const float a = glm::two_pi<float>() * static_cast<float>(i) / 48.0f;
-        const glm::vec3 around = box.center() + glm::vec3(0.6f * box.size().x * std::cos(a), 0.15f * box.size().y,
-                                                          0.6f * box.size().z * std::sin(a));
+        const glm::vec3 around = box.center()
+            + glm::vec3(0.6f * box.size().x * std::cos(a), 0.15f * box.size().y, 0.6f * box.size().z * std::sin(a));
         path.push_back(sim.bvh().closestPoint(around).point);
     }
     BrushSettings settings;
     settings.radiusMetres = 0.02f;
     int dab = 0;
-    BenchResult r{o.headPath.empty() ? "brush-dab" : "brush-dab (" + o.headPath.substr(o.headPath.rfind('/') + 1) + ")"};
+    BenchResult r{ o.headPath.empty() ? "brush-dab"
+                                      : "brush-dab (" + o.headPath.substr(o.headPath.rfind('/') + 1) + ")" };
     r.threads = sim.solver().threadCount();
     r.substeps = sim.solver().settings().substeps;
-    timeSteps(o, [&] {
-        settings.mode = (dab / static_cast<int>(path.size())) % 2 == 0 ? BrushMode::Add : BrushMode::Erase;
-        brush.dab(path[static_cast<std::size_t>(dab) % path.size()], settings, regions[0].weights);
-        ++dab;
-        if (std::string error = sim.regroom(regions, kNoSolo, v); !error.empty())
-            throw CliError{kBadInput, "brush-dab: " + error};
-    }, r);
+    timeSteps(
+        o,
+        [&] {
+            settings.mode = (dab / static_cast<int>(path.size())) % 2 == 0 ? BrushMode::Add : BrushMode::Erase;
+            brush.dab(path[static_cast<std::size_t>(dab) % path.size()], settings, regions[0].weights);
+            ++dab;
+            if (std::string error = sim.regroom(regions, kNoSolo, v); !error.empty())
+                throw CliError{ kBadInput, "brush-dab: " + error };
+        },
+        r);
     r.particles = sim.solver().particleCount();
     r.strands = sim.groom().strandCount();
-    r.solverBytesPerParticle = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(std::max<std::size_t>(1, r.particles));
+    r.solverBytesPerParticle
+        = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(std::max<std::size_t>(1, r.particles));
     return r;
 }
 
@@ -228,45 +234,50 @@ BenchResult combWorkload(const RunOptions& o)
     const ParameterValues v;
     HairSimulation sim(o.threads);
     if (std::string error = sim.setup(head, regions, kNoSolo, v); !error.empty())
-        throw CliError{kBadInput, "comb-release: " + error};
+        throw CliError{ kBadInput, "comb-release: " + error };
     for (int i = 0; i < 120; ++i)
         sim.step();
     const Aabb box = boundsOf(head);
     auto edits = std::make_shared<StyleEdits>();
     std::size_t combed = 0;
     int stroke = 0;
-    BenchResult r{o.headPath.empty() ? "comb-release" : "comb-release (" + o.headPath.substr(o.headPath.rfind('/') + 1) + ")"};
+    BenchResult r{ o.headPath.empty() ? "comb-release"
+                                      : "comb-release (" + o.headPath.substr(o.headPath.rfind('/') + 1) + ")" };
     r.threads = sim.solver().threadCount();
     r.substeps = sim.solver().settings().substeps;
-    timeSteps(o, [&] {
-        const float a = glm::two_pi<float>() * static_cast<float>(stroke % 48) / 48.0f;
-        const glm::vec3 at = box.center() + glm::vec3(0.6f * box.size().x * std::cos(a), 0.15f * box.size().y,
-                                                      0.6f * box.size().z * std::sin(a));
-        const float turn = glm::radians(stroke % 2 == 0 ? 20.0f : -20.0f);
-        ++stroke;
-        HairCurves frame;
-        sim.buildFrame(frame);
-        const Groom& g = sim.groom();
-        const glm::vec3 point = sim.bvh().closestPoint(at).point;
-        const glm::mat3 rotation(glm::rotate(glm::mat4(1.0f), turn, glm::vec3(1.0f, 0.0f, 0.0f)));
-        for (std::size_t w = 0; w < g.wispCount(); ++w) {
-            const std::uint32_t k = g.keyStrand[w];
-            if (glm::distance(g.rootPositions[k], point) > 0.03f)
-                continue;
-            const auto strand = frame.strand(k);
-            std::vector<glm::vec3> shape;
-            for (const glm::vec3& p : strand)
-                shape.push_back(strand.front() + rotation * (p - strand.front()));
-            (*edits)[g.strandIdentity(k)].shape = std::move(shape);
-            ++combed;
-        }
-        sim.setStyle(std::make_shared<const StyleEdits>(*edits));
-        if (std::string error = sim.regroom(regions, kNoSolo, v); !error.empty())
-            throw CliError{kBadInput, "comb-release: " + error};
-    }, r);
+    timeSteps(
+        o,
+        [&] {
+            const float a = glm::two_pi<float>() * static_cast<float>(stroke % 48) / 48.0f;
+            const glm::vec3 at = box.center()
+                + glm::vec3(0.6f * box.size().x * std::cos(a), 0.15f * box.size().y, 0.6f * box.size().z * std::sin(a));
+            const float turn = glm::radians(stroke % 2 == 0 ? 20.0f : -20.0f);
+            ++stroke;
+            HairCurves frame;
+            sim.buildFrame(frame);
+            const Groom& g = sim.groom();
+            const glm::vec3 point = sim.bvh().closestPoint(at).point;
+            const glm::mat3 rotation(glm::rotate(glm::mat4(1.0f), turn, glm::vec3(1.0f, 0.0f, 0.0f)));
+            for (std::size_t w = 0; w < g.wispCount(); ++w) {
+                const std::uint32_t k = g.keyStrand[w];
+                if (glm::distance(g.rootPositions[k], point) > 0.03f)
+                    continue;
+                const auto strand = frame.strand(k);
+                std::vector<glm::vec3> shape;
+                for (const glm::vec3& p : strand)
+                    shape.push_back(strand.front() + rotation * (p - strand.front()));
+                (*edits)[g.strandIdentity(k)].shape = std::move(shape);
+                ++combed;
+            }
+            sim.setStyle(std::make_shared<const StyleEdits>(*edits));
+            if (std::string error = sim.regroom(regions, kNoSolo, v); !error.empty())
+                throw CliError{ kBadInput, "comb-release: " + error };
+        },
+        r);
     r.particles = sim.solver().particleCount();
-    r.strands = combed / static_cast<std::size_t>(std::max(1, stroke));  // combed key hairs per release
-    r.solverBytesPerParticle = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(std::max<std::size_t>(1, r.particles));
+    r.strands = combed / static_cast<std::size_t>(std::max(1, stroke)); // combed key hairs per release
+    r.solverBytesPerParticle
+        = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(std::max<std::size_t>(1, r.particles));
     return r;
 }
 
@@ -279,9 +290,10 @@ struct Workload {
 std::vector<Workload> workloads()
 {
     auto grid = [](const std::string& name, int w, int h, int p) {
-        return Workload{name, std::to_string(w) + " x " + std::to_string(h) + " strands x " + std::to_string(p) +
-                                  " particles on the default head (Table 1 of the force-driven paper)",
-                        [=](const RunOptions& o) { return gridWorkload(name, w, h, p, o); }};
+        return Workload{ name,
+            std::to_string(w) + " x " + std::to_string(h) + " strands x " + std::to_string(p)
+                + " particles on the default head (Table 1 of the force-driven paper)",
+            [=](const RunOptions& o) { return gridWorkload(name, w, h, p, o); } };
     };
     return {
         grid("paper-15x15x10", 15, 15, 10),
@@ -289,14 +301,16 @@ std::vector<Workload> workloads()
         grid("paper-25x25x20", 25, 25, 20),
         grid("paper-35x35x30", 35, 35, 30),
         grid("groom-1m", 250, 250, 16),
-        {"sphere", "N strands x 15 particles on a 0.1 m sphere, wind (2, 0, 0.5) m/s (set N with --strands)",
-         sphereWorkload},
-        {"brush-dab", "one 2 cm growth-brush dab plus the live regroom, on the default head or --head FILE "
-                      "(ms per dab; particles and strands are the simulation's)",
-         brushWorkload},
-        {"comb-release", "letting go of a comb stroke: the combed keys' rest shapes solved and the live regroom, "
-                         "on the default head or --head FILE (ms per release; strands: combed key hairs per release)",
-         combWorkload},
+        { "sphere", "N strands x 15 particles on a 0.1 m sphere, wind (2, 0, 0.5) m/s (set N with --strands)",
+            sphereWorkload },
+        { "brush-dab",
+            "one 2 cm growth-brush dab plus the live regroom, on the default head or --head FILE "
+            "(ms per dab; particles and strands are the simulation's)",
+            brushWorkload },
+        { "comb-release",
+            "letting go of a comb stroke: the combed keys' rest shapes solved and the live regroom, "
+            "on the default head or --head FILE (ms per release; strands: combed key hairs per release)",
+            combWorkload },
     };
 }
 
@@ -304,35 +318,37 @@ std::string json(const BenchResult& r)
 {
     char buffer[512];
     std::snprintf(buffer, sizeof buffer,
-                  "{\"name\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, \"substeps\": %d, "
-                  "\"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
-                  "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %.1f}",
-                  r.name.c_str(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs, r.meanMs,
-                  r.solverBytesPerParticle, r.peakRssMb);
+        "{\"name\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, \"substeps\": %d, "
+        "\"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
+        "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %.1f}",
+        r.name.c_str(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs, r.meanMs,
+        r.solverBytesPerParticle, r.peakRssMb);
     return buffer;
 }
 
-}  // namespace
+} // namespace
 
 int runBench(int argc, char** argv)
 {
     const std::vector<OptionSpec> options = {
-        {"help", "", "show this help"},
-        {"json", "", "print one JSON object a line per workload instead of a table"},
-        {"workload", "NAME", "run only this workload (see the list below)"},
-        {"threads", "N", "solver threads (default: one per core)"},
-        {"strands", "N", "strands of the sphere workload (default 10000)"},
-        {"steps", "N", "measured steps per workload after 20 warm-up steps (default 100, at least 50)"},
-        {"volume", "V", "hair-hair interaction of the grid workloads, 0..1 (0 off; default: the volume parameter's default)"},
-        {"head", "FILE", "head mesh for the brush-dab and comb-release workloads (OBJ, PLY, OFF, STL; default: the built-in head)"},
+        { "help", "", "show this help" },
+        { "json", "", "print one JSON object a line per workload instead of a table" },
+        { "workload", "NAME", "run only this workload (see the list below)" },
+        { "threads", "N", "solver threads (default: one per core)" },
+        { "strands", "N", "strands of the sphere workload (default 10000)" },
+        { "steps", "N", "measured steps per workload after 20 warm-up steps (default 100, at least 50)" },
+        { "volume", "V",
+            "hair-hair interaction of the grid workloads, 0..1 (0 off; default: the volume parameter's default)" },
+        { "head", "FILE",
+            "head mesh for the brush-dab and comb-release workloads (OBJ, PLY, OFF, STL; default: the built-in head)" },
     };
     const CommandLine args(argc, argv, 2, options);
     const std::vector<Workload> all = workloads();
     if (args.has("help")) {
         std::cout << "usage: wisp-cli bench [options]\n\n" << describeOptions(options) << "\nworkloads:\n";
         for (const Workload& w : all)
-            std::cout << "  " << w.name << std::string(w.name.size() < 16 ? 16 - w.name.size() : 1, ' ') << w.description
-                      << "\n";
+            std::cout << "  " << w.name << std::string(w.name.size() < 16 ? 16 - w.name.size() : 1, ' ')
+                      << w.description << "\n";
         std::cout << "\nms_per_step is the median wall-clock time of one solver step; peak_rss_mb the process's\n"
                      "peak resident memory during that workload.\n";
         return kSuccess;
@@ -345,7 +361,7 @@ int runBench(int argc, char** argv)
     if (args.has("volume"))
         o.volume = args.real("volume", 0.0);
     if (o.volume != -1.0 && !checkParameterValue(Param::Volume, o.volume).empty())
-        throw CliError{kBadInput, "--" + checkParameterValue(Param::Volume, o.volume)};
+        throw CliError{ kBadInput, "--" + checkParameterValue(Param::Volume, o.volume) };
     const auto only = args.text("workload");
     if (only) {
         bool known = false;
@@ -355,13 +371,13 @@ int runBench(int argc, char** argv)
             std::string names;
             for (const Workload& w : all)
                 names += " " + w.name;
-            throw CliError{kBadInput, "--workload: no workload '" + *only + "' (there are:" + names + ")"};
+            throw CliError{ kBadInput, "--workload: no workload '" + *only + "' (there are:" + names + ")" };
         }
     }
     const bool asJson = args.has("json");
     if (!asJson)
         std::printf("%-16s %10s %8s %7s %8s %12s %12s %10s %10s\n", "workload", "particles", "strands", "threads",
-                    "substeps", "ms/step", "mean ms", "B/particle", "peak MB");
+            "substeps", "ms/step", "mean ms", "B/particle", "peak MB");
     for (const Workload& w : all) {
         if (only && w.name != *only)
             continue;
@@ -371,11 +387,11 @@ int runBench(int argc, char** argv)
         if (asJson)
             std::printf("%s\n", json(r).c_str());
         else
-            std::printf("%-16s %10zu %8zu %7d %8d %12.4f %12.4f %10.1f %10.1f\n", r.name.c_str(), r.particles, r.strands,
-                        r.threads, r.substeps, r.medianMs, r.meanMs, r.solverBytesPerParticle, r.peakRssMb);
+            std::printf("%-16s %10zu %8zu %7d %8d %12.4f %12.4f %10.1f %10.1f\n", r.name.c_str(), r.particles,
+                r.strands, r.threads, r.substeps, r.medianMs, r.meanMs, r.solverBytesPerParticle, r.peakRssMb);
         std::fflush(stdout);
     }
     return kSuccess;
 }
 
-}  // namespace wisp::cli
+} // namespace wisp::cli

@@ -6,8 +6,8 @@
 
 namespace wisp::cli {
 
-CommandLine::CommandLine(int argc, char** argv, int first, const std::vector<OptionSpec>& options,
-                         std::size_t positionals)
+CommandLine::CommandLine(
+    int argc, char** argv, int first, const std::vector<OptionSpec>& options, std::size_t positionals)
 {
     for (int i = first; i < argc; ++i) {
         std::string arg = argv[i];
@@ -16,7 +16,7 @@ CommandLine::CommandLine(int argc, char** argv, int first, const std::vector<Opt
                 m_positional.push_back(arg);
                 continue;
             }
-            throw CliError{kUsage, "unexpected argument '" + arg + "' (options start with --)"};
+            throw CliError{ kUsage, "unexpected argument '" + arg + "' (options start with --)" };
         }
         std::string name = arg.substr(2);
         std::optional<std::string> value;
@@ -29,14 +29,14 @@ CommandLine::CommandLine(int argc, char** argv, int first, const std::vector<Opt
             if (o.name == name)
                 spec = &o;
         if (!spec)
-            throw CliError{kUsage, "unknown option --" + name + " (see --help)"};
+            throw CliError{ kUsage, "unknown option --" + name + " (see --help)" };
         if (spec->valueName.empty()) {
             if (value)
-                throw CliError{kUsage, "--" + name + " takes no value"};
+                throw CliError{ kUsage, "--" + name + " takes no value" };
             value = "";
         } else if (!value) {
             if (i + 1 >= argc)
-                throw CliError{kUsage, "--" + name + " needs a value (" + spec->valueName + ")"};
+                throw CliError{ kUsage, "--" + name + " needs a value (" + spec->valueName + ")" };
             value = argv[++i];
         }
         if (!m_values.count(name))
@@ -62,10 +62,10 @@ long long CommandLine::integer(const std::string& name, long long fallback, long
     errno = 0;
     const long long n = std::strtoll(value->c_str(), &end, 10);
     if (value->empty() || end != value->c_str() + value->size() || errno == ERANGE)
-        throw CliError{kBadInput, "--" + name + ": '" + *value + "' is not a whole number"};
+        throw CliError{ kBadInput, "--" + name + ": '" + *value + "' is not a whole number" };
     if (n < minimum || n > maximum)
-        throw CliError{kBadInput, "--" + name + ": " + *value + " is outside " + std::to_string(minimum) + ".." +
-                                      std::to_string(maximum)};
+        throw CliError{ kBadInput,
+            "--" + name + ": " + *value + " is outside " + std::to_string(minimum) + ".." + std::to_string(maximum) };
     return n;
 }
 
@@ -77,7 +77,7 @@ double CommandLine::real(const std::string& name, double fallback) const
     char* end = nullptr;
     const double d = std::strtod(value->c_str(), &end);
     if (value->empty() || end != value->c_str() + value->size())
-        throw CliError{kBadInput, "--" + name + ": '" + *value + "' is not a number"};
+        throw CliError{ kBadInput, "--" + name + ": '" + *value + "' is not a number" };
     return d;
 }
 
@@ -89,7 +89,7 @@ void CommandLine::applyParameters(ParameterValues& values) const
             continue;
         const double value = real(name, 0.0);
         if (std::string error = values.set(info->id, value); !error.empty())
-            throw CliError{kBadInput, "--" + error};
+            throw CliError{ kBadInput, "--" + error };
     }
 }
 
@@ -103,7 +103,7 @@ std::vector<OptionSpec> parameterOptions()
         if (!p.unit.empty())
             help << " " << p.unit;
         help << ", default " << p.defaultValue << "]";
-        options.push_back({std::string(p.key), p.kind == ParamKind::Toggle ? "0|1" : "NUMBER", help.str()});
+        options.push_back({ std::string(p.key), p.kind == ParamKind::Toggle ? "0|1" : "NUMBER", help.str() });
     }
     return options;
 }
@@ -122,4 +122,4 @@ std::string describeOptions(const std::vector<OptionSpec>& options)
     return out.str();
 }
 
-}  // namespace wisp::cli
+} // namespace wisp::cli

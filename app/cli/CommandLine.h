@@ -19,8 +19,8 @@ struct CliError {
 };
 
 struct OptionSpec {
-    std::string name;  // without the dashes
-    std::string valueName;  // empty: a flag without a value
+    std::string name; // without the dashes
+    std::string valueName; // empty: a flag without a value
     std::string help;
 };
 
@@ -53,4 +53,4 @@ std::vector<OptionSpec> parameterOptions();
 // Formats a usage block: "  --name VALUE   help".
 std::string describeOptions(const std::vector<OptionSpec>& options);
 
-}  // namespace wisp::cli
+} // namespace wisp::cli

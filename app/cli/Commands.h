@@ -10,4 +10,4 @@ int runValidate(int argc, char** argv);
 int runBake(int argc, char** argv);
 int runStyle(int argc, char** argv);
 
-}  // namespace wisp::cli
+} // namespace wisp::cli

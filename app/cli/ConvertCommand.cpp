@@ -22,16 +22,16 @@ std::string joined(const std::vector<std::string>& extensions)
     return s;
 }
 
-}  // namespace
+} // namespace
 
 int runConvert(int argc, char** argv)
 {
     const std::vector<OptionSpec> options = {
-        {"help", "", "show this help"},
-        {"head", "FILE", "a head mesh to write beside the strands (.gltf, .glb and .obj outputs)"},
-        {"scale", "FACTOR", "multiply every coordinate, strands and head alike (default 1: kept as stored)"},
-        {"root-width", "METRES", "glTF _WIDTH at each root (default 0.00008)"},
-        {"tip-width", "METRES", "glTF _WIDTH at each tip (default 0.00002)"},
+        { "help", "", "show this help" },
+        { "head", "FILE", "a head mesh to write beside the strands (.gltf, .glb and .obj outputs)" },
+        { "scale", "FACTOR", "multiply every coordinate, strands and head alike (default 1: kept as stored)" },
+        { "root-width", "METRES", "glTF _WIDTH at each root (default 0.00008)" },
+        { "tip-width", "METRES", "glTF _WIDTH at each tip (default 0.00002)" },
     };
     const CommandLine args(argc, argv, 2, options, 2);
     if (args.has("help")) {
@@ -43,14 +43,14 @@ int runConvert(int argc, char** argv)
         return kSuccess;
     }
     if (args.positional().size() != 2)
-        throw CliError{kUsage, "needs IN and OUT files (see --help)"};
+        throw CliError{ kUsage, "needs IN and OUT files (see --help)" };
     const std::string& in = args.positional()[0];
     const std::string& out = args.positional()[1];
     checkOutputPath(out, "OUT", io::hairWriteExtensions());
 
     io::Result<io::HairReadResult> hair = io::readHair(in);
     if (!hair)
-        throw CliError{kBadInput, hair.error().toString()};
+        throw CliError{ kBadInput, hair.error().toString() };
     for (const std::string& warning : hair.value().warnings)
         std::cerr << "wisp-cli convert: " << in << ": " << warning << "\n";
     io::HairExportOptions export_;
@@ -58,13 +58,13 @@ int runConvert(int argc, char** argv)
     export_.tipWidthMetres = static_cast<float>(args.real("tip-width", export_.tipWidthMetres));
     const double scale = args.real("scale", 1.0);
     if (!(scale > 0.0 && scale < 1e6))
-        throw CliError{kBadInput, "--scale: " + *args.text("scale") + " must be a positive factor"};
+        throw CliError{ kBadInput, "--scale: " + *args.text("scale") + " must be a positive factor" };
     // The head is written as stored, like the strands: files made together stay together.
     std::optional<TriangleMesh> head;
     if (const auto path = args.text("head")) {
         io::Result<io::MeshReadResult> read = io::readMesh(*path);
         if (!read)
-            throw CliError{kBadInput, read.error().toString()};
+            throw CliError{ kBadInput, read.error().toString() };
         head = std::move(read).value().mesh;
         for (glm::vec3& p : head->positions)
             p *= static_cast<float>(scale);
@@ -74,10 +74,10 @@ int runConvert(int argc, char** argv)
     for (glm::vec3& p : strands.positions)
         p *= static_cast<float>(scale);
     if (const io::Result<void> written = io::writeHair(out, strands, export_); !written)
-        throw CliError{kBadInput, written.error().toString()};
+        throw CliError{ kBadInput, written.error().toString() };
     std::cout << "converted " << strands.strandCount() << " strands (" << strands.positions.size() << " points) from "
               << in << " to " << out << "\n";
     return kSuccess;
 }
 
-}  // namespace wisp::cli
+} // namespace wisp::cli

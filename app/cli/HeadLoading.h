@@ -20,7 +20,7 @@ struct LoadedHead {
 // once placed). Throws CliError{kBadInput} naming the file and the problem; prints the reader's warnings to
 // stderr prefixed with `command`.
 // `up`: the file's up axis as given on the command line, or nullopt to find it from the shape.
-LoadedHead loadHead(const std::string& path, std::optional<double> scale, std::optional<io::Axis> up,
-                    const std::string& command);
+LoadedHead loadHead(
+    const std::string& path, std::optional<double> scale, std::optional<io::Axis> up, const std::string& command);
 
-}  // namespace wisp::cli
+} // namespace wisp::cli

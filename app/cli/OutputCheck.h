@@ -13,4 +13,4 @@ namespace wisp::cli {
 // or its folder does not exist, is not a folder, or cannot be written to.
 void checkOutputPath(const std::string& path, const std::string& what, const std::vector<std::string>& extensions);
 
-}  // namespace wisp::cli
+} // namespace wisp::cli

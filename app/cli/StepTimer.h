@@ -10,7 +10,7 @@ namespace wisp::cli {
 class StepTimer {
 public:
     void start() { m_start = std::chrono::steady_clock::now(); }
-    double stop()  // milliseconds since start()
+    double stop() // milliseconds since start()
     {
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - m_start).count();
         m_samples.push_back(ms);
@@ -40,4 +40,4 @@ private:
     std::vector<double> m_samples;
 };
 
-}  // namespace wisp::cli
+} // namespace wisp::cli

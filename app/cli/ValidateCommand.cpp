@@ -55,14 +55,14 @@ void validateHead(const std::string& path)
 {
     io::Result<io::MeshReadResult> read = io::readMesh(path);
     if (!read)
-        throw CliError{kBadInput, read.error().toString()};
+        throw CliError{ kBadInput, read.error().toString() };
     const TriangleMesh& asRead = read.value().mesh;
     std::cout << path << ": head mesh, " << asRead.positions.size() << " vertices, " << asRead.triangles.size()
               << " triangles, " << size(boundsOf(asRead)) << " file units\n";
     // The same steps as `simulate --head`: placed, checked (io::checkPlacedHead), then the groom and
     // collider built with the default parameters, so what validate accepts simulate can use.
     TriangleMesh placed = asRead;
-    io::HeadPlacementSettings settings;  // as simulate and the editor place it
+    io::HeadPlacementSettings settings; // as simulate and the editor place it
     if (io::formatFixesUpAxis(path))
         settings.up = io::Axis::PosY;
     const io::HeadPlacement placement = io::placeHead(placed, settings);
@@ -70,10 +70,10 @@ void validateHead(const std::string& path)
     if (!placement.note.empty())
         std::cout << "  check: " << placement.note << "\n";
     if (std::string problem = io::checkPlacedHead(placed); !problem.empty())
-        throw CliError{kBadInput, path + ": " + problem};
+        throw CliError{ kBadInput, path + ": " + problem };
     HairSimulation sim(1);
     if (std::string error = sim.setup(placed, scalpGrowth(placed), ParameterValues{}); !error.empty())
-        throw CliError{kBadInput, path + ": " + error};
+        throw CliError{ kBadInput, path + ": " + error };
     std::cout << "  default groom: " << sim.groom().strandCount() << " strands\n";
     printWarnings(read.value().warnings);
     printWarnings(sim.groomWarnings());
@@ -83,7 +83,7 @@ void validateHair(const std::string& path)
 {
     io::Result<io::HairReadResult> read = io::readHair(path);
     if (!read)
-        throw CliError{kBadInput, read.error().toString()};
+        throw CliError{ kBadInput, read.error().toString() };
     const HairCurves& c = read.value().strands;
     std::uint32_t fewest = c.strandCount() ? ~0u : 0, most = 0;
     for (std::size_t s = 0; s < c.strandCount(); ++s) {
@@ -92,7 +92,7 @@ void validateHair(const std::string& path)
     }
     Aabb box;
     if (!c.positions.empty())
-        box = {c.positions.front(), c.positions.front()};
+        box = { c.positions.front(), c.positions.front() };
     for (const glm::vec3& p : c.positions) {
         box.min = glm::min(box.min, p);
         box.max = glm::max(box.max, p);
@@ -116,25 +116,26 @@ void validateProject(const std::string& path)
 {
     io::Result<io::ProjectReadResult> read = io::readProject(path, io::readHeadFile);
     if (!read)
-        throw CliError{kBadInput, read.error().toString()};
+        throw CliError{ kBadInput, read.error().toString() };
     const io::Project& p = read.value().project;
     std::cout << path << ": project, head " << (p.headEmbedded ? "embedded" : "from " + p.headSource) << " ("
               << p.head.positions.size() << " vertices, " << p.head.triangles.size() << " triangles), "
               << p.regions.size() << " region(s)";
     for (const GrowthRegion& r : p.regions)
         std::cout << (&r == &p.regions.front() ? ": " : ", ") << r.name
-                  << (r.importedStrands ? " (" + std::to_string(r.importedStrands->strandCount()) + " imported strands)" : "");
+                  << (r.importedStrands ? " (" + std::to_string(r.importedStrands->strandCount()) + " imported strands)"
+                                        : "");
     if (!p.style.empty())
         std::cout << "; " << p.style.size() << " styled strand(s)";
     std::cout << "\n";
     printWarnings(read.value().warnings);
 }
 
-}  // namespace
+} // namespace
 
 int runValidate(int argc, char** argv)
 {
-    const std::vector<OptionSpec> options = {{"help", "", "show this help"}};
+    const std::vector<OptionSpec> options = { { "help", "", "show this help" } };
     const CommandLine args(argc, argv, 2, options, 1);
     if (args.has("help") || args.positional().empty()) {
         (args.has("help") ? std::cout : std::cerr)
@@ -161,16 +162,17 @@ int runValidate(int argc, char** argv)
             if (preset.error().toString().find("this is a Wisp project") != std::string::npos)
                 validateProject(path);
             else
-                throw CliError{kBadInput, preset.error().toString()};
+                throw CliError{ kBadInput, preset.error().toString() };
         } else {
             validatePreset(preset.value(), path);
         }
     } else {
-        throw CliError{kBadInput, path + ": Wisp does not know the extension '." + ext +
-                                      "' (heads .obj .ply .off .stl .gltf .glb; hair .hair .data; presets .json; "
-                                      "projects .wisp)"};
+        throw CliError{ kBadInput,
+            path + ": Wisp does not know the extension '." + ext
+                + "' (heads .obj .ply .off .stl .gltf .glb; hair .hair .data; presets .json; "
+                  "projects .wisp)" };
     }
     return kSuccess;
 }
 
-}  // namespace wisp::cli
+} // namespace wisp::cli

@@ -8,21 +8,21 @@
 
 namespace {
 
-const char* kUsage =
-    "usage: wisp-cli COMMAND [options]\n"
-    "\n"
-    "commands:\n"
-    "  simulate   groom a head, simulate N steps, write the strands, print timings\n"
-    "  bench      time the solver on standard workloads (table, or --json lines)\n"
-    "  convert    hair from one format to another: wisp-cli convert IN OUT\n"
-    "  validate   say what a head, hair, preset or project file holds, or what is wrong with it\n"
-    "  bake       simulate frames with the head moving, write USD (.usda) or a .hair sequence\n"
-    "  style      replay a salon brush stroke on a project: wisp-cli style PROJECT --brush comb --stroke ...\n"
-    "\n"
-    "'wisp-cli COMMAND --help' lists a command's options.\n"
-    "exit status: 0 success, 1 bad input (a file or a value), 2 wrong usage\n";
+const char* kUsage
+    = "usage: wisp-cli COMMAND [options]\n"
+      "\n"
+      "commands:\n"
+      "  simulate   groom a head, simulate N steps, write the strands, print timings\n"
+      "  bench      time the solver on standard workloads (table, or --json lines)\n"
+      "  convert    hair from one format to another: wisp-cli convert IN OUT\n"
+      "  validate   say what a head, hair, preset or project file holds, or what is wrong with it\n"
+      "  bake       simulate frames with the head moving, write USD (.usda) or a .hair sequence\n"
+      "  style      replay a salon brush stroke on a project: wisp-cli style PROJECT --brush comb --stroke ...\n"
+      "\n"
+      "'wisp-cli COMMAND --help' lists a command's options.\n"
+      "exit status: 0 success, 1 bad input (a file or a value), 2 wrong usage\n";
 
-}  // namespace
+} // namespace
 
 int main(int argc, char** argv)
 {
@@ -51,7 +51,7 @@ int main(int argc, char** argv)
     } catch (const wisp::cli::CliError& e) {
         std::cerr << "wisp-cli " << command << ": " << e.message << "\n";
         return e.exitCode;
-    } catch (const std::exception& e) {  // out of memory and the like: say so rather than abort
+    } catch (const std::exception& e) { // out of memory and the like: say so rather than abort
         std::cerr << "wisp-cli " << command << ": " << e.what() << "\n";
         return wisp::cli::kBadInput;
     }

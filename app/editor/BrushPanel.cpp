@@ -18,7 +18,7 @@ namespace {
 // A slider-and-spin-box row over a tool setting's range (toolSettingRange), shown in `unitScale`
 // units of it (100: metres as centimetres).
 SliderRow* settingRow(ToolSetting setting, double unitScale, int decimals, double step, const QString& suffix,
-                      const QString& tip, const QString& name)
+    const QString& tip, const QString& name)
 {
     SliderRowSpec spec;
     spec.range = toolSettingRange(setting);
@@ -32,9 +32,11 @@ SliderRow* settingRow(ToolSetting setting, double unitScale, int decimals, doubl
     return new SliderRow(std::move(spec));
 }
 
-}  // namespace
+} // namespace
 
-BrushPanel::BrushPanel(PaintTool* tool, QWidget* parent) : QWidget(parent), m_tool(tool)
+BrushPanel::BrushPanel(PaintTool* tool, QWidget* parent)
+    : QWidget(parent)
+    , m_tool(tool)
 {
     auto* form = new QFormLayout(this);
     m_paint = new QPushButton(tr("Paint growth"));
@@ -51,14 +53,14 @@ BrushPanel::BrushPanel(PaintTool* tool, QWidget* parent) : QWidget(parent), m_to
     form->addRow(tr("Mode"), m_mode);
 
     m_radius = settingRow(ToolSetting::BrushRadius, 100.0, 2, 0.25, tr(" cm"),
-                          tr("Brush radius on the head, in centimetres ([ and ] change it)"), QStringLiteral("brush_radius"));
+        tr("Brush radius on the head, in centimetres ([ and ] change it)"), QStringLiteral("brush_radius"));
     form->addRow(tr("Radius"), m_radius);
     m_strength = settingRow(ToolSetting::BrushStrength, 1.0, 2, 0.05, QString(),
-                            tr("Share of the way to the target a dab moves a weight, 0..1"), QStringLiteral("brush_strength"));
+        tr("Share of the way to the target a dab moves a weight, 0..1"), QStringLiteral("brush_strength"));
     form->addRow(tr("Strength"), m_strength);
     m_falloff = settingRow(ToolSetting::BrushFalloff, 1.0, 2, 0.05, QString(),
-                           tr("0: full strength to the rim; 1: fades smoothly from the centre to the rim"),
-                           QStringLiteral("brush_falloff"));
+        tr("0: full strength to the rim; 1: fades smoothly from the centre to the rim"),
+        QStringLiteral("brush_falloff"));
     form->addRow(tr("Falloff"), m_falloff);
     m_mirror = new QCheckBox(tr("X mirror"));
     m_mirror->setToolTip(tr("Paint both sides of the head at once (symmetry across the head's mid-plane)"));
@@ -108,8 +110,17 @@ void BrushPanel::showSettings()
     m_updating = false;
 }
 
-QDoubleSpinBox* BrushPanel::radiusBox() const { return m_radius->spinBox(); }
-QDoubleSpinBox* BrushPanel::strengthBox() const { return m_strength->spinBox(); }
-QDoubleSpinBox* BrushPanel::falloffBox() const { return m_falloff->spinBox(); }
+QDoubleSpinBox* BrushPanel::radiusBox() const
+{
+    return m_radius->spinBox();
+}
+QDoubleSpinBox* BrushPanel::strengthBox() const
+{
+    return m_strength->spinBox();
+}
+QDoubleSpinBox* BrushPanel::falloffBox() const
+{
+    return m_falloff->spinBox();
+}
 
-}  // namespace wisp
+} // namespace wisp

@@ -51,4 +51,4 @@ private:
     bool m_updating = false;
 };
 
-}  // namespace wisp
+} // namespace wisp

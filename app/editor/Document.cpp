@@ -20,9 +20,10 @@ GrowthRegion firstRegion(std::vector<float> weights)
     return r;
 }
 
-}  // namespace
+} // namespace
 
-Document::Document(QObject* parent) : QObject(parent)
+Document::Document(QObject* parent)
+    : QObject(parent)
 {
     DefaultHead d = makeDefaultHead();
     m_head = std::make_shared<const HeadModel>(std::move(d.mesh));
@@ -79,8 +80,8 @@ QString Document::editRegionParameter(int index, Param id, double value, bool dr
     ParameterValues check = r.values;
     if (std::string error = check.set(id, value); !error.empty())
         return QString::fromStdString(error);
-    m_undoStack.push(new SetRegionParameterCommand(this, r.id, QString::fromStdString(r.name), id, r.values.get(id),
-                                                   check.get(id), dragging));
+    m_undoStack.push(new SetRegionParameterCommand(
+        this, r.id, QString::fromStdString(r.name), id, r.values.get(id), check.get(id), dragging));
     return {};
 }
 
@@ -91,14 +92,14 @@ int Document::addRegion(const QString& name)
     r.id = nextRegionId();
     r.name = name.toStdString();
     r.weights.assign(head().positions.size(), 0.0f);
-    if (m_current >= 0) {  // a new layer starts from the look being edited, as artists expect
+    if (m_current >= 0) { // a new layer starts from the look being edited, as artists expect
         r.values = region(m_current).values;
         r.rootColour = region(m_current).rootColour;
         r.tipColour = region(m_current).tipColour;
     }
     after.push_back(std::move(r));
-    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
-                                           tr("Add region %1").arg(name)));
+    m_undoStack.push(
+        new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId, tr("Add region %1").arg(name)));
     setCurrentRegion(regionCount() - 1);
     return m_current;
 }
@@ -110,8 +111,8 @@ void Document::removeRegion(int index)
     std::vector<GrowthRegion> after = m_regions;
     const std::uint32_t id = after[static_cast<std::size_t>(index)].id;
     after.erase(after.begin() + index);
-    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId == id ? kNoSolo : m_soloId,
-                                           tr("Remove region %1").arg(QString::fromStdString(region(index).name))));
+    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after),
+        m_soloId == id ? kNoSolo : m_soloId, tr("Remove region %1").arg(QString::fromStdString(region(index).name))));
 }
 
 void Document::renameRegion(int index, const QString& name)
@@ -120,8 +121,8 @@ void Document::renameRegion(int index, const QString& name)
         return;
     std::vector<GrowthRegion> after = m_regions;
     after[static_cast<std::size_t>(index)].name = name.trimmed().toStdString();
-    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
-                                           tr("Rename region to %1").arg(name.trimmed())));
+    m_undoStack.push(new SetRegionsCommand(
+        this, m_regions, m_soloId, std::move(after), m_soloId, tr("Rename region to %1").arg(name.trimmed())));
 }
 
 void Document::moveRegion(int from, int to)
@@ -134,7 +135,7 @@ void Document::moveRegion(int from, int to)
     after.insert(after.begin() + to, std::move(moved));
     const bool wasCurrent = m_current == from;
     m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
-                                           tr("Move region %1").arg(QString::fromStdString(region(from).name))));
+        tr("Move region %1").arg(QString::fromStdString(region(from).name))));
     if (wasCurrent)
         setCurrentRegion(to);
 }
@@ -147,7 +148,7 @@ void Document::setRegionVisible(int index, bool visible)
     after[static_cast<std::size_t>(index)].visible = visible;
     const QString name = QString::fromStdString(region(index).name);
     m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
-                                           visible ? tr("Show region %1").arg(name) : tr("Hide region %1").arg(name)));
+        visible ? tr("Show region %1").arg(name) : tr("Hide region %1").arg(name)));
 }
 
 void Document::setSoloRegion(std::uint32_t id)
@@ -156,8 +157,9 @@ void Document::setSoloRegion(std::uint32_t id)
         return;
     if (id == m_soloId)
         return;
-    const QString text = id == kNoSolo ? tr("End solo")
-                                       : tr("Solo region %1").arg(QString::fromStdString(region(indexOfRegion(id)).name));
+    const QString text = id == kNoSolo
+        ? tr("End solo")
+        : tr("Solo region %1").arg(QString::fromStdString(region(indexOfRegion(id)).name));
     m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, m_regions, id, text));
 }
 
@@ -173,7 +175,7 @@ void Document::setRegionColours(int index, const glm::vec3& root, const glm::vec
     after[static_cast<std::size_t>(index)].rootColour = r;
     after[static_cast<std::size_t>(index)].tipColour = t;
     m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
-                                           tr("Colour region %1").arg(QString::fromStdString(region(index).name))));
+        tr("Colour region %1").arg(QString::fromStdString(region(index).name))));
 }
 
 // --- Strokes ----------------------------------------------------------------------------------
@@ -218,16 +220,17 @@ void Document::endStroke(const QString& text)
     m_strokeBefore.clear();
     m_strokeBefore.shrink_to_fit();
     if (!vertices.empty())
-        m_undoStack.push(new PaintStrokeCommand(this, id, std::move(vertices), std::move(before), std::move(after), text));
+        m_undoStack.push(
+            new PaintStrokeCommand(this, id, std::move(vertices), std::move(before), std::move(after), text));
 }
 
 void Document::replaceHead(TriangleMesh head, std::vector<float> growthWeights, const QString& name,
-                           const QString& source, const io::HeadPlacement& placement)
+    const QString& source, const io::HeadPlacement& placement)
 {
-    std::vector<GrowthRegion> regions{firstRegion(std::move(growthWeights))};
-    auto* command = new ReplaceHeadCommand(this, m_head, m_regions, std::make_shared<const HeadModel>(std::move(head)),
-                                           std::move(regions), name);
-    command->setOrigins({m_headSource, m_headPlacement}, {source, placement});
+    std::vector<GrowthRegion> regions{ firstRegion(std::move(growthWeights)) };
+    auto* command = new ReplaceHeadCommand(
+        this, m_head, m_regions, std::make_shared<const HeadModel>(std::move(head)), std::move(regions), name);
+    command->setOrigins({ m_headSource, m_headPlacement }, { source, placement });
     if (m_style->empty()) {
         m_undoStack.push(command);
         return;
@@ -261,7 +264,7 @@ void Document::applyPreset(const io::Preset& preset)
         if (p.group != ParamGroup::Wisp)
             parameters.set(p.id, preset.parameters.get(p.id));
     m_undoStack.push(new ApplyLookCommand(this, m_parameters, m_regions, parameters, std::move(after),
-                                          tr("Apply preset %1").arg(QString::fromStdString(preset.name))));
+        tr("Apply preset %1").arg(QString::fromStdString(preset.name))));
 }
 
 io::Preset Document::toPreset(const QString& name) const
@@ -270,7 +273,7 @@ io::Preset Document::toPreset(const QString& name) const
     preset.name = name.toStdString();
     preset.parameters = m_parameters;
     for (const GrowthRegion& r : m_regions)
-        preset.regions.push_back({r.name, r.values, r.rootColour, r.tipColour});
+        preset.regions.push_back({ r.name, r.values, r.rootColour, r.tipColour });
     return preset;
 }
 
@@ -283,8 +286,8 @@ int Document::addImportedHair(std::shared_ptr<const HairCurves> strands, const Q
     r.weights.assign(head().positions.size(), 0.0f);
     r.importedStrands = std::move(strands);
     after.push_back(std::move(r));
-    m_undoStack.push(new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId,
-                                           tr("Import hair %1").arg(name)));
+    m_undoStack.push(
+        new SetRegionsCommand(this, m_regions, m_soloId, std::move(after), m_soloId, tr("Import hair %1").arg(name)));
     setCurrentRegion(regionCount() - 1);
     return m_current;
 }
@@ -294,7 +297,7 @@ io::Project Document::toProject() const
     io::Project p;
     p.head = head();
     p.headSource = m_headSource.toStdString();
-    p.headEmbedded = true;  // a project opens even when the head file has moved
+    p.headEmbedded = true; // a project opens even when the head file has moved
     p.headImportScale = m_headPlacement.scale;
     p.headImportOffset = m_headPlacement.offset;
     p.headImportUp = m_headPlacement.up;
@@ -449,7 +452,7 @@ void Document::applyRegions(std::vector<GrowthRegion> regions, std::uint32_t sol
     // The current index is valid before anyone hears of the change; its own signal follows.
     const int stillThere = indexOfRegion(currentId);
     const int current = m_regions.empty() ? -1
-                        : stillThere >= 0 ? stillThere
+        : stillThere >= 0                 ? stillThere
                                           : std::min(std::max(m_current, 0), regionCount() - 1);
     const bool currentMoved = current != m_current;
     m_current = current;
@@ -458,8 +461,8 @@ void Document::applyRegions(std::vector<GrowthRegion> regions, std::uint32_t sol
         emit currentRegionChanged(m_current);
 }
 
-void Document::applyRegionWeights(std::uint32_t regionId, const std::vector<std::uint32_t>& vertices,
-                                  const std::vector<float>& values)
+void Document::applyRegionWeights(
+    std::uint32_t regionId, const std::vector<std::uint32_t>& vertices, const std::vector<float>& values)
 {
     const int index = indexOfRegion(regionId);
     if (index < 0)
@@ -495,4 +498,4 @@ void Document::applyHead(HeadModelPtr head, std::vector<GrowthRegion> regions)
     emit currentRegionChanged(m_current);
 }
 
-}  // namespace wisp
+} // namespace wisp

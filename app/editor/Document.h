@@ -8,11 +8,11 @@
 #include "io/HeadPlacement.h"
 #include "io/PresetFile.h"
 #include "io/ProjectFile.h"
-#include "sim/groom/GrowthRegion.h"
 #include "sim/geometry/HeadModel.h"
+#include "sim/geometry/TriangleMesh.h"
+#include "sim/groom/GrowthRegion.h"
 #include "sim/params/Parameters.h"
 #include "sim/style/StyleEdits.h"
-#include "sim/geometry/TriangleMesh.h"
 
 #include <QObject>
 #include <QString>
@@ -41,8 +41,8 @@ public:
     const std::vector<GrowthRegion>& regions() const { return m_regions; }
     int regionCount() const { return static_cast<int>(m_regions.size()); }
     const GrowthRegion& region(int index) const { return m_regions[static_cast<std::size_t>(index)]; }
-    int indexOfRegion(std::uint32_t id) const;  // -1 if none has it
-    std::uint32_t soloRegion() const { return m_soloId; }  // kNoSolo when none is solo'd
+    int indexOfRegion(std::uint32_t id) const; // -1 if none has it
+    std::uint32_t soloRegion() const { return m_soloId; } // kNoSolo when none is solo'd
 
     // The region the wisp panel edits and the brush paints (selection: not an edit, not undoable).
     // -1 only when there is no region.
@@ -61,18 +61,18 @@ public:
     // the current region. Returns its index.
     int addRegion(const QString& name);
     void removeRegion(int index);
-    void renameRegion(int index, const QString& name);  // an empty name is refused (nothing pushed)
+    void renameRegion(int index, const QString& name); // an empty name is refused (nothing pushed)
     void moveRegion(int from, int to);
     void setRegionVisible(int index, bool visible);
-    void setSoloRegion(std::uint32_t id);  // kNoSolo ends solo
+    void setSoloRegion(std::uint32_t id); // kNoSolo ends solo
     void setRegionColours(int index, const glm::vec3& root, const glm::vec3& tip);
 
     // A brush stroke on the current region's mask: begin, any number of live updates (the hair
     // follows each), end. The whole stroke is one undo step holding only the weights it changed.
     // A stroke that changed nothing leaves no step.
     void beginStroke();
-    std::vector<float>& strokeWeights();  // the current region's weights, to change during a stroke
-    void strokeUpdated();                 // after changing them: emits regionWeightsChanged
+    std::vector<float>& strokeWeights(); // the current region's weights, to change during a stroke
+    void strokeUpdated(); // after changing them: emits regionWeightsChanged
     void endStroke(const QString& text);
     bool inStroke() const { return m_strokeRegion >= 0; }
 
@@ -84,15 +84,15 @@ public:
     // step holding only the strands it changed; a stroke that changed nothing leaves none.
     void beginStyleStroke();
     StyleEdits& strokeStyle();
-    void styleStrokeUpdated();  // emits styleChanged
-    int endStyleStroke(const QString& text);  // returns how many strands the stroke changed
+    void styleStrokeUpdated(); // emits styleChanged
+    int endStyleStroke(const QString& text); // returns how many strands the stroke changed
     bool inStyleStroke() const { return m_styleStroke.has_value(); }
 
     // Replaces the head as one undo step; its regions start over as one region grown where
     // `growthWeights` say. `source` is the file it came from (empty: built in) and `placement`
     // how it was brought to metres, +Y up and centred (io/HeadPlacement.h).
     void replaceHead(TriangleMesh head, std::vector<float> growthWeights, const QString& name,
-                     const QString& source = {}, const io::HeadPlacement& placement = {});
+        const QString& source = {}, const io::HeadPlacement& placement = {});
 
     // Applies a preset as one undo step: every global parameter, and each region's wisp
     // parameters and colours from the preset's region of the same index (regions beyond the
@@ -117,12 +117,12 @@ public:
     // --- For commands only: apply without touching the undo stack -------------------------------
     void applyParameter(Param id, double value);
     void applyRegionParameter(std::uint32_t regionId, Param id, double value);
-    void applyRegions(std::vector<GrowthRegion> regions, std::uint32_t soloId);  // structure changes
-    void applyRegionWeights(std::uint32_t regionId, const std::vector<std::uint32_t>& vertices,
-                            const std::vector<float>& values);
+    void applyRegions(std::vector<GrowthRegion> regions, std::uint32_t soloId); // structure changes
+    void applyRegionWeights(
+        std::uint32_t regionId, const std::vector<std::uint32_t>& vertices, const std::vector<float>& values);
     void applyHead(HeadModelPtr head, std::vector<GrowthRegion> regions);
     void applyHeadOrigin(const QString& source, const io::HeadPlacement& placement);
-    void applyLook(const ParameterValues& parameters, std::vector<GrowthRegion> regions);  // presets
+    void applyLook(const ParameterValues& parameters, std::vector<GrowthRegion> regions); // presets
     // Per strand identity, the style it gets (nullopt: no edit).
     using StyleChanges = std::map<std::uint64_t, std::optional<StrandStyle>>;
     void applyStyleChanges(const StyleChanges& changes);
@@ -130,16 +130,16 @@ public:
 
 signals:
     void parameterChanged(wisp::Param id);
-    void parametersReplaced();                   // every global parameter may have changed (preset, project)
-    void headChanged();                          // head and all regions replaced
-    void regionsChanged();                       // added, removed, renamed, reordered, shown, hidden, solo'd, recoloured
+    void parametersReplaced(); // every global parameter may have changed (preset, project)
+    void headChanged(); // head and all regions replaced
+    void regionsChanged(); // added, removed, renamed, reordered, shown, hidden, solo'd, recoloured
     void regionParameterChanged(int index, wisp::Param id);
     void regionWeightsChanged(std::uint32_t regionId);
     void currentRegionChanged(int index);
-    void styleChanged();                         // the salon edits changed
+    void styleChanged(); // the salon edits changed
 
 private:
-    HeadModelPtr m_head;  // never null
+    HeadModelPtr m_head; // never null
     QString m_headSource;
     io::HeadPlacement m_headPlacement;
     ParameterValues m_parameters;
@@ -149,9 +149,9 @@ private:
     int m_strokeRegion = -1;
     std::vector<float> m_strokeBefore;
     StyleEditsPtr m_style = std::make_shared<const StyleEdits>();
-    std::optional<StyleEdits> m_styleStroke;  // the edits being changed by a styling stroke
-    StyleEditsPtr m_styleBefore;              // and as they were when it began
+    std::optional<StyleEdits> m_styleStroke; // the edits being changed by a styling stroke
+    StyleEditsPtr m_styleBefore; // and as they were when it began
     QUndoStack m_undoStack;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -12,24 +12,31 @@ QString labelOf(Param id)
     return QString::fromUtf8(p.label.data(), static_cast<int>(p.label.size()));
 }
 
-}  // namespace
+} // namespace
 
 SetParameterCommand::SetParameterCommand(Document* document, Param id, double oldValue, double newValue, bool open)
-    : m_document(document), m_param(id), m_old(oldValue), m_new(newValue), m_open(open)
+    : m_document(document)
+    , m_param(id)
+    , m_old(oldValue)
+    , m_new(newValue)
+    , m_open(open)
 {
     setText(QStringLiteral("Set %1 to %2").arg(labelOf(id)).arg(newValue));
 }
 
-void SetParameterCommand::undo() { m_document->applyParameter(m_param, m_old); }
+void SetParameterCommand::undo()
+{
+    m_document->applyParameter(m_param, m_old);
+}
 void SetParameterCommand::redo()
 {
     m_document->applyParameter(m_param, m_new);
-    setObsolete(m_new == m_old);  // a gesture that ends where it began leaves no undo step
+    setObsolete(m_new == m_old); // a gesture that ends where it began leaves no undo step
 }
 
 bool SetParameterCommand::mergeWith(const QUndoCommand* other)
 {
-    const auto* next = static_cast<const SetParameterCommand*>(other);  // same id() means same class and parameter
+    const auto* next = static_cast<const SetParameterCommand*>(other); // same id() means same class and parameter
     if (!m_open || next->m_param != m_param)
         return false;
     m_new = next->m_new;
@@ -40,10 +47,14 @@ bool SetParameterCommand::mergeWith(const QUndoCommand* other)
 }
 
 SetRegionParameterCommand::SetRegionParameterCommand(Document* document, std::uint32_t regionId,
-                                                     const QString& regionName, Param id, double oldValue,
-                                                     double newValue, bool open)
-    : m_document(document), m_region(regionId), m_regionName(regionName), m_param(id), m_old(oldValue), m_new(newValue),
-      m_open(open)
+    const QString& regionName, Param id, double oldValue, double newValue, bool open)
+    : m_document(document)
+    , m_region(regionId)
+    , m_regionName(regionName)
+    , m_param(id)
+    , m_old(oldValue)
+    , m_new(newValue)
+    , m_open(open)
 {
     updateText();
 }
@@ -53,7 +64,10 @@ void SetRegionParameterCommand::updateText()
     setText(QStringLiteral("Set %1 of %2 to %3").arg(labelOf(m_param), m_regionName).arg(m_new));
 }
 
-void SetRegionParameterCommand::undo() { m_document->applyRegionParameter(m_region, m_param, m_old); }
+void SetRegionParameterCommand::undo()
+{
+    m_document->applyRegionParameter(m_region, m_param, m_old);
+}
 void SetRegionParameterCommand::redo()
 {
     m_document->applyRegionParameter(m_region, m_param, m_new);
@@ -73,20 +87,32 @@ bool SetRegionParameterCommand::mergeWith(const QUndoCommand* other)
 }
 
 SetRegionsCommand::SetRegionsCommand(Document* document, std::vector<GrowthRegion> before, std::uint32_t soloBefore,
-                                     std::vector<GrowthRegion> after, std::uint32_t soloAfter, const QString& text)
-    : m_document(document), m_before(std::move(before)), m_after(std::move(after)), m_soloBefore(soloBefore),
-      m_soloAfter(soloAfter)
+    std::vector<GrowthRegion> after, std::uint32_t soloAfter, const QString& text)
+    : m_document(document)
+    , m_before(std::move(before))
+    , m_after(std::move(after))
+    , m_soloBefore(soloBefore)
+    , m_soloAfter(soloAfter)
 {
     setText(text);
 }
 
-void SetRegionsCommand::undo() { m_document->applyRegions(m_before, m_soloBefore); }
-void SetRegionsCommand::redo() { m_document->applyRegions(m_after, m_soloAfter); }
+void SetRegionsCommand::undo()
+{
+    m_document->applyRegions(m_before, m_soloBefore);
+}
+void SetRegionsCommand::redo()
+{
+    m_document->applyRegions(m_after, m_soloAfter);
+}
 
 PaintStrokeCommand::PaintStrokeCommand(Document* document, std::uint32_t regionId, std::vector<std::uint32_t> vertices,
-                                       std::vector<float> before, std::vector<float> after, const QString& text)
-    : m_document(document), m_region(regionId), m_vertices(std::move(vertices)), m_before(std::move(before)),
-      m_after(std::move(after))
+    std::vector<float> before, std::vector<float> after, const QString& text)
+    : m_document(document)
+    , m_region(regionId)
+    , m_vertices(std::move(vertices))
+    , m_before(std::move(before))
+    , m_after(std::move(after))
 {
     setText(text);
 }
@@ -99,16 +125,18 @@ void PaintStrokeCommand::undo()
 
 void PaintStrokeCommand::redo()
 {
-    if (m_applied)  // pushed after the stroke was painted live: nothing to do the first time
+    if (m_applied) // pushed after the stroke was painted live: nothing to do the first time
         return;
     m_document->applyRegionWeights(m_region, m_vertices, m_after);
     m_applied = true;
 }
 
 StyleStrokeCommand::StyleStrokeCommand(Document* document, std::map<std::uint64_t, std::optional<StrandStyle>> before,
-                                       std::map<std::uint64_t, std::optional<StrandStyle>> after, const QString& text,
-                                       bool applied)
-    : m_document(document), m_before(std::move(before)), m_after(std::move(after)), m_applied(applied)
+    std::map<std::uint64_t, std::optional<StrandStyle>> after, const QString& text, bool applied)
+    : m_document(document)
+    , m_before(std::move(before))
+    , m_after(std::move(after))
+    , m_applied(applied)
 {
     setText(text);
 }
@@ -128,9 +156,12 @@ void StyleStrokeCommand::redo()
 }
 
 ReplaceHeadCommand::ReplaceHeadCommand(Document* document, HeadModelPtr oldHead, std::vector<GrowthRegion> oldRegions,
-                                       HeadModelPtr newHead, std::vector<GrowthRegion> newRegions, const QString& name)
-    : m_document(document), m_oldHead(std::move(oldHead)), m_newHead(std::move(newHead)),
-      m_oldRegions(std::move(oldRegions)), m_newRegions(std::move(newRegions))
+    HeadModelPtr newHead, std::vector<GrowthRegion> newRegions, const QString& name)
+    : m_document(document)
+    , m_oldHead(std::move(oldHead))
+    , m_newHead(std::move(newHead))
+    , m_oldRegions(std::move(oldRegions))
+    , m_newRegions(std::move(newRegions))
 {
     setText(QStringLiteral("Load head %1").arg(name));
 }
@@ -154,15 +185,24 @@ void ReplaceHeadCommand::redo()
 }
 
 ApplyLookCommand::ApplyLookCommand(Document* document, ParameterValues parametersBefore,
-                                   std::vector<GrowthRegion> regionsBefore, ParameterValues parametersAfter,
-                                   std::vector<GrowthRegion> regionsAfter, const QString& text)
-    : m_document(document), m_parametersBefore(std::move(parametersBefore)), m_parametersAfter(std::move(parametersAfter)),
-      m_regionsBefore(std::move(regionsBefore)), m_regionsAfter(std::move(regionsAfter))
+    std::vector<GrowthRegion> regionsBefore, ParameterValues parametersAfter, std::vector<GrowthRegion> regionsAfter,
+    const QString& text)
+    : m_document(document)
+    , m_parametersBefore(std::move(parametersBefore))
+    , m_parametersAfter(std::move(parametersAfter))
+    , m_regionsBefore(std::move(regionsBefore))
+    , m_regionsAfter(std::move(regionsAfter))
 {
     setText(text);
 }
 
-void ApplyLookCommand::undo() { m_document->applyLook(m_parametersBefore, m_regionsBefore); }
-void ApplyLookCommand::redo() { m_document->applyLook(m_parametersAfter, m_regionsAfter); }
+void ApplyLookCommand::undo()
+{
+    m_document->applyLook(m_parametersBefore, m_regionsBefore);
+}
+void ApplyLookCommand::redo()
+{
+    m_document->applyLook(m_parametersAfter, m_regionsAfter);
+}
 
-}  // namespace wisp
+} // namespace wisp

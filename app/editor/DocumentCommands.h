@@ -3,11 +3,11 @@
 // Commands name regions by id, not index, so they stay right after reordering.
 
 #include "io/HeadPlacement.h"
-#include "sim/groom/GrowthRegion.h"
 #include "sim/geometry/HeadModel.h"
+#include "sim/geometry/TriangleMesh.h"
+#include "sim/groom/GrowthRegion.h"
 #include "sim/params/Parameters.h"
 #include "sim/style/StyleEdits.h"
-#include "sim/geometry/TriangleMesh.h"
 
 #include <QUndoCommand>
 
@@ -35,14 +35,14 @@ private:
     Param m_param;
     double m_old;
     double m_new;
-    bool m_open;  // the gesture is still going on: the next edit of this parameter merges here
+    bool m_open; // the gesture is still going on: the next edit of this parameter merges here
 };
 
 // A Wisp-group parameter of one region; merges like SetParameterCommand (same region and parameter).
 class SetRegionParameterCommand : public QUndoCommand {
 public:
     SetRegionParameterCommand(Document* document, std::uint32_t regionId, const QString& regionName, Param id,
-                              double oldValue, double newValue, bool open);
+        double oldValue, double newValue, bool open);
     void undo() override;
     void redo() override;
     int id() const override { return kMergeIdBase + static_cast<int>(m_param); }
@@ -66,7 +66,7 @@ private:
 class SetRegionsCommand : public QUndoCommand {
 public:
     SetRegionsCommand(Document* document, std::vector<GrowthRegion> before, std::uint32_t soloBefore,
-                      std::vector<GrowthRegion> after, std::uint32_t soloAfter, const QString& text);
+        std::vector<GrowthRegion> after, std::uint32_t soloAfter, const QString& text);
     void undo() override;
     void redo() override;
 
@@ -81,7 +81,7 @@ private:
 class PaintStrokeCommand : public QUndoCommand {
 public:
     PaintStrokeCommand(Document* document, std::uint32_t regionId, std::vector<std::uint32_t> vertices,
-                       std::vector<float> before, std::vector<float> after, const QString& text);
+        std::vector<float> before, std::vector<float> after, const QString& text);
     void undo() override;
     void redo() override;
 
@@ -98,7 +98,7 @@ private:
 class StyleStrokeCommand : public QUndoCommand {
 public:
     StyleStrokeCommand(Document* document, std::map<std::uint64_t, std::optional<StrandStyle>> before,
-                       std::map<std::uint64_t, std::optional<StrandStyle>> after, const QString& text, bool applied);
+        std::map<std::uint64_t, std::optional<StrandStyle>> after, const QString& text, bool applied);
     void undo() override;
     void redo() override;
 
@@ -112,7 +112,7 @@ class ReplaceHeadCommand : public QUndoCommand {
 public:
     // The heads are shared, not copied: undo and redo swap them without rebuilding their BVHs.
     ReplaceHeadCommand(Document* document, HeadModelPtr oldHead, std::vector<GrowthRegion> oldRegions,
-                       HeadModelPtr newHead, std::vector<GrowthRegion> newRegions, const QString& name);
+        HeadModelPtr newHead, std::vector<GrowthRegion> newRegions, const QString& name);
     struct Origin {
         QString source;
         io::HeadPlacement placement;
@@ -132,7 +132,7 @@ private:
 class ApplyLookCommand : public QUndoCommand {
 public:
     ApplyLookCommand(Document* document, ParameterValues parametersBefore, std::vector<GrowthRegion> regionsBefore,
-                     ParameterValues parametersAfter, std::vector<GrowthRegion> regionsAfter, const QString& text);
+        ParameterValues parametersAfter, std::vector<GrowthRegion> regionsAfter, const QString& text);
     void undo() override;
     void redo() override;
 
@@ -142,4 +142,4 @@ private:
     std::vector<GrowthRegion> m_regionsBefore, m_regionsAfter;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -39,7 +39,8 @@ QString ExportHairDialog::fileFilter()
     return tr("cyHair (*.hair);;USC-HairSalon (*.data);;OBJ polylines (*.obj);;glTF (*.gltf);;binary glTF (*.glb)");
 }
 
-ExportHairDialog::ExportHairDialog(QWidget* parent) : QDialog(parent)
+ExportHairDialog::ExportHairDialog(QWidget* parent)
+    : QDialog(parent)
 {
     setWindowTitle(tr("Export Hair"));
     auto* layout = new QVBoxLayout(this);
@@ -90,15 +91,25 @@ ExportHairDialog::ExportHairDialog(QWidget* parent) : QDialog(parent)
             m_path->setText(chosen);
     });
     const auto updateOk = [this, buttons] {
-        buttons->button(QDialogButtonBox::Ok)->setEnabled(io::hairFormatForPath(m_path->text().toStdString()).has_value());
+        buttons->button(QDialogButtonBox::Ok)
+            ->setEnabled(io::hairFormatForPath(m_path->text().toStdString()).has_value());
     };
     connect(m_path, &QLineEdit::textChanged, this, updateOk);
     updateOk();
 }
 
-QString ExportHairDialog::path() const { return m_path->text(); }
-void ExportHairDialog::setPath(const QString& path) { m_path->setText(path); }
+QString ExportHairDialog::path() const
+{
+    return m_path->text();
+}
+void ExportHairDialog::setPath(const QString& path)
+{
+    m_path->setText(path);
+}
 
-HairExportChoice ExportHairDialog::choice() const { return {m_rest->isChecked(), m_keys->isChecked()}; }
+HairExportChoice ExportHairDialog::choice() const
+{
+    return { m_rest->isChecked(), m_keys->isChecked() };
+}
 
-}  // namespace wisp
+} // namespace wisp

@@ -14,8 +14,8 @@ class QRadioButton;
 namespace wisp {
 
 struct HairExportChoice {
-    bool restPose = false;  // false: the frame as it is now
-    bool keysOnly = false;  // false: every drawn strand
+    bool restPose = false; // false: the frame as it is now
+    bool keysOnly = false; // false: every drawn strand
 };
 
 // The strands an export writes, from a published frame (world space) or its groom's rest pose
@@ -34,7 +34,7 @@ public:
     QRadioButton* restPoseButton() const { return m_rest; }
     QRadioButton* keysOnlyButton() const { return m_keys; }
 
-    static QString fileFilter();  // for the file dialog
+    static QString fileFilter(); // for the file dialog
 
 private:
     QLineEdit* m_path = nullptr;
@@ -42,4 +42,4 @@ private:
     QRadioButton* m_keys = nullptr;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -15,9 +15,9 @@
 
 #include <QAbstractButton>
 #include <QAction>
+#include <QActionGroup>
 #include <QDateTime>
 #include <QDir>
-#include <QActionGroup>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QInputDialog>
@@ -39,11 +39,16 @@ QString patternsOf(const std::vector<std::string>& extensions)
     return patterns.join(' ');
 }
 
-}  // namespace
+} // namespace
 
 FileMenu::FileMenu(QMainWindow* window, Document* document, SimulationHost* simulation, Viewport* viewport)
-    : QObject(window), m_window(window), m_document(document), m_simulation(simulation), m_viewport(viewport),
-      m_projects(new ProjectController(document, viewport, window)), m_importer(new HeadImporter(window))
+    : QObject(window)
+    , m_window(window)
+    , m_document(document)
+    , m_simulation(simulation)
+    , m_viewport(viewport)
+    , m_projects(new ProjectController(document, viewport, window))
+    , m_importer(new HeadImporter(window))
 {
     buildMenu();
     connect(m_projects, &ProjectController::message, this, &FileMenu::message);
@@ -64,7 +69,7 @@ void FileMenu::buildMenu()
     m_menu->addAction(tr("&Save"), QKeySequence::Save, this, [this] { m_projects->save(); });
     m_saveAs = m_menu->addAction(tr("Save &As…"), this, [this] { m_projects->saveAs(); });
     // Ctrl+Shift+S everywhere: the platform's Save As keys are empty on some desktops (KDE, plain X11).
-    QList<QKeySequence> saveAsKeys{QKeySequence(tr("Ctrl+Shift+S"))};
+    QList<QKeySequence> saveAsKeys{ QKeySequence(tr("Ctrl+Shift+S")) };
     for (const QKeySequence& key : QKeySequence::keyBindings(QKeySequence::SaveAs))
         if (!saveAsKeys.contains(key))
             saveAsKeys.push_back(key);
@@ -96,13 +101,14 @@ void FileMenu::buildMenu()
     m_upMenu->actions().front()->setToolTip(
         tr("Find up and the face from the head itself: its mirror symmetry, its nose, the skull above the nose"));
     m_upMenu->addSeparator();
-    for (io::Axis up : {io::Axis::PosY, io::Axis::PosZ, io::Axis::NegZ, io::Axis::PosX, io::Axis::NegX, io::Axis::NegY})
+    for (io::Axis up :
+        { io::Axis::PosY, io::Axis::PosZ, io::Axis::NegZ, io::Axis::PosX, io::Axis::NegX, io::Axis::NegY })
         addUp(QString::fromLatin1(io::axisName(up)), up);
     m_upMenu->actions().front()->setChecked(true);
     m_menu->addSeparator();
     m_menu->addAction(tr("&Import Hair…"), this, [this] {
-        const QString path = QFileDialog::getOpenFileName(m_window, tr("Import Hair"), QString(),
-                                                          tr("Hair (%1)").arg(patternsOf(io::hairReadExtensions())));
+        const QString path = QFileDialog::getOpenFileName(
+            m_window, tr("Import Hair"), QString(), tr("Hair (%1)").arg(patternsOf(io::hairReadExtensions())));
         if (!path.isEmpty())
             importHair(path);
     });
@@ -139,7 +145,10 @@ bool FileMenu::openAny(const QString& path)
     return openHead(path);
 }
 
-bool FileMenu::openHead(const QString& path) { return m_importer->start(path); }
+bool FileMenu::openHead(const QString& path)
+{
+    return m_importer->start(path);
+}
 
 void FileMenu::takeHead(const std::shared_ptr<const ImportedHead>& head)
 {
@@ -151,10 +160,10 @@ void FileMenu::takeHead(const std::shared_ptr<const ImportedHead>& head)
     m_upMenu->setEnabled(!io::formatFixesUpAxis(head->path.toStdString()));
     TriangleMesh mesh = head->mesh;
     std::vector<float> weights = scalpGrowth(mesh);
-    m_document->replaceHead(std::move(mesh), std::move(weights), QFileInfo(head->path).fileName(), head->path,
-                            head->placement);
-    QString text = QFileInfo(head->path).fileName() + QStringLiteral(": ") +
-                   QString::fromStdString(io::describePlacement(head->placement));
+    m_document->replaceHead(
+        std::move(mesh), std::move(weights), QFileInfo(head->path).fileName(), head->path, head->placement);
+    QString text = QFileInfo(head->path).fileName() + QStringLiteral(": ")
+        + QString::fromStdString(io::describePlacement(head->placement));
     if (!head->placement.note.empty())
         text += QStringLiteral(" · ") + tr("check: %1").arg(QString::fromStdString(head->placement.note));
     if (!head->warnings.isEmpty())
@@ -165,13 +174,12 @@ void FileMenu::takeHead(const std::shared_ptr<const ImportedHead>& head)
 void FileMenu::changeHeadScale()
 {
     if (!m_lastHead) {
-        QMessageBox::information(m_window, tr("Head Scale"),
-                                 tr("The scale applies to a head opened from a file (File ▸ Open Head)."));
+        QMessageBox::information(
+            m_window, tr("Head Scale"), tr("The scale applies to a head opened from a file (File ▸ Open Head)."));
         return;
     }
     bool ok = false;
-    const double scale = QInputDialog::getDouble(
-        m_window, tr("Head Scale"),
+    const double scale = QInputDialog::getDouble(m_window, tr("Head Scale"),
         tr("%1\nMetres per file unit (0.001 millimetres, 0.01 centimetres, 1 metres):")
             .arg(QString::fromStdString(io::describePlacement(m_lastHead->placement))),
         m_lastHead->placement.scale, 1e-6, 1e3, 6, &ok);
@@ -217,8 +225,8 @@ QString FileMenu::importHair(const QString& path)
     // with them: the head's placement brings both to Wisp's metres, +Y up; on the built-in head
     // only their unit is guessed. The same function as wisp-cli simulate --hair.
     const bool headFromFile = !m_document->headSource().isEmpty();
-    const io::StrandPlacement placed =
-        io::placeStrands(result.strands, headFromFile ? &m_document->headPlacement() : nullptr);
+    const io::StrandPlacement placed
+        = io::placeStrands(result.strands, headFromFile ? &m_document->headPlacement() : nullptr);
     auto strands = std::make_shared<const HairCurves>(std::move(result.strands));
     m_document->addImportedHair(strands, QFileInfo(path).fileName());
     QString text = tr("Imported %1 strands from %2: %3")
@@ -237,7 +245,7 @@ QString FileMenu::exportHair(const QString& path, bool restPose, bool keysOnly)
     const FramePtr frame = m_simulation->latestFrame();
     if (!frame)
         return tr("there is no hair to export yet");
-    const HairCurves strands = strandsForExport(*frame, {restPose, keysOnly});
+    const HairCurves strands = strandsForExport(*frame, { restPose, keysOnly });
     io::HairExportOptions options;
     options.head = &m_document->head();
     if (const io::Result<void> written = io::writeHair(path.toStdString(), strands, options); !written)
@@ -265,12 +273,13 @@ void FileMenu::offerRecovery()
         return;
     const QString project = m_projects->recoveryProjectPath();
     const QString when = QFileInfo(m_projects->recoveryAutosavePath()).lastModified().toString(Qt::TextDate);
-    const QString question =
-        project.isEmpty()
-            ? tr("Wisp did not close properly last time. Recover the untitled project it saved automatically "
-                 "(%1)?").arg(when)
-            : tr("Wisp did not close properly last time. Recover the unsaved changes to %1 that it saved "
-                 "automatically (%2)?").arg(QDir::toNativeSeparators(project), when);
+    const QString question = project.isEmpty()
+        ? tr("Wisp did not close properly last time. Recover the untitled project it saved automatically "
+             "(%1)?")
+              .arg(when)
+        : tr("Wisp did not close properly last time. Recover the unsaved changes to %1 that it saved "
+             "automatically (%2)?")
+              .arg(QDir::toNativeSeparators(project), when);
     RecoveryAnswer answer = RecoveryAnswer::Later;
     if (m_recoveryPrompt) {
         answer = m_recoveryPrompt(question);
@@ -278,12 +287,12 @@ void FileMenu::offerRecovery()
         QMessageBox box(QMessageBox::Question, tr("Recover work"), question, QMessageBox::NoButton, m_window);
         QAbstractButton* recover = box.addButton(tr("Recover"), QMessageBox::AcceptRole);
         QAbstractButton* discard = box.addButton(QMessageBox::Discard);
-        box.addButton(tr("Later"), QMessageBox::RejectRole);  // Esc: keep it for the next start
+        box.addButton(tr("Later"), QMessageBox::RejectRole); // Esc: keep it for the next start
         box.setDefaultButton(qobject_cast<QPushButton*>(recover));
         box.exec();
-        answer = box.clickedButton() == recover   ? RecoveryAnswer::Recover
-                 : box.clickedButton() == discard ? RecoveryAnswer::Discard
-                                                  : RecoveryAnswer::Later;
+        answer = box.clickedButton() == recover ? RecoveryAnswer::Recover
+            : box.clickedButton() == discard    ? RecoveryAnswer::Discard
+                                                : RecoveryAnswer::Later;
     }
     if (answer == RecoveryAnswer::Recover)
         m_projects->recover();
@@ -291,4 +300,4 @@ void FileMenu::offerRecovery()
         m_projects->discardRecovery();
 }
 
-}  // namespace wisp
+} // namespace wisp

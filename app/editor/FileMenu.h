@@ -38,8 +38,8 @@ public:
     QMenu* menu() const { return m_menu; }
     ProjectController* projects() const { return m_projects; }
     HeadImporter* headImporter() const { return m_importer; }
-    QAction* saveAsAction() const { return m_saveAs; }  // Ctrl+Shift+S
-    RenderActions* renderActions() const { return m_render; }  // Render Image…, Render Turntable…
+    QAction* saveAsAction() const { return m_saveAs; } // Ctrl+Shift+S
+    RenderActions* renderActions() const { return m_render; } // Render Image…, Render Turntable…
 
     // Opens whatever `path` is: a project (.wisp), else a head mesh. For `wisp FILE` and drops.
     bool openAny(const QString& path);
@@ -83,10 +83,10 @@ private:
     QMenu* m_recentMenu = nullptr;
     QAction* m_saveAs = nullptr;
     RenderActions* m_render = nullptr;
-    QMenu* m_upMenu = nullptr;  // Head Up Axis: "From Its Shape", then +Y, +Z, -Z, +X, -X, -Y
-    std::shared_ptr<const ImportedHead> m_lastHead;  // as read, to place again at another scale
+    QMenu* m_upMenu = nullptr; // Head Up Axis: "From Its Shape", then +Y, +Z, -Z, +X, -X, -Y
+    std::shared_ptr<const ImportedHead> m_lastHead; // as read, to place again at another scale
     bool m_interactive = true;
     RecoveryPrompt m_recoveryPrompt;
 };
 
-}  // namespace wisp
+} // namespace wisp

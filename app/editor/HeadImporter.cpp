@@ -15,13 +15,17 @@ namespace wisp {
 struct HeadImporter::Job {
     QString path;
     io::HeadPlacementSettings settings;
-    std::shared_ptr<ImportedHead> head;  // the result, or
-    QString error;                       // why there is none
-    std::atomic<bool> cancelled{false};
-    std::atomic<bool> done{false};
+    std::shared_ptr<ImportedHead> head; // the result, or
+    QString error; // why there is none
+    std::atomic<bool> cancelled{ false };
+    std::atomic<bool> done{ false };
 };
 
-HeadImporter::HeadImporter(QWidget* dialogParent) : QObject(dialogParent), m_dialogParent(dialogParent) {}
+HeadImporter::HeadImporter(QWidget* dialogParent)
+    : QObject(dialogParent)
+    , m_dialogParent(dialogParent)
+{
+}
 
 HeadImporter::~HeadImporter()
 {
@@ -43,9 +47,10 @@ bool HeadImporter::start(const QString& path, const io::HeadPlacementSettings& s
     m_job = job;
     m_finished = false;
 
-    m_progress = new QProgressDialog(tr("Reading %1…").arg(QFileInfo(path).fileName()), tr("Cancel"), 0, 0, m_dialogParent);
+    m_progress
+        = new QProgressDialog(tr("Reading %1…").arg(QFileInfo(path).fileName()), tr("Cancel"), 0, 0, m_dialogParent);
     m_progress->setWindowTitle(tr("Open Head"));
-    m_progress->setMinimumDuration(300);  // quick files never flash a dialog
+    m_progress->setMinimumDuration(300); // quick files never flash a dialog
     m_progress->setAttribute(Qt::WA_DeleteOnClose);
     connect(m_progress, &QProgressDialog::canceled, this, [this, job] {
         job->cancelled = true;
@@ -78,11 +83,12 @@ bool HeadImporter::start(const QString& path, const io::HeadPlacementSettings& s
                 else
                     job->head = std::move(head);
             }
-        } catch (const std::exception& e) {  // out of memory on a huge file
+        } catch (const std::exception& e) { // out of memory on a huge file
             job->error = job->path + QStringLiteral(": ") + QString::fromUtf8(e.what());
         }
         job->done = true;
-        QMetaObject::invokeMethod(this, [this, job] { deliver(job); }, Qt::QueuedConnection);
+        QMetaObject::invokeMethod(
+            this, [this, job] { deliver(job); }, Qt::QueuedConnection);
     });
     return true;
 }
@@ -93,7 +99,7 @@ void HeadImporter::deliver(std::shared_ptr<Job> job)
         return;
     const bool wanted = !job->cancelled;
     if (m_progress) {
-        m_progress->disconnect(this);  // closing a progress dialog emits canceled(): not the artist's
+        m_progress->disconnect(this); // closing a progress dialog emits canceled(): not the artist's
         m_progress->close();
         m_progress = nullptr;
     }
@@ -110,7 +116,7 @@ void HeadImporter::waitForFinished()
 {
     if (m_worker.joinable())
         m_worker.join();
-    QCoreApplication::sendPostedEvents(this);  // the queued delivery
+    QCoreApplication::sendPostedEvents(this); // the queued delivery
 }
 
-}  // namespace wisp
+} // namespace wisp

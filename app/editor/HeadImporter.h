@@ -26,10 +26,10 @@ class QWidget;
 namespace wisp {
 
 struct ImportedHead {
-    TriangleMesh mesh;            // placed: metres, centred, +Y up
-    TriangleMesh asRead;          // as the file holds it, to place again at another scale
+    TriangleMesh mesh; // placed: metres, centred, +Y up
+    TriangleMesh asRead; // as the file holds it, to place again at another scale
     io::HeadPlacement placement;
-    std::optional<io::Axis> chosenUp;  // the up axis the artist named; nullopt: from the shape
+    std::optional<io::Axis> chosenUp; // the up axis the artist named; nullopt: from the shape
     QString path;
     QStringList warnings;
 };
@@ -38,7 +38,7 @@ class HeadImporter : public QObject {
     Q_OBJECT
 public:
     explicit HeadImporter(QWidget* dialogParent);
-    ~HeadImporter() override;  // waits for a read still running
+    ~HeadImporter() override; // waits for a read still running
 
     // Starts reading; refused (false) while another read runs.
     bool start(const QString& path, const io::HeadPlacementSettings& settings = {});
@@ -61,4 +61,4 @@ private:
     bool m_finished = true;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -20,9 +20,8 @@ QString writePngAtomically(const QString& path, const QImage& image)
     buffer.open(QIODevice::WriteOnly);
     if (!image.save(&buffer, "PNG"))
         return path + QStringLiteral(": could not encode the image as PNG");
-    const io::Result<void> written = io::writeFileAtomically(path.toStdString(), [&bytes](std::ostream& out) {
-        out.write(bytes.constData(), static_cast<std::streamsize>(bytes.size()));
-    });
+    const io::Result<void> written = io::writeFileAtomically(path.toStdString(),
+        [&bytes](std::ostream& out) { out.write(bytes.constData(), static_cast<std::streamsize>(bytes.size())); });
     return written ? QString() : QString::fromStdString(written.error().toString());
 }
 
@@ -74,4 +73,4 @@ QSize parseImageSize(const QString& text, int maxSide, QString* error)
     return QSize(w, h);
 }
 
-}  // namespace wisp
+} // namespace wisp

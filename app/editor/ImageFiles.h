@@ -25,4 +25,4 @@ QString checkPngOutput(const QString& path);
 // "640x640" -> 640 x 640; each side 1..maxSide. Empty size and `error` set otherwise.
 QSize parseImageSize(const QString& text, int maxSide, QString* error);
 
-}  // namespace wisp
+} // namespace wisp

@@ -5,15 +5,15 @@
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
 #include "app/editor/FileMenu.h"
-#include "app/editor/ProjectController.h"
 #include "app/editor/PaintTool.h"
 #include "app/editor/PresetBrowser.h"
+#include "app/editor/ProjectController.h"
 #include "app/editor/RegionPanel.h"
 #include "app/editor/ShortcutsDialog.h"
-#include "app/editor/UndoShortcuts.h"
 #include "app/editor/SimulationHost.h"
 #include "app/editor/StylePanel.h"
 #include "app/editor/StyleTool.h"
+#include "app/editor/UndoShortcuts.h"
 #include "app/editor/WispPanel.h"
 #include "io/MeshReader.h"
 #include "sim/groom/GrowthMap.h"
@@ -22,8 +22,8 @@
 
 #include <QAction>
 #include <QActionGroup>
-#include <QCheckBox>
 #include <QApplication>
+#include <QCheckBox>
 #include <QCloseEvent>
 #include <QDockWidget>
 #include <QFileDialog>
@@ -34,8 +34,8 @@
 #include <QScrollArea>
 #include <QSettings>
 #include <QStatusBar>
-#include <QToolBar>
 #include <QTimer>
+#include <QToolBar>
 #include <QUndoStack>
 #include <QUndoView>
 
@@ -56,14 +56,15 @@ std::vector<Param> parametersIn(ParamGroup group)
 // drag, damping, stiffness, substeps), in that order, with what the hair collides with.
 std::vector<Param> forceParameters()
 {
-    return {Param::Gravity, Param::WindSpeed, Param::WindAzimuth, Param::WindElevation,
-            Param::Turbulence, Param::Drag, Param::Damping, Param::DryingTime, Param::Stiffness,
-            Param::GlobalShape, Param::Friction, Param::Volume, Param::HairFriction, Param::Body, Param::Substeps, Param::TimeStep, Param::SimulateAllStrands};
+    return { Param::Gravity, Param::WindSpeed, Param::WindAzimuth, Param::WindElevation, Param::Turbulence, Param::Drag,
+        Param::Damping, Param::DryingTime, Param::Stiffness, Param::GlobalShape, Param::Friction, Param::Volume,
+        Param::HairFriction, Param::Body, Param::Substeps, Param::TimeStep, Param::SimulateAllStrands };
 }
 
-}  // namespace
+} // namespace
 
-MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent)
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent)
 {
     setWindowTitle(QStringLiteral("Wisp"));
     m_document = new Document(this);
@@ -80,10 +81,12 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent)
     createDocks();
     connectSimulation();
     restoreSettings();
-    statusBar()->showMessage(tr("Space plays or pauses · Alt+drag or middle-drag orbits · Shift+middle-drag pans · "
-                                "wheel zooms · F frames the head · B paints where hair grows · C X G P W S D style the hair"));
+    statusBar()->showMessage(
+        tr("Space plays or pauses · Alt+drag or middle-drag orbits · Shift+middle-drag pans · "
+           "wheel zooms · F frames the head · B paints where hair grows · C X G P W S D style the hair"));
     showGrowthOverlay();
-    m_simulation->setScene(m_document->headModel(), m_document->regions(), m_document->soloRegion(), m_document->parameters());
+    m_simulation->setScene(
+        m_document->headModel(), m_document->regions(), m_document->soloRegion(), m_document->parameters());
     m_simulation->play();
 }
 
@@ -92,7 +95,7 @@ MainWindow::~MainWindow()
     // The children go after this body: the document's undo stack, clearing, must not call back
     // into a window that is half gone.
     m_document->undoStack()->disconnect(this);
-    m_document->undoStack()->disconnect(m_fileMenu->projects());  // it watches the stack for autosave
+    m_document->undoStack()->disconnect(m_fileMenu->projects()); // it watches the stack for autosave
     m_document->disconnect(this);
     m_fileMenu->projects()->disconnect(this);
 }
@@ -100,7 +103,8 @@ MainWindow::~MainWindow()
 void MainWindow::createActions()
 {
     m_fileMenu = new FileMenu(this, m_document, m_simulation, m_viewport);
-    connect(m_fileMenu, &FileMenu::message, this, [this](const QString& text) { statusBar()->showMessage(text, 8000); });
+    connect(
+        m_fileMenu, &FileMenu::message, this, [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     connect(m_fileMenu->projects(), &ProjectController::currentPathChanged, this, &MainWindow::updateTitle);
     connect(m_document->undoStack(), &QUndoStack::cleanChanged, this, [this] { updateTitle(); });
     updateTitle();
@@ -113,7 +117,7 @@ void MainWindow::createActions()
     redo->setShortcut(QKeySequence::Redo);
     edit->addAction(undo);
     edit->addAction(redo);
-    new UndoShortcuts(this);  // and from a spin box that has focus, unless it holds an edit of its own
+    new UndoShortcuts(this); // and from a spin box that has focus, unless it holds an edit of its own
 
     m_viewMenu = menuBar()->addMenu(tr("&View"));
     QAction* frame = m_viewMenu->addAction(tr("&Frame Head"), m_viewport, &Viewport::frameHead);
@@ -126,17 +130,18 @@ void MainWindow::createActions()
     m_densityMenu = m_viewMenu->addMenu(tr("Display &Density"));
     m_densityMenu->setToolTipsVisible(true);
     auto* densities = new QActionGroup(m_densityMenu);
-    for (const float density : {0.25f, 0.5f, 1.0f, 2.0f, 4.0f}) {
+    for (const float density : { 0.25f, 0.5f, 1.0f, 2.0f, 4.0f }) {
         QAction* action = m_densityMenu->addAction(QStringLiteral("%1×").arg(static_cast<double>(density)));
         action->setCheckable(true);
         action->setData(static_cast<double>(density));
-        action->setToolTip(density > 1.0f ? tr("Draw %1 strands for every simulated strand, interpolated between neighbours")
-                                                .arg(static_cast<double>(density))
-                                          : tr("Draw an even share of the strands, widened to keep the coverage"));
+        action->setToolTip(density > 1.0f
+                ? tr("Draw %1 strands for every simulated strand, interpolated between neighbours")
+                      .arg(static_cast<double>(density))
+                : tr("Draw an even share of the strands, widened to keep the coverage"));
         densities->addAction(action);
         connect(action, &QAction::triggered, this, [this, density] { m_viewport->setDisplayDensity(density); });
     }
-    const auto showDensity = [this] {  // a project may have brought another density
+    const auto showDensity = [this] { // a project may have brought another density
         for (QAction* action : m_densityMenu->actions())
             action->setChecked(action->data().toFloat() == m_viewport->displayDensity());
     };
@@ -212,8 +217,8 @@ void MainWindow::createActions()
     });
     help->addAction(tr("&About Wisp"), this, [this] {
         QMessageBox::about(this, tr("About Wisp"),
-                           tr("<b>Wisp</b> — hair styling and simulation.<br>Paint where hair grows, shape it into "
-                              "wisps, and watch it move under gravity and wind while you edit."));
+            tr("<b>Wisp</b> — hair styling and simulation.<br>Paint where hair grows, shape it into "
+               "wisps, and watch it move under gravity and wind while you edit."));
     });
 
     QToolBar* tools = addToolBar(tr("Simulation"));
@@ -235,8 +240,8 @@ void MainWindow::createActions()
     m_viewMenu->addAction(styling->toggleViewAction());
 }
 
-QDockWidget* MainWindow::addPanelDock(const QString& title, const QString& objectName, QWidget* panel,
-                                      Qt::DockWidgetArea area)
+QDockWidget* MainWindow::addPanelDock(
+    const QString& title, const QString& objectName, QWidget* panel, Qt::DockWidgetArea area)
 {
     auto* dock = new QDockWidget(title, this);
     dock->setObjectName(objectName);
@@ -257,25 +262,30 @@ void MainWindow::createDocks()
     m_wispPanel = new WispPanel(m_document);
     m_brushPanel = new BrushPanel(m_paintTool);
     m_presetBrowser = new PresetBrowser(m_document);
-    QDockWidget* forces = addPanelDock(tr("Forces"), QStringLiteral("forcesDock"), m_forcePanel, Qt::RightDockWidgetArea);
+    QDockWidget* forces
+        = addPanelDock(tr("Forces"), QStringLiteral("forcesDock"), m_forcePanel, Qt::RightDockWidgetArea);
     QDockWidget* groom = addPanelDock(tr("Groom"), QStringLiteral("groomDock"), m_groomPanel, Qt::RightDockWidgetArea);
     tabifyDockWidget(forces, groom);
     forces->raise();
-    QDockWidget* regions = addPanelDock(tr("Regions"), QStringLiteral("regionsDock"), m_regionPanel, Qt::LeftDockWidgetArea);
+    QDockWidget* regions
+        = addPanelDock(tr("Regions"), QStringLiteral("regionsDock"), m_regionPanel, Qt::LeftDockWidgetArea);
     QDockWidget* wisp = addPanelDock(tr("Wisp"), QStringLiteral("wispDock"), m_wispPanel, Qt::LeftDockWidgetArea);
     QDockWidget* brush = addPanelDock(tr("Brush"), QStringLiteral("brushDock"), m_brushPanel, Qt::LeftDockWidgetArea);
-    QDockWidget* styling = addPanelDock(tr("Styling"), QStringLiteral("stylingDock"), m_stylePanel, Qt::LeftDockWidgetArea);
-    QDockWidget* presets = addPanelDock(tr("Presets"), QStringLiteral("presetsDock"), m_presetBrowser, Qt::RightDockWidgetArea);
+    QDockWidget* styling
+        = addPanelDock(tr("Styling"), QStringLiteral("stylingDock"), m_stylePanel, Qt::LeftDockWidgetArea);
+    QDockWidget* presets
+        = addPanelDock(tr("Presets"), QStringLiteral("presetsDock"), m_presetBrowser, Qt::RightDockWidgetArea);
     tabifyDockWidget(groom, presets);
     forces->raise();
-    connect(m_presetBrowser, &PresetBrowser::message, this, [this](const QString& text) { statusBar()->showMessage(text, 8000); });
+    connect(m_presetBrowser, &PresetBrowser::message, this,
+        [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     splitDockWidget(regions, wisp, Qt::Vertical);
     tabifyDockWidget(wisp, brush);
     tabifyDockWidget(brush, styling);
     wisp->raise();
     connect(m_styleTool, &StyleTool::message, this, [this](const QString& text) {
         if (text.isEmpty())
-            statusBar()->clearMessage();  // a new stroke: the last one's news is old
+            statusBar()->clearMessage(); // a new stroke: the last one's news is old
         else
             statusBar()->showMessage(text, 5000);
     });
@@ -290,15 +300,17 @@ void MainWindow::createDocks()
 
     m_history = new QUndoView(m_document->undoStack());
     m_history->setEmptyLabel(tr("<opened>"));
-    QDockWidget* history = addPanelDock(tr("History"), QStringLiteral("historyDock"), m_history, Qt::RightDockWidgetArea);
+    QDockWidget* history
+        = addPanelDock(tr("History"), QStringLiteral("historyDock"), m_history, Qt::RightDockWidgetArea);
     history->hide();
     QAction* showHistory = history->toggleViewAction();
     showHistory->setText(tr("Undo &History"));
     m_editMenu->addSeparator();
     m_editMenu->addAction(showHistory);
-    connect(m_wispPanel, &WispPanel::editRefused, this, [this](const QString& why) { statusBar()->showMessage(why, 5000); });
+    connect(m_wispPanel, &WispPanel::editRefused, this,
+        [this](const QString& why) { statusBar()->showMessage(why, 5000); });
 
-    for (ParameterPanel* panel : {m_forcePanel, m_groomPanel}) {
+    for (ParameterPanel* panel : { m_forcePanel, m_groomPanel }) {
         connect(panel, &ParameterPanel::valueEdited, this, [this](Param id, double value, bool dragging) {
             const QString refusal = m_document->editParameter(id, value, dragging);
             if (!refusal.isEmpty())
@@ -318,8 +330,8 @@ void MainWindow::createDocks()
         m_viewport->setHead(m_document->head());
         showBody();
         m_viewport->frameHead();
-        m_simulation->setScene(m_document->headModel(), m_document->regions(), m_document->soloRegion(),
-                               m_document->parameters());
+        m_simulation->setScene(
+            m_document->headModel(), m_document->regions(), m_document->soloRegion(), m_document->parameters());
         showGrowthOverlay();
     });
     // Painting, wisp sliders and region edits regroom the running simulation.
@@ -338,8 +350,8 @@ void MainWindow::createDocks()
 // The viewport shows the body the simulation collides with (the same defaultBody), while it is on.
 void MainWindow::showBody()
 {
-    m_viewport->setBody(m_document->parameters().get(Param::Body) != 0.0 ? defaultBody(m_document->head())
-                                                                          : std::vector<Capsule>{});
+    m_viewport->setBody(
+        m_document->parameters().get(Param::Body) != 0.0 ? defaultBody(m_document->head()) : std::vector<Capsule>{});
 }
 
 // The growth weights' tint is for painting: it shows while the paint tool is up or when asked for
@@ -360,11 +372,13 @@ void MainWindow::showGrowthOverlay()
 
 void MainWindow::connectSimulation()
 {
-    connect(m_simulation, &SimulationHost::frameReady, this, [this] { m_viewport->setFrame(m_simulation->latestFrame()); },
-            Qt::QueuedConnection);
+    connect(
+        m_simulation, &SimulationHost::frameReady, this, [this] { m_viewport->setFrame(m_simulation->latestFrame()); },
+        Qt::QueuedConnection);
     connect(m_simulation, &SimulationHost::playingChanged, this, &MainWindow::updatePlayAction, Qt::QueuedConnection);
-    connect(m_simulation, &SimulationHost::errorOccurred, this,
-            [this](const QString& message) { statusBar()->showMessage(message, 8000); }, Qt::QueuedConnection);
+    connect(
+        m_simulation, &SimulationHost::errorOccurred, this,
+        [this](const QString& message) { statusBar()->showMessage(message, 8000); }, Qt::QueuedConnection);
 }
 
 void MainWindow::updatePlayAction(bool playing)
@@ -422,4 +436,4 @@ void MainWindow::closeEvent(QCloseEvent* event)
     event->accept();
 }
 
-}  // namespace wisp
+} // namespace wisp

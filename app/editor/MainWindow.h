@@ -45,9 +45,9 @@ public:
     QAction* resetAction() const { return m_reset; }
     QAction* paintAction() const { return m_paintAction; }
     QAction* overlayAction() const { return m_overlayAction; }
-    QAction* leaveToolAction() const { return m_leaveToolAction; }  // Esc
-    QAction* shortcutsAction() const { return m_shortcutsAction; }  // Help ▸ Keyboard Shortcuts
-    ShortcutsDialog* shortcutsDialog() const { return m_shortcutsDialog; }  // null until opened
+    QAction* leaveToolAction() const { return m_leaveToolAction; } // Esc
+    QAction* shortcutsAction() const { return m_shortcutsAction; } // Help ▸ Keyboard Shortcuts
+    ShortcutsDialog* shortcutsDialog() const { return m_shortcutsDialog; } // null until opened
     PaintTool* paintTool() const { return m_paintTool; }
     StyleTool* styleTool() const { return m_styleTool; }
     StylePanel* stylePanel() const { return m_stylePanel; }
@@ -70,10 +70,10 @@ private:
     void restoreSettings();
     void saveSettings() const;
     void updatePlayAction(bool playing);
-    void showGrowthOverlay();  // the current region's weights on the head
-    void showGrowthTint();     // whether the viewport shows them
+    void showGrowthOverlay(); // the current region's weights on the head
+    void showGrowthTint(); // whether the viewport shows them
     void showBody();
-    void updateTitle();        // the project's name, and * while it has unsaved changes
+    void updateTitle(); // the project's name, and * while it has unsaved changes
     QDockWidget* addPanelDock(const QString& title, const QString& objectName, QWidget* panel, Qt::DockWidgetArea area);
 
     Document* m_document = nullptr;
@@ -98,10 +98,10 @@ private:
     QAction* m_step = nullptr;
     QAction* m_reset = nullptr;
     QMenu* m_viewMenu = nullptr;
-    QMenu* m_densityMenu = nullptr;  // View ▸ Display Density
+    QMenu* m_densityMenu = nullptr; // View ▸ Display Density
     QMenu* m_editMenu = nullptr;
     FileMenu* m_fileMenu = nullptr;
     bool m_recoveryOffered = false;
 };
 
-}  // namespace wisp
+} // namespace wisp

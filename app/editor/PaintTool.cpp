@@ -19,19 +19,23 @@ namespace {
 // Dabs along a stroke this far apart, as a share of the radius: close enough that a fast stroke
 // leaves an even band, far enough that a slow one does not pile up dabs on one spot.
 constexpr float kDabSpacing = 0.25f;
-constexpr float kRadiusStep = 1.15f;  // [ and ] scale the radius by this
+constexpr float kRadiusStep = 1.15f; // [ and ] scale the radius by this
 
-}  // namespace
+} // namespace
 
 PaintTool::PaintTool(Document* document, Viewport* viewport, QObject* parent)
-    : ViewportBrush(viewport, parent), m_document(document)
+    : ViewportBrush(viewport, parent)
+    , m_document(document)
 {
     connect(m_document, &Document::headChanged, this, &PaintTool::endStroke);
 }
 
 PaintTool::~PaintTool() = default;
 
-float PaintTool::mirrorPlaneX() const { return m_document->headModel()->mirrorPlaneX(); }
+float PaintTool::mirrorPlaneX() const
+{
+    return m_document->headModel()->mirrorPlaneX();
+}
 
 void PaintTool::setActive(bool active)
 {
@@ -93,7 +97,7 @@ std::optional<PaintTool::Hit> PaintTool::hitAt(QPointF widgetPosition) const
     const auto hit = m_document->headModel()->hitAlong(ray.origin, ray.direction);
     if (!hit)
         return std::nullopt;
-    return Hit{hit->point, hit->normal};
+    return Hit{ hit->point, hit->normal };
 }
 
 // Held modifiers change the mode for as long as they are held: Ctrl erases, Shift smooths.
@@ -120,8 +124,8 @@ void PaintTool::showCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifie
     cursor.erase = modeFor(modifiers) == BrushMode::Erase;
     cursor.mirrored = m_settings.mirrorX;
     const float plane = mirrorPlaneX();
-    cursor.mirrorCentre = {2.0f * plane - hit->point.x, hit->point.y, hit->point.z};
-    cursor.mirrorNormal = {-hit->normal.x, hit->normal.y, hit->normal.z};
+    cursor.mirrorCentre = { 2.0f * plane - hit->point.x, hit->point.y, hit->point.z };
+    cursor.mirrorNormal = { -hit->normal.x, hit->normal.y, hit->normal.z };
     viewport()->setBrushCursor(cursor);
 }
 
@@ -157,7 +161,8 @@ bool PaintTool::resizeByKey(const QKeyEvent* e)
 {
     if (e->type() != QEvent::KeyPress || (e->key() != Qt::Key_BracketLeft && e->key() != Qt::Key_BracketRight))
         return false;
-    setRadius(e->key() == Qt::Key_BracketLeft ? m_settings.radiusMetres / kRadiusStep : m_settings.radiusMetres * kRadiusStep);
+    setRadius(e->key() == Qt::Key_BracketLeft ? m_settings.radiusMetres / kRadiusStep
+                                              : m_settings.radiusMetres * kRadiusStep);
     return true;
 }
 
@@ -176,7 +181,7 @@ bool PaintTool::beginStroke(QPointF position, Qt::KeyboardModifiers modifiers)
         return false;
     const std::optional<Hit> hit = hitAt(position);
     if (!hit)
-        return false;  // off the head: nothing to paint, and nothing else wants a left click
+        return false; // off the head: nothing to paint, and nothing else wants a left click
     m_document->beginStroke();
     dabAlong(*hit, modifiers);
     return true;
@@ -194,4 +199,4 @@ void PaintTool::finishStroke(QPointF, Qt::KeyboardModifiers)
     m_document->endStroke(tr("Paint stroke"));
 }
 
-}  // namespace wisp
+} // namespace wisp

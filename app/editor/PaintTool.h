@@ -46,7 +46,7 @@ public:
     // Where the cursor's ray meets the head (the styling tools use it too).
     struct Hit {
         glm::vec3 point;
-        glm::vec3 normal;  // unit, facing the camera
+        glm::vec3 normal; // unit, facing the camera
     };
     std::optional<Hit> hitAt(QPointF widgetPosition) const;
     // [ and ] make the brush smaller and larger, for every tool that shares these settings; true
@@ -81,7 +81,7 @@ private:
     Document* m_document;
     BrushSettings m_settings;
     bool m_active = false;
-    std::optional<glm::vec3> m_lastDab;  // of the stroke going on
+    std::optional<glm::vec3> m_lastDab; // of the stroke going on
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -37,9 +37,9 @@ namespace wisp {
 
 namespace {
 
-constexpr int kMarkSizePx = 16;          // the bundled mark
-constexpr int kIconSizePx = 48;          // the list's icons: thumbnails, or the mark until they come
-constexpr int kMaxFileStemChars = 64;    // file names stay short whatever the preset's name
+constexpr int kMarkSizePx = 16; // the bundled mark
+constexpr int kIconSizePx = 48; // the list's icons: thumbnails, or the mark until they come
+constexpr int kMaxFileStemChars = 64; // file names stay short whatever the preset's name
 
 // The "bundled" mark: a small filled square in `colour`. User presets get a blank icon of the
 // same size so that all names line up.
@@ -75,17 +75,19 @@ QString safeFileStem(const QString& name)
     if (stem.isEmpty())
         return QStringLiteral("preset");
     // Windows reserves these device names, with any extension.
-    static const QStringList reserved = {QStringLiteral("con"), QStringLiteral("prn"), QStringLiteral("aux"),
-                                         QStringLiteral("nul")};
+    static const QStringList reserved
+        = { QStringLiteral("con"), QStringLiteral("prn"), QStringLiteral("aux"), QStringLiteral("nul") };
     static const QRegularExpression port(QStringLiteral("^(com|lpt)[0-9]$"));
     if (reserved.contains(stem) || port.match(stem).hasMatch())
         stem += QStringLiteral("-preset");
     return stem;
 }
 
-}  // namespace
+} // namespace
 
-PresetBrowser::PresetBrowser(Document* document, QWidget* parent) : QWidget(parent), m_document(document)
+PresetBrowser::PresetBrowser(Document* document, QWidget* parent)
+    : QWidget(parent)
+    , m_document(document)
 {
     initPresetResources();
 
@@ -121,7 +123,8 @@ PresetBrowser::PresetBrowser(Document* document, QWidget* parent) : QWidget(pare
 
     connect(m_list, &QListWidget::currentRowChanged, this, &PresetBrowser::updateButtons);
     // Double-click or Enter (or a single click where the platform activates on one).
-    connect(m_list, &QListWidget::itemActivated, this, [this](QListWidgetItem* item) { applyPreset(m_list->row(item)); });
+    connect(
+        m_list, &QListWidget::itemActivated, this, [this](QListWidgetItem* item) { applyPreset(m_list->row(item)); });
     connect(m_apply, &QPushButton::clicked, this, &PresetBrowser::applyClicked);
     connect(m_save, &QPushButton::clicked, this, &PresetBrowser::saveClicked);
     connect(m_delete, &QPushButton::clicked, this, &PresetBrowser::deleteClicked);
@@ -154,7 +157,7 @@ PresetBrowser::Entry PresetBrowser::load(const QString& path, bool bundled)
         if (file.open(QIODevice::ReadOnly))
             result = io::parsePreset(file.readAll().toStdString(), path.toStdString());
         else
-            result = io::IoError{path.toStdString(), "", file.errorString().toStdString()};
+            result = io::IoError{ path.toStdString(), "", file.errorString().toStdString() };
     } else {
         result = io::readPreset(path.toStdString());
     }
@@ -186,7 +189,7 @@ void PresetBrowser::refresh()
     const auto scan = [&](const QString& folder, bool bundled) {
         std::vector<Entry> entries;
         const QDir dir(folder);
-        for (const QString& file : dir.entryList({QStringLiteral("*.json")}, QDir::Files | QDir::Readable))
+        for (const QString& file : dir.entryList({ QStringLiteral("*.json") }, QDir::Files | QDir::Readable))
             entries.push_back(load(dir.filePath(file), bundled));
         std::sort(entries.begin(), entries.end(), byName);
         return entries;
@@ -223,8 +226,8 @@ void PresetBrowser::addRow(const Entry& entry)
     if (file.open(QIODevice::ReadOnly))
         m_thumbnails->request(entry.path, file.readAll());
     QString tip = QString::fromStdString(entry.preset->description);
-    tip += (tip.isEmpty() ? QString() : QStringLiteral("\n")) +
-           (entry.bundled ? tr("Bundled with Wisp") : QDir::toNativeSeparators(entry.path));
+    tip += (tip.isEmpty() ? QString() : QStringLiteral("\n"))
+        + (entry.bundled ? tr("Bundled with Wisp") : QDir::toNativeSeparators(entry.path));
     item->setToolTip(tip);
 }
 
@@ -236,7 +239,7 @@ void PresetBrowser::showThumbnail(const QString& path, const QImage& thumbnail)
             continue;
         item->setData(kThumbnailRole, thumbnail);
         QPixmap pixmap = QPixmap::fromImage(thumbnail);
-        if (item->data(kBundledRole).toBool()) {  // the bundled mark in its corner
+        if (item->data(kBundledRole).toBool()) { // the bundled mark in its corner
             QPainter painter(&pixmap);
             bundledMark(m_list->palette().color(QPalette::Highlight)).paint(&painter, 0, 0, kMarkSizePx, kMarkSizePx);
         }
@@ -341,8 +344,9 @@ void PresetBrowser::applyClicked()
 void PresetBrowser::saveClicked()
 {
     bool ok = false;
-    const QString name =
-        QInputDialog::getText(this, tr("Save Preset"), tr("Preset name:"), QLineEdit::Normal, QString(), &ok).trimmed();
+    const QString name
+        = QInputDialog::getText(this, tr("Save Preset"), tr("Preset name:"), QLineEdit::Normal, QString(), &ok)
+              .trimmed();
     if (!ok)
         return;
     if (name.isEmpty()) {
@@ -351,8 +355,7 @@ void PresetBrowser::saveClicked()
     }
     bool overwrite = false;
     if (QFileInfo::exists(userPresetPath(name))) {
-        const auto answer = QMessageBox::question(
-            this, tr("Save Preset"),
+        const auto answer = QMessageBox::question(this, tr("Save Preset"),
             tr("A preset saved as %1 already exists. Replace it?").arg(QFileInfo(userPresetPath(name)).fileName()),
             QMessageBox::Yes | QMessageBox::No, QMessageBox::No);
         if (answer != QMessageBox::Yes)
@@ -367,8 +370,7 @@ void PresetBrowser::deleteClicked()
     const int row = m_list->currentRow();
     if (row < 0 || m_entries[static_cast<std::size_t>(row)].bundled)
         return;
-    const auto answer = QMessageBox::question(
-        this, tr("Delete Preset"),
+    const auto answer = QMessageBox::question(this, tr("Delete Preset"),
         tr("Delete the preset “%1”? Its file is removed.").arg(m_entries[static_cast<std::size_t>(row)].displayName),
         QMessageBox::Yes | QMessageBox::No, QMessageBox::No);
     if (answer == QMessageBox::Yes)
@@ -381,4 +383,4 @@ void PresetBrowser::showFolderClicked()
     QDesktopServices::openUrl(QUrl::fromLocalFile(userFolder()));
 }
 
-}  // namespace wisp
+} // namespace wisp

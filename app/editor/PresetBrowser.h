@@ -41,10 +41,10 @@ public:
     explicit PresetBrowser(Document* document, QWidget* parent = nullptr);
 
     // Item data the rows carry besides their name and tooltip.
-    static constexpr int kPathRole = Qt::UserRole;           // QString: ":/presets/x.json" or the user file
-    static constexpr int kBundledRole = Qt::UserRole + 1;    // bool
-    static constexpr int kErrorRole = Qt::UserRole + 2;      // QString: why it did not load; empty if it did
-    static constexpr int kThumbnailRole = Qt::UserRole + 3;  // QImage: its thumbnail, once made
+    static constexpr int kPathRole = Qt::UserRole; // QString: ":/presets/x.json" or the user file
+    static constexpr int kBundledRole = Qt::UserRole + 1; // bool
+    static constexpr int kErrorRole = Qt::UserRole + 2; // QString: why it did not load; empty if it did
+    static constexpr int kThumbnailRole = Qt::UserRole + 3; // QImage: its thumbnail, once made
 
     // Where the artist's presets live: <per-user app data>/presets (it may not exist yet).
     static QString userFolder();
@@ -76,7 +76,7 @@ signals:
     void message(const QString& text);
 
 protected:
-    void showEvent(QShowEvent* event) override;  // thumbnails are made while it is on screen
+    void showEvent(QShowEvent* event) override; // thumbnails are made while it is on screen
     void hideEvent(QHideEvent* event) override;
 
 private:
@@ -84,7 +84,7 @@ private:
     struct Entry {
         QString path;
         bool bundled = false;
-        std::optional<io::Preset> preset;  // empty when it failed to load
+        std::optional<io::Preset> preset; // empty when it failed to load
         QStringList warnings;
         QString error;
         QString displayName;
@@ -102,7 +102,7 @@ private:
     void showFolderClicked();
 
     Document* m_document;
-    std::vector<Entry> m_entries;  // one per row, in row order
+    std::vector<Entry> m_entries; // one per row, in row order
     QListWidget* m_list = nullptr;
     QPushButton* m_apply = nullptr;
     QPushButton* m_save = nullptr;
@@ -112,4 +112,4 @@ private:
     PresetThumbnails* m_thumbnails = nullptr;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -9,11 +9,11 @@
 
 #include <QCryptographicHash>
 
-#include <cmath>
 #include <QDir>
 #include <QFileInfo>
 #include <QMetaObject>
 #include <QStandardPaths>
+#include <cmath>
 
 namespace wisp {
 
@@ -21,17 +21,20 @@ namespace {
 // Changes whenever thumbnails are made differently, so old cache entries are not reused.
 constexpr int kSupersampling = 4;
 constexpr char kRecipe[] = "wisp-thumbnail 3: built-in head, drape only, framed above the chin, 256 px scaled to 64";
-}  // namespace
+} // namespace
 
 struct PresetThumbnails::Job {
     QString path;
     QByteArray bytes;
-    SceneToSettle scene;  // filled on the GUI thread
-    SettledFrame settled;  // the worker's result
-    std::atomic<bool> cancelled{false};
+    SceneToSettle scene; // filled on the GUI thread
+    SettledFrame settled; // the worker's result
+    std::atomic<bool> cancelled{ false };
 };
 
-PresetThumbnails::PresetThumbnails(QObject* parent) : QObject(parent) {}
+PresetThumbnails::PresetThumbnails(QObject* parent)
+    : QObject(parent)
+{
+}
 
 PresetThumbnails::~PresetThumbnails()
 {
@@ -83,19 +86,20 @@ void PresetThumbnails::startNext()
     std::shared_ptr<Job> job = m_queue.front();
     m_queue.pop_front();
     io::Result<io::PresetReadResult> read = io::parsePreset(job->bytes.toStdString(), job->path.toStdString());
-    if (!read) {  // the browser lists it greyed; no thumbnail
+    if (!read) { // the browser lists it greyed; no thumbnail
         startNext();
         return;
     }
-    Document document;  // the built-in head and hairstyle
+    Document document; // the built-in head and hairstyle
     document.applyPreset(read.value().preset);
-    job->scene = SceneToSettle{document.head(), document.regions(), document.soloRegion(), document.parameters(), {}};
+    job->scene = SceneToSettle{ document.head(), document.regions(), document.soloRegion(), document.parameters(), {} };
     m_running = job;
     if (m_worker.joinable())
         m_worker.join();
     m_worker = std::thread([this, job] {
         job->settled = settleScene(job->scene, 0, 1, [job] { return job->cancelled.load(); });
-        QMetaObject::invokeMethod(this, [this, job] { finish(job); }, Qt::QueuedConnection);
+        QMetaObject::invokeMethod(
+            this, [this, job] { finish(job); }, Qt::QueuedConnection);
     });
 }
 
@@ -112,8 +116,8 @@ void PresetThumbnails::finish(std::shared_ptr<Job> job)
             m_viewport->resize(kSidePixels, kSidePixels);
         }
         m_viewport->setHead(job->scene.head);
-        m_viewport->setBody(job->scene.values.get(Param::Body) != 0.0 ? defaultBody(job->scene.head)
-                                                                      : std::vector<Capsule>{});
+        m_viewport->setBody(
+            job->scene.values.get(Param::Body) != 0.0 ? defaultBody(job->scene.head) : std::vector<Capsule>{});
         m_viewport->setFrame(job->settled.frame);
         // Framed on the head above the chin, where a hairstyle shows, not the whole bust; drawn at
         // four times the size and scaled down, because one strand at 64 pixels is a fiftieth of a
@@ -123,17 +127,17 @@ void PresetThumbnails::finish(std::shared_ptr<Job> job)
         Viewport::ImageOptions options;
         options.frameBounds = bounds;
         const QImage large = m_viewport->renderImage(QSize(kSidePixels, kSidePixels) * kSupersampling, options);
-        const QImage image = large.isNull() ? QImage()
-                                            : large.scaled(kSidePixels, kSidePixels, Qt::IgnoreAspectRatio,
-                                                           Qt::SmoothTransformation);
+        const QImage image = large.isNull()
+            ? QImage()
+            : large.scaled(kSidePixels, kSidePixels, Qt::IgnoreAspectRatio, Qt::SmoothTransformation);
         if (!image.isNull()) {
             ++m_made;
             QDir().mkpath(cacheFolder());
-            writePngAtomically(cachePath(job->bytes), image);  // a cache: a failed write only costs a redraw
+            writePngAtomically(cachePath(job->bytes), image); // a cache: a failed write only costs a redraw
             emit ready(job->path, image);
         }
     }
     startNext();
 }
 
-}  // namespace wisp
+} // namespace wisp

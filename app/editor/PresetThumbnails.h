@@ -32,7 +32,7 @@ public:
     static constexpr int kSidePixels = 64;
 
     explicit PresetThumbnails(QObject* parent = nullptr);
-    ~PresetThumbnails() override;  // cancels and waits for the running job
+    ~PresetThumbnails() override; // cancels and waits for the running job
 
     // Where the thumbnails are cached.
     static QString cacheFolder();
@@ -45,7 +45,7 @@ public:
     // Jobs run only while enabled; requests wait meanwhile.
     void setEnabled(bool enabled);
     bool busy() const { return m_running || !m_queue.empty(); }
-    int made() const { return m_made; }  // thumbnails rendered (not read from the cache) so far
+    int made() const { return m_made; } // thumbnails rendered (not read from the cache) so far
 
 signals:
     void ready(const QString& path, const QImage& thumbnail);
@@ -58,9 +58,9 @@ private:
     std::deque<std::shared_ptr<Job>> m_queue;
     std::shared_ptr<Job> m_running;
     std::thread m_worker;
-    std::unique_ptr<Viewport> m_viewport;  // hidden; made for the first thumbnail
+    std::unique_ptr<Viewport> m_viewport; // hidden; made for the first thumbnail
     bool m_enabled = false;
     int m_made = 0;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -27,7 +27,7 @@ const QString kAutosavePrefix = QStringLiteral("autosave");
 
 io::CameraState cameraOf(const OrbitCamera& camera)
 {
-    return {camera.pivot(), camera.yaw(), camera.pitch(), camera.distance(), camera.fovYDegrees()};
+    return { camera.pivot(), camera.yaw(), camera.pitch(), camera.distance(), camera.fovYDegrees() };
 }
 
 // A lock's pid (first line) and project path (second line; absent in locks of older versions).
@@ -48,17 +48,20 @@ LockContent readLock(const QString& path)
     return lock;
 }
 
-}  // namespace
+} // namespace
 
 ProjectController::ProjectController(Document* document, Viewport* viewport, QWidget* dialogParent)
-    : QObject(dialogParent), m_document(document), m_viewport(viewport), m_dialogParent(dialogParent)
+    : QObject(dialogParent)
+    , m_document(document)
+    , m_viewport(viewport)
+    , m_dialogParent(dialogParent)
 {
     QDir().mkpath(dataFolder());
     // Saves killed mid-way left temporaries; their writers are gone (a live writer's stay).
     io::removeStaleTemporaryFiles(dataFolder().toStdString());
     for (const QString& recent : recentFiles())
         io::removeStaleTemporaryFiles(QFileInfo(recent).absolutePath().toStdString());
-    findRecovery();   // before claiming a session, so that its files are never mistaken for ours
+    findRecovery(); // before claiming a session, so that its files are never mistaken for ours
     claimSession();
 
     QUndoStack* stack = m_document->undoStack();
@@ -96,7 +99,7 @@ void ProjectController::findRecovery()
 {
     QDateTime newest;
     const QDir folder(dataFolder());
-    for (const QString& lockName : folder.entryList({kLockPrefix + QStringLiteral("*.lock")}, QDir::Files)) {
+    for (const QString& lockName : folder.entryList({ kLockPrefix + QStringLiteral("*.lock") }, QDir::Files)) {
         const QString lockPath = folder.filePath(lockName);
         const LockContent lock = readLock(lockPath);
         if (io::isProcessAlive(lock.pid))
@@ -111,7 +114,7 @@ void ProjectController::findRecovery()
         if (newest.isValid() && autosave.lastModified() <= newest)
             continue;
         newest = autosave.lastModified();
-        m_recovery = {lockPath, autosave.filePath(), lock.projectPath};
+        m_recovery = { lockPath, autosave.filePath(), lock.projectPath };
         m_recoveryAvailable = true;
     }
 }
@@ -130,7 +133,7 @@ void ProjectController::claimSession()
             return;
         }
         if (!lock.exists())
-            return;  // the data folder cannot be written: nothing to protect the work with
+            return; // the data folder cannot be written: nothing to protect the work with
     }
 }
 
@@ -140,8 +143,8 @@ void ProjectController::writeLock()
     const QByteArray text = QByteArray::number(static_cast<qint64>(::getpid())) + '\n' + m_path.toUtf8() + '\n';
     // Best effort: a lock that cannot be written only means that a crash offers no recovery; the
     // artist's saves do not depend on it, so there is nothing to tell them.
-    static_cast<void>(io::writeFileAtomically(sessionLockPath().toStdString(),
-                                              [&](std::ostream& out) { out.write(text.data(), text.size()); }));
+    static_cast<void>(io::writeFileAtomically(
+        sessionLockPath().toStdString(), [&](std::ostream& out) { out.write(text.data(), text.size()); }));
 }
 
 QString ProjectController::sessionLockPath() const
@@ -154,7 +157,10 @@ QString ProjectController::autosavePath() const
     return dataFolder() + QStringLiteral("/%1-%2.wisp").arg(kAutosavePrefix, m_sessionId);
 }
 
-bool ProjectController::isModified() const { return !m_document->undoStack()->isClean(); }
+bool ProjectController::isModified() const
+{
+    return !m_document->undoStack()->isClean();
+}
 
 io::Project ProjectController::snapshot() const
 {
@@ -227,10 +233,10 @@ bool ProjectController::maybeSave()
     if (!isModified())
         return true;
     if (!m_interactive)
-        return false;  // never throw work away without being asked
+        return false; // never throw work away without being asked
     const QString name = m_path.isEmpty() ? tr("Untitled") : QFileInfo(m_path).fileName();
-    const auto answer = QMessageBox::warning(
-        m_dialogParent, tr("Unsaved changes"), tr("%1 has changes that are not saved. Save them?").arg(name),
+    const auto answer = QMessageBox::warning(m_dialogParent, tr("Unsaved changes"),
+        tr("%1 has changes that are not saved. Save them?").arg(name),
         QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
     if (answer == QMessageBox::Save)
         return save();
@@ -269,7 +275,7 @@ bool ProjectController::load(const QString& path, bool asRecovered, const QStrin
     for (const std::string& warning : result.warnings)
         emit message(QString::fromStdString(warning));
     if (asRecovered)
-        m_document->undoStack()->resetClean();  // recovered work is not saved anywhere yet
+        m_document->undoStack()->resetClean(); // recovered work is not saved anywhere yet
     else
         addRecent(path);
     return true;
@@ -281,7 +287,8 @@ bool ProjectController::open(const QString& chosen)
     if (path.isEmpty()) {
         if (!m_interactive)
             return false;
-        path = QFileDialog::getOpenFileName(m_dialogParent, tr("Open Project"), QFileInfo(m_path).path(), tr(kFileFilter));
+        path = QFileDialog::getOpenFileName(
+            m_dialogParent, tr("Open Project"), QFileInfo(m_path).path(), tr(kFileFilter));
         if (path.isEmpty())
             return false;
     }
@@ -290,7 +297,10 @@ bool ProjectController::open(const QString& chosen)
     return load(path, false, path);
 }
 
-QStringList ProjectController::recentFiles() const { return QSettings().value(kRecentKey).toStringList(); }
+QStringList ProjectController::recentFiles() const
+{
+    return QSettings().value(kRecentKey).toStringList();
+}
 
 void ProjectController::addRecent(const QString& path)
 {
@@ -314,7 +324,7 @@ bool ProjectController::autosaveNow()
 bool ProjectController::writeAutosave()
 {
     if (!io::writeProject(autosavePath().toStdString(), snapshot(), io::Backup::None))
-        return false;  // the next tick tries again; the artist's own saves are unaffected
+        return false; // the next tick tries again; the artist's own saves are unaffected
     m_autosavedChanges = m_changes;
     emit autosaved(autosavePath());
     return true;
@@ -352,10 +362,9 @@ bool ProjectController::recover()
     writeAutosave();
     QFile::remove(m_recovery.autosavePath);
     QFile::remove(m_recovery.lockPath);
-    emit message(m_recovery.projectPath.isEmpty()
-                     ? tr("Recovered the work of the last session; save it to keep it")
-                     : tr("Recovered the unsaved work on %1; save it to keep it")
-                           .arg(QDir::toNativeSeparators(m_recovery.projectPath)));
+    emit message(m_recovery.projectPath.isEmpty() ? tr("Recovered the work of the last session; save it to keep it")
+                                                  : tr("Recovered the unsaved work on %1; save it to keep it")
+                                                        .arg(QDir::toNativeSeparators(m_recovery.projectPath)));
     return true;
 }
 
@@ -368,4 +377,4 @@ void ProjectController::discardRecovery()
     QFile::remove(m_recovery.lockPath);
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -39,7 +39,7 @@ class ProjectController : public QObject {
     Q_OBJECT
 public:
     ProjectController(Document* document, Viewport* viewport, QWidget* dialogParent);
-    ~ProjectController() override;  // a clean exit: the lock and the autosave go
+    ~ProjectController() override; // a clean exit: the lock and the autosave go
 
     const QString& currentPath() const { return m_path; }
     bool isModified() const;
@@ -47,28 +47,28 @@ public:
     void setInteractive(bool interactive) { m_interactive = interactive; }
     const QString& lastError() const { return m_lastError; }
 
-    bool newProject();                        // after maybeSave()
-    bool open(const QString& path = {});      // a dialog when empty; errors are shown, nothing changes then
-    bool save();                              // to the current path, or save as
-    bool saveAs(const QString& path = {});    // a dialog when empty
-    bool maybeSave();                         // Save, Discard or Cancel when there are unsaved changes
+    bool newProject(); // after maybeSave()
+    bool open(const QString& path = {}); // a dialog when empty; errors are shown, nothing changes then
+    bool save(); // to the current path, or save as
+    bool saveAs(const QString& path = {}); // a dialog when empty
+    bool maybeSave(); // Save, Discard or Cancel when there are unsaved changes
 
     QStringList recentFiles() const;
     static constexpr int kMaxRecentFiles = 8;
 
-    QString autosavePath() const;             // this session's
-    QString sessionLockPath() const;          // this session's
-    bool autosaveNow();                       // when changed since the last autosave; true if written
+    QString autosavePath() const; // this session's
+    QString sessionLockPath() const; // this session's
+    bool autosaveNow(); // when changed since the last autosave; true if written
     static constexpr int kAutosaveIntervalMs = 60 * 1000;
     void setAutosaveIntervalMs(int ms) { m_autosave.setInterval(ms); }
     int autosaveIntervalMs() const { return m_autosave.interval(); }
 
     // A session that did not close left work behind (found at construction).
     bool recoveryAvailable() const { return m_recoveryAvailable; }
-    QString recoveryProjectPath() const { return m_recovery.projectPath; }  // empty: it was Untitled
+    QString recoveryProjectPath() const { return m_recovery.projectPath; } // empty: it was Untitled
     QString recoveryAutosavePath() const { return m_recovery.autosavePath; }
-    bool recover();                           // opens that autosave as unsaved work at its path
-    void discardRecovery();                   // removes that session's autosave and lock
+    bool recover(); // opens that autosave as unsaved work at its path
+    void discardRecovery(); // removes that session's autosave and lock
 
     static constexpr const char* kFileFilter = "Wisp projects (*.wisp)";
 
@@ -108,12 +108,12 @@ private:
     bool m_interactive = true;
     bool m_recoveryAvailable = false;
     LostSession m_recovery;
-    QString m_sessionId;           // "<pid>-<n>": the lock's and the autosave's names
-    std::uint64_t m_changes = 0;   // undo stack changes seen (an undo index alone repeats)
+    QString m_sessionId; // "<pid>-<n>": the lock's and the autosave's names
+    std::uint64_t m_changes = 0; // undo stack changes seen (an undo index alone repeats)
     std::uint64_t m_autosavedChanges = 0;
-    bool m_autosaveDue = true;     // no autosave this interval yet: the next change goes at once
-    QTimer m_autosave;             // every interval while changed
-    QTimer m_autosaveSoon;         // 0 ms: one autosave for a burst of changes in one event
+    bool m_autosaveDue = true; // no autosave this interval yet: the next change goes at once
+    QTimer m_autosave; // every interval while changed
+    QTimer m_autosaveSoon; // 0 ms: one autosave for a burst of changes in one event
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -20,7 +20,7 @@ namespace wisp {
 
 namespace {
 
-constexpr int kMarkSizePx = 16;  // the list's default icon size, so names line up with or without the mark
+constexpr int kMarkSizePx = 16; // the list's default icon size, so names line up with or without the mark
 
 // The solo mark: a filled dot in the selection colour. Rows without it get a blank icon of the
 // same size, so that solo'ing a region does not shift its name sideways.
@@ -42,7 +42,7 @@ QToolButton* makeButton(QWidget* parent, const QIcon& icon, const QString& text,
 {
     auto* button = new QToolButton(parent);
     button->setAutoRaise(true);
-    button->setText(text);  // shown when neither the theme nor the style has the icon
+    button->setText(text); // shown when neither the theme nor the style has the icon
     button->setIcon(icon);
     button->setToolButtonStyle(icon.isNull() ? Qt::ToolButtonTextOnly : Qt::ToolButtonIconOnly);
     button->setToolTip(tooltip);
@@ -54,9 +54,11 @@ bool grows(const std::vector<const GrowthRegion*>& growing, const GrowthRegion& 
     return std::find(growing.begin(), growing.end(), &region) != growing.end();
 }
 
-}  // namespace
+} // namespace
 
-RegionPanel::RegionPanel(Document* document, QWidget* parent) : QWidget(parent), m_document(document)
+RegionPanel::RegionPanel(Document* document, QWidget* parent)
+    : QWidget(parent)
+    , m_document(document)
 {
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(4, 4, 4, 4);
@@ -85,11 +87,13 @@ void RegionPanel::createButtons()
 {
     auto* row = new QHBoxLayout;
     row->setSpacing(2);
-    m_add = makeButton(this, QIcon::fromTheme(QStringLiteral("list-add")), tr("Add"), tr("Add a region (painted nowhere yet)"));
+    m_add = makeButton(
+        this, QIcon::fromTheme(QStringLiteral("list-add")), tr("Add"), tr("Add a region (painted nowhere yet)"));
     m_remove = makeButton(this, QIcon::fromTheme(QStringLiteral("list-remove")), tr("Remove"),
-                          tr("Remove the selected region (the last one stays)"));
+        tr("Remove the selected region (the last one stays)"));
     m_up = makeButton(this, style()->standardIcon(QStyle::SP_ArrowUp), tr("Up"), tr("Move the selected region up"));
-    m_down = makeButton(this, style()->standardIcon(QStyle::SP_ArrowDown), tr("Down"), tr("Move the selected region down"));
+    m_down = makeButton(
+        this, style()->standardIcon(QStyle::SP_ArrowDown), tr("Down"), tr("Move the selected region down"));
     m_solo = makeButton(this, QIcon(), tr("Solo"), tr("Grow only the selected region's hair, hiding the others"));
     m_solo->setCheckable(true);
     m_add->setObjectName(QStringLiteral("addRegion"));
@@ -156,9 +160,11 @@ void RegionPanel::showRegion(int row)
     item->setIcon(soloMark(solo ? palette().color(QPalette::Highlight) : QColor()));
     // A region that grows no hair (hidden, or another is solo'd) is drawn greyed.
     const bool growing = grows(growingRegions(m_document->regions(), m_document->soloRegion()), region);
-    item->setData(Qt::ForegroundRole, growing ? QVariant() : QVariant(palette().brush(QPalette::Disabled, QPalette::Text)));
+    item->setData(
+        Qt::ForegroundRole, growing ? QVariant() : QVariant(palette().brush(QPalette::Disabled, QPalette::Text)));
     item->setToolTip(solo ? tr("%1 (solo: only its hair grows)").arg(name)
-                          : growing ? name : tr("%1 (grows no hair now)").arg(name));
+            : growing     ? name
+                          : tr("%1 (grows no hair now)").arg(name));
 }
 
 void RegionPanel::showCurrent()
@@ -262,4 +268,4 @@ QString RegionPanel::unusedRegionName() const
     }
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -26,8 +26,8 @@ public:
     explicit RegionPanel(Document* document, QWidget* parent = nullptr);
 
     // Item data the rows carry besides their name and check state (for tests and delegates).
-    static constexpr int kRegionIdRole = Qt::UserRole;       // std::uint32_t GrowthRegion::id
-    static constexpr int kSoloRole = Qt::UserRole + 1;       // bool: this region is solo'd
+    static constexpr int kRegionIdRole = Qt::UserRole; // std::uint32_t GrowthRegion::id
+    static constexpr int kSoloRole = Qt::UserRole + 1; // bool: this region is solo'd
 
     QListWidget* listWidget() const { return m_list; }
     QToolButton* addButton() const { return m_add; }
@@ -46,7 +46,7 @@ private:
     void showRegion(int row);
     void showCurrent();
     void updateButtons();
-    int validCurrent() const;  // the document's current region, or -1 while it has none
+    int validCurrent() const; // the document's current region, or -1 while it has none
 
     // Rows → document.
     void itemEdited(QListWidgetItem* item);
@@ -68,4 +68,4 @@ private:
     bool m_showing = false;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -25,7 +25,9 @@
 namespace wisp {
 
 RenderActions::RenderActions(QWidget* dialogParent, Viewport* viewport, QMenu* menu)
-    : QObject(dialogParent), m_dialogParent(dialogParent), m_viewport(viewport)
+    : QObject(dialogParent)
+    , m_dialogParent(dialogParent)
+    , m_viewport(viewport)
 {
     m_prompt = [this](const ImageRequest& suggested, bool turntable) {
         return askImageRequest(m_dialogParent, suggested, turntable);
@@ -93,7 +95,7 @@ bool RenderActions::startTurntable(const ImageRequest& request)
     else if (request.frames < 1 || request.frames > kMaxTurntableFrames)
         problem = tr("%1 frames: a turntable has 1 to %2").arg(request.frames).arg(kMaxTurntableFrames);
     else if (request.size.isEmpty() || request.size.width() > Viewport::kMaxImageSide
-             || request.size.height() > Viewport::kMaxImageSide)
+        || request.size.height() > Viewport::kMaxImageSide)
         problem = tr("each side must be 1 to %1 pixels").arg(Viewport::kMaxImageSide);
     else
         problem = checkPngOutput(request.path);
@@ -163,12 +165,14 @@ void RenderActions::finishTurntable(bool cancelled, const QString& error)
     else if (cancelled)
         emit message(tr("Turntable cancelled after %1 of %2 frames").arg(written).arg(request.frames));
     else
-        emit message(tr("Rendered %1 turntable frames: %2 …").arg(written).arg(turntableFramePath(request.path, 0, request.frames)));
+        emit message(tr("Rendered %1 turntable frames: %2 …")
+                         .arg(written)
+                         .arg(turntableFramePath(request.path, 0, request.frames)));
     emit turntableFinished(written, cancelled, error);
 }
 
-std::optional<RenderActions::ImageRequest> askImageRequest(QWidget* parent, const RenderActions::ImageRequest& suggested,
-                                                           bool turntable)
+std::optional<RenderActions::ImageRequest> askImageRequest(
+    QWidget* parent, const RenderActions::ImageRequest& suggested, bool turntable)
 {
     QDialog dialog(parent);
     dialog.setWindowTitle(turntable ? QObject::tr("Render Turntable") : QObject::tr("Render Image"));
@@ -180,8 +184,8 @@ std::optional<RenderActions::ImageRequest> askImageRequest(QWidget* parent, cons
     pathRow->addWidget(browse);
     form->addRow(turntable ? QObject::tr("First of the files") : QObject::tr("File"), pathRow);
     QObject::connect(browse, &QPushButton::clicked, &dialog, [&dialog, path] {
-        const QString chosen = QFileDialog::getSaveFileName(&dialog, QObject::tr("Render to"), path->text(),
-                                                            QObject::tr("PNG images (*.png)"));
+        const QString chosen = QFileDialog::getSaveFileName(
+            &dialog, QObject::tr("Render to"), path->text(), QObject::tr("PNG images (*.png)"));
         if (!chosen.isEmpty())
             path->setText(chosen.endsWith(QStringLiteral(".png"), Qt::CaseInsensitive) ? chosen : chosen + ".png");
     });
@@ -217,4 +221,4 @@ std::optional<RenderActions::ImageRequest> askImageRequest(QWidget* parent, cons
     return request;
 }
 
-}  // namespace wisp
+} // namespace wisp

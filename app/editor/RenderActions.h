@@ -82,7 +82,7 @@ private:
 };
 
 // The default prompt: a small dialog (file, width, height, transparent background, frames).
-std::optional<RenderActions::ImageRequest> askImageRequest(QWidget* parent, const RenderActions::ImageRequest& suggested,
-                                                           bool turntable);
+std::optional<RenderActions::ImageRequest> askImageRequest(
+    QWidget* parent, const RenderActions::ImageRequest& suggested, bool turntable);
 
-}  // namespace wisp
+} // namespace wisp

@@ -45,9 +45,8 @@ bool isMeshFile(const QString& path)
 {
     const std::string suffix = QFileInfo(path).suffix().toLower().toStdString();
     const auto& known = io::supportedMeshExtensions();
-    return std::any_of(known.begin(), known.end(), [&](const std::string& e) {
-        return e == suffix || e == "." + suffix;
-    });
+    return std::any_of(
+        known.begin(), known.end(), [&](const std::string& e) { return e == suffix || e == "." + suffix; });
 }
 
 // The built-in scene, a project, or a head with its scalp grown; `error` names the file otherwise.
@@ -94,11 +93,12 @@ bool loadInput(const QString& input, Document& document, QString* error)
     return true;
 }
 
-}  // namespace
+} // namespace
 
 bool wantsRender(const QStringList& arguments)
 {
-    return std::any_of(arguments.begin(), arguments.end(), [](const QString& a) { return isOption(a, QStringLiteral("--render")); });
+    return std::any_of(
+        arguments.begin(), arguments.end(), [](const QString& a) { return isOption(a, QStringLiteral("--render")); });
 }
 
 std::optional<RenderRequest> parseRenderCommand(const QStringList& arguments, QString* error)
@@ -156,15 +156,18 @@ std::optional<RenderRequest> parseRenderCommand(const QStringList& arguments, QS
             bool ok = false;
             const double seconds = v->toDouble(&ok);
             if (!ok || !std::isfinite(seconds) || seconds < 0.0 || seconds > kMaxSettleSeconds) {
-                why = QStringLiteral("--settle %1: must be a number of seconds from 0 to %2").arg(*v).arg(kMaxSettleSeconds);
+                why = QStringLiteral("--settle %1: must be a number of seconds from 0 to %2")
+                          .arg(*v)
+                          .arg(kMaxSettleSeconds);
                 return std::nullopt;
             }
             request.settleSeconds = seconds;
         } else if (a == QStringLiteral("--transparent")) {
             request.transparent = true;
         } else if (a.startsWith(QLatin1Char('-')) && a.size() > 1) {
-            why = QStringLiteral("%1: unknown option (--render takes --size, --turntable, --shadows, --preset, --settle, "
-                                 "--transparent)")
+            why = QStringLiteral(
+                "%1: unknown option (--render takes --size, --turntable, --shadows, --preset, --settle, "
+                "--transparent)")
                       .arg(a);
             return std::nullopt;
         } else if (request.input.isEmpty()) {
@@ -208,7 +211,7 @@ int runRenderCommand(const RenderRequest& request, QTextStream& out, QTextStream
         document.applyPreset(*preset);
 
     SceneToSettle scene{ document.head(), document.regions(), document.soloRegion(), document.parameters(),
-                         document.style() };
+        document.style() };
     const int steps = settleStepsFor(request.settleSeconds, document.parameters().get(Param::TimeStep));
     const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const SettledFrame settled = settleScene(scene, steps, threads);
@@ -218,7 +221,8 @@ int runRenderCommand(const RenderRequest& request, QTextStream& out, QTextStream
     Viewport viewport;
     viewport.resize(request.size);
     viewport.setHead(document.head());
-    viewport.setBody(document.parameters().get(Param::Body) != 0.0 ? defaultBody(document.head()) : std::vector<Capsule>{});
+    viewport.setBody(
+        document.parameters().get(Param::Body) != 0.0 ? defaultBody(document.head()) : std::vector<Capsule>{});
     viewport.setShowGrowthOverlay(false);
     viewport.setFrame(settled.frame);
     viewport.setShadowsEnabled(request.shadows);
@@ -232,13 +236,14 @@ int runRenderCommand(const RenderRequest& request, QTextStream& out, QTextStream
         if (image.isNull())
             return fail(viewport.glStatus().isEmpty() ? QStringLiteral("the view could not be drawn (no OpenGL 3.3?)")
                                                       : viewport.glStatus());
-        const QString path = request.turntableFrames > 0 ? turntableFramePath(request.output, i, images) : request.output;
+        const QString path
+            = request.turntableFrames > 0 ? turntableFramePath(request.output, i, images) : request.output;
         if (const QString error = writePngAtomically(path, image); !error.isEmpty())
             return fail(error);
-        out << "wrote " << path << " (" << image.width() << "x" << image.height() << ", " << settled.frame->strands.strandCount()
-            << " strands settled " << steps << " steps)" << Qt::endl;
+        out << "wrote " << path << " (" << image.width() << "x" << image.height() << ", "
+            << settled.frame->strands.strandCount() << " strands settled " << steps << " steps)" << Qt::endl;
     }
     return 0;
 }
 
-}  // namespace wisp
+} // namespace wisp

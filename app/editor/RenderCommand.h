@@ -22,14 +22,14 @@ class QTextStream;
 namespace wisp {
 
 struct RenderRequest {
-    QString output;              // .png
-    QString input;               // a project (.wisp) or a head mesh; empty: the built-in head and hairstyle
-    QSize size{ 1280, 720 };     // pixels
-    int turntableFrames = 0;     // 0: one image; N: N images around the head
-    bool shadows = true;         // for the viewport's shadows (see runRenderCommand)
-    QString preset;              // applied after the project or head; empty: none
-    double settleSeconds = 2.0;  // simulated seconds after the drape
-    bool transparent = false;    // no background or grid: alpha 0 there
+    QString output; // .png
+    QString input; // a project (.wisp) or a head mesh; empty: the built-in head and hairstyle
+    QSize size{ 1280, 720 }; // pixels
+    int turntableFrames = 0; // 0: one image; N: N images around the head
+    bool shadows = true; // for the viewport's shadows (see runRenderCommand)
+    QString preset; // applied after the project or head; empty: none
+    double settleSeconds = 2.0; // simulated seconds after the drape
+    bool transparent = false; // no background or grid: alpha 0 there
 };
 
 // Whether `arguments` (without the program name) ask for a render: they hold --render.
@@ -45,4 +45,4 @@ inline constexpr double kMaxSettleSeconds = 600.0;
 // Does the render; messages go to `out` (what was written) and `err` (what is wrong). 0 or 1.
 int runRenderCommand(const RenderRequest& request, QTextStream& out, QTextStream& err);
 
-}  // namespace wisp
+} // namespace wisp

@@ -31,8 +31,8 @@ void fillFrame(const HairSimulation& sim, const ParameterValues& values, Frame& 
         sim.strandWetness(frame.wetness);
 }
 
-SettledFrame settleScene(const SceneToSettle& scene, int steps, int solverThreads,
-                         const std::function<bool()>& cancelled)
+SettledFrame settleScene(
+    const SceneToSettle& scene, int steps, int solverThreads, const std::function<bool()>& cancelled)
 {
     SettledFrame result;
     try {
@@ -46,8 +46,8 @@ SettledFrame settleScene(const SceneToSettle& scene, int steps, int solverThread
             result.error = error;
             return result;
         }
-        sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, cancelled,
-                         scene.values.getInt(Param::Substeps));
+        sim->drapeAtRest(
+            HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, cancelled, scene.values.getInt(Param::Substeps));
         const double timeStep = sim->solver().settings().timeStepSeconds;
         for (int i = 0; i < steps; ++i) {
             if (cancelled && cancelled()) {
@@ -62,9 +62,9 @@ SettledFrame settleScene(const SceneToSettle& scene, int steps, int solverThread
         fillFrame(*sim, scene.values, *frame);
         result.frame = std::move(frame);
     } catch (const std::exception& e) {
-        result.error = std::string("settle: ") + e.what();  // sim/ does not throw, but memory can run out
+        result.error = std::string("settle: ") + e.what(); // sim/ does not throw, but memory can run out
     }
     return result;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -9,11 +9,11 @@
 //
 // Thread: any; settleScene owns its simulation for the call.
 
-#include "sim/solver/Frame.h"
+#include "sim/geometry/TriangleMesh.h"
 #include "sim/groom/GrowthRegion.h"
 #include "sim/params/Parameters.h"
+#include "sim/solver/Frame.h"
 #include "sim/style/StyleEdits.h"
-#include "sim/geometry/TriangleMesh.h"
 
 #include <cstdint>
 #include <functional>
@@ -29,12 +29,12 @@ struct SceneToSettle {
     std::vector<GrowthRegion> regions;
     std::uint32_t soloId = kNoSolo;
     ParameterValues values;
-    StyleEditsPtr style;  // null: no salon edits
+    StyleEditsPtr style; // null: no salon edits
 };
 
 struct SettledFrame {
-    FramePtr frame;     // null on error
-    std::string error;  // what went wrong; empty on success
+    FramePtr frame; // null on error
+    std::string error; // what went wrong; empty on success
 };
 
 // A drape is done when no particle moves more than this over 10 steps (metres).
@@ -46,11 +46,11 @@ inline constexpr int kMaxSettleSteps = 100000;
 
 // Grooms `scene`, drapes it at rest, runs `steps` solver steps and returns the last frame.
 // `cancelled` (may be empty) is asked between steps; a cancelled settle returns "cancelled".
-SettledFrame settleScene(const SceneToSettle& scene, int steps, int solverThreads = 1,
-                         const std::function<bool()>& cancelled = {});
+SettledFrame settleScene(
+    const SceneToSettle& scene, int steps, int solverThreads = 1, const std::function<bool()>& cancelled = {});
 
 // The frame's strands, looks, simulated counts, wind and wetness from `sim` (solver state as it is
 // now); step, groom version, times and pacing are the caller's.
 void fillFrame(const HairSimulation& sim, const ParameterValues& values, Frame& frame);
 
-}  // namespace wisp
+} // namespace wisp

@@ -27,7 +27,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // Thread: any. One core stays with the GUI so that drawing and input never queue behind the solver.
-int solverThreadsFor(unsigned cores) { return std::max(1, static_cast<int>(cores) - 1); }
+int solverThreadsFor(unsigned cores)
+{
+    return std::max(1, static_cast<int>(cores) - 1);
+}
 
 // Thread: any. True when `a` and `b` build the same groom: the same Groom-group parameters and the
 // same choice of simulated strands. Everything else is a force or solver setting the running
@@ -40,7 +43,7 @@ bool sameGroom(const ParameterValues& a, const ParameterValues& b)
     return true;
 }
 
-}  // namespace
+} // namespace
 
 // Everything the simulation thread owns. It lives on that thread's stack, so nothing else can
 // reach the solver: the GUI thread only fills SimulationHost::m_inbox.
@@ -48,7 +51,11 @@ bool sameGroom(const ParameterValues& a, const ParameterValues& b)
 // Thread: simulation, every member.
 class SimulationHost::Loop {
 public:
-    explicit Loop(SimulationHost& host) : m_host(host), m_epoch(Clock::now()) {}
+    explicit Loop(SimulationHost& host)
+        : m_host(host)
+        , m_epoch(Clock::now())
+    {
+    }
 
     // Thread: simulation. Takes requests and steps until the host stops.
     void run()
@@ -131,16 +138,16 @@ private:
         std::unique_lock lock(m_host.m_mutex);
         Inbox& inbox = m_host.m_inbox;
         const auto ready = [&] {
-            return inbox.stopping || inbox.scene || inbox.parameters || inbox.regions || !inbox.actions.empty() ||
-                   inbox.style || inbox.dryers || inbox.held || !inbox.wettings.empty() || inbox.playing != m_playing;
+            return inbox.stopping || inbox.scene || inbox.parameters || inbox.regions || !inbox.actions.empty()
+                || inbox.style || inbox.dryers || inbox.held || !inbox.wettings.empty() || inbox.playing != m_playing;
         };
         if (m_playing && m_sim && m_host.m_clock) {
             // An injected clock moves on its own terms: look again soon, unless a step is due now.
             if (!injectedStepDue)
                 m_host.m_wake.wait_for(lock, std::chrono::milliseconds(kInjectedClockPollMs), ready);
         } else if (m_playing && m_sim) {
-            const auto due = m_epoch + std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double>(m_pacer.dueSeconds()));
+            const auto due = m_epoch
+                + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m_pacer.dueSeconds()));
             m_host.m_wake.wait_until(lock, due, ready);
         } else {
             m_host.m_wake.wait(lock, ready);
@@ -179,7 +186,7 @@ private:
             error = r.fromParameters ? next->setup(std::move(head), r.regions.front().weights, scene.values)
                                      : next->setup(std::move(head), r.regions, r.soloId, scene.values);
         } catch (const std::exception& e) {
-            error = std::string("groom: ") + e.what();  // sim/ does not throw, but memory can run out
+            error = std::string("groom: ") + e.what(); // sim/ does not throw, but memory can run out
         }
         if (!error.empty()) {
             m_host.postError(error);
@@ -213,9 +220,9 @@ private:
         }
         // Combed hair too soft to hold its shape under gravity: no rest shape can keep it there.
         if (const float gap = m_sim->worstRestGapMetres(); gap > kRestGapToReportMetres)
-            m_host.postError("Some combed hair is too soft to stay where it was combed (up to " +
-                             std::to_string(static_cast<int>(std::lround(gap * 100.0f))) +
-                             " cm off): spray it with hairspray to hold the shape");
+            m_host.postError("Some combed hair is too soft to stay where it was combed (up to "
+                + std::to_string(static_cast<int>(std::lround(gap * 100.0f)))
+                + " cm off): spray it with hairspray to hold the shape");
     }
     static constexpr float kRestGapToReportMetres = 0.03f;
 
@@ -233,11 +240,11 @@ private:
     void adoptParameters(const ParameterValues& values)
     {
         if (!m_sim)
-            return;  // nothing runs yet; the next scene brings its own values
+            return; // nothing runs yet; the next scene brings its own values
         const bool refusedBefore = m_refusedGroom && sameGroom(values, *m_refusedGroom);
         if (!sameGroom(values, m_groomedWith) && !refusedBefore) {
             if (std::string error = regroom(m_regions, values); !error.empty()) {
-                m_refusedGroom = values;  // do not regroom (and report) the same refusal on every force change
+                m_refusedGroom = values; // do not regroom (and report) the same refusal on every force change
                 m_host.postError(error);
             }
         }
@@ -286,10 +293,11 @@ private:
         assert(applied);
         m_host.m_effectiveSubsteps.store(m_pacer.substeps());
         if (drape)
-            m_sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); },
-                               m_values.getInt(Param::Substeps));  // as asked, not as the pacer runs now
+            m_sim->drapeAtRest(
+                HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); },
+                m_values.getInt(Param::Substeps)); // as asked, not as the pacer runs now
         if (m_playing)
-            m_pacer.restart(now());  // the groom's duration is not the solver falling behind
+            m_pacer.restart(now()); // the groom's duration is not the solver falling behind
         m_host.publish(makeFrame());
         m_host.postSceneReady();
     }
@@ -315,8 +323,8 @@ private:
             frame->timeScale = report.timeScale;
             if (report.substepsChanged) {
                 // The requested values were accepted before, so fewer substeps are too.
-                [[maybe_unused]] const bool applied =
-                    m_sim->applyForces(withSubsteps(m_values, m_pacer.substeps())).empty();
+                [[maybe_unused]] const bool applied
+                    = m_sim->applyForces(withSubsteps(m_values, m_pacer.substeps())).empty();
                 assert(applied);
                 m_host.m_effectiveSubsteps.store(m_pacer.substeps());
             }
@@ -329,12 +337,13 @@ private:
     {
         if (!m_sim)
             return;
-        m_sim->drapeAtRest(HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); },
-                               m_values.getInt(Param::Substeps));  // as asked, not as the pacer runs now
+        m_sim->drapeAtRest(
+            HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); },
+            m_values.getInt(Param::Substeps)); // as asked, not as the pacer runs now
         m_step = 0;
         m_simulatedSeconds = 0.0;
         if (m_playing)
-            m_pacer.restart(now());  // the drape's duration is not the solver falling behind
+            m_pacer.restart(now()); // the drape's duration is not the solver falling behind
         m_host.publish(makeFrame());
     }
 
@@ -360,26 +369,31 @@ private:
 
     SimulationHost& m_host;
     const Clock::time_point m_epoch;
-    std::unique_ptr<HairSimulation> m_sim;  // null until the first groom succeeds
-    Regions m_regions;                      // m_sim's regions, for regrooms
-    std::shared_ptr<const GroomShape> m_groomShape;  // of m_sim's groom, shared by its frames
-    ParameterValues m_values;               // what the running solver was given (as requested)
-    ParameterValues m_groomedWith;          // what m_sim's groom was built from
+    std::unique_ptr<HairSimulation> m_sim; // null until the first groom succeeds
+    Regions m_regions; // m_sim's regions, for regrooms
+    std::shared_ptr<const GroomShape> m_groomShape; // of m_sim's groom, shared by its frames
+    ParameterValues m_values; // what the running solver was given (as requested)
+    ParameterValues m_groomedWith; // what m_sim's groom was built from
     std::optional<ParameterValues> m_refusedGroom;
-    StyleEditsPtr m_style;                  // the artist's salon edits, for every groom
+    StyleEditsPtr m_style; // the artist's salon edits, for every groom
     std::vector<HairDryer> m_dryers;
-    std::vector<HeldStrand> m_held;         // the comb's strands while it drags
+    std::vector<HeldStrand> m_held; // the comb's strands while it drags
     SimulationHostPacer m_pacer;
     bool m_playing = false;
     std::uint64_t m_step = 0;
     std::uint64_t m_groomVersion = 0;
-    double m_simulatedSeconds = 0.0;  // since the groom or the last reset
+    double m_simulatedSeconds = 0.0; // since the groom or the last reset
 };
 
-SimulationHost::SimulationHost(QObject* parent) : SimulationHost(SecondsClock{}, parent) {}
+SimulationHost::SimulationHost(QObject* parent)
+    : SimulationHost(SecondsClock{}, parent)
+{
+}
 
 SimulationHost::SimulationHost(SecondsClock clock, QObject* parent)
-    : QObject(parent), m_solverThreads(solverThreadsFor(std::thread::hardware_concurrency())), m_clock(std::move(clock))
+    : QObject(parent)
+    , m_solverThreads(solverThreadsFor(std::thread::hardware_concurrency()))
+    , m_clock(std::move(clock))
 {
     m_thread = std::thread([this] {
         nameThisThread("wisp-sim");
@@ -405,40 +419,40 @@ void SimulationHost::setScene(TriangleMesh head, std::vector<float> growthWeight
     region.name = "growth map";
     region.weights = std::move(growthWeights);
     region.values = values;
-    Regions regions{{std::move(region)}, kNoSolo, true};
-    std::optional<Scene> superseded;  // freed after unlocking: the simulation thread never waits on a free
+    Regions regions{ { std::move(region) }, kNoSolo, true };
+    std::optional<Scene> superseded; // freed after unlocking: the simulation thread never waits on a free
     {
         std::lock_guard lock(m_mutex);
-        superseded =
-            std::exchange(m_inbox.scene, Scene{nullptr, std::move(head), std::move(regions), std::move(values)});
-        m_inbox.parameters.reset();  // the scene's values are newer
+        superseded
+            = std::exchange(m_inbox.scene, Scene{ nullptr, std::move(head), std::move(regions), std::move(values) });
+        m_inbox.parameters.reset(); // the scene's values are newer
         m_inbox.regions.reset();
     }
     m_wake.notify_one();
 }
 
-void SimulationHost::setScene(TriangleMesh head, std::vector<GrowthRegion> regions, std::uint32_t soloId,
-                              ParameterValues values)
+void SimulationHost::setScene(
+    TriangleMesh head, std::vector<GrowthRegion> regions, std::uint32_t soloId, ParameterValues values)
 {
     std::optional<Scene> superseded;
     {
         std::lock_guard lock(m_mutex);
-        superseded = std::exchange(m_inbox.scene, Scene{nullptr, std::move(head), Regions{std::move(regions), soloId, false},
-                                                        std::move(values)});
+        superseded = std::exchange(m_inbox.scene,
+            Scene{ nullptr, std::move(head), Regions{ std::move(regions), soloId, false }, std::move(values) });
         m_inbox.parameters.reset();
         m_inbox.regions.reset();
     }
     m_wake.notify_one();
 }
 
-void SimulationHost::setScene(HeadModelPtr head, std::vector<GrowthRegion> regions, std::uint32_t soloId,
-                              ParameterValues values)
+void SimulationHost::setScene(
+    HeadModelPtr head, std::vector<GrowthRegion> regions, std::uint32_t soloId, ParameterValues values)
 {
     std::optional<Scene> superseded;
     {
         std::lock_guard lock(m_mutex);
-        superseded = std::exchange(m_inbox.scene, Scene{std::move(head), {}, Regions{std::move(regions), soloId, false},
-                                                        std::move(values)});
+        superseded = std::exchange(m_inbox.scene,
+            Scene{ std::move(head), {}, Regions{ std::move(regions), soloId, false }, std::move(values) });
         m_inbox.parameters.reset();
         m_inbox.regions.reset();
     }
@@ -450,10 +464,10 @@ void SimulationHost::setRegions(std::vector<GrowthRegion> regions, std::uint32_t
     std::optional<Regions> superseded;
     {
         std::lock_guard lock(m_mutex);
-        if (m_inbox.scene) {  // folded into the scene still waiting
-            m_inbox.scene->regions = Regions{std::move(regions), soloId, false};
+        if (m_inbox.scene) { // folded into the scene still waiting
+            m_inbox.scene->regions = Regions{ std::move(regions), soloId, false };
         } else {
-            superseded = std::exchange(m_inbox.regions, Regions{std::move(regions), soloId, false});
+            superseded = std::exchange(m_inbox.regions, Regions{ std::move(regions), soloId, false });
         }
     }
     m_wake.notify_one();
@@ -498,7 +512,10 @@ void SimulationHost::pause()
     emit playingChanged(false);
 }
 
-bool SimulationHost::isPlaying() const { return m_playing.load(); }
+bool SimulationHost::isPlaying() const
+{
+    return m_playing.load();
+}
 
 void SimulationHost::stepOnce()
 {
@@ -554,16 +571,25 @@ void SimulationHost::wetStrands(std::vector<std::uint64_t> keyIdentities, float 
 {
     {
         std::lock_guard lock(m_mutex);
-        m_inbox.wettings.push_back({std::move(keyIdentities), wetness});
+        m_inbox.wettings.push_back({ std::move(keyIdentities), wetness });
     }
     m_wake.notify_one();
 }
 
-FramePtr SimulationHost::latestFrame() const { return m_latest.load(); }
+FramePtr SimulationHost::latestFrame() const
+{
+    return m_latest.load();
+}
 
-std::uint64_t SimulationHost::publishedFrames() const { return m_published.load(); }
+std::uint64_t SimulationHost::publishedFrames() const
+{
+    return m_published.load();
+}
 
-int SimulationHost::effectiveSubsteps() const { return m_effectiveSubsteps.load(); }
+int SimulationHost::effectiveSubsteps() const
+{
+    return m_effectiveSubsteps.load();
+}
 
 void SimulationHost::publish(FramePtr frame)
 {
@@ -574,7 +600,7 @@ void SimulationHost::publish(FramePtr frame)
         QMetaObject::invokeMethod(
             this,
             [this] {
-                m_frameSignalPending.store(false);  // before emitting: a frame published meanwhile signals again
+                m_frameSignalPending.store(false); // before emitting: a frame published meanwhile signals again
                 emit frameReady();
             },
             Qt::QueuedConnection);
@@ -589,7 +615,8 @@ void SimulationHost::postError(const std::string& message)
 
 void SimulationHost::postSceneReady()
 {
-    QMetaObject::invokeMethod(this, [this] { emit sceneReady(); }, Qt::QueuedConnection);
+    QMetaObject::invokeMethod(
+        this, [this] { emit sceneReady(); }, Qt::QueuedConnection);
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -20,13 +20,13 @@
 //
 // Thread: the object lives on the GUI thread; each function says where it runs.
 
-#include "sim/solver/Frame.h"
-#include "sim/groom/GrowthRegion.h"
-#include "sim/style/HairDryer.h"
-#include "sim/params/Parameters.h"
-#include "sim/style/StyleEdits.h"
 #include "sim/geometry/HeadModel.h"
 #include "sim/geometry/TriangleMesh.h"
+#include "sim/groom/GrowthRegion.h"
+#include "sim/params/Parameters.h"
+#include "sim/solver/Frame.h"
+#include "sim/style/HairDryer.h"
+#include "sim/style/StyleEdits.h"
 
 #include <QObject>
 #include <QString>
@@ -153,7 +153,7 @@ private:
         bool fromParameters = false;
     };
     struct Scene {
-        HeadModelPtr head;  // null: built from `mesh` on the simulation thread
+        HeadModelPtr head; // null: built from `mesh` on the simulation thread
         TriangleMesh mesh;
         Regions regions;
         ParameterValues values;
@@ -168,9 +168,9 @@ private:
         std::optional<Scene> scene;
         std::optional<ParameterValues> parameters;
         std::optional<Regions> regions;
-        std::vector<Action> actions;  // in the order asked
+        std::vector<Action> actions; // in the order asked
         std::optional<StyleEditsPtr> style;
-        std::optional<std::vector<HairDryer>> dryers;  // set: a change (to dryers or to none)
+        std::optional<std::vector<HairDryer>> dryers; // set: a change (to dryers or to none)
         std::optional<std::vector<HeldStrand>> held;
         std::vector<Wetting> wettings;
         bool playing = false;
@@ -183,18 +183,18 @@ private:
     void postSceneReady();
 
     const int m_solverThreads;
-    const SecondsClock m_clock;  // empty: the steady clock
+    const SecondsClock m_clock; // empty: the steady clock
     mutable std::mutex m_mutex;
     std::condition_variable m_wake;
     Inbox m_inbox;
 
-    std::atomic<bool> m_playing{false};  // mirrors m_inbox.playing for lock-free reads
+    std::atomic<bool> m_playing{ false }; // mirrors m_inbox.playing for lock-free reads
     std::atomic<std::shared_ptr<const Frame>> m_latest;
-    std::atomic<std::uint64_t> m_published{0};
-    std::atomic<bool> m_frameSignalPending{false};
-    std::atomic<int> m_effectiveSubsteps{0};
+    std::atomic<std::uint64_t> m_published{ 0 };
+    std::atomic<bool> m_frameSignalPending{ false };
+    std::atomic<int> m_effectiveSubsteps{ 0 };
 
-    std::thread m_thread;  // last: started once everything it reads exists
+    std::thread m_thread; // last: started once everything it reads exists
 };
 
-}  // namespace wisp
+} // namespace wisp

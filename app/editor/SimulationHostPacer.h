@@ -22,9 +22,9 @@ namespace wisp {
 class SimulationHostPacer {
 public:
     struct StepReport {
-        bool fallingBehind = false;    // below real time, or running fewer substeps than requested
-        double timeScale = 1.0;        // simulated seconds per wall-clock second; 1 while keeping up
-        bool substepsChanged = false;  // substeps() changed: the solver should use it from the next step
+        bool fallingBehind = false; // below real time, or running fewer substeps than requested
+        double timeScale = 1.0; // simulated seconds per wall-clock second; 1 while keeping up
+        bool substepsChanged = false; // substeps() changed: the solver should use it from the next step
     };
 
     // Wall seconds above this many simulated seconds is slow motion; below, the difference is the
@@ -95,7 +95,7 @@ public:
 
         StepReport report;
         const double perSubstep = solverSeconds / m_substeps;
-        const double otherWork = std::max(0.0, work - solverSeconds);  // building and publishing the frame
+        const double otherWork = std::max(0.0, work - solverSeconds); // building and publishing the frame
         if (work > dt) {
             ++m_overBudgetSteps;
             m_headroomSteps = 0;
@@ -127,12 +127,12 @@ private:
     double m_dueSeconds = 0.0;
     double m_lastStartSeconds = 0.0;
     bool m_hasLastStart = false;
-    double m_simulatedSum = 0.0;  // simulated seconds, fading with wall clock (kRateSeconds)
-    double m_wallSum = 0.0;       // wall seconds, fading alike
+    double m_simulatedSum = 0.0; // simulated seconds, fading with wall clock (kRateSeconds)
+    double m_wallSum = 0.0; // wall seconds, fading alike
     int m_requested = 1;
     int m_substeps = 1;
     int m_overBudgetSteps = 0;
     int m_headroomSteps = 0;
 };
 
-}  // namespace wisp
+} // namespace wisp

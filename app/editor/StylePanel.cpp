@@ -14,26 +14,35 @@ namespace wisp {
 
 namespace {
 
-constexpr StyleBrush kBrushes[] = {StyleBrush::Comb, StyleBrush::Cut, StyleBrush::Length, StyleBrush::Curl,
-                                   StyleBrush::Wet, StyleBrush::Hairspray, StyleBrush::BlowDry};
+constexpr StyleBrush kBrushes[] = { StyleBrush::Comb, StyleBrush::Cut, StyleBrush::Length, StyleBrush::Curl,
+    StyleBrush::Wet, StyleBrush::Hairspray, StyleBrush::BlowDry };
 
 QKeySequence shortcutFor(StyleBrush brush)
 {
     switch (brush) {
-    case StyleBrush::Comb: return QKeySequence(Qt::Key_C);
-    case StyleBrush::Cut: return QKeySequence(Qt::Key_X);
-    case StyleBrush::Length: return QKeySequence(Qt::Key_G);
-    case StyleBrush::Curl: return QKeySequence(Qt::Key_P);
-    case StyleBrush::Wet: return QKeySequence(Qt::Key_W);
-    case StyleBrush::Hairspray: return QKeySequence(Qt::Key_S);
-    case StyleBrush::BlowDry: return QKeySequence(Qt::Key_D);
+    case StyleBrush::Comb:
+        return QKeySequence(Qt::Key_C);
+    case StyleBrush::Cut:
+        return QKeySequence(Qt::Key_X);
+    case StyleBrush::Length:
+        return QKeySequence(Qt::Key_G);
+    case StyleBrush::Curl:
+        return QKeySequence(Qt::Key_P);
+    case StyleBrush::Wet:
+        return QKeySequence(Qt::Key_W);
+    case StyleBrush::Hairspray:
+        return QKeySequence(Qt::Key_S);
+    case StyleBrush::BlowDry:
+        return QKeySequence(Qt::Key_D);
     }
     return {};
 }
 
-}  // namespace
+} // namespace
 
-StylePanel::StylePanel(StyleTool* tool, QWidget* parent) : QWidget(parent), m_tool(tool)
+StylePanel::StylePanel(StyleTool* tool, QWidget* parent)
+    : QWidget(parent)
+    , m_tool(tool)
 {
     auto* form = new QFormLayout(this);
     auto* grid = new QGridLayout;
@@ -44,7 +53,7 @@ StylePanel::StylePanel(StyleTool* tool, QWidget* parent) : QWidget(parent), m_to
         action->setShortcut(shortcutFor(brush));
         action->setToolTip(QStringLiteral("%1 (%2): %3")
                                .arg(styleBrushName(brush), shortcutFor(brush).toString(QKeySequence::NativeText),
-                                    styleBrushHelp(brush)));
+                                   styleBrushHelp(brush)));
         connect(action, &QAction::toggled, this, [this, brush](bool on) {
             if (on)
                 m_tool->setBrush(brush);
@@ -64,7 +73,7 @@ StylePanel::StylePanel(StyleTool* tool, QWidget* parent) : QWidget(parent), m_to
     // The perm's curl: slider-and-spin-box rows over the tool settings' ranges (sim/params/Parameters.h).
     SliderRowSpec radius;
     radius.range = toolSettingRange(ToolSetting::PermRadius);
-    radius.range.minimum *= 1000.0;  // shown in millimetres
+    radius.range.minimum *= 1000.0; // shown in millimetres
     radius.range.maximum *= 1000.0;
     radius.decimals = 1;
     radius.singleStep = 0.5;
@@ -84,8 +93,10 @@ StylePanel::StylePanel(StyleTool* tool, QWidget* parent) : QWidget(parent), m_to
     m_curlTurns = new SliderRow(std::move(turns));
     m_curlTurns->setValue(m_tool->curlTurnsPerMetre());
     form->addRow(tr("Perm turns"), m_curlTurns);
-    connect(m_curlRadius, &SliderRow::valueEdited, m_tool, [this](double mm) { m_tool->setCurlRadiusMetres(mm / 1000.0); });
-    connect(m_curlTurns, &SliderRow::valueEdited, m_tool, [this](double turns) { m_tool->setCurlTurnsPerMetre(turns); });
+    connect(
+        m_curlRadius, &SliderRow::valueEdited, m_tool, [this](double mm) { m_tool->setCurlRadiusMetres(mm / 1000.0); });
+    connect(
+        m_curlTurns, &SliderRow::valueEdited, m_tool, [this](double turns) { m_tool->setCurlTurnsPerMetre(turns); });
 
     m_hint = new QLabel;
     m_hint->setWordWrap(true);
@@ -101,11 +112,17 @@ StylePanel::StylePanel(StyleTool* tool, QWidget* parent) : QWidget(parent), m_to
 void StylePanel::showBrush(std::optional<StyleBrush> brush)
 {
     for (const auto& [b, action] : m_actions)
-        action->setChecked(brush == b);  // re-entry is harmless: setBrush ignores the brush it has
+        action->setChecked(brush == b); // re-entry is harmless: setBrush ignores the brush it has
     m_hint->setText(brush ? styleBrushHelp(*brush) : tr("Pick a styling tool to work on the moving hair."));
 }
 
-QDoubleSpinBox* StylePanel::curlRadiusBox() const { return m_curlRadius->spinBox(); }
-QDoubleSpinBox* StylePanel::curlTurnsBox() const { return m_curlTurns->spinBox(); }
+QDoubleSpinBox* StylePanel::curlRadiusBox() const
+{
+    return m_curlRadius->spinBox();
+}
+QDoubleSpinBox* StylePanel::curlTurnsBox() const
+{
+    return m_curlTurns->spinBox();
+}
 
-}  // namespace wisp
+} // namespace wisp

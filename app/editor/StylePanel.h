@@ -41,4 +41,4 @@ private:
     QLabel* m_hint = nullptr;
 };
 
-}  // namespace wisp
+} // namespace wisp

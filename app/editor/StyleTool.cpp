@@ -3,8 +3,8 @@
 #include "app/editor/Document.h"
 #include "app/editor/PaintTool.h"
 #include "app/editor/SimulationHost.h"
-#include "sim/style/StrandPicking.h"
 #include "sim/style/CombOperation.h"
+#include "sim/style/StrandPicking.h"
 #include "widgets/Viewport.h"
 
 #include <glm/geometric.hpp>

@@ -7,10 +7,12 @@
 
 namespace wisp {
 
-ViewportBrush::ViewportBrush(Viewport* viewport, QObject* parent) : QObject(parent), m_viewport(viewport)
+ViewportBrush::ViewportBrush(Viewport* viewport, QObject* parent)
+    : QObject(parent)
+    , m_viewport(viewport)
 {
     m_viewport->installEventFilter(this);
-    m_viewport->setMouseTracking(true);  // the ring follows the cursor without a button held
+    m_viewport->setMouseTracking(true); // the ring follows the cursor without a button held
 }
 
 void ViewportBrush::moveCursor(QPointF position, Qt::KeyboardModifiers modifiers)
@@ -27,7 +29,7 @@ bool ViewportBrush::eventFilter(QObject* watched, QEvent* event)
     case QEvent::MouseButtonPress: {
         auto* e = static_cast<QMouseEvent*>(event);
         if (e->button() != Qt::LeftButton || (e->modifiers() & Qt::AltModifier))
-            return false;  // Alt + drag belongs to the camera
+            return false; // Alt + drag belongs to the camera
         moveCursor(e->position(), e->modifiers());
         m_stroking = beginStroke(e->position(), e->modifiers());
         return m_stroking;
@@ -36,7 +38,7 @@ bool ViewportBrush::eventFilter(QObject* watched, QEvent* event)
         auto* e = static_cast<QMouseEvent*>(event);
         moveCursor(e->position(), e->modifiers());
         if (!m_stroking)
-            return false;  // camera drags pass through
+            return false; // camera drags pass through
         continueStroke(e->position(), e->modifiers());
         return true;
     }
@@ -57,7 +59,7 @@ bool ViewportBrush::eventFilter(QObject* watched, QEvent* event)
         if (keyPressed(e))
             return true;
         if ((e->key() == Qt::Key_Control || e->key() == Qt::Key_Shift) && hasCursor())
-            showCursor(m_lastCursor, e->modifiers());  // the ring shows what a held key changes
+            showCursor(m_lastCursor, e->modifiers()); // the ring shows what a held key changes
         return false;
     }
     default:
@@ -65,4 +67,4 @@ bool ViewportBrush::eventFilter(QObject* watched, QEvent* event)
     }
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -49,7 +49,7 @@ private:
 
     Viewport* m_viewport;
     bool m_stroking = false;
-    QPointF m_lastCursor{-1.0, -1.0};
+    QPointF m_lastCursor{ -1.0, -1.0 };
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -40,7 +40,7 @@ QColor toQColor(const glm::vec3& c)
 
 glm::vec3 toVec3(const QColor& c)
 {
-    return {static_cast<float>(c.redF()), static_cast<float>(c.greenF()), static_cast<float>(c.blueF())};
+    return { static_cast<float>(c.redF()), static_cast<float>(c.greenF()), static_cast<float>(c.blueF()) };
 }
 
 QIcon swatch(const QColor& colour, const QColor& border)
@@ -53,9 +53,11 @@ QIcon swatch(const QColor& colour, const QColor& border)
     return QIcon(pixmap);
 }
 
-}  // namespace
+} // namespace
 
-WispPanel::WispPanel(Document* document, QWidget* parent) : QWidget(parent), m_document(document)
+WispPanel::WispPanel(Document* document, QWidget* parent)
+    : QWidget(parent)
+    , m_document(document)
 {
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(4, 4, 4, 4);
@@ -88,7 +90,7 @@ QWidget* WispPanel::createColourRow()
     m_tipColour = new QPushButton(tr("Tip"), row);
     m_tipColour->setObjectName(QStringLiteral("tipColour"));
     m_tipColour->setToolTip(tr("The hair's colour at its tip"));
-    for (QPushButton* button : {m_rootColour, m_tipColour}) {
+    for (QPushButton* button : { m_rootColour, m_tipColour }) {
         button->setIconSize(kSwatchSizePx);
         h->addWidget(button);
     }
@@ -101,7 +103,7 @@ QWidget* WispPanel::createColourRow()
 void WispPanel::connectDocument()
 {
     connect(m_document, &Document::currentRegionChanged, this, &WispPanel::refresh);
-    connect(m_document, &Document::regionsChanged, this, &WispPanel::refresh);  // renamed, recoloured, reordered
+    connect(m_document, &Document::regionsChanged, this, &WispPanel::refresh); // renamed, recoloured, reordered
     connect(m_document, &Document::headChanged, this, &WispPanel::refresh);
     connect(m_document, &Document::regionParameterChanged, this, [this](int index, Param) {
         if (index == m_document->currentRegion())
@@ -128,7 +130,7 @@ void WispPanel::showValues()
 {
     const int current = validCurrent();
     if (current >= 0)
-        m_parameters->setValues(m_document->region(current).values);  // emits nothing
+        m_parameters->setValues(m_document->region(current).values); // emits nothing
 }
 
 void WispPanel::showColours()
@@ -159,7 +161,7 @@ void WispPanel::parameterEdited(Param id, double value, bool dragging)
         return;
     const QString refusal = m_document->editRegionParameter(current, id, value, dragging);
     if (!refusal.isEmpty()) {
-        showValues();  // back to the value the document kept
+        showValues(); // back to the value the document kept
         emit editRefused(refusal);
     }
 }
@@ -179,7 +181,7 @@ void WispPanel::pickColour(HairEnd end)
                                                 : tr("Tip Colour of %1").arg(QString::fromStdString(region.name)));
     // By id: the region may have moved while the dialog was open.
     connect(dialog, &QColorDialog::colorSelected, this,
-            [this, regionId, end](const QColor& colour) { applyColour(regionId, end, colour); });
+        [this, regionId, end](const QColor& colour) { applyColour(regionId, end, colour); });
     dialog->open();
 }
 
@@ -195,4 +197,4 @@ void WispPanel::applyColour(std::uint32_t regionId, HairEnd end, const QColor& c
         m_document->setRegionColours(index, root, tip);
 }
 
-}  // namespace wisp
+} // namespace wisp

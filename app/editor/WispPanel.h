@@ -47,7 +47,7 @@ private:
     void refresh();
     void showValues();
     void showColours();
-    int validCurrent() const;  // the document's current region, or -1 while it has none
+    int validCurrent() const; // the document's current region, or -1 while it has none
 
     // Widgets → document.
     void parameterEdited(Param id, double value, bool dragging);
@@ -61,4 +61,4 @@ private:
     QPushButton* m_tipColour = nullptr;
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -36,7 +36,8 @@ int main(int argc, char** argv)
     parser.setApplicationDescription(QStringLiteral("Hair styling and simulation editor"));
     parser.addHelpOption();
     parser.addVersionOption();
-    parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("a project (.wisp) or a head mesh (OBJ, PLY, OFF, STL, glTF) to open"));
+    parser.addPositionalArgument(
+        QStringLiteral("file"), QStringLiteral("a project (.wisp) or a head mesh (OBJ, PLY, OFF, STL, glTF) to open"));
     parser.process(app);
 
     wisp::MainWindow window;

@@ -11,21 +11,21 @@ namespace wisp {
 namespace {
 
 // The built-in head's bounding box (DefaultHead.cpp; its neck column ends flat at y = -0.215).
-constexpr glm::vec3 kDefaultMin{-0.0842f, -0.2151f, -0.1063f};
-constexpr glm::vec3 kDefaultMax{0.0841f, 0.1220f, 0.1137f};
+constexpr glm::vec3 kDefaultMin{ -0.0842f, -0.2151f, -0.1063f };
+constexpr glm::vec3 kDefaultMax{ 0.0841f, 0.1220f, 0.1137f };
 
 // The bust for the built-in head, in its space. Sized from an adult's: shoulders 0.41 m across
 // (biacromial breadth about 0.37 m plus the deltoids), their top 0.33 m below the crown; the neck
 // 0.10 m thick (a little inside the head mesh's own neck, so only its part below shows); the upper
 // chest and back 0.20 m deep, as deep as the head, so hair falling from the back of the head lands on it.
 const Capsule kDefaultBody[] = {
-    {{0.0f, -0.080f, -0.019f}, {0.0f, -0.250f, 0.001f}, 0.049f},      // neck, leaning forward as the mesh's
-    {{-0.035f, -0.265f, -0.005f}, {-0.150f, -0.295f, -0.010f}, 0.055f},  // left shoulder, sloping down outward
-    {{0.035f, -0.265f, -0.005f}, {0.150f, -0.295f, -0.010f}, 0.055f},    // right shoulder
-    {{-0.090f, -0.345f, 0.000f}, {0.090f, -0.345f, 0.000f}, 0.100f},     // upper chest and back
+    { { 0.0f, -0.080f, -0.019f }, { 0.0f, -0.250f, 0.001f }, 0.049f }, // neck, leaning forward as the mesh's
+    { { -0.035f, -0.265f, -0.005f }, { -0.150f, -0.295f, -0.010f }, 0.055f }, // left shoulder, sloping down outward
+    { { 0.035f, -0.265f, -0.005f }, { 0.150f, -0.295f, -0.010f }, 0.055f }, // right shoulder
+    { { -0.090f, -0.345f, 0.000f }, { 0.090f, -0.345f, 0.000f }, 0.100f }, // upper chest and back
 };
 
-}  // namespace
+} // namespace
 
 std::vector<Capsule> defaultBody(const TriangleMesh& head)
 {
@@ -39,10 +39,12 @@ std::vector<Capsule> defaultBody(const TriangleMesh& head)
     // Anchored at the top centre of the box: the crown is where every head's box is alike (a head
     // may or may not come with a neck, which moves the bottom).
     const glm::vec3 anchor(box.center().x, box.max.y, box.center().z);
-    const glm::vec3 defaultAnchor(0.5f * (kDefaultMin.x + kDefaultMax.x), kDefaultMax.y, 0.5f * (kDefaultMin.z + kDefaultMax.z));
+    const glm::vec3 defaultAnchor(
+        0.5f * (kDefaultMin.x + kDefaultMax.x), kDefaultMax.y, 0.5f * (kDefaultMin.z + kDefaultMax.z));
     std::vector<Capsule> body;
     for (const Capsule& c : kDefaultBody)
-        body.push_back({anchor + scale * (c.a - defaultAnchor), anchor + scale * (c.b - defaultAnchor), scale * c.radiusMetres});
+        body.push_back(
+            { anchor + scale * (c.a - defaultAnchor), anchor + scale * (c.b - defaultAnchor), scale * c.radiusMetres });
     return body;
 }
 
@@ -58,7 +60,7 @@ TriangleMesh capsuleMesh(std::span<const Capsule> capsules, int around)
 {
     TriangleMesh mesh;
     around = std::max(around, 3);
-    const int half = std::max(around / 4, 2);  // latitude rings per hemisphere, pole excluded
+    const int half = std::max(around / 4, 2); // latitude rings per hemisphere, pole excluded
     for (const Capsule& c : capsules) {
         glm::vec3 axis = c.b - c.a;
         const float length = glm::length(axis);
@@ -91,15 +93,15 @@ TriangleMesh capsuleMesh(std::span<const Capsule> capsules, int around)
         auto ring = [&](int r, int i) { return first + 1 + static_cast<std::uint32_t>(r * around + (i % around)); };
         // (u, v, axis) is right-handed, so rings run counter-clockwise seen from +axis.
         for (int i = 0; i < around; ++i) {
-            mesh.triangles.push_back({south, ring(0, i + 1), ring(0, i)});
+            mesh.triangles.push_back({ south, ring(0, i + 1), ring(0, i) });
             for (int r = 0; r + 1 < rings; ++r) {
-                mesh.triangles.push_back({ring(r, i), ring(r, i + 1), ring(r + 1, i + 1)});
-                mesh.triangles.push_back({ring(r, i), ring(r + 1, i + 1), ring(r + 1, i)});
+                mesh.triangles.push_back({ ring(r, i), ring(r, i + 1), ring(r + 1, i + 1) });
+                mesh.triangles.push_back({ ring(r, i), ring(r + 1, i + 1), ring(r + 1, i) });
             }
-            mesh.triangles.push_back({ring(rings - 1, i), ring(rings - 1, i + 1), north});
+            mesh.triangles.push_back({ ring(rings - 1, i), ring(rings - 1, i + 1), north });
         }
     }
     return mesh;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -3,8 +3,8 @@
 // space, metres), for the solver to collide the hair with (the `body` parameter) and for the
 // viewport to draw. The editor and wisp-cli take the body from here, so both collide with the same one.
 
-#include "sim/solver/Solver.h"
 #include "sim/geometry/TriangleMesh.h"
+#include "sim/solver/Solver.h"
 
 #include <span>
 #include <vector>
@@ -28,4 +28,4 @@ float capsuleDistance(const Capsule& capsule, const glm::vec3& p);
 // outside), `around` vertices around each ring; for drawing.
 TriangleMesh capsuleMesh(std::span<const Capsule> capsules, int around = 32);
 
-}  // namespace wisp
+} // namespace wisp

@@ -30,10 +30,10 @@ namespace {
 using glm::vec2;
 using glm::vec3;
 
-constexpr float kCell = 0.0038f;  // grid spacing: still shows lips and nostrils, ~34k triangles
+constexpr float kCell = 0.0038f; // grid spacing: still shows lips and nostrils, ~34k triangles
 // At least two cells of air around the head on every side, so the surface closes inside the grid.
-const vec3 kGridMin{-0.105f, -0.235f, -0.125f};
-const vec3 kGridMax{0.105f, 0.140f, 0.135f};
+const vec3 kGridMin{ -0.105f, -0.235f, -0.125f };
+const vec3 kGridMax{ 0.105f, 0.140f, 0.135f };
 
 // --- Signed distance primitives -----------------------------------------------------------------
 
@@ -71,7 +71,10 @@ float smoothMin(float a, float b, float k)
     return std::min(a, b) - h * h * k * 0.25f;
 }
 
-float smoothSubtract(float from, float cut, float k) { return -smoothMin(-from, cut, k); }
+float smoothSubtract(float from, float cut, float k)
+{
+    return -smoothMin(-from, cut, k);
+}
 
 // The ear, in the frame of the head's right half (x >= 0). Shared with the growth map, which keeps
 // hair off it.
@@ -90,7 +93,7 @@ float earDistance(vec3 m)
 
 float headDistance(vec3 p)
 {
-    const vec3 m{std::abs(p.x), p.y, p.z};  // mirrored: paired features are written once
+    const vec3 m{ std::abs(p.x), p.y, p.z }; // mirrored: paired features are written once
 
     // Cranium, a little narrower at the forehead than over the parietal bones, with the occipital
     // bulge behind.
@@ -98,18 +101,18 @@ float headDistance(vec3 p)
     c.x *= 1.0f + 0.16f * glm::clamp(c.z / 0.091f, 0.0f, 1.0f);
     float d = ellipsoid(c, vec3(0.075f, 0.098f, 0.091f));
     d = smoothMin(d, ellipsoid(p - vec3(0.0f, -0.005f, -0.030f), vec3(0.062f, 0.070f, 0.070f)), 0.02f);
-    d = smoothMin(d, ellipsoid(p - vec3(0.0f, 0.038f, -0.018f), vec3(0.071f, 0.075f, 0.082f)), 0.02f);  // rounder vault
+    d = smoothMin(d, ellipsoid(p - vec3(0.0f, 0.038f, -0.018f), vec3(0.071f, 0.075f, 0.082f)), 0.02f); // rounder vault
 
     // Face mass, jaw line and chin.
     d = smoothMin(d, ellipsoid(p - vec3(0.0f, -0.030f, 0.026f), vec3(0.056f, 0.070f, 0.062f)), 0.03f);
     d = smoothMin(d, capsule(m, vec3(0.044f, -0.068f, -0.018f), vec3(0.014f, -0.095f, 0.062f), 0.010f, 0.013f), 0.035f);
-    d = smoothMin(d, ellipsoid(m - vec3(0.042f, -0.045f, 0.008f), vec3(0.015f, 0.032f, 0.030f)), 0.04f);  // masseter
+    d = smoothMin(d, ellipsoid(m - vec3(0.042f, -0.045f, 0.008f), vec3(0.015f, 0.032f, 0.030f)), 0.04f); // masseter
     d = smoothMin(d, ellipsoid(p - vec3(0.0f, -0.095f, 0.068f), vec3(0.019f, 0.014f, 0.015f)), 0.015f);
 
     // Cheekbones and a soft brow ridge.
     d = smoothMin(d, ellipsoid(m - vec3(0.046f, -0.010f, 0.056f), vec3(0.020f, 0.013f, 0.020f)), 0.02f);
     d = smoothMin(d, ellipsoid(m - vec3(0.028f, 0.025f, 0.078f), vec3(0.026f, 0.010f, 0.012f)), 0.025f);
-    d = smoothMin(d, ellipsoid(m - vec3(0.036f, -0.045f, 0.046f), vec3(0.020f, 0.025f, 0.025f)), 0.03f);  // full cheeks
+    d = smoothMin(d, ellipsoid(m - vec3(0.036f, -0.045f, 0.046f), vec3(0.020f, 0.025f, 0.025f)), 0.03f); // full cheeks
 
     // Eye sockets carved under the brow, with the eyeballs sitting in them.
     d = smoothSubtract(d, ellipsoid(m - vec3(0.032f, 0.006f, 0.092f), vec3(0.019f, 0.011f, 0.015f)), 0.01f);
@@ -126,10 +129,10 @@ float headDistance(vec3 p)
     d = smoothMin(d, earDistance(m), 0.006f);
 
     // Neck: an elliptic column leaning forward, closed flat (with a rounded rim) at the bottom.
-    const vec2 neckAxis{0.0f, -0.024f - 0.15f * (p.y + 0.05f)};
+    const vec2 neckAxis{ 0.0f, -0.024f - 0.15f * (p.y + 0.05f) };
     float neck = ellipse(vec2(p.x, p.z) - neckAxis, vec2(0.052f, 0.056f));
-    neck = smoothSubtract(neck, 0.215f + p.y, 0.01f);  // keep y > -0.215
-    neck = std::max(neck, p.y);                            // ends inside the head
+    neck = smoothSubtract(neck, 0.215f + p.y, 0.01f); // keep y > -0.215
+    neck = std::max(neck, p.y); // ends inside the head
     return smoothMin(d, neck, 0.02f);
 }
 
@@ -139,8 +142,8 @@ float headDistance(vec3 p)
 // at offset u along axis (a + 1) % 3 and v along (a + 2) % 3.
 struct CubeTables {
     std::array<std::array<int, 2>, 12> edgeCorners{};
-    std::array<std::array<int, 4>, 6> faceCorners{};  // cyclic, the same global order from both cells
-    std::array<std::array<int, 4>, 6> faceEdges{};    // edge k joins faceCorners k and k + 1
+    std::array<std::array<int, 4>, 6> faceCorners{}; // cyclic, the same global order from both cells
+    std::array<std::array<int, 4>, 6> faceEdges{}; // edge k joins faceCorners k and k + 1
 };
 
 int cornerAt(int a, int along, int u, int v)
@@ -157,8 +160,8 @@ CubeTables makeCubeTables()
     CubeTables t;
     for (int a = 0; a < 3; ++a)
         for (int e = 0; e < 4; ++e)
-            t.edgeCorners[4 * a + e] = {cornerAt(a, 0, e & 1, e >> 1), cornerAt(a, 1, e & 1, e >> 1)};
-    const int cycle[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+            t.edgeCorners[4 * a + e] = { cornerAt(a, 0, e & 1, e >> 1), cornerAt(a, 1, e & 1, e >> 1) };
+    const int cycle[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
     for (int f = 0; f < 6; ++f) {
         const int a = f / 2, side = f % 2;
         for (int k = 0; k < 4; ++k)
@@ -166,8 +169,8 @@ CubeTables makeCubeTables()
         for (int k = 0; k < 4; ++k) {
             const int c0 = t.faceCorners[f][k], c1 = t.faceCorners[f][(k + 1) % 4];
             for (int e = 0; e < 12; ++e)
-                if (std::min(t.edgeCorners[e][0], t.edgeCorners[e][1]) == std::min(c0, c1) &&
-                    std::max(t.edgeCorners[e][0], t.edgeCorners[e][1]) == std::max(c0, c1))
+                if (std::min(t.edgeCorners[e][0], t.edgeCorners[e][1]) == std::min(c0, c1)
+                    && std::max(t.edgeCorners[e][0], t.edgeCorners[e][1]) == std::max(c0, c1))
                     t.faceEdges[f][k] = e;
         }
     }
@@ -175,7 +178,7 @@ CubeTables makeCubeTables()
 }
 
 struct Grid {
-    glm::ivec3 n{0};
+    glm::ivec3 n{ 0 };
     std::vector<float> values;
     std::size_t index(int i, int j, int k) const { return (std::size_t(k) * n.y + j) * n.x + i; }
     vec3 position(int i, int j, int k) const { return kGridMin + vec3(float(i), float(j), float(k)) * kCell; }
@@ -189,7 +192,7 @@ Grid sampleHead()
     g.n = glm::ivec3(glm::floor((kGridMax - kGridMin) / kCell)) + 1;
     g.values.resize(std::size_t(g.n.x) * g.n.y * g.n.z);
     constexpr int kBlock = 4;
-    const float farEnough = 2.0f * (kBlock - 1) * kCell * 0.8661f;  // twice the block's half-diagonal
+    const float farEnough = 2.0f * (kBlock - 1) * kCell * 0.8661f; // twice the block's half-diagonal
     for (int bk = 0; bk < g.n.z; bk += kBlock)
         for (int bj = 0; bj < g.n.y; bj += kBlock)
             for (int bi = 0; bi < g.n.x; bi += kBlock) {
@@ -207,7 +210,7 @@ Grid sampleHead()
 
 struct QuadMesh {
     std::vector<vec3> positions;
-    std::vector<std::array<std::uint32_t, 4>> quads;  // counter-clockwise from outside
+    std::vector<std::array<std::uint32_t, 4>> quads; // counter-clockwise from outside
 };
 
 // Surface nets, with one vertex per connected surface patch of a cell rather than per cell, so
@@ -220,7 +223,7 @@ QuadMesh contour(const Grid& g)
     const glm::ivec3 cells = g.n - 1;
     constexpr std::uint32_t kNone = 0xffffffffu;
     std::vector<std::uint32_t> cellSlot(std::size_t(cells.x) * cells.y * cells.z, kNone);
-    std::vector<std::array<std::uint32_t, 12>> edgeVertex;  // per surface cell: vertex of each crossed edge
+    std::vector<std::array<std::uint32_t, 12>> edgeVertex; // per surface cell: vertex of each crossed edge
     QuadMesh out;
     auto inside = [](float v) { return v < 0.0f; };
 
@@ -292,7 +295,7 @@ QuadMesh contour(const Grid& g)
             }
 
     // One quad per crossed grid edge, joining the patches of the four cells around it.
-    const int cycle[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};  // counter-clockwise about the edge's axis
+    const int cycle[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } }; // counter-clockwise about the edge's axis
     for (int k = 1; k < cells.z; ++k)
         for (int j = 1; j < cells.y; ++j)
             for (int i = 1; i < cells.x; ++i)
@@ -310,7 +313,7 @@ QuadMesh contour(const Grid& g)
                         const std::uint32_t s = cellSlot[(std::size_t(c.z) * cells.y + c.y) * cells.x + c.x];
                         quad[q] = edgeVertex[s][4 * a + (1 - cycle[q][0]) + 2 * (1 - cycle[q][1])];
                     }
-                    if (!in0)  // outside at the low end: the surface faces -axis
+                    if (!in0) // outside at the low end: the surface faces -axis
                         std::swap(quad[1], quad[3]);
                     out.quads.push_back(quad);
                 }
@@ -326,7 +329,9 @@ void projectToSurface(std::vector<vec3>& positions)
     for (vec3& p : positions) {
         const float d = headDistance(p);
         const vec3 grad = (vec3(headDistance(p + vec3(h, 0.0f, 0.0f)), headDistance(p + vec3(0.0f, h, 0.0f)),
-                                headDistance(p + vec3(0.0f, 0.0f, h))) - d) / h;
+                               headDistance(p + vec3(0.0f, 0.0f, h)))
+                              - d)
+            / h;
         const float g2 = glm::dot(grad, grad);
         if (!(g2 > 1e-6f))
             continue;
@@ -345,7 +350,7 @@ void taubinSmooth(QuadMesh& mesh, int iterations)
     std::vector<std::vector<std::uint32_t>> neighbours(mesh.positions.size());
     for (const auto& q : mesh.quads)
         for (int k = 0; k < 4; ++k)
-            neighbours[q[k]].push_back(q[(k + 1) % 4]);  // each quad edge appears once per side
+            neighbours[q[k]].push_back(q[(k + 1) % 4]); // each quad edge appears once per side
     for (auto& n : neighbours) {
         std::sort(n.begin(), n.end());
         n.erase(std::unique(n.begin(), n.end()), n.end());
@@ -393,9 +398,20 @@ struct HairlinePoint {
     float y;
 };
 constexpr HairlinePoint kHairline[] = {
-    {0.0f, 0.078f},   {25.0f, 0.075f},  {42.0f, 0.064f},   {55.0f, 0.055f},   {64.0f, 0.035f},
-    {67.0f, -0.002f}, {80.0f, -0.002f}, {84.0f, 0.036f},   {100.0f, 0.038f},  {106.0f, 0.032f},
-    {112.0f, -0.005f}, {118.0f, -0.035f}, {150.0f, -0.060f}, {180.0f, -0.068f},
+    { 0.0f, 0.078f },
+    { 25.0f, 0.075f },
+    { 42.0f, 0.064f },
+    { 55.0f, 0.055f },
+    { 64.0f, 0.035f },
+    { 67.0f, -0.002f },
+    { 80.0f, -0.002f },
+    { 84.0f, 0.036f },
+    { 100.0f, 0.038f },
+    { 106.0f, 0.032f },
+    { 112.0f, -0.005f },
+    { 118.0f, -0.035f },
+    { 150.0f, -0.060f },
+    { 180.0f, -0.068f },
 };
 
 // Angle in radians between +Z and (|x|, z) around the Y axis, 0 at the face to pi at the back. A
@@ -419,13 +435,13 @@ float azimuthFromFace(float x, float z)
 float aboveHairline(vec3 p)
 {
     const float azimuth = azimuthFromFace(p.x, p.z + 0.008f);
-    const vec2 q{azimuth * kHairlineRadius, p.y};
+    const vec2 q{ azimuth * kHairlineRadius, p.y };
     float nearest = 1e9f;
     float lineY = kHairline[0].y;
     constexpr float kDeg = 3.14159265f / 180.0f;
     for (std::size_t s = 0; s + 1 < std::size(kHairline); ++s) {
-        const vec2 a{kHairline[s].azimuthDegrees * kDeg * kHairlineRadius, kHairline[s].y};
-        const vec2 b{kHairline[s + 1].azimuthDegrees * kDeg * kHairlineRadius, kHairline[s + 1].y};
+        const vec2 a{ kHairline[s].azimuthDegrees * kDeg * kHairlineRadius, kHairline[s].y };
+        const vec2 b{ kHairline[s + 1].azimuthDegrees * kDeg * kHairlineRadius, kHairline[s + 1].y };
         const float h = glm::clamp(glm::dot(q - a, b - a) / glm::dot(b - a, b - a), 0.0f, 1.0f);
         nearest = std::min(nearest, glm::distance(q, a + (b - a) * h));
         if (q.x >= a.x && q.x <= b.x)
@@ -447,7 +463,7 @@ std::vector<float> growthMap(const TriangleMesh& mesh)
     return weights;
 }
 
-}  // namespace
+} // namespace
 
 DefaultHead makeDefaultHead()
 {
@@ -460,4 +476,4 @@ DefaultHead makeDefaultHead()
     return head;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -9,11 +9,11 @@
 namespace wisp {
 
 struct DefaultHead {
-    TriangleMesh mesh;                 // metres, +Y up, face looks toward +Z
-    std::vector<float> growthWeights;  // one per vertex, 0..1: where hair grows (the painted growth map of Lee et al.)
+    TriangleMesh mesh; // metres, +Y up, face looks toward +Z
+    std::vector<float> growthWeights; // one per vertex, 0..1: where hair grows (the painted growth map of Lee et al.)
 };
 
 // Deterministic: the same mesh and weights on every call and every machine. Takes well under 100 ms.
 DefaultHead makeDefaultHead();
 
-}  // namespace wisp
+} // namespace wisp

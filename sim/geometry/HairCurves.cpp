@@ -12,4 +12,4 @@ float strandLength(std::span<const glm::vec3> points)
     return length;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -12,8 +12,8 @@
 namespace wisp {
 
 struct HairCurves {
-    std::vector<std::uint32_t> offsets{0};  // strandCount() + 1 entries, offsets[0] == 0
-    std::vector<glm::vec3> positions;       // metres
+    std::vector<std::uint32_t> offsets{ 0 }; // strandCount() + 1 entries, offsets[0] == 0
+    std::vector<glm::vec3> positions; // metres
 
     std::size_t strandCount() const { return offsets.empty() ? 0 : offsets.size() - 1; }
     std::size_t pointCount() const { return positions.size(); }
@@ -21,11 +21,11 @@ struct HairCurves {
 
     std::span<const glm::vec3> strand(std::size_t i) const
     {
-        return {positions.data() + offsets[i], positions.data() + offsets[i + 1]};
+        return { positions.data() + offsets[i], positions.data() + offsets[i + 1] };
     }
     std::span<glm::vec3> strandForWrite(std::size_t i)
     {
-        return {positions.data() + offsets[i], positions.data() + offsets[i + 1]};
+        return { positions.data() + offsets[i], positions.data() + offsets[i + 1] };
     }
 
     // Appends a strand of `points` points (uninitialised positions) and returns its index.
@@ -46,4 +46,4 @@ struct HairCurves {
 // Polyline length of one strand, metres.
 float strandLength(std::span<const glm::vec3> points);
 
-}  // namespace wisp
+} // namespace wisp

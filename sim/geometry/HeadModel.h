@@ -6,8 +6,8 @@
 // thread, several at once.
 
 #include "sim/geometry/MeshBvh.h"
-#include "sim/groom/ScalpBrush.h"
 #include "sim/geometry/TriangleMesh.h"
+#include "sim/groom/ScalpBrush.h"
 
 #include <glm/vec3.hpp>
 

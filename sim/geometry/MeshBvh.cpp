@@ -14,8 +14,8 @@ namespace {
 // 16 bins per axis finds splits within a few percent of the full sweep at a fraction of the
 // cost, which keeps a 270k-triangle head well under the interactive budget.
 constexpr int kBins = 16;
-constexpr std::uint32_t kMaxLeafSize = 4;     // leaves bigger than this are always split
-constexpr float kTraversalCost = 1.0f;        // relative to one triangle test
+constexpr std::uint32_t kMaxLeafSize = 4; // leaves bigger than this are always split
+constexpr float kTraversalCost = 1.0f; // relative to one triangle test
 // SAH alone can peel one triangle off at a time on skewed inputs; past kMaxSahDepth the build
 // switches to median splits, which bounds the depth by kMaxSahDepth + 32 and so the traversal
 // stacks (one pending sibling per level) by kStackSize.
@@ -23,8 +23,8 @@ constexpr std::uint32_t kMaxSahDepth = 48;
 constexpr int kStackSize = 96;
 
 struct Box {
-    glm::vec3 lo{std::numeric_limits<float>::max()};
-    glm::vec3 hi{-std::numeric_limits<float>::max()};
+    glm::vec3 lo{ std::numeric_limits<float>::max() };
+    glm::vec3 hi{ -std::numeric_limits<float>::max() };
     void grow(const glm::vec3& p)
     {
         lo = glm::min(lo, p);
@@ -69,7 +69,7 @@ float boxDistance2(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi)
     return glm::dot(d, d);
 }
 
-}  // namespace
+} // namespace
 
 MeshBvh::MeshBvh(const TriangleMesh& mesh)
 {
@@ -77,7 +77,7 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh)
     // partition passes stream through memory instead of gathering through an index.
     struct Ref {
         Box box;
-        glm::vec3 centroid{0.0f};
+        glm::vec3 centroid{ 0.0f };
         std::uint32_t id = 0;
     };
     const auto vertexCount = mesh.positions.size();
@@ -105,7 +105,7 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh)
     };
     m_nodes.reserve(2 * refs.size());
     m_nodes.emplace_back();
-    std::vector<Task> tasks{{0, 0, static_cast<std::uint32_t>(refs.size()), 0}};
+    std::vector<Task> tasks{ { 0, 0, static_cast<std::uint32_t>(refs.size()), 0 } };
 
     struct Bin {
         Box box;
@@ -154,12 +154,13 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh)
             }
             acc = Box{};
             n = 0;
-            for (int plane = 1; plane < kBins; ++plane) {  // plane p: bins [0, p) go left
+            for (int plane = 1; plane < kBins; ++plane) { // plane p: bins [0, p) go left
                 acc.grow(bins[plane - 1].box);
                 n += bins[plane - 1].count;
                 if (n == 0 || rightCount[plane] == 0)
                     continue;
-                const float cost = acc.halfArea() * static_cast<float>(n) + rightArea[plane] * static_cast<float>(rightCount[plane]);
+                const float cost
+                    = acc.halfArea() * static_cast<float>(n) + rightArea[plane] * static_cast<float>(rightCount[plane]);
                 if (cost < bestCost) {
                     bestCost = cost;
                     bestAxis = axis;
@@ -177,7 +178,7 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh)
             const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
             mid = task.begin + count / 2;
             std::nth_element(refs.begin() + task.begin, refs.begin() + mid, refs.begin() + task.end,
-                             [&](const Ref& x, const Ref& y) { return x.centroid[axis] < y.centroid[axis]; });
+                [&](const Ref& x, const Ref& y) { return x.centroid[axis] < y.centroid[axis]; });
         } else {
             const float parentArea = bounds.halfArea();
             const float splitCost = kTraversalCost + (parentArea > 0.0f ? bestCost / parentArea : 0.0f);
@@ -185,12 +186,11 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh)
                 continue;
             const float lo = centroidBounds.lo[bestAxis];
             const float axisExtent = extent[bestAxis];
-            const Ref* middle = std::partition(refs.data() + task.begin, refs.data() + task.end, [&](const Ref& r) {
-                return binOf(r.centroid[bestAxis], lo, axisExtent) < bestPlane;
-            });
+            const Ref* middle = std::partition(refs.data() + task.begin, refs.data() + task.end,
+                [&](const Ref& r) { return binOf(r.centroid[bestAxis], lo, axisExtent) < bestPlane; });
             mid = static_cast<std::uint32_t>(middle - refs.data());
             if (mid == task.begin || mid == task.end)
-                mid = task.begin + count / 2;  // cannot happen with the counts above; stay safe
+                mid = task.begin + count / 2; // cannot happen with the counts above; stay safe
         }
         const auto left = static_cast<std::uint32_t>(m_nodes.size());
         // `node` may dangle after emplace_back: write through the index.
@@ -199,8 +199,8 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh)
         m_nodes.emplace_back();
         m_nodes.emplace_back();
         // Right first so the left subtree is built next and lands right after its parent.
-        tasks.push_back({left + 1, mid, task.end, task.depth + 1});
-        tasks.push_back({left, task.begin, mid, task.depth + 1});
+        tasks.push_back({ left + 1, mid, task.end, task.depth + 1 });
+        tasks.push_back({ left, task.begin, mid, task.depth + 1 });
     }
 
     m_corners.resize(3 * refs.size());
@@ -218,7 +218,7 @@ Aabb MeshBvh::bounds() const
 {
     if (m_nodes.empty())
         return {};
-    return {m_nodes[0].min, m_nodes[0].max};
+    return { m_nodes[0].min, m_nodes[0].max };
 }
 
 MeshBvh::ClosestPoint MeshBvh::closestPoint(const glm::vec3& p) const
@@ -252,7 +252,8 @@ std::optional<MeshBvh::ClosestPoint> MeshBvh::closestPointWithin(const glm::vec3
             continue;
         if (node.count > 0) {
             for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-                const TrianglePoint q = closestPointOnTriangle(p, m_corners[3 * i], m_corners[3 * i + 1], m_corners[3 * i + 2]);
+                const TrianglePoint q
+                    = closestPointOnTriangle(p, m_corners[3 * i], m_corners[3 * i + 1], m_corners[3 * i + 2]);
                 const glm::vec3 d = q.point - p;
                 const float d2 = glm::dot(d, d);
                 if (d2 < best2 || (d2 == best2 && bestIndex == std::numeric_limits<std::uint32_t>::max())) {
@@ -343,8 +344,8 @@ std::optional<MeshBvh::RayHit> MeshBvh::raycast(const glm::vec3& origin, const g
                 if (v < 0.0f || u + v > 1.0f)
                     continue;
                 const float t = glm::dot(e2, qv) * invDet;
-                if (t >= 0.0f && t <= bestT && std::isfinite(t) &&
-                    (t < bestT || bestIndex == std::numeric_limits<std::uint32_t>::max())) {
+                if (t >= 0.0f && t <= bestT && std::isfinite(t)
+                    && (t < bestT || bestIndex == std::numeric_limits<std::uint32_t>::max())) {
                     bestT = t;
                     bestIndex = i;
                     bestU = u;
@@ -378,4 +379,4 @@ std::optional<MeshBvh::RayHit> MeshBvh::raycast(const glm::vec3& origin, const g
     return hit;
 }
 
-}  // namespace wisp
+} // namespace wisp

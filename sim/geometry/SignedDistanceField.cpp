@@ -1,6 +1,6 @@
 #include "sim/geometry/SignedDistanceField.h"
 
-#include "sim/geometry/MeshBvh.h"  // closestPointOnTriangle
+#include "sim/geometry/MeshBvh.h" // closestPointOnTriangle
 #include "sim/util/ThreadName.h"
 
 #include <glm/common.hpp>
@@ -61,7 +61,7 @@ namespace wisp {
 namespace {
 
 constexpr float kSqrt3 = 1.7320508f;
-constexpr float kFarMarker = 1.0e30f;  // "no band sample on this row yet" in the distance transform
+constexpr float kFarMarker = 1.0e30f; // "no band sample on this row yet" in the distance transform
 constexpr int kSlabPlanes = 4;
 
 bool finite(const glm::vec3& v)
@@ -71,19 +71,18 @@ bool finite(const glm::vec3& v)
 
 // Calls fn(i) once for every i in [0, count) on `threadCount` threads (the caller's included).
 // Returns false when fn ran out of memory somewhere.
-template <class Fn>
-bool parallelFor(int threadCount, int count, Fn&& fn)
+template <class Fn> bool parallelFor(int threadCount, int count, Fn&& fn)
 {
     if (count <= 0)
         return true;
     const int threads = std::min(threadCount, count);
-    std::atomic<int> next{0};
-    std::atomic<bool> failed{false};
+    std::atomic<int> next{ 0 };
+    std::atomic<bool> failed{ false };
     auto worker = [&]() noexcept {
         try {
             for (int i = next.fetch_add(1); i < count && !failed.load(std::memory_order_relaxed); i = next.fetch_add(1))
                 fn(i);
-        } catch (...) {  // only std::bad_alloc from per-slab buffers can get here
+        } catch (...) { // only std::bad_alloc from per-slab buffers can get here
             failed = true;
         }
     };
@@ -106,23 +105,30 @@ bool parallelFor(int threadCount, int count, Fn&& fn)
 
 struct BakeTriangle {
     glm::vec3 a, b, c;
-    glm::vec3 unitNormal;  // zero for zero-area triangles
+    glm::vec3 unitNormal; // zero for zero-area triangles
     glm::vec3 lo, hi;
 };
 
 struct Grid {
-    glm::ivec3 dims{0};
-    glm::vec3 origin{0.0f};
+    glm::ivec3 dims{ 0 };
+    glm::vec3 origin{ 0.0f };
     float h = 0.0f;
 
     std::size_t index(int i, int j, int k) const
     {
-        return static_cast<std::size_t>(i) +
-               static_cast<std::size_t>(dims.x) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(k));
+        return static_cast<std::size_t>(i)
+            + static_cast<std::size_t>(dims.x)
+            * (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(k));
     }
     std::size_t index(const glm::ivec3& c) const { return index(c.x, c.y, c.z); }
-    std::size_t size() const { return static_cast<std::size_t>(dims.x) * static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(dims.z); }
-    glm::vec3 position(int i, int j, int k) const { return origin + glm::vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * h; }
+    std::size_t size() const
+    {
+        return static_cast<std::size_t>(dims.x) * static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(dims.z);
+    }
+    glm::vec3 position(int i, int j, int k) const
+    {
+        return origin + glm::vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * h;
+    }
     // First and last sample index along `axis` whose coordinate lies in [lo, hi], give or take a
     // thousandth of a cell so float rounding never loses one (callers test each sample exactly).
     // Empty (first > last) when outside the grid.
@@ -191,13 +197,13 @@ int orientation(double x1, double y1, double x2, double y2, double& twiceSignedA
         return 1;
     if (x1 < x2)
         return -1;
-    return 0;  // only when both points coincide
+    return 0; // only when both points coincide
 }
 
 // Is (x0, y0) inside triangle (1, 2, 3)? On success the barycentric weights of corners 1, 2, 3
 // and the orientation sign (+1 clockwise in (x, y), -1 counter-clockwise).
-bool pointInTriangle2d(double x0, double y0, double x1, double y1, double x2, double y2, double x3, double y3, double& a,
-                       double& b, double& c, int& sign)
+bool pointInTriangle2d(double x0, double y0, double x1, double y1, double x2, double y2, double x3, double y3,
+    double& a, double& b, double& c, int& sign)
 {
     x1 -= x0;
     x2 -= x0;
@@ -215,7 +221,7 @@ bool pointInTriangle2d(double x0, double y0, double x1, double y1, double x2, do
     if (signC != signA)
         return false;
     const double sum = a + b + c;
-    if (sum == 0.0)  // collinear projection: contributes no crossing
+    if (sum == 0.0) // collinear projection: contributes no crossing
         return false;
     a /= sum;
     b /= sum;
@@ -225,7 +231,8 @@ bool pointInTriangle2d(double x0, double y0, double x1, double y1, double x2, do
 }
 
 // Pass 1: exact squared distances within the band (kFarMarker elsewhere).
-bool bakeBand(int threads, const std::vector<BakeTriangle>& triangles, const Grid& grid, float band, std::vector<float>& dist2)
+bool bakeBand(
+    int threads, const std::vector<BakeTriangle>& triangles, const Grid& grid, float band, std::vector<float>& dist2)
 {
     const SlabBins bins = binBySlab(triangles, grid, 2, band);
     const int slabs = static_cast<int>(bins.offsets.size()) - 1;
@@ -234,7 +241,8 @@ bool bakeBand(int threads, const std::vector<BakeTriangle>& triangles, const Gri
     const double h = grid.h;
     return parallelFor(threads, slabs, [&](int s) {
         const int k0 = s * kSlabPlanes, k1 = std::min(grid.dims.z - 1, k0 + kSlabPlanes - 1);
-        for (std::uint32_t n = bins.offsets[static_cast<std::size_t>(s)]; n < bins.offsets[static_cast<std::size_t>(s) + 1]; ++n) {
+        for (std::uint32_t n = bins.offsets[static_cast<std::size_t>(s)];
+             n < bins.offsets[static_cast<std::size_t>(s) + 1]; ++n) {
             const BakeTriangle& t = triangles[bins.items[n]];
             int i0, i1, j0, j1, kk0, kk1;
             grid.range(0, t.lo.x - band, t.hi.x + band, i0, i1);
@@ -247,9 +255,10 @@ bool bakeBand(int threads, const std::vector<BakeTriangle>& triangles, const Gri
             // the slab of half-width `band` around its plane. For triangles smaller than the band
             // that is about a quarter of the grown box, and the pass is most of the bake.
             const glm::dvec3 centre = 0.5 * (glm::dvec3(t.lo) + glm::dvec3(t.hi));
-            const double radius = std::sqrt(std::max({glm::dot(glm::dvec3(t.a) - centre, glm::dvec3(t.a) - centre),
-                                                      glm::dot(glm::dvec3(t.b) - centre, glm::dvec3(t.b) - centre),
-                                                      glm::dot(glm::dvec3(t.c) - centre, glm::dvec3(t.c) - centre)})) + reach;
+            const double radius = std::sqrt(std::max({ glm::dot(glm::dvec3(t.a) - centre, glm::dvec3(t.a) - centre),
+                                      glm::dot(glm::dvec3(t.b) - centre, glm::dvec3(t.b) - centre),
+                                      glm::dot(glm::dvec3(t.c) - centre, glm::dvec3(t.c) - centre) }))
+                + reach;
             const glm::dvec3 normal(t.unitNormal);
             for (int k = kk0; k <= kk1; ++k)
                 for (int j = j0; j <= j1; ++j) {
@@ -287,7 +296,7 @@ bool bakeBand(int threads, const std::vector<BakeTriangle>& triangles, const Gri
 
 // Pass 2, once per ray axis: adds to `votes` the signed crossings along +axis and -axis.
 bool voteAlongAxis(int threads, const std::vector<BakeTriangle>& triangles, const Grid& grid, int axis,
-                   std::vector<std::int16_t>& votes)
+    std::vector<std::int16_t>& votes)
 {
     // (u, v) = the two other axes in cyclic order, so the 2D orientation of a projected triangle
     // has the sign of its normal's `axis` component.
@@ -300,11 +309,13 @@ bool voteAlongAxis(int threads, const std::vector<BakeTriangle>& triangles, cons
         const int v0 = s * kSlabPlanes, v1 = std::min(grid.dims[v] - 1, v0 + kSlabPlanes - 1);
         const std::size_t rowLength = static_cast<std::size_t>(n) + 1;
         // crossings[row][m] = signed crossings whose coordinate lies in (sample m-1, sample m].
-        std::vector<std::int32_t> crossings(rowLength * static_cast<std::size_t>(nu) * static_cast<std::size_t>(v1 - v0 + 1), 0);
-        for (std::uint32_t idx = bins.offsets[static_cast<std::size_t>(s)]; idx < bins.offsets[static_cast<std::size_t>(s) + 1]; ++idx) {
+        std::vector<std::int32_t> crossings(
+            rowLength * static_cast<std::size_t>(nu) * static_cast<std::size_t>(v1 - v0 + 1), 0);
+        for (std::uint32_t idx = bins.offsets[static_cast<std::size_t>(s)];
+             idx < bins.offsets[static_cast<std::size_t>(s) + 1]; ++idx) {
             const BakeTriangle& t = triangles[bins.items[idx]];
             if (t.unitNormal == glm::vec3(0.0f))
-                continue;  // zero area: no solid angle, no crossing
+                continue; // zero area: no solid angle, no crossing
             int ju0, ju1, jv0, jv1;
             grid.range(u, t.lo[u], t.hi[u], ju0, ju1);
             grid.range(v, t.lo[v], t.hi[v], jv0, jv1);
@@ -321,8 +332,11 @@ bool voteAlongAxis(int threads, const std::vector<BakeTriangle>& triangles, cons
                     const double x = wa * t.a[axis] + wb * t.b[axis] + wc * t.c[axis];
                     const double m = std::clamp(std::ceil((x - grid.origin[axis]) / h), 0.0, static_cast<double>(n));
                     // pointInTriangle2d's sign is minus the sign of normal[axis].
-                    crossings[rowLength * (static_cast<std::size_t>(jv - v0) * static_cast<std::size_t>(nu) + static_cast<std::size_t>(ju)) +
-                              static_cast<std::size_t>(m)] -= sign;
+                    crossings[rowLength
+                            * (static_cast<std::size_t>(jv - v0) * static_cast<std::size_t>(nu)
+                                + static_cast<std::size_t>(ju))
+                        + static_cast<std::size_t>(m)]
+                        -= sign;
                 }
             }
         }
@@ -332,7 +346,9 @@ bool voteAlongAxis(int threads, const std::vector<BakeTriangle>& triangles, cons
         glm::ivec3 c;
         for (int jv = v0; jv <= v1; ++jv)
             for (int ju = 0; ju < nu; ++ju) {
-                const std::int32_t* row = &crossings[rowLength * (static_cast<std::size_t>(jv - v0) * static_cast<std::size_t>(nu) + static_cast<std::size_t>(ju))];
+                const std::int32_t* row = &crossings[rowLength
+                    * (static_cast<std::size_t>(jv - v0) * static_cast<std::size_t>(nu)
+                        + static_cast<std::size_t>(ju))];
                 std::int32_t total = 0;
                 for (std::size_t m = 0; m < rowLength; ++m)
                     total += row[m];
@@ -343,7 +359,8 @@ bool voteAlongAxis(int threads, const std::vector<BakeTriangle>& triangles, cons
                     prefix += row[i];
                     c[axis] = i;
                     std::int16_t& slot = votes[grid.index(c)];
-                    slot = static_cast<std::int16_t>(std::clamp<std::int32_t>(slot + total - 2 * prefix, -30000, 30000));
+                    slot
+                        = static_cast<std::int16_t>(std::clamp<std::int32_t>(slot + total - 2 * prefix, -30000, 30000));
                 }
             }
     });
@@ -391,7 +408,8 @@ bool distanceTransform(int threads, const Grid& grid, std::vector<float>& field)
         const int n = grid.dims[axis];
         const int planes = grid.dims[v];
         const bool ok = parallelFor(threads, planes, [&](int jv) {
-            std::vector<double> in(static_cast<std::size_t>(n)), out(static_cast<std::size_t>(n)), bounds(static_cast<std::size_t>(n) + 1);
+            std::vector<double> in(static_cast<std::size_t>(n)), out(static_cast<std::size_t>(n)),
+                bounds(static_cast<std::size_t>(n) + 1);
             std::vector<int> sites(static_cast<std::size_t>(n));
             glm::ivec3 c;
             c[v] = jv;
@@ -404,7 +422,8 @@ bool distanceTransform(int threads, const Grid& grid, std::vector<float>& field)
                 distanceTransformRow(in.data(), n, out.data(), sites.data(), bounds.data());
                 for (int i = 0; i < n; ++i) {
                     c[axis] = i;
-                    field[grid.index(c)] = static_cast<float>(std::min(out[static_cast<std::size_t>(i)], static_cast<double>(kFarMarker)));
+                    field[grid.index(c)] = static_cast<float>(
+                        std::min(out[static_cast<std::size_t>(i)], static_cast<double>(kFarMarker)));
                 }
             }
         });
@@ -421,10 +440,10 @@ std::string describeFloat(float x)
     return buffer;
 }
 
-}  // namespace
+} // namespace
 
-SignedDistanceField SignedDistanceField::bake(const TriangleMesh& mesh, float cellSize, float margin, std::string* error,
-                                              int threadCount)
+SignedDistanceField SignedDistanceField::bake(
+    const TriangleMesh& mesh, float cellSize, float margin, std::string* error, int threadCount)
 {
     const int threads = threadCount > 0 ? std::min(threadCount, 64)
                                         : static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 64u));
@@ -440,8 +459,8 @@ SignedDistanceField SignedDistanceField::bake(const TriangleMesh& mesh, float ce
     if (!std::isfinite(cellSize) || !(cellSize > 0.0f))
         return fail("the cell size must be a positive number of metres, not " + describeFloat(cellSize));
     if (cellSize > kMaxExtentMetres)
-        return fail("a cell size of " + describeFloat(cellSize) + " m is absurd for a collider (at most " +
-                    describeFloat(kMaxExtentMetres) + " m)");
+        return fail("a cell size of " + describeFloat(cellSize) + " m is absurd for a collider (at most "
+            + describeFloat(kMaxExtentMetres) + " m)");
     if (!std::isfinite(margin) || margin < 0.0f)
         return fail("the margin must be zero or a positive number of metres, not " + describeFloat(margin));
 
@@ -450,8 +469,8 @@ SignedDistanceField SignedDistanceField::bake(const TriangleMesh& mesh, float ce
     const glm::dvec3 extent = glm::dvec3(meshBox.size()) + 2.0 * static_cast<double>(margin);
     for (int a = 0; a < 3; ++a)
         if (!std::isfinite(extent[a]) || extent[a] > kMaxExtentMetres)
-            return fail("the collider's box is " + describeFloat(static_cast<float>(extent[a])) +
-                        " m across, more than " + describeFloat(kMaxExtentMetres) + " m: are the mesh's units metres?");
+            return fail("the collider's box is " + describeFloat(static_cast<float>(extent[a]))
+                + " m across, more than " + describeFloat(kMaxExtentMetres) + " m: are the mesh's units metres?");
 
     // Enough samples to cover the box; coarser cells while the grid would be too large.
     double h = cellSize;
@@ -465,7 +484,7 @@ SignedDistanceField SignedDistanceField::bake(const TriangleMesh& mesh, float ce
         }
         if (total <= static_cast<double>(kMaxSamples) || attempt > 60) {
             if (total > static_cast<double>(kMaxSamples))
-                return fail("could not fit the grid in memory");  // unreachable in practice
+                return fail("could not fit the grid in memory"); // unreachable in practice
             dims = glm::ivec3(n);
             break;
         }
@@ -494,7 +513,7 @@ SignedDistanceField SignedDistanceField::bake(const TriangleMesh& mesh, float ce
             triangles.push_back(t);
         }
 
-        std::vector<float> values(grid.size(), kFarMarker);  // squared band distances, then the result
+        std::vector<float> values(grid.size(), kFarMarker); // squared band distances, then the result
         if (!bakeBand(threads, triangles, grid, band, values))
             return fail("not enough memory to bake the collider");
 
@@ -513,7 +532,9 @@ SignedDistanceField SignedDistanceField::bake(const TriangleMesh& mesh, float ce
 
         const float slack = kSqrt3 * grid.h;
         const bool ok = parallelFor(threads, grid.dims.z, [&](int k) {
-            const std::size_t begin = grid.index(0, 0, k), end = begin + static_cast<std::size_t>(grid.dims.x) * static_cast<std::size_t>(grid.dims.y);
+            const std::size_t begin = grid.index(0, 0, k),
+                              end
+                = begin + static_cast<std::size_t>(grid.dims.x) * static_cast<std::size_t>(grid.dims.y);
             for (std::size_t i = begin; i < end; ++i) {
                 float d;
                 if (values[i] <= band2)
@@ -534,8 +555,8 @@ SignedDistanceField SignedDistanceField::bake(const TriangleMesh& mesh, float ce
         field.m_normalCache = std::make_shared<NormalCache>();
         return field;
     } catch (const std::bad_alloc&) {
-        return fail("not enough memory for a " + std::to_string(dims.x) + " x " + std::to_string(dims.y) + " x " +
-                    std::to_string(dims.z) + " collider grid");
+        return fail("not enough memory for a " + std::to_string(dims.x) + " x " + std::to_string(dims.y) + " x "
+            + std::to_string(dims.z) + " collider grid");
     }
 }
 
@@ -560,11 +581,12 @@ const std::vector<glm::vec4>& SignedDistanceField::samplesWithNormals() const
             for (int j = 0; j < dims.y; ++j)
                 for (int i = 0; i < dims.x; ++i) {
                     glm::vec3 g(at(i + 1, j, k) - at(i - 1, j, k), at(i, j + 1, k) - at(i, j - 1, k),
-                                at(i, j, k + 1) - at(i, j, k - 1));
+                        at(i, j, k + 1) - at(i, j, k - 1));
                     const float len = glm::length(g);
                     g = len > 1e-12f ? g / len : glm::vec3(0.0f, 1.0f, 0.0f);
-                    out[static_cast<std::size_t>(i) + static_cast<std::size_t>(dims.x) * (j + static_cast<std::size_t>(dims.y) * k)] =
-                        glm::vec4(at(i, j, k), g);
+                    out[static_cast<std::size_t>(i)
+                        + static_cast<std::size_t>(dims.x) * (j + static_cast<std::size_t>(dims.y) * k)]
+                        = glm::vec4(at(i, j, k), g);
                 }
     });
     return m_normalCache->samples;
@@ -574,7 +596,7 @@ Aabb SignedDistanceField::bounds() const
 {
     if (empty())
         return {};
-    return {m_origin, m_origin + glm::vec3(m_dims - 1) * m_cellSize};
+    return { m_origin, m_origin + glm::vec3(m_dims - 1) * m_cellSize };
 }
 
 float SignedDistanceField::distance(const glm::vec3& p) const
@@ -589,7 +611,8 @@ float SignedDistanceField::distance(const glm::vec3& p) const
     const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), m_dims - 2);
     const glm::vec3 f = glm::clamp(g - glm::vec3(cell), glm::vec3(0.0f), glm::vec3(1.0f));
     const std::size_t sx = 1, sy = static_cast<std::size_t>(m_dims.x), sz = sy * static_cast<std::size_t>(m_dims.y);
-    const float* c = m_values.data() + static_cast<std::size_t>(cell.x) + sy * static_cast<std::size_t>(cell.y) + sz * static_cast<std::size_t>(cell.z);
+    const float* c = m_values.data() + static_cast<std::size_t>(cell.x) + sy * static_cast<std::size_t>(cell.y)
+        + sz * static_cast<std::size_t>(cell.z);
     const float x00 = c[0] + (c[sx] - c[0]) * f.x;
     const float x10 = c[sy] + (c[sx + sy] - c[sy]) * f.x;
     const float x01 = c[sz] + (c[sx + sz] - c[sz]) * f.x;
@@ -606,8 +629,8 @@ glm::vec3 SignedDistanceField::gradient(const glm::vec3& p) const
         return up;
     const float e = 0.5f * m_cellSize;
     const glm::vec3 g(distance(p + glm::vec3(e, 0, 0)) - distance(p - glm::vec3(e, 0, 0)),
-                      distance(p + glm::vec3(0, e, 0)) - distance(p - glm::vec3(0, e, 0)),
-                      distance(p + glm::vec3(0, 0, e)) - distance(p - glm::vec3(0, 0, e)));
+        distance(p + glm::vec3(0, e, 0)) - distance(p - glm::vec3(0, e, 0)),
+        distance(p + glm::vec3(0, 0, e)) - distance(p - glm::vec3(0, 0, e)));
     const float len = glm::length(g);
     if (len > 1e-12f * m_cellSize && std::isfinite(len))
         return g / len;
@@ -618,4 +641,4 @@ glm::vec3 SignedDistanceField::gradient(const glm::vec3& p) const
     return up;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -25,8 +25,8 @@ public:
     // without complaint, so memory stays bounded whatever is asked.
     // Runs on the calling thread plus helpers, `threadCount` in all (0: one per hardware thread);
     // the result is bit-identical whatever the number of threads.
-    static SignedDistanceField bake(const TriangleMesh& mesh, float cellSize, float margin, std::string* error = nullptr,
-                                    int threadCount = 0);
+    static SignedDistanceField bake(
+        const TriangleMesh& mesh, float cellSize, float margin, std::string* error = nullptr, int threadCount = 0);
 
     static constexpr std::size_t kMaxSamples = 256u * 256u * 256u;
     static constexpr float kMaxExtentMetres = 1.0e4f;
@@ -53,13 +53,14 @@ public:
     glm::ivec3 dims() const { return m_dims; }
     glm::vec3 origin() const { return m_origin; }
     float cellSize() const { return m_cellSize; }
-    Aabb bounds() const;  // the box the samples span
+    Aabb bounds() const; // the box the samples span
 
     // Sample (i, j, k) without interpolation; indices must be inside dims().
     float sample(int i, int j, int k) const
     {
-        return m_values[static_cast<std::size_t>(i) +
-                        static_cast<std::size_t>(m_dims.x) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(m_dims.y) * static_cast<std::size_t>(k))];
+        return m_values[static_cast<std::size_t>(i)
+            + static_cast<std::size_t>(m_dims.x)
+                * (static_cast<std::size_t>(j) + static_cast<std::size_t>(m_dims.y) * static_cast<std::size_t>(k))];
     }
 
     // Every sample's distance and unit outward normal, (distance, normal), laid out as data(): the
@@ -72,10 +73,10 @@ public:
 private:
     struct NormalCache;
     std::vector<float> m_values;
-    std::shared_ptr<NormalCache> m_normalCache;  // made by bake; empty fields have none
-    glm::ivec3 m_dims{0};
-    glm::vec3 m_origin{0.0f};
+    std::shared_ptr<NormalCache> m_normalCache; // made by bake; empty fields have none
+    glm::ivec3 m_dims{ 0 };
+    glm::vec3 m_origin{ 0.0f };
     float m_cellSize = 0.0f;
 };
 
-}  // namespace wisp
+} // namespace wisp

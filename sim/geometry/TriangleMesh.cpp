@@ -21,8 +21,8 @@ std::string validateMesh(const TriangleMesh& mesh)
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const glm::uvec3& tri = mesh.triangles[t];
         if (tri.x >= n || tri.y >= n || tri.z >= n)
-            return "triangle " + std::to_string(t) + " refers to a vertex past the last one (" +
-                   std::to_string(n) + " vertices)";
+            return "triangle " + std::to_string(t) + " refers to a vertex past the last one (" + std::to_string(n)
+                + " vertices)";
     }
     double area = 0.0;
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
@@ -36,7 +36,7 @@ Aabb boundsOf(const TriangleMesh& mesh)
 {
     if (mesh.positions.empty())
         return {};
-    Aabb box{mesh.positions.front(), mesh.positions.front()};
+    Aabb box{ mesh.positions.front(), mesh.positions.front() };
     for (const glm::vec3& p : mesh.positions) {
         box.min = glm::min(box.min, p);
         box.max = glm::max(box.max, p);
@@ -49,7 +49,7 @@ std::vector<glm::vec3> vertexNormals(const TriangleMesh& mesh)
     std::vector<glm::vec3> normals(mesh.positions.size(), glm::vec3(0.0f));
     for (const glm::uvec3& t : mesh.triangles) {
         const glm::vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
-        const glm::vec3 n = glm::cross(b - a, c - a);  // length = 2 * area: area weighting for free
+        const glm::vec3 n = glm::cross(b - a, c - a); // length = 2 * area: area weighting for free
         normals[t.x] += n;
         normals[t.y] += n;
         normals[t.z] += n;
@@ -71,7 +71,8 @@ glm::vec3 pointOn(const TriangleMesh& mesh, const SurfacePoint& p)
 glm::vec3 faceNormal(const TriangleMesh& mesh, std::uint32_t triangle)
 {
     const glm::uvec3 t = mesh.triangles[triangle];
-    const glm::vec3 n = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
+    const glm::vec3 n
+        = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
     const float len = glm::length(n);
     return len > 0.0f ? n / len : glm::vec3(0.0f);
 }
@@ -79,7 +80,8 @@ glm::vec3 faceNormal(const TriangleMesh& mesh, std::uint32_t triangle)
 float triangleArea(const TriangleMesh& mesh, std::uint32_t triangle)
 {
     const glm::uvec3 t = mesh.triangles[triangle];
-    return 0.5f * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+    return 0.5f
+        * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
 }
 
 float interpolate(const TriangleMesh& mesh, const std::vector<float>& perVertex, const SurfacePoint& p)
@@ -89,4 +91,4 @@ float interpolate(const TriangleMesh& mesh, const std::vector<float>& perVertex,
     return b0 * perVertex[t.x] + p.barycentric.x * perVertex[t.y] + p.barycentric.y * perVertex[t.z];
 }
 
-}  // namespace wisp
+} // namespace wisp

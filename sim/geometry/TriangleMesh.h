@@ -11,16 +11,16 @@
 namespace wisp {
 
 struct TriangleMesh {
-    std::vector<glm::vec3> positions;   // metres
-    std::vector<glm::uvec3> triangles;  // indices into positions, counter-clockwise seen from outside
+    std::vector<glm::vec3> positions; // metres
+    std::vector<glm::uvec3> triangles; // indices into positions, counter-clockwise seen from outside
 
     std::size_t vertexCount() const { return positions.size(); }
     std::size_t triangleCount() const { return triangles.size(); }
 };
 
 struct Aabb {
-    glm::vec3 min{0.0f};
-    glm::vec3 max{0.0f};
+    glm::vec3 min{ 0.0f };
+    glm::vec3 max{ 0.0f };
     glm::vec3 size() const { return max - min; }
     glm::vec3 center() const { return 0.5f * (min + max); }
 };
@@ -29,7 +29,7 @@ struct Aabb {
 // The point is (1 - b1 - b2) * v0 + b1 * v1 + b2 * v2, so it follows the mesh when the mesh moves.
 struct SurfacePoint {
     std::uint32_t triangle = 0;
-    glm::vec2 barycentric{0.0f};
+    glm::vec2 barycentric{ 0.0f };
 };
 
 // Empty string when the mesh is usable for grooming and collision; otherwise what is wrong with it
@@ -42,10 +42,10 @@ Aabb boundsOf(const TriangleMesh& mesh);
 std::vector<glm::vec3> vertexNormals(const TriangleMesh& mesh);
 
 glm::vec3 pointOn(const TriangleMesh& mesh, const SurfacePoint& p);
-glm::vec3 faceNormal(const TriangleMesh& mesh, std::uint32_t triangle);  // unit, or zero if degenerate
-float triangleArea(const TriangleMesh& mesh, std::uint32_t triangle);    // square metres
+glm::vec3 faceNormal(const TriangleMesh& mesh, std::uint32_t triangle); // unit, or zero if degenerate
+float triangleArea(const TriangleMesh& mesh, std::uint32_t triangle); // square metres
 
 // Interpolates a per-vertex scalar (a painted weight) at a surface point.
 float interpolate(const TriangleMesh& mesh, const std::vector<float>& perVertex, const SurfacePoint& p);
 
-}  // namespace wisp
+} // namespace wisp

@@ -3,19 +3,19 @@
 #include "sim/geometry/ShortestArc.h"
 
 #include "sim/geometry/MeshBvh.h"
-#include "sim/util/Random.h"
 #include "sim/geometry/SignedDistanceField.h"
+#include "sim/util/Random.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
 #include <cstdio>
-#include <numeric>
+#include <functional>
 #include <map>
+#include <numeric>
 #include <tuple>
 #include <unordered_map>
 
@@ -28,12 +28,14 @@ enum Stream : std::uint64_t { CandidateCount = 1, CandidatePoint, Priority, Keep
 // A hashed 3D grid for blue-noise thinning and nearest-site queries.
 class PointGrid {
 public:
-    explicit PointGrid(float cellSize) : m_inverseCell(1.0f / cellSize) {}
+    explicit PointGrid(float cellSize)
+        : m_inverseCell(1.0f / cellSize)
+    {
+    }
 
     void insert(const glm::vec3& p, std::uint32_t id) { m_cells[keyOf(cellOf(p))].push_back(id); }
 
-    template <typename Visit>
-    void forNeighbours(const glm::vec3& p, Visit&& visit) const
+    template <typename Visit> void forNeighbours(const glm::vec3& p, Visit&& visit) const
     {
         const glm::ivec3 c = cellOf(p);
         for (int dz = -1; dz <= 1; ++dz)
@@ -51,8 +53,8 @@ private:
     glm::ivec3 cellOf(const glm::vec3& p) const { return glm::ivec3(glm::floor(p * m_inverseCell)); }
     static std::uint64_t keyOf(const glm::ivec3& c)
     {
-        return (static_cast<std::uint64_t>(c.x + (1 << 20)) << 42) | (static_cast<std::uint64_t>(c.y + (1 << 20)) << 21) |
-               static_cast<std::uint64_t>(c.z + (1 << 20));
+        return (static_cast<std::uint64_t>(c.x + (1 << 20)) << 42) | (static_cast<std::uint64_t>(c.y + (1 << 20)) << 21)
+            | static_cast<std::uint64_t>(c.z + (1 << 20));
     }
     float m_inverseCell;
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> m_cells;
@@ -66,8 +68,8 @@ struct Pore {
 
 // Greedy Poisson-disk thinning in priority order: a point survives when no surviving point lies
 // within `radius`. The result is a maximal blue-noise subset; deterministic because the order is.
-std::vector<std::uint32_t> thinToBlueNoise(const std::vector<Pore>& pores, std::span<const std::uint32_t> order,
-                                           float radius)
+std::vector<std::uint32_t> thinToBlueNoise(
+    const std::vector<Pore>& pores, std::span<const std::uint32_t> order, float radius)
 {
     PointGrid grid(radius);
     std::vector<std::uint32_t> kept;
@@ -95,12 +97,12 @@ constexpr float kThinnedPointsPerRadiusSquared = 0.52f;
 // changes this set; the weights only decide which pores grow a strand.
 struct PoreSetStats {
     std::size_t candidates = 0;
-    double wantedCandidates = 0.0;  // before the cap
+    double wantedCandidates = 0.0; // before the cap
     bool capped = false;
 };
 
 std::vector<Pore> poreSet(const TriangleMesh& head, float densityPerM2, std::uint32_t seed, std::size_t maxCandidates,
-                          float* radiusOut, PoreSetStats* stats)
+    float* radiusOut, PoreSetStats* stats)
 {
     constexpr float kOversample = 4.0f;
     // Candidates scale with the whole mesh's area, painted or not: bound them (and with them the
@@ -114,35 +116,36 @@ std::vector<Pore> poreSet(const TriangleMesh& head, float densityPerM2, std::uin
     // under the cap.
     const double aim = static_cast<double>(maxCandidates) - static_cast<double>(head.triangles.size());
     const float share = capped ? static_cast<float>(std::max(aim, 0.0) / wanted) : 1.0f;
-    if (!(share > 0.0f)) {  // a cap below one candidate a triangle: no pores at all
-        *stats = {0, wanted, true};
+    if (!(share > 0.0f)) { // a cap below one candidate a triangle: no pores at all
+        *stats = { 0, wanted, true };
         *radiusOut = std::sqrt(kThinnedPointsPerRadiusSquared / densityPerM2);
         return {};
     }
     std::vector<Pore> candidates;
-    candidates.reserve(static_cast<std::size_t>(std::min(wanted, static_cast<double>(maxCandidates))) + head.triangles.size());
+    candidates.reserve(
+        static_cast<std::size_t>(std::min(wanted, static_cast<double>(maxCandidates))) + head.triangles.size());
     for (std::uint32_t t = 0; t < head.triangles.size(); ++t) {
         const float expected = triangleArea(head, t) * densityPerM2 * kOversample * share;
         const auto count = static_cast<std::uint32_t>(expected + randomUnit(seed, CandidateCount, t));
         for (std::uint32_t i = 0; i < count; ++i) {
             float b1 = randomUnit(seed, CandidatePoint, t, 2 * i);
             float b2 = randomUnit(seed, CandidatePoint, t, 2 * i + 1);
-            if (b1 + b2 > 1.0f) {  // fold the square onto the triangle: uniform by area
+            if (b1 + b2 > 1.0f) { // fold the square onto the triangle: uniform by area
                 b1 = 1.0f - b1;
                 b2 = 1.0f - b2;
             }
-            const SurfacePoint sp{t, {b1, b2}};
-            candidates.push_back({sp, pointOn(head, sp), randomUnit(seed, Priority, t, i)});
+            const SurfacePoint sp{ t, { b1, b2 } };
+            candidates.push_back({ sp, pointOn(head, sp), randomUnit(seed, Priority, t, i) });
         }
     }
-    *stats = {candidates.size(), wanted, capped};
+    *stats = { candidates.size(), wanted, capped };
     std::vector<std::uint32_t> order(candidates.size());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return candidates[a].priority < candidates[b].priority; });
+        [&](std::uint32_t a, std::uint32_t b) { return candidates[a].priority < candidates[b].priority; });
     const float radius = std::sqrt(kThinnedPointsPerRadiusSquared / (densityPerM2 * share));
     std::vector<std::uint32_t> kept = thinToBlueNoise(candidates, order, radius);
-    std::sort(kept.begin(), kept.end());  // stable ids in triangle order
+    std::sort(kept.begin(), kept.end()); // stable ids in triangle order
     std::vector<Pore> pores;
     pores.reserve(kept.size());
     for (std::uint32_t id : kept)
@@ -169,9 +172,9 @@ glm::vec3 pushOut(const SignedDistanceField* collider, glm::vec3 p, float offset
 // head as a combed strand does, drapes over the head (pushed out where it would go inside) and,
 // with curl, winds as a helix around that centreline (curlHelix: turns per metre of hair). Every
 // segment is length / segments long, so the polyline's arc length is the strand's length.
-void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float partX, float length, int segments, float curlRadius,
-                  float curlTurnsPerMetre, float curlPhase, float offset, const SignedDistanceField* collider,
-                  std::span<glm::vec3> out)
+void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float partX, float length, int segments,
+    float curlRadius, float curlTurnsPerMetre, float curlPhase, float offset, const SignedDistanceField* collider,
+    std::span<glm::vec3> out)
 {
     const bool curly = curlRadius > 0.0f && curlTurnsPerMetre > 0.0f;
     const CurlHelix helix = curlHelix(length, segments, curlRadius, curlTurnsPerMetre);
@@ -188,7 +191,8 @@ void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float partX, f
         for (std::size_t j = 1; j < out.size(); ++j) {
             const float r0 = radiusAt(j - 1), r1 = radiusAt(j);
             const float across = r0 * r0 + r1 * r1 - 2.0f * r0 * r1 * std::cos(helix.anglePerSegment);
-            step[j] = std::sqrt(std::max(segmentLength * segmentLength - across, 0.01f * segmentLength * segmentLength));
+            step[j]
+                = std::sqrt(std::max(segmentLength * segmentLength - across, 0.01f * segmentLength * segmentLength));
         }
     const float axisLength = std::accumulate(step.begin() + 1, step.end(), 0.0f);
 
@@ -202,12 +206,12 @@ void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float partX, f
     const float side = std::clamp((root.x - partX) / 0.02f, -1.0f, 1.0f);
     const glm::vec3 comb = glm::normalize(glm::vec3(0.8f * side, -1.0f, -0.6f));
     glm::vec3 flow = comb - normal * glm::dot(comb, normal);
-    if (glm::length(flow) < 0.2f)  // the comb direction is along the normal: comb toward the back
+    if (glm::length(flow) < 0.2f) // the comb direction is along the normal: comb toward the back
         flow += glm::vec3(0.0f, 0.0f, -0.5f);
     flow = glm::normalize(flow);
     glm::vec3 direction = normal;
-    constexpr float kTurnDistance = 0.03f;  // metres over which the strand turns from the normal to the flow
-    float s = 0.0f;  // along the centreline
+    constexpr float kTurnDistance = 0.03f; // metres over which the strand turns from the normal to the flow
+    float s = 0.0f; // along the centreline
     for (std::size_t j = 1; j < out.size(); ++j) {
         s += step[j];
         const float blend = std::min(1.0f, s / kTurnDistance);
@@ -258,7 +262,7 @@ float clumpAt(float u, float clumpDegree, float clumpRate)
     if (u <= clumpRate || clumpRate >= 1.0f)
         return 0.0f;
     const float x = (u - clumpRate) / (1.0f - clumpRate);
-    return clumpDegree * x * x * (3.0f - 2.0f * x);  // smoothstep: no kink where clumping starts
+    return clumpDegree * x * x * (3.0f - 2.0f * x); // smoothstep: no kink where clumping starts
 }
 
 // The normal of the head at a surface point, interpolated from vertex normals.
@@ -281,8 +285,8 @@ std::vector<std::vector<std::uint32_t>> membersOfWisps(const Groom& groom)
 
 using MemberFix = std::function<void(std::uint32_t strand, std::span<glm::vec3> points)>;
 void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::uint32_t> members,
-                      std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out,
-                      float wetClump = 0.0f, const MemberFix& keepShape = {});
+    std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out, float wetClump = 0.0f,
+    const MemberFix& keepShape = {});
 
 // Everything of a groom the layout of its pores cannot tell: what the head looks like there and
 // the rest shapes. Rest shapes of wisps equal to one of `previous` (same region, site, members and
@@ -294,7 +298,7 @@ struct RestContext {
     const SignedDistanceField* collider;
     // Rest shapes that are given, not built (imported strands), by strand index.
     const std::unordered_map<std::uint32_t, std::vector<glm::vec3>>* givenRest = nullptr;
-    const StyleEdits* style = nullptr;  // salon edits by strand identity
+    const StyleEdits* style = nullptr; // salon edits by strand identity
 };
 
 std::uint64_t styleHashOf(const Groom& groom, std::size_t strand)
@@ -315,8 +319,8 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
     // Previous wisps by (region id, site).
     std::unordered_map<std::uint64_t, std::uint32_t> previousWisp;
     std::vector<std::vector<std::uint32_t>> previousMembers;
-    if (previous && previous->settings.segments == groom.settings.segments &&
-        previous->settings.hairOffsetMetres == groom.settings.hairOffsetMetres && previous->wispCount() > 0) {
+    if (previous && previous->settings.segments == groom.settings.segments
+        && previous->settings.hairOffsetMetres == groom.settings.hairOffsetMetres && previous->wispCount() > 0) {
         previousMembers = membersOfWisps(*previous);
         for (std::uint32_t w = 0; w < previous->wispCount(); ++w) {
             const std::uint64_t region = previous->regionIds[previous->regionOfStrand[previous->keyStrand[w]]];
@@ -324,10 +328,10 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
         }
     }
     auto sameSettings = [](const GroomSettings& a, const GroomSettings& b) {
-        return a.densityPerCm2 == b.densityPerCm2 && a.wispSize == b.wispSize && a.clumpDegree == b.clumpDegree &&
-               a.clumpRate == b.clumpRate && a.lengthMetres == b.lengthMetres &&
-               a.lengthVariation == b.lengthVariation && a.curlRadiusMetres == b.curlRadiusMetres &&
-               a.curlTurnsPerMetre == b.curlTurnsPerMetre && a.seed == b.seed;
+        return a.densityPerCm2 == b.densityPerCm2 && a.wispSize == b.wispSize && a.clumpDegree == b.clumpDegree
+            && a.clumpRate == b.clumpRate && a.lengthMetres == b.lengthMetres && a.lengthVariation == b.lengthVariation
+            && a.curlRadiusMetres == b.curlRadiusMetres && a.curlTurnsPerMetre == b.curlTurnsPerMetre
+            && a.seed == b.seed;
     };
     // A wisp is reusable when it has the same members with the same identities.
     auto reusable = [&](std::size_t w) -> std::int64_t {
@@ -345,9 +349,9 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
         if (now.size() != before.size())
             return -1;
         for (std::size_t m = 0; m < now.size(); ++m)
-            if (groom.rootIds[now[m]] != previous->rootIds[before[m]] ||
-                styleHashOf(groom, now[m]) != styleHashOf(*previous, before[m]) ||
-                (groom.keyStrand[w] == now[m]) != (previous->keyStrand[pw] == before[m]))
+            if (groom.rootIds[now[m]] != previous->rootIds[before[m]]
+                || styleHashOf(groom, now[m]) != styleHashOf(*previous, before[m])
+                || (groom.keyStrand[w] == now[m]) != (previous->keyStrand[pw] == before[m]))
                 return -1;
         return pw;
     };
@@ -368,7 +372,7 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
         if (context.style && styleHashOf(groom, k) != 0)
             if (const auto found = context.style->find(groom.strandIdentity(k)); found != context.style->end())
                 style = &found->second;
-        if (style && style->shape.size() >= 2) {  // combed: the comb's shape is the rest shape
+        if (style && style->shape.size() >= 2) { // combed: the comb's shape is the rest shape
             const std::vector<glm::vec3> shape = resampleByArcLength(style->shape, points);
             if (!shape.empty()) {
                 std::span<glm::vec3> key = groom.rest.strandForWrite(k);
@@ -381,12 +385,12 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
         if (context.givenRest) {
             if (const auto given = context.givenRest->find(k); given != context.givenRest->end()) {
                 std::vector<glm::vec3> rest = given->second;
-                if (style && style->lengthMetres > 0.0f)  // an imported strand cut or grown
+                if (style && style->lengthMetres > 0.0f) // an imported strand cut or grown
                     rest = resampleByArcLength(shapeWithLength(rest, style->lengthMetres), points);
                 if (rest.size() != points)
                     rest = given->second;
                 std::copy(rest.begin(), rest.end(), groom.rest.strandForWrite(k).begin());
-                continue;  // an imported strand is a wisp of its own
+                continue; // an imported strand is a wisp of its own
             }
         }
         const GroomSettings& s = groom.settingsOfWisp(w);
@@ -394,10 +398,12 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
         const float phase = glm::two_pi<float>() * randomUnit(s.seed, CurlPhase, groom.rootIds[k]);
         std::span<glm::vec3> key = groom.rest.strandForWrite(k);
         // A perm gives the key hair (and so its wisp) its own curl.
-        const float curlRadius = style && style->curlRadiusMetres >= 0.0f ? style->curlRadiusMetres : s.curlRadiusMetres;
-        const float curlTurns = style && style->curlTurnsPerMetre >= 0.0f ? style->curlTurnsPerMetre : s.curlTurnsPerMetre;
-        buildKeyRest(groom.rootPositions[k], n, context.partX, groom.lengths[k], s.segments, curlRadius, curlTurns, phase,
-                     s.hairOffsetMetres, context.collider, key);
+        const float curlRadius
+            = style && style->curlRadiusMetres >= 0.0f ? style->curlRadiusMetres : s.curlRadiusMetres;
+        const float curlTurns
+            = style && style->curlTurnsPerMetre >= 0.0f ? style->curlTurnsPerMetre : s.curlTurnsPerMetre;
+        buildKeyRest(groom.rootPositions[k], n, context.partX, groom.lengths[k], s.segments, curlRadius, curlTurns,
+            phase, s.hairOffsetMetres, context.collider, key);
         buildWispMembers(groom, w, members[w], key, glm::mat3(1.0f), groom.rest);
     }
     return reused;
@@ -409,8 +415,8 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
 struct PoreLayout {
     PoreSetStats stats;
     std::vector<Pore> pores;
-    std::vector<std::uint32_t> sites;       // pore index of each site
-    std::vector<std::uint32_t> siteOfPore;  // nearest site of each pore
+    std::vector<std::uint32_t> sites; // pore index of each site
+    std::vector<std::uint32_t> siteOfPore; // nearest site of each pore
 };
 
 PoreLayout makePoreLayout(const TriangleMesh& head, const GroomSettings& settings, std::size_t maxCandidates)
@@ -422,7 +428,7 @@ PoreLayout makePoreLayout(const TriangleMesh& head, const GroomSettings& setting
     std::vector<std::uint32_t> order(pores.size());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return pores[a].priority < pores[b].priority; });
+        [&](std::uint32_t a, std::uint32_t b) { return pores[a].priority < pores[b].priority; });
     const float wispRadius = radius * std::sqrt(static_cast<float>(settings.wispSize));
     layout.sites = thinToBlueNoise(pores, order, wispRadius);
     PointGrid siteGrid(wispRadius);
@@ -450,7 +456,7 @@ PoreLayout makePoreLayout(const TriangleMesh& head, const GroomSettings& setting
 // area has no strand at all. The strands sharing a site form a wisp whose key hair is the member
 // nearest the site.
 void growRegion(Groom& groom, const TriangleMesh& head, const PoreLayout& layout, std::span<const float> weights,
-                const GroomSettings& settings, std::uint16_t region)
+    const GroomSettings& settings, std::uint16_t region)
 {
     std::unordered_map<std::uint32_t, std::uint32_t> wispOfSite;
     std::vector<float> keyDistance;
@@ -459,8 +465,8 @@ void growRegion(Groom& groom, const TriangleMesh& head, const PoreLayout& layout
         const Pore& pore = layout.pores[id];
         const glm::uvec3 tri = head.triangles[pore.surface.triangle];
         const float b0 = 1.0f - pore.surface.barycentric.x - pore.surface.barycentric.y;
-        const float weight = b0 * weights[tri.x] + pore.surface.barycentric.x * weights[tri.y] +
-                             pore.surface.barycentric.y * weights[tri.z];
+        const float weight = b0 * weights[tri.x] + pore.surface.barycentric.x * weights[tri.y]
+            + pore.surface.barycentric.y * weights[tri.z];
         if (!(weight > randomUnit(settings.seed, Keep, id)))
             continue;
         const auto strand = static_cast<std::uint32_t>(groom.roots.size());
@@ -493,7 +499,7 @@ void growRegion(Groom& groom, const TriangleMesh& head, const PoreLayout& layout
 // roots lie on its own scalp, a little off ours). Strands of fewer than two distinct points
 // are skipped. The strand's index in the file is its identity across regrooms.
 void growImported(Groom& groom, const MeshBvh& bvh, const HairCurves& strands, const GroomSettings& settings,
-                  std::uint16_t region, std::unordered_map<std::uint32_t, std::vector<glm::vec3>>& givenRest)
+    std::uint16_t region, std::unordered_map<std::uint32_t, std::vector<glm::vec3>>& givenRest)
 {
     const std::size_t points = static_cast<std::size_t>(settings.segments) + 1;
     for (std::uint32_t i = 0; i < strands.strandCount(); ++i) {
@@ -529,7 +535,7 @@ void applyStyleLengths(Groom& groom, const StyleEdits* style)
     groom.styleHash.assign(groom.strandCount(), 0);
     if (!style || style->empty())
         return;
-    const std::vector<float> groomed = groom.lengths;  // before the edits
+    const std::vector<float> groomed = groom.lengths; // before the edits
     for (std::size_t i = 0; i < groom.strandCount(); ++i) {
         const auto found = style->find(groom.strandIdentity(i));
         if (found == style->end())
@@ -572,7 +578,7 @@ GroomSettings mergedSettings(const GroomSettings& region, const GroomSettings& s
     return s;
 }
 
-}  // namespace
+} // namespace
 
 GroomSettings groomSettingsFrom(const ParameterValues& v)
 {
@@ -612,20 +618,25 @@ CurlHelix curlHelix(float lengthMetres, int segments, float radiusMetres, float 
 std::string validateGroomSettings(const GroomSettings& s)
 {
     return checkParameterValues({
-        {Param::Density, s.densityPerCm2},       {Param::WispSize, s.wispSize},
-        {Param::ClumpDegree, s.clumpDegree},     {Param::ClumpRate, s.clumpRate},
-        {Param::Length, s.lengthMetres},         {Param::LengthVariation, s.lengthVariation},
-        {Param::Segments, s.segments},           {Param::CurlRadius, s.curlRadiusMetres},
-        {Param::CurlTurns, s.curlTurnsPerMetre}, {Param::HairOffset, s.hairOffsetMetres},
+        { Param::Density, s.densityPerCm2 },
+        { Param::WispSize, s.wispSize },
+        { Param::ClumpDegree, s.clumpDegree },
+        { Param::ClumpRate, s.clumpRate },
+        { Param::Length, s.lengthMetres },
+        { Param::LengthVariation, s.lengthVariation },
+        { Param::Segments, s.segments },
+        { Param::CurlRadius, s.curlRadiusMetres },
+        { Param::CurlTurns, s.curlTurnsPerMetre },
+        { Param::HairOffset, s.hairOffsetMetres },
     });
 }
 
 // What a GroomBuilder keeps between builds on one head.
 struct GroomBuilder::Cache {
-    const TriangleMesh* head = nullptr;  // identity check only; the caller keeps the head alive
+    const TriangleMesh* head = nullptr; // identity check only; the caller keeps the head alive
     std::size_t vertices = 0, triangles = 0;
     std::vector<glm::vec3> normals;
-    float partX = 0.0f;  // the head's mid-plane, where the part runs
+    float partX = 0.0f; // the head's mid-plane, where the part runs
     double areaM2 = 0.0;
     struct Key {
         float density;
@@ -639,12 +650,18 @@ struct GroomBuilder::Cache {
     std::map<Key, std::shared_ptr<const PoreLayout>> layouts;
 };
 
-GroomBuilder::GroomBuilder() : m_cache(std::make_unique<Cache>()) {}
+GroomBuilder::GroomBuilder()
+    : m_cache(std::make_unique<Cache>())
+{
+}
 GroomBuilder::~GroomBuilder() = default;
 GroomBuilder::GroomBuilder(GroomBuilder&&) noexcept = default;
 GroomBuilder& GroomBuilder::operator=(GroomBuilder&&) noexcept = default;
 
-void GroomBuilder::forgetHead() { *m_cache = Cache{}; }
+void GroomBuilder::forgetHead()
+{
+    *m_cache = Cache{};
+}
 
 void GroomBuilder::setMaxPoreCandidates(std::size_t cap)
 {
@@ -653,15 +670,15 @@ void GroomBuilder::setMaxPoreCandidates(std::size_t cap)
 }
 
 GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomRegionInput> regions,
-                                const GroomSettings& shared, const SignedDistanceField* collider, const Groom* previous,
-                                const MeshBvh* bvh, const StyleEdits* style)
+    const GroomSettings& shared, const SignedDistanceField* collider, const Groom* previous, const MeshBvh* bvh,
+    const StyleEdits* style)
 {
     m_reused = m_built = 0;
     m_poreCandidates = 0;
     Cache& cache = *m_cache;
     if (cache.head != &head || cache.vertices != head.positions.size() || cache.triangles != head.triangles.size()) {
         if (std::string error = validateMesh(head); !error.empty())
-            return {{}, "head: " + error};
+            return { {}, "head: " + error };
         forgetHead();
         cache.head = &head;
         cache.vertices = head.positions.size();
@@ -671,12 +688,12 @@ GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomR
         for (std::uint32_t t = 0; t < head.triangles.size(); ++t)
             cache.areaM2 += triangleArea(head, t);
     }
-    if (std::string error = checkParameterValues({{Param::Segments, shared.segments},
-                                                  {Param::HairOffset, shared.hairOffsetMetres}});
+    if (std::string error = checkParameterValues(
+            { { Param::Segments, shared.segments }, { Param::HairOffset, shared.hairOffsetMetres } });
         !error.empty())
-        return {{}, error};
+        return { {}, error };
     if (regions.size() > 0xffff)
-        return {{}, "regions: " + std::to_string(regions.size()) + " is more than 65535"};
+        return { {}, "regions: " + std::to_string(regions.size()) + " is more than 65535" };
 
     GroomResult result;
     Groom& groom = result.groom;
@@ -687,10 +704,11 @@ GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomR
         const GroomRegionInput& region = regions[r];
         const GroomSettings settings = mergedSettings(region.settings, shared, region.id);
         if (std::string error = validateGroomSettings(settings); !error.empty())
-            return {{}, "region " + std::to_string(r + 1) + ": " + error};
+            return { {}, "region " + std::to_string(r + 1) + ": " + error };
         if (region.importedStrands) {
             if (!bvh)
-                return {{}, "region " + std::to_string(r + 1) + ": imported strands need the head's BVH to be rooted"};
+                return { {},
+                    "region " + std::to_string(r + 1) + ": imported strands need the head's BVH to be rooted" };
             groom.regionIds.push_back(region.id);
             groom.regionSettings.push_back(settings);
             groom.regionStiffnessScale.push_back(region.stiffnessScale);
@@ -698,89 +716,95 @@ GroomResult GroomBuilder::build(const TriangleMesh& head, std::span<const GroomR
             continue;
         }
         if (region.weights.size() != head.positions.size())
-            return {{}, "region " + std::to_string(r + 1) + ": growth map has " + std::to_string(region.weights.size()) +
-                            " weights for " + std::to_string(head.positions.size()) + " vertices"};
+            return { {},
+                "region " + std::to_string(r + 1) + ": growth map has " + std::to_string(region.weights.size())
+                    + " weights for " + std::to_string(head.positions.size()) + " vertices" };
         bool anyGrowth = false;
         for (std::size_t i = 0; i < region.weights.size(); ++i) {
             if (!std::isfinite(region.weights[i]))
-                return {{}, "region " + std::to_string(r + 1) + ": growth map: weight " + std::to_string(i) +
-                                " is not a finite number"};
+                return { {},
+                    "region " + std::to_string(r + 1) + ": growth map: weight " + std::to_string(i)
+                        + " is not a finite number" };
             anyGrowth = anyGrowth || region.weights[i] > 0.0f;
         }
         // Bounded work: refuse densities that would place more than ~4 million strands.
         if (cache.areaM2 * settings.densityPerCm2 * 1e4 > 4.0e6)
-            return {{}, "density: " + std::to_string(settings.densityPerCm2) + " strands/cm² on " +
-                            std::to_string(cache.areaM2 * 1e4) + " cm² would place more than 4 million strands"};
+            return { {},
+                "density: " + std::to_string(settings.densityPerCm2) + " strands/cm² on "
+                    + std::to_string(cache.areaM2 * 1e4) + " cm² would place more than 4 million strands" };
         groom.regionIds.push_back(region.id);
         groom.regionSettings.push_back(settings);
         groom.regionStiffnessScale.push_back(region.stiffnessScale);
         if (!anyGrowth)
             continue;
-        const Cache::Key key{settings.densityPerCm2, settings.wispSize, settings.seed};
+        const Cache::Key key{ settings.densityPerCm2, settings.wispSize, settings.seed };
         std::shared_ptr<const PoreLayout>& layout = used[key];
         if (!layout) {
             const auto found = cache.layouts.find(key);
-            layout = found != cache.layouts.end() ? found->second
-                                                  : std::make_shared<const PoreLayout>(makePoreLayout(head, settings, m_maxPoreCandidates));
+            layout = found != cache.layouts.end()
+                ? found->second
+                : std::make_shared<const PoreLayout>(makePoreLayout(head, settings, m_maxPoreCandidates));
         }
         m_poreCandidates += layout->stats.candidates;
         if (layout->stats.capped) {
             char text[320];
             std::snprintf(text, sizeof text,
-                          "region %zu: density %g strands/cm² on the head's %.0f cm² needs %.0f pore candidates; capped "
-                          "at %zu, so the hair is sparser than asked",
-                          r + 1, static_cast<double>(settings.densityPerCm2), cache.areaM2 * 1e4,
-                          layout->stats.wantedCandidates, m_maxPoreCandidates);
+                "region %zu: density %g strands/cm² on the head's %.0f cm² needs %.0f pore candidates; capped "
+                "at %zu, so the hair is sparser than asked",
+                r + 1, static_cast<double>(settings.densityPerCm2), cache.areaM2 * 1e4, layout->stats.wantedCandidates,
+                m_maxPoreCandidates);
             result.warnings.emplace_back(text);
         }
         growRegion(groom, head, *layout, region.weights, settings, static_cast<std::uint16_t>(r));
     }
-    cache.layouts = std::move(used);  // keep the layouts in use, drop the rest
+    cache.layouts = std::move(used); // keep the layouts in use, drop the rest
     if (regions.size() == 1)
         groom.settings = groom.regionSettings.front();
     applyStyleLengths(groom, style);
-    m_reused = buildRest(groom, {head, cache.normals, cache.partX, collider, &givenRest, style}, previous);
+    m_reused = buildRest(groom, { head, cache.normals, cache.partX, collider, &givenRest, style }, previous);
     m_built = groom.wispCount() - m_reused;
     return result;
 }
 
 GroomResult buildGroom(const TriangleMesh& head, std::span<const float> growthWeights, const GroomSettings& settings,
-                       const SignedDistanceField* collider)
+    const SignedDistanceField* collider)
 {
     if (std::string error = validateMesh(head); !error.empty())
-        return {{}, "head: " + error};
+        return { {}, "head: " + error };
     if (std::string error = validateGroomSettings(settings); !error.empty())
-        return {{}, error};
+        return { {}, error };
     if (growthWeights.size() != head.positions.size())
-        return {{}, "growth map: " + std::to_string(growthWeights.size()) + " weights for " +
-                        std::to_string(head.positions.size()) + " vertices"};
+        return { {},
+            "growth map: " + std::to_string(growthWeights.size()) + " weights for "
+                + std::to_string(head.positions.size()) + " vertices" };
     bool anyGrowth = false;
     for (std::size_t i = 0; i < growthWeights.size(); ++i) {
         if (!std::isfinite(growthWeights[i]))
-            return {{}, "growth map: weight " + std::to_string(i) + " is not a finite number"};
+            return { {}, "growth map: weight " + std::to_string(i) + " is not a finite number" };
         anyGrowth = anyGrowth || growthWeights[i] > 0.0f;
     }
     if (!anyGrowth)
-        return {{}, "growth map: every weight is 0, so no hair grows; paint where hair should grow"};
-    const GroomRegionInput region{0, growthWeights, settings, 1.0f};
+        return { {}, "growth map: every weight is 0, so no hair grows; paint where hair should grow" };
+    const GroomRegionInput region{ 0, growthWeights, settings, 1.0f };
     GroomBuilder builder;
     GroomResult result = builder.build(head, std::span(&region, 1), settings, collider);
     if (result.ok() && result.groom.roots.empty())
-        return {{}, "growth map: the painted area is too small or too faint for any strand at this density"};
+        return { {}, "growth map: the painted area is too small or too faint for any strand at this density" };
     return result;
 }
 
 GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int width, int height, int particlesPerStrand,
-                           float lengthMetres, const SignedDistanceField* collider)
+    float lengthMetres, const SignedDistanceField* collider)
 {
     if (std::string error = validateMesh(head); !error.empty())
-        return {{}, "head: " + error};
+        return { {}, "head: " + error };
     if (width < 1 || height < 1 || width * static_cast<long long>(height) > 4'000'000)
-        return {{}, "grid: " + std::to_string(width) + " x " + std::to_string(height) + " strands is not 1 .. 4 million"};
+        return { {},
+            "grid: " + std::to_string(width) + " x " + std::to_string(height) + " strands is not 1 .. 4 million" };
     if (std::string error = checkParameterValue(Param::Segments, particlesPerStrand - 1); !error.empty())
-        return {{}, "grid: particles per strand: " + std::to_string(particlesPerStrand) + " is outside 3..128"};
+        return { {}, "grid: particles per strand: " + std::to_string(particlesPerStrand) + " is outside 3..128" };
     if (std::string error = checkParameterValue(Param::Length, lengthMetres); !error.empty())
-        return {{}, error};
+        return { {}, error };
 
     GroomResult result;
     Groom& groom = result.groom;
@@ -802,7 +826,8 @@ GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int wid
         const float polar = glm::radians(8.0f + 62.0f * (static_cast<float>(j) + 0.5f) / static_cast<float>(height));
         for (int i = 0; i < width; ++i) {
             const float azimuth = glm::two_pi<float>() * (static_cast<float>(i) + 0.5f) / static_cast<float>(width);
-            const glm::vec3 dir(std::sin(polar) * std::cos(azimuth), std::cos(polar), std::sin(polar) * std::sin(azimuth));
+            const glm::vec3 dir(
+                std::sin(polar) * std::cos(azimuth), std::cos(polar), std::sin(polar) * std::sin(azimuth));
             const float far = 2.0f * glm::length(box.size());
             // Cast inward from outside so the outermost surface (the scalp) is found even when the
             // centre guess is not inside a closed mesh.
@@ -819,11 +844,11 @@ GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int wid
         }
     }
     groom.rootPositions = std::move(rootPositions);
-    groom.regionIds = {0};
-    groom.regionSettings = {groom.settings};
-    groom.regionStiffnessScale = {1.0f};
+    groom.regionIds = { 0 };
+    groom.regionSettings = { groom.settings };
+    groom.regionStiffnessScale = { 1.0f };
     const std::vector<glm::vec3> normals = vertexNormals(head);
-    buildRest(groom, {head, normals, boundsOf(head).center().x, collider}, nullptr);
+    buildRest(groom, { head, normals, boundsOf(head).center().x, collider }, nullptr);
     return result;
 }
 
@@ -865,16 +890,18 @@ HairCurves keyRestCurves(const Groom& groom)
 }
 
 void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, const glm::mat3& headRotation,
-                  HairCurves& out, std::span<const float> wetClumpOfWisp, const MemberContact* contact)
+    HairCurves& out, std::span<const float> wetClumpOfWisp, const MemberContact* contact)
 {
     const std::size_t points = static_cast<std::size_t>(groom.settings.segments) + 1;
     const std::vector<std::vector<std::uint32_t>> members = membersOfWisps(groom);
     MemberFix fix;
     if (contact)
-        fix = [&](std::uint32_t strand, std::span<glm::vec3> p) { keepMemberShape(groom.rest.strand(strand), *contact, p); };
+        fix = [&](std::uint32_t strand, std::span<glm::vec3> p) {
+            keepMemberShape(groom.rest.strand(strand), *contact, p);
+        };
     for (std::size_t w = 0; w < groom.wispCount(); ++w)
         buildWispMembers(groom, w, members[w], keyPositions.subspan(w * points, points), headRotation, out,
-                         w < wetClumpOfWisp.size() ? wetClumpOfWisp[w] : 0.0f, fix);
+            w < wetClumpOfWisp.size() ? wetClumpOfWisp[w] : 0.0f, fix);
 }
 
 namespace {
@@ -882,8 +909,8 @@ namespace {
 // Point p, `depth` inside a surface of outward unit normal n, turned about `parent` onto the
 // surface's tangent plane keeping its distance `length` from the parent (as the solver's contact
 // does); with `push`, whatever the turn cannot reach is pushed out along n, less `slack`.
-glm::vec3 turnedOut(const glm::vec3& parent, const glm::vec3& p, const glm::vec3& n, float depth, float length, bool push,
-                    float slack)
+glm::vec3 turnedOut(
+    const glm::vec3& parent, const glm::vec3& p, const glm::vec3& n, float depth, float length, bool push, float slack)
 {
     const glm::vec3 u = (p - parent) / glm::max(glm::distance(p, parent), 1e-9f);
     const float along = glm::dot(n, u);
@@ -895,7 +922,7 @@ glm::vec3 turnedOut(const glm::vec3& parent, const glm::vec3& p, const glm::vec3
     return turned + n * (push ? std::max(depth - slack - glm::dot(turned - p, n), 0.0f) : 0.0f);
 }
 
-}  // namespace
+} // namespace
 
 void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& contact, std::span<glm::vec3> points)
 {
@@ -983,8 +1010,8 @@ namespace {
 // Writes wisp w's key (from `key`) and its members into `out` (Lee et al.: members follow their key
 // hair, clumping toward it by clump-degree from clump-rate on).
 void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::uint32_t> members,
-                      std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out, float wetClump,
-                      const MemberFix& keepShape)
+    std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out, float wetClump,
+    const MemberFix& keepShape)
 {
     const GroomSettings& s = groom.settingsOfWisp(w);
     // Wet hair clumps: the clump degree moves toward 1 and clumping starts nearer the root.
@@ -1025,8 +1052,9 @@ void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::ui
             const float f = u * scale * static_cast<float>(points - 1);
             glm::vec3 onKey;
             glm::mat3 frame;
-            if (f >= static_cast<float>(points - 1)) {  // longer than its key: continue along the tip
-                const float beyond = (f - static_cast<float>(points - 1)) * glm::distance(key[points - 1], key[points - 2]);
+            if (f >= static_cast<float>(points - 1)) { // longer than its key: continue along the tip
+                const float beyond
+                    = (f - static_cast<float>(points - 1)) * glm::distance(key[points - 1], key[points - 2]);
                 onKey = key[points - 1] + beyond * tangent[points - 1];
                 frame = transport[points - 1];
             } else {
@@ -1042,6 +1070,6 @@ void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::ui
     }
 }
 
-}  // namespace
+} // namespace
 
-}  // namespace wisp
+} // namespace wisp

@@ -10,7 +10,7 @@ std::vector<const GrowthRegion*> growingRegions(const std::vector<GrowthRegion>&
     std::vector<const GrowthRegion*> growing;
     for (const GrowthRegion& r : regions)
         if (r.id == soloId)
-            return {&r};
+            return { &r };
     for (const GrowthRegion& r : regions)
         if (r.visible)
             growing.push_back(&r);
@@ -21,7 +21,8 @@ std::string validateRegion(const GrowthRegion& region, std::size_t vertexCount)
 {
     const std::string where = "region '" + region.name + "': ";
     if (region.weights.size() != vertexCount)
-        return where + std::to_string(region.weights.size()) + " weights for " + std::to_string(vertexCount) + " vertices";
+        return where + std::to_string(region.weights.size()) + " weights for " + std::to_string(vertexCount)
+            + " vertices";
     for (std::size_t i = 0; i < region.weights.size(); ++i)
         if (!std::isfinite(region.weights[i]))
             return where + "weight " + std::to_string(i) + " is not a finite number";
@@ -37,15 +38,15 @@ std::string validateRegion(const GrowthRegion& region, std::size_t vertexCount)
             if (!std::isfinite(c.positions[i].x + c.positions[i].y + c.positions[i].z))
                 return where + "imported point " + std::to_string(i) + " is not finite";
     }
-    for (const glm::vec3& c : {region.rootColour, region.tipColour})
+    for (const glm::vec3& c : { region.rootColour, region.tipColour })
         for (int k = 0; k < 3; ++k)
             if (!(c[k] >= 0.0f && c[k] <= 1.0f))
                 return where + "colour component " + std::to_string(c[k]) + " is outside 0..1";
     return {};
 }
 
-std::vector<glm::vec4> scalpCoverage(const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
-                                     std::size_t vertexCount)
+std::vector<glm::vec4> scalpCoverage(
+    const std::vector<GrowthRegion>& regions, std::uint32_t soloId, std::size_t vertexCount)
 {
     std::vector<glm::vec4> out(vertexCount, glm::vec4(0.0f));
     for (const GrowthRegion* region : growingRegions(regions, soloId)) {
@@ -60,4 +61,4 @@ std::vector<glm::vec4> scalpCoverage(const std::vector<GrowthRegion>& regions, s
     return out;
 }
 
-}  // namespace wisp
+} // namespace wisp

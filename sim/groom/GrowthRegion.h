@@ -20,13 +20,13 @@
 namespace wisp {
 
 struct GrowthRegion {
-    std::uint32_t id = 0;         // stable identity: seeds the region's roots, survives renames and reordering
+    std::uint32_t id = 0; // stable identity: seeds the region's roots, survives renames and reordering
     std::string name;
-    std::vector<float> weights;   // one per head vertex, 0..1 (the painted growth map)
-    ParameterValues values;       // Wisp-group parameters of this region
-    glm::vec3 rootColour{0.16f, 0.10f, 0.06f};
-    glm::vec3 tipColour{0.45f, 0.30f, 0.17f};
-    bool visible = true;          // hidden regions grow no hair (neither drawn nor simulated)
+    std::vector<float> weights; // one per head vertex, 0..1 (the painted growth map)
+    ParameterValues values; // Wisp-group parameters of this region
+    glm::vec3 rootColour{ 0.16f, 0.10f, 0.06f };
+    glm::vec3 tipColour{ 0.45f, 0.30f, 0.17f };
+    bool visible = true; // hidden regions grow no hair (neither drawn nor simulated)
     // Strands brought in from a hair file (cyHair, USC .data), head space, metres: each becomes a
     // wisp of its own whose key hair is the strand itself, rooted at the nearest point of the head;
     // `weights` are then unused (painting does not apply). Null for a painted region.
@@ -44,11 +44,11 @@ constexpr std::uint32_t kNoSolo = 0xffffffffu;
 // of the growing region that grows most there, a its weight (0: bare skin). Regions' weights of
 // another count than `vertexCount` (imported strands) are skipped; real grooms tint the skin under
 // the hair toward its colour so the parting and the crown do not show as bare skin.
-std::vector<glm::vec4> scalpCoverage(const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
-                                     std::size_t vertexCount);
+std::vector<glm::vec4> scalpCoverage(
+    const std::vector<GrowthRegion>& regions, std::uint32_t soloId, std::size_t vertexCount);
 
 // Empty when usable; otherwise names the region and the problem
 // ("region 'Fringe': weight 12 is not a finite number", "region 'Top': clump_degree: 3 is outside -1..1").
 [[nodiscard]] std::string validateRegion(const GrowthRegion& region, std::size_t vertexCount);
 
-}  // namespace wisp
+} // namespace wisp

@@ -19,20 +19,22 @@ constexpr float kCellMetres = 0.01f;
 // Keeps the grid's memory bounded when a mesh is huge (say, in millimetres): cells grow instead.
 constexpr std::size_t kMaxCells = std::size_t(1) << 20;
 
-bool isFinite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-
+bool isFinite(const glm::vec3& p)
+{
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
 
 std::string checkRange(const char* field, float value, float minimum, float maximum, const char* unit)
 {
     if (!std::isfinite(value))
         return std::string(field) + ": " + formatNumber(value) + " is not a finite number";
     if (value < minimum || value > maximum)
-        return std::string(field) + ": " + formatNumber(value) + " is outside " + formatNumber(minimum) + ".." +
-               formatNumber(maximum) + unit;
+        return std::string(field) + ": " + formatNumber(value) + " is outside " + formatNumber(minimum) + ".."
+            + formatNumber(maximum) + unit;
     return {};
 }
 
-}  // namespace
+} // namespace
 
 std::string validateBrush(const BrushSettings& settings)
 {
@@ -51,16 +53,17 @@ std::string validateBrush(const BrushSettings& settings)
 
 float brushFalloff(float distanceOverRadius, float falloff)
 {
-    if (!(distanceOverRadius <= 1.0f))  // also NaN
+    if (!(distanceOverRadius <= 1.0f)) // also NaN
         return 0.0f;
-    const float inner = 1.0f - falloff;  // full strength up to here
+    const float inner = 1.0f - falloff; // full strength up to here
     if (distanceOverRadius <= inner)
         return 1.0f;
-    const float u = (distanceOverRadius - inner) / falloff;  // falloff > 0 here, since t > inner = 1 - falloff
+    const float u = (distanceOverRadius - inner) / falloff; // falloff > 0 here, since t > inner = 1 - falloff
     return 1.0f - u * u * (3.0f - 2.0f * u);
 }
 
-ScalpBrush::ScalpBrush(const TriangleMesh& head) : m_vertexCount(head.positions.size())
+ScalpBrush::ScalpBrush(const TriangleMesh& head)
+    : m_vertexCount(head.positions.size())
 {
     const std::vector<glm::vec3>& positions = head.positions;
 
@@ -106,7 +109,7 @@ ScalpBrush::ScalpBrush(const TriangleMesh& head) : m_vertexCount(head.positions.
         std::vector<std::uint32_t> fill(m_cellStart.begin(), m_cellStart.end() - 1);
         for (std::size_t v = 0; v < positions.size(); ++v)
             if (cellOf[v] != 0xffffffffu)
-                m_grid[fill[cellOf[v]]++] = {positions[v], std::uint32_t(v)};
+                m_grid[fill[cellOf[v]]++] = { positions[v], std::uint32_t(v) };
     }
 
     // One-ring: each triangle makes its corners neighbours of each other. Count with repeats, fill,
@@ -131,12 +134,12 @@ ScalpBrush::ScalpBrush(const TriangleMesh& head) : m_vertexCount(head.positions.
                 }
     }
     m_ringStart.assign(n + 1, 0);
-    m_ring.reserve(ring.size() / 2);  // closed manifolds share each edge between two triangles
+    m_ring.reserve(ring.size() / 2); // closed manifolds share each edge between two triangles
     for (std::size_t v = 0; v < n; ++v) {
         const auto first = ring.begin() + start[v], last = ring.begin() + start[v + 1];
         std::sort(first, last);
         for (auto it = first; it != last; ++it)
-            if (*it != v && (it == first || *it != *(it - 1)))  // degenerate triangles may name v itself
+            if (*it != v && (it == first || *it != *(it - 1))) // degenerate triangles may name v itself
                 m_ring.push_back(*it);
         m_ringStart[v + 1] = std::uint32_t(m_ring.size());
     }
@@ -158,19 +161,18 @@ ScalpBrush::CellBox ScalpBrush::cellsAround(const glm::vec3& centre, float radiu
     };
     const glm::vec3 lo = cellCoordinates(centre - radiusMetres), hi = cellCoordinates(centre + radiusMetres);
     // The last cell also holds the vertices on the grid's far face (see the constructor's min()).
-    return {glm::max(glm::ivec3(lo), 0), glm::min(glm::ivec3(hi), m_gridDims - 1)};
+    return { glm::max(glm::ivec3(lo), 0), glm::min(glm::ivec3(hi), m_gridDims - 1) };
 }
 
-template <typename Visit>
-void ScalpBrush::forEachVertexIn(const CellBox& box, const CellBox* skip, Visit&& visit) const
+template <typename Visit> void ScalpBrush::forEachVertexIn(const CellBox& box, const CellBox* skip, Visit&& visit) const
 {
     for (int z = box.min.z; z <= box.max.z; ++z)
         for (int y = box.min.y; y <= box.max.y; ++y)
             for (int x = box.min.x; x <= box.max.x; ++x) {
-                if (skip && skip->contains({x, y, z}))
+                if (skip && skip->contains({ x, y, z }))
                     continue;
-                const std::size_t cell =
-                    std::size_t(x) + std::size_t(m_gridDims.x) * (std::size_t(y) + std::size_t(m_gridDims.y) * z);
+                const std::size_t cell
+                    = std::size_t(x) + std::size_t(m_gridDims.x) * (std::size_t(y) + std::size_t(m_gridDims.y) * z);
                 for (std::uint32_t i = m_cellStart[cell]; i < m_cellStart[cell + 1]; ++i)
                     visit(m_grid[i]);
             }
@@ -191,15 +193,15 @@ std::vector<std::uint32_t> ScalpBrush::verticesNear(const glm::vec3& centre, flo
     return found;
 }
 
-std::vector<std::uint32_t> ScalpBrush::dab(const glm::vec3& centre, const BrushSettings& settings,
-                                           std::span<float> weights) const
+std::vector<std::uint32_t> ScalpBrush::dab(
+    const glm::vec3& centre, const BrushSettings& settings, std::span<float> weights) const
 {
     if (weights.size() != m_vertexCount || !isFinite(centre) || !validateBrush(settings).empty())
         return {};
 
     const float radius = settings.radiusMetres, radius2 = radius * radius;
     const glm::vec3 mirrored(2.0f * m_mirrorPlaneX - centre.x, centre.y, centre.z);
-    const bool mirror = settings.mirrorX && mirrored != centre;  // a dab on the plane is its own mirror
+    const bool mirror = settings.mirrorX && mirrored != centre; // a dab on the plane is its own mirror
 
     // Every new weight is computed from the weights before the dab (Smooth reads neighbours that
     // may change too), so changes are gathered first and written afterwards.
@@ -231,7 +233,7 @@ std::vector<std::uint32_t> ScalpBrush::dab(const glm::vec3& centre, const BrushS
         if (settings.mode == BrushMode::Smooth) {
             const std::uint32_t first = m_ringStart[g.vertex], last = m_ringStart[g.vertex + 1];
             if (first == last)
-                return;  // no neighbours to average
+                return; // no neighbours to average
             float sum = 0.0f;
             for (std::uint32_t i = first; i < last; ++i)
                 sum += clean(weights[m_ring[i]]) - old;
@@ -239,10 +241,10 @@ std::vector<std::uint32_t> ScalpBrush::dab(const glm::vec3& centre, const BrushS
         }
         // Add and Erase at full influence land exactly on 1 and 0 (old + (1 - old) may round short).
         const float next = influence >= 1.0f && settings.mode != BrushMode::Smooth
-                               ? (settings.mode == BrushMode::Add ? 1.0f : 0.0f)
-                               : std::clamp(old + influence * toTarget, 0.0f, 1.0f);
-        if (!(next == weights[g.vertex]))  // also replaces a NaN
-            changes.push_back({g.vertex, next});
+            ? (settings.mode == BrushMode::Add ? 1.0f : 0.0f)
+            : std::clamp(old + influence * toTarget, 0.0f, 1.0f);
+        if (!(next == weights[g.vertex])) // also replaces a NaN
+            changes.push_back({ g.vertex, next });
     };
 
     // Each vertex lives in one cell; skipping the first box's cells in the second pass visits every
@@ -261,4 +263,4 @@ std::vector<std::uint32_t> ScalpBrush::dab(const glm::vec3& centre, const BrushS
     return changed;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -23,11 +23,11 @@ constexpr float kBrushRadiusMinMetres = 0.0005f;
 constexpr float kBrushRadiusMaxMetres = 0.5f;
 
 struct BrushSettings {
-    float radiusMetres = 0.02f;  // sphere of influence around the dab centre
-    float strength = 0.5f;       // 0..1: share of the way to the target per dab at the centre
-    float falloff = 0.5f;        // 0: full strength to the rim .. 1: smooth fall from the centre to 0 at the rim
+    float radiusMetres = 0.02f; // sphere of influence around the dab centre
+    float strength = 0.5f; // 0..1: share of the way to the target per dab at the centre
+    float falloff = 0.5f; // 0: full strength to the rim .. 1: smooth fall from the centre to 0 at the rim
     BrushMode mode = BrushMode::Add;
-    bool mirrorX = true;         // also dab at the centre mirrored across the plane x = mirrorPlaneX()
+    bool mirrorX = true; // also dab at the centre mirrored across the plane x = mirrorPlaneX()
 };
 
 // Empty when usable; otherwise names the field and the problem
@@ -41,7 +41,7 @@ float brushFalloff(float distanceOverRadius, float falloff);
 
 class ScalpBrush {
 public:
-    ScalpBrush() = default;  // knows no vertices: every dab changes nothing
+    ScalpBrush() = default; // knows no vertices: every dab changes nothing
     // Builds the vertex grid and the one-ring adjacency: O(n log n), a few ms for 135k vertices.
     // Vertices with a non-finite position are left out of the grid (never painted); triangles with
     // an index out of range add no adjacency. The mirror plane is the x centre of the bounds of the
@@ -49,7 +49,7 @@ public:
     explicit ScalpBrush(const TriangleMesh& head);
 
     std::size_t vertexCount() const { return m_vertexCount; }
-    float mirrorPlaneX() const { return m_mirrorPlaneX; }  // metres
+    float mirrorPlaneX() const { return m_mirrorPlaneX; } // metres
 
     // Applies one dab centred at `centre` (metres, a point on the surface) to `weights` (one per
     // vertex) and returns the indices of the vertices whose weight changed, sorted and unique, so
@@ -63,8 +63,8 @@ public:
     //
     // Refuses, changing nothing and returning an empty vector: settings that validateBrush rejects,
     // weights.size() != vertexCount(), a non-finite centre. Callers validate first to tell why.
-    std::vector<std::uint32_t> dab(const glm::vec3& centre, const BrushSettings& settings,
-                                   std::span<float> weights) const;
+    std::vector<std::uint32_t> dab(
+        const glm::vec3& centre, const BrushSettings& settings, std::span<float> weights) const;
 
     // Vertices within radiusMetres of centre (distance <= radius), sorted; empty for a non-finite
     // centre or a negative radius. For tests and overlays.
@@ -74,13 +74,13 @@ private:
     // One grid entry: a vertex's position beside its index, stored in cell order so that scanning a
     // cell reads one contiguous run of 16-byte entries.
     struct GridVertex {
-        glm::vec3 position{0.0f};  // metres
+        glm::vec3 position{ 0.0f }; // metres
         std::uint32_t vertex = 0;
     };
     // An inclusive range of cell coordinates; empty when min > max on some axis.
     struct CellBox {
-        glm::ivec3 min{0};
-        glm::ivec3 max{-1};
+        glm::ivec3 min{ 0 };
+        glm::ivec3 max{ -1 };
         bool contains(const glm::ivec3& c) const;
     };
     CellBox cellsAround(const glm::vec3& centre, float radiusMetres) const;
@@ -91,9 +91,9 @@ private:
 
     // Uniform grid over the finite vertices' bounds: cell (x, y, z) holds
     // m_grid[m_cellStart[i] .. m_cellStart[i + 1]) with i = x + dims.x * (y + dims.y * z).
-    glm::vec3 m_gridMin{0.0f};  // metres
+    glm::vec3 m_gridMin{ 0.0f }; // metres
     float m_cellMetres = 1.0f;
-    glm::ivec3 m_gridDims{0};
+    glm::ivec3 m_gridDims{ 0 };
     std::vector<std::uint32_t> m_cellStart;
     std::vector<GridVertex> m_grid;
 
@@ -102,4 +102,4 @@ private:
     std::vector<std::uint32_t> m_ring;
 };
 
-}  // namespace wisp
+} // namespace wisp

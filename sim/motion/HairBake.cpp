@@ -17,7 +17,7 @@ std::string mebibytes(std::size_t bytes)
     return text;
 }
 
-}  // namespace
+} // namespace
 
 std::string validateBakeRange(const BakeRange& r)
 {
@@ -36,7 +36,10 @@ std::string validateBakeRange(const BakeRange& r)
     return {};
 }
 
-std::size_t bytesPerBakedFrame(std::size_t points) { return sizeof(BakedFrame) + points * sizeof(glm::vec3); }
+std::size_t bytesPerBakedFrame(std::size_t points)
+{
+    return sizeof(BakedFrame) + points * sizeof(glm::vec3);
+}
 
 const BakedFrame* BakeCache::find(int frame) const
 {
@@ -65,7 +68,8 @@ double bakeStepSeconds(double fps, double timeStepSeconds, int* stepsPerFrame)
     return frameSeconds / n;
 }
 
-BakeResult bakeMotion(HairSimulation& sim, const HeadMotion& motion, const glm::vec3& pivotHead, const BakeOptions& options)
+BakeResult bakeMotion(
+    HairSimulation& sim, const HeadMotion& motion, const glm::vec3& pivotHead, const BakeOptions& options)
 {
     BakeResult result;
     BakeCache& cache = result.cache;
@@ -84,11 +88,10 @@ BakeResult bakeMotion(HairSimulation& sim, const HeadMotion& motion, const glm::
     if (options.keepFrames) {
         const std::size_t frames = static_cast<std::size_t>(range.frameCount());
         if (frames > options.memoryBoundBytes / perFrame) {
-            result.error = "a bake of " + std::to_string(frames) + " frames of " + std::to_string(cache.pointCount()) +
-                           " points needs " + mebibytes(frames * perFrame) + " (" + std::to_string(perFrame) +
-                           " bytes a frame), more than the bake's memory bound of " +
-                           mebibytes(options.memoryBoundBytes) +
-                           "; bake fewer frames, or export a .hair sequence, which is written one frame at a time";
+            result.error = "a bake of " + std::to_string(frames) + " frames of " + std::to_string(cache.pointCount())
+                + " points needs " + mebibytes(frames * perFrame) + " (" + std::to_string(perFrame)
+                + " bytes a frame), more than the bake's memory bound of " + mebibytes(options.memoryBoundBytes)
+                + "; bake fewer frames, or export a .hair sequence, which is written one frame at a time";
             return result;
         }
         cache.frames.reserve(frames);
@@ -118,7 +121,7 @@ BakeResult bakeMotion(HairSimulation& sim, const HeadMotion& motion, const glm::
     auto keep = [&](int frame) -> bool {
         BakedFrame baked;
         baked.frame = frame;
-        baked.headToWorld = head;  // as the solver has it
+        baked.headToWorld = head; // as the solver has it
         HairCurves curves;
         sim.buildFrame(curves);
         baked.positions = std::move(curves.positions);
@@ -133,7 +136,7 @@ BakeResult bakeMotion(HairSimulation& sim, const HeadMotion& motion, const glm::
         return true;
     };
 
-    std::uint64_t step = 0;  // steps since frame 1
+    std::uint64_t step = 0; // steps since frame 1
     for (int frame = 1; frame <= range.lastFrame; ++frame) {
         if (frame > 1) {
             for (int k = 0; k < cache.stepsPerFrame; ++k) {
@@ -160,4 +163,4 @@ BakeResult bakeMotion(HairSimulation& sim, const HeadMotion& motion, const glm::
     return result;
 }
 
-}  // namespace wisp
+} // namespace wisp

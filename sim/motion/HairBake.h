@@ -33,9 +33,9 @@ namespace wisp {
 class HairSimulation;
 
 struct BakeRange {
-    int firstFrame = 1;  // >= 1
-    int lastFrame = 48;  // >= firstFrame, <= kMaxFrame
-    double fps = 24.0;   // kMinFps..kMaxFps
+    int firstFrame = 1; // >= 1
+    int lastFrame = 48; // >= firstFrame, <= kMaxFrame
+    double fps = 24.0; // kMinFps..kMaxFps
 
     int frameCount() const { return lastFrame - firstFrame + 1; }
     // Seconds at which `frame` is.
@@ -52,8 +52,8 @@ std::string validateBakeRange(const BakeRange& range);
 
 struct BakedFrame {
     int frame = 0;
-    glm::mat4 headToWorld{1.0f};
-    std::vector<glm::vec3> positions;  // world space, metres, in the layout of BakeCache::offsets
+    glm::mat4 headToWorld{ 1.0f };
+    std::vector<glm::vec3> positions; // world space, metres, in the layout of BakeCache::offsets
 };
 
 // Bytes one kept frame of `points` drawn points takes.
@@ -62,8 +62,8 @@ std::size_t bytesPerBakedFrame(std::size_t points);
 // A bake kept in memory.
 struct BakeCache {
     BakeRange range;
-    std::vector<std::uint32_t> offsets{0};  // every frame's strand layout (HairCurves::offsets)
-    std::vector<BakedFrame> frames;         // range.firstFrame onwards, in order; fewer if cancelled
+    std::vector<std::uint32_t> offsets{ 0 }; // every frame's strand layout (HairCurves::offsets)
+    std::vector<BakedFrame> frames; // range.firstFrame onwards, in order; fewer if cancelled
     int stepsPerFrame = 0;
     double stepSeconds = 0.0;
 
@@ -83,17 +83,17 @@ inline constexpr std::size_t kDefaultBakeMemoryBytes = std::size_t(2) << 30;
 struct BakeOptions {
     BakeRange range;
     std::size_t memoryBoundBytes = kDefaultBakeMemoryBytes;
-    bool keepFrames = true;  // false: frames go only to onFrame (streamed), none kept, no bound
-    bool drapeFirst = true;  // settle at rest before frame 1 (HairSimulation::drapeAtRest)
-    std::function<void(int framesDone, int framesTotal)> progress;  // after each simulated frame (pre-roll included)
-    std::function<bool()> cancelled;                                // asked between steps
+    bool keepFrames = true; // false: frames go only to onFrame (streamed), none kept, no bound
+    bool drapeFirst = true; // settle at rest before frame 1 (HairSimulation::drapeAtRest)
+    std::function<void(int framesDone, int framesTotal)> progress; // after each simulated frame (pre-roll included)
+    std::function<bool()> cancelled; // asked between steps
     // Each kept frame, as soon as it is simulated (a non-empty return stops the bake with that error).
     std::function<std::string(const BakedFrame& frame, const BakeCache& layout)> onFrame;
 };
 
 struct BakeResult {
-    BakeCache cache;     // the kept frames (none when keepFrames is false); layout and steps always
-    std::string error;   // empty on success
+    BakeCache cache; // the kept frames (none when keepFrames is false); layout and steps always
+    std::string error; // empty on success
     bool cancelled = false;
     std::uint64_t stepsRun = 0;
 };
@@ -106,6 +106,7 @@ double bakeStepSeconds(double fps, double timeStepSeconds, int* stepsPerFrame = 
 // `pivotHead` (HeadMotion.h). Refuses before stepping when the range or the motion is invalid, or
 // the kept frames would exceed the memory bound. The simulation's settings are as before after it;
 // its state is the last frame's.
-BakeResult bakeMotion(HairSimulation& sim, const HeadMotion& motion, const glm::vec3& pivotHead, const BakeOptions& options);
+BakeResult bakeMotion(
+    HairSimulation& sim, const HeadMotion& motion, const glm::vec3& pivotHead, const BakeOptions& options);
 
-}  // namespace wisp
+} // namespace wisp

@@ -12,7 +12,10 @@ namespace wisp {
 
 namespace {
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::vec3& v)
+{
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 std::string number(double v)
 {
@@ -33,7 +36,7 @@ glm::quat axisAngle(double degrees, const glm::vec3& axis)
     return glm::angleAxis(static_cast<float>(glm::radians(degrees)), axis);
 }
 
-}  // namespace
+} // namespace
 
 glm::mat4 headToWorld(const HeadPose& pose, const glm::vec3& pivotHead)
 {
@@ -47,24 +50,30 @@ glm::mat4 headToWorld(const HeadPose& pose, const glm::vec3& pivotHead)
 HeadPose compose(const HeadPose& outer, const HeadPose& inner)
 {
     // Both about the same pivot p: x -> Ro(Ri(x - p) + p + ti - p) + p + to = RoRi(x - p) + p + Ro ti + to.
-    return {outer.translationMetres + outer.rotation * inner.translationMetres, glm::normalize(outer.rotation * inner.rotation)};
+    return { outer.translationMetres + outer.rotation * inner.translationMetres,
+        glm::normalize(outer.rotation * inner.rotation) };
 }
 
 std::string_view motionName(MotionKind kind)
 {
     switch (kind) {
-    case MotionKind::None: return "none";
-    case MotionKind::Turn: return "turn";
-    case MotionKind::Nod: return "nod";
-    case MotionKind::Shake: return "shake";
-    case MotionKind::Walk: return "walk";
+    case MotionKind::None:
+        return "none";
+    case MotionKind::Turn:
+        return "turn";
+    case MotionKind::Nod:
+        return "nod";
+    case MotionKind::Shake:
+        return "shake";
+    case MotionKind::Walk:
+        return "walk";
     }
     return "none";
 }
 
 std::optional<MotionKind> motionFromName(std::string_view name)
 {
-    for (MotionKind k : {MotionKind::None, MotionKind::Turn, MotionKind::Nod, MotionKind::Shake, MotionKind::Walk})
+    for (MotionKind k : { MotionKind::None, MotionKind::Turn, MotionKind::Nod, MotionKind::Shake, MotionKind::Walk })
         if (motionName(k) == name)
             return k;
     return std::nullopt;
@@ -73,14 +82,19 @@ std::optional<MotionKind> motionFromName(std::string_view name)
 ProceduralMotion motionPreset(MotionKind kind)
 {
     switch (kind) {
-    case MotionKind::None: return {};
+    case MotionKind::None:
+        return {};
     // Looking over one shoulder and the other, about once every 3 s.
-    case MotionKind::Turn: return {MotionKind::Turn, 50.0, 0.3, 0.0};
-    case MotionKind::Nod: return {MotionKind::Nod, 20.0, 0.8, 0.0};
+    case MotionKind::Turn:
+        return { MotionKind::Turn, 50.0, 0.3, 0.0 };
+    case MotionKind::Nod:
+        return { MotionKind::Nod, 20.0, 0.8, 0.0 };
     // A "no": a little under 2 shakes a second.
-    case MotionKind::Shake: return {MotionKind::Shake, 30.0, 1.75, 0.0};
+    case MotionKind::Shake:
+        return { MotionKind::Shake, 30.0, 1.75, 0.0 };
     // Walking at about 0.9 strides (1.8 steps) a second; the head rises and falls about 4 cm.
-    case MotionKind::Walk: return {MotionKind::Walk, 0.04, 0.9, 0.0};
+    case MotionKind::Walk:
+        return { MotionKind::Walk, 0.04, 0.9, 0.0 };
     }
     return {};
 }
@@ -96,14 +110,19 @@ HeadPose proceduralPoseAt(const ProceduralMotion& motion, double timeSeconds)
     const double wave = envelope * std::sin(phase);
     HeadPose pose;
     switch (motion.kind) {
-    case MotionKind::None: break;
+    case MotionKind::None:
+        break;
     case MotionKind::Turn:
-    case MotionKind::Shake: pose.rotation = axisAngle(motion.amplitude * wave, {0.0f, 1.0f, 0.0f}); break;
-    case MotionKind::Nod: pose.rotation = axisAngle(motion.amplitude * wave, {1.0f, 0.0f, 0.0f}); break;
+    case MotionKind::Shake:
+        pose.rotation = axisAngle(motion.amplitude * wave, { 0.0f, 1.0f, 0.0f });
+        break;
+    case MotionKind::Nod:
+        pose.rotation = axisAngle(motion.amplitude * wave, { 1.0f, 0.0f, 0.0f });
+        break;
     case MotionKind::Walk: {
         const double s = std::sin(phase);
         pose.translationMetres = glm::vec3(static_cast<float>(envelope * 0.5 * motion.amplitude * s),
-                                           static_cast<float>(envelope * motion.amplitude * s * s), 0.0f);
+            static_cast<float>(envelope * motion.amplitude * s * s), 0.0f);
         break;
     }
     }
@@ -113,12 +132,12 @@ HeadPose proceduralPoseAt(const ProceduralMotion& motion, double timeSeconds)
 std::size_t HeadMotion::setKey(double timeSeconds, const HeadPose& pose)
 {
     auto at = std::lower_bound(m_keys.begin(), m_keys.end(), timeSeconds - kSameTimeSeconds,
-                               [](const HeadKey& k, double t) { return k.timeSeconds < t; });
+        [](const HeadKey& k, double t) { return k.timeSeconds < t; });
     if (at != m_keys.end() && std::abs(at->timeSeconds - timeSeconds) <= kSameTimeSeconds) {
         at->pose = pose;
         return static_cast<std::size_t>(at - m_keys.begin());
     }
-    at = m_keys.insert(at, HeadKey{timeSeconds, pose});
+    at = m_keys.insert(at, HeadKey{ timeSeconds, pose });
     return static_cast<std::size_t>(at - m_keys.begin());
 }
 
@@ -151,12 +170,12 @@ std::string HeadMotion::validateProcedural(const ProceduralMotion& m)
 {
     const double maxAmplitude = m.kind == MotionKind::Walk ? MotionLimits::kMaxWalkMetres : MotionLimits::kMaxDegrees;
     if (!std::isfinite(m.amplitude) || m.amplitude < 0.0 || m.amplitude > maxAmplitude)
-        return "amplitude " + number(m.amplitude) + " is outside 0.." + number(maxAmplitude) +
-               (m.kind == MotionKind::Walk ? " m" : " degrees");
-    if (!std::isfinite(m.frequencyHz) || m.frequencyHz < MotionLimits::kMinFrequencyHz ||
-        m.frequencyHz > MotionLimits::kMaxFrequencyHz)
-        return "frequency " + number(m.frequencyHz) + " Hz is outside " + number(MotionLimits::kMinFrequencyHz) + ".." +
-               number(MotionLimits::kMaxFrequencyHz) + " Hz";
+        return "amplitude " + number(m.amplitude) + " is outside 0.." + number(maxAmplitude)
+            + (m.kind == MotionKind::Walk ? " m" : " degrees");
+    if (!std::isfinite(m.frequencyHz) || m.frequencyHz < MotionLimits::kMinFrequencyHz
+        || m.frequencyHz > MotionLimits::kMaxFrequencyHz)
+        return "frequency " + number(m.frequencyHz) + " Hz is outside " + number(MotionLimits::kMinFrequencyHz) + ".."
+            + number(MotionLimits::kMaxFrequencyHz) + " Hz";
     if (!std::isfinite(m.startSeconds) || std::abs(m.startSeconds) > MotionLimits::kMaxSeconds)
         return "start " + number(m.startSeconds) + " s is outside -1e6..1e6 s";
     return {};
@@ -172,7 +191,8 @@ std::string HeadMotion::validate() const
         if (i > 0 && !(k.timeSeconds - m_keys[i - 1].timeSeconds > kSameTimeSeconds))
             return where + "time " + number(k.timeSeconds) + " s does not come after the key before it";
         const glm::vec3& t = k.pose.translationMetres;
-        if (!finite(t) || glm::any(glm::greaterThan(glm::abs(t), glm::vec3(float(MotionLimits::kMaxTranslationMetres)))))
+        if (!finite(t)
+            || glm::any(glm::greaterThan(glm::abs(t), glm::vec3(float(MotionLimits::kMaxTranslationMetres)))))
             return where + "translation is not finite or beyond 100 m";
         const glm::quat& q = k.pose.rotation;
         const float length = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
@@ -199,8 +219,8 @@ HeadPose HeadMotion::keyedPoseAt(double t) const
         return m_keys.front().pose;
     if (t >= m_keys.back().timeSeconds)
         return m_keys.back().pose;
-    const auto next = std::upper_bound(m_keys.begin(), m_keys.end(), t,
-                                       [](double time, const HeadKey& k) { return time < k.timeSeconds; });
+    const auto next = std::upper_bound(
+        m_keys.begin(), m_keys.end(), t, [](double time, const HeadKey& k) { return time < k.timeSeconds; });
     const std::size_t i1 = static_cast<std::size_t>(next - m_keys.begin()), i0 = i1 - 1;
     const HeadKey& k0 = m_keys[i0];
     const HeadKey& k1 = m_keys[i1];
@@ -211,20 +231,20 @@ HeadPose HeadMotion::keyedPoseAt(double t) const
     auto tangent = [&](std::size_t i) -> glm::dvec3 {
         if (i == 0 || i + 1 >= m_keys.size())
             return glm::dvec3(0.0);
-        return (glm::dvec3(m_keys[i + 1].pose.translationMetres) - glm::dvec3(m_keys[i - 1].pose.translationMetres)) /
-               (m_keys[i + 1].timeSeconds - m_keys[i - 1].timeSeconds);
+        return (glm::dvec3(m_keys[i + 1].pose.translationMetres) - glm::dvec3(m_keys[i - 1].pose.translationMetres))
+            / (m_keys[i + 1].timeSeconds - m_keys[i - 1].timeSeconds);
     };
     // Cubic Hermite basis.
     const double s2 = s * s, s3 = s2 * s;
     const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-    const glm::dvec3 p = h00 * glm::dvec3(k0.pose.translationMetres) + h10 * h * tangent(i0) +
-                         h01 * glm::dvec3(k1.pose.translationMetres) + h11 * h * tangent(i1);
+    const glm::dvec3 p = h00 * glm::dvec3(k0.pose.translationMetres) + h10 * h * tangent(i0)
+        + h01 * glm::dvec3(k1.pose.translationMetres) + h11 * h * tangent(i1);
 
     glm::quat q1 = k1.pose.rotation;
     if (glm::dot(k0.pose.rotation, q1) < 0.0f)
-        q1 = -q1;  // the shorter arc
+        q1 = -q1; // the shorter arc
     const glm::quat q = glm::normalize(glm::slerp(k0.pose.rotation, q1, static_cast<float>(smoothstep(s))));
-    return {glm::vec3(p), q};
+    return { glm::vec3(p), q };
 }
 
 HeadPose HeadMotion::poseAt(double timeSeconds) const
@@ -243,4 +263,4 @@ glm::vec3 pivotOf(const TriangleMesh& head)
     return glm::vec3(0.0f);
 }
 
-}  // namespace wisp
+} // namespace wisp

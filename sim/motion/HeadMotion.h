@@ -33,8 +33,8 @@ namespace wisp {
 
 // The head's rigid pose: turned by `rotation` about the pivot, then moved by `translationMetres`.
 struct HeadPose {
-    glm::vec3 translationMetres{0.0f};
-    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z
+    glm::vec3 translationMetres{ 0.0f };
+    glm::quat rotation{ 1.0f, 0.0f, 0.0f, 0.0f }; // w, x, y, z
 
     bool operator==(const HeadPose&) const = default;
 };
@@ -60,9 +60,9 @@ enum class MotionKind { None, Turn, Nod, Shake, Walk };
 // that once per stride: the head's path when walking on the spot.
 struct ProceduralMotion {
     MotionKind kind = MotionKind::None;
-    double amplitude = 0.0;      // degrees (turn, nod, shake) or metres (walk)
-    double frequencyHz = 1.0;    // cycles (strides, for walk) per second
-    double startSeconds = 0.0;   // the motion fades in over its first period from here
+    double amplitude = 0.0; // degrees (turn, nod, shake) or metres (walk)
+    double frequencyHz = 1.0; // cycles (strides, for walk) per second
+    double startSeconds = 0.0; // the motion fades in over its first period from here
 
     bool operator==(const ProceduralMotion&) const = default;
 };
@@ -79,8 +79,8 @@ struct MotionLimits {
     static constexpr double kMaxWalkMetres = 0.2;
     static constexpr double kMinFrequencyHz = 0.01;
     static constexpr double kMaxFrequencyHz = 10.0;
-    static constexpr double kMaxTranslationMetres = 100.0;  // a key's translation, each axis
-    static constexpr double kMaxSeconds = 1e6;              // a key's or a motion's time
+    static constexpr double kMaxTranslationMetres = 100.0; // a key's translation, each axis
+    static constexpr double kMaxSeconds = 1e6; // a key's or a motion's time
 };
 
 class HeadMotion {
@@ -132,4 +132,4 @@ HeadPose proceduralPoseAt(const ProceduralMotion& motion, double timeSeconds);
 // Where a head turns: the top of the neck under it (Body.h's neck capsule), head space, metres.
 glm::vec3 pivotOf(const TriangleMesh& head);
 
-}  // namespace wisp
+} // namespace wisp

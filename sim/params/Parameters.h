@@ -6,10 +6,10 @@
 #include <array>
 #include <cstddef>
 #include <initializer_list>
-#include <utility>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace wisp {
 
@@ -66,15 +66,15 @@ enum class SliderScale { Linear, Log, Centred };
 
 struct ParameterInfo {
     Param id;
-    std::string_view key;    // snake_case; preset files and CLI options (--key) use it
-    std::string_view label;  // shown in panels
-    std::string_view unit;   // "m/s²", "m", "" for a plain number
+    std::string_view key; // snake_case; preset files and CLI options (--key) use it
+    std::string_view label; // shown in panels
+    std::string_view unit; // "m/s²", "m", "" for a plain number
     ParamGroup group;
     ParamKind kind;
     double minimum;
     double maximum;
     double defaultValue;
-    std::string_view help;  // one line, shown as the tooltip and in --help
+    std::string_view help; // one line, shown as the tooltip and in --help
     SliderScale slider = SliderScale::Linear;
     // How panels show it, when not in `unit`: a panel shows value × displayScale in displayUnit
     // (hair thickness: µm, 1e6). Files and the CLI keep `unit`.
@@ -87,7 +87,7 @@ struct SliderRange {
     double minimum = 0.0;
     double maximum = 1.0;
     SliderScale scale = SliderScale::Linear;
-    bool wholeNumbers = false;  // integer parameters: values are rounded
+    bool wholeNumbers = false; // integer parameters: values are rounded
 };
 SliderRange sliderRangeOf(const ParameterInfo& info);
 
@@ -114,7 +114,7 @@ constexpr std::size_t kParamCount = static_cast<std::size_t>(Param::Count);
 
 std::span<const ParameterInfo> allParameters();
 const ParameterInfo& parameterInfo(Param id);
-const ParameterInfo* findParameter(std::string_view key);  // nullptr if no such key
+const ParameterInfo* findParameter(std::string_view key); // nullptr if no such key
 
 // Whether a finite value lies in the parameter's range. Real parameters are held as floats, so
 // they are compared as floats: both range ends, as written, are inside.
@@ -144,4 +144,4 @@ private:
     std::array<double, kParamCount> m_values{};
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -45,10 +45,10 @@ namespace wisp::bending {
 // default, K = 0.0144 m³/s²: a 2 cm segment of the default 28 cm hair sags as it did under the
 // bending this replaced; because the weight of the hair below now reaches the root, the default
 // hangs, a combed lock needs about 0.5 and a horizontal one about 0.6.
-constexpr float kRigidityScale = 0.0016f;  // m³/s²
-constexpr float kRigidityRange = 9.21f;   // ln 10⁴: stiffness 0..1 spans four decades
+constexpr float kRigidityScale = 0.0016f; // m³/s²
+constexpr float kRigidityRange = 9.21f; // ln 10⁴: stiffness 0..1 spans four decades
 constexpr float kBendDampingRatio = 8.0f;
-constexpr float kFadeStepSeconds = 1.0f / 60.0f;  // the longest substep the editor runs by default
+constexpr float kFadeStepSeconds = 1.0f / 60.0f; // the longest substep the editor runs by default
 
 inline float rigidity(float stiffness)
 {
@@ -62,16 +62,16 @@ inline float rigidity(float stiffness)
 inline float particleMass(const float* segmentLengths /* [j] = L_j, [0] unused */, int n, int j)
 {
     if (j <= 0)
-        return 0.0f;  // the root: pinned
+        return 0.0f; // the root: pinned
     const float inner = segmentLengths[j];
     const float outer = j + 1 < n ? segmentLengths[j + 1] : 0.0f;
     return 0.5f * (inner + outer);
 }
 
 struct Constraint {
-    float child = 0.0f;        // share of C_j the child moves this substep
-    float damping = 0.0f;      // share of its move relative to its parent this substep takes away
-    float parentRatio = 0.0f;  // m_j / m_{j-1} (0 when j-1 is the root)
+    float child = 0.0f; // share of C_j the child moves this substep
+    float damping = 0.0f; // share of its move relative to its parent this substep takes away
+    float parentRatio = 0.0f; // m_j / m_{j-1} (0 when j-1 is the root)
 };
 
 // Segment j of a strand with n particles and segment lengths L_1..L_{n-1}; substep dt seconds.
@@ -88,7 +88,7 @@ inline Constraint constraint(float rigidityB, float dt, const float* segmentLeng
     auto childShare = [&](float step) {
         const float k2 = rigidityB / (length * length);
         const float spring = k2 * step * step / mass, damper = 2.0f * kBendDampingRatio * std::sqrt(k2 / mass) * step;
-        return std::pair{spring / (1.0f + spring + damper), damper / (1.0f + spring + damper)};
+        return std::pair{ spring / (1.0f + spring + damper), damper / (1.0f + spring + damper) };
     };
     if (std::isinf(rigidityB)) {
         k.child = 1.0f;
@@ -107,4 +107,4 @@ inline Constraint constraint(float rigidityB, float dt, const float* segmentLeng
     return k;
 }
 
-}  // namespace wisp::bending
+} // namespace wisp::bending

@@ -1,11 +1,11 @@
 #include "sim/solver/HairSimulation.h"
 
 #include "sim/geometry/Body.h"
-#include "sim/util/ByteHash.h"
 #include "sim/geometry/MeshBvh.h"
-#include "sim/solver/RestShapeSolve.h"
 #include "sim/geometry/SignedDistanceField.h"
+#include "sim/solver/RestShapeSolve.h"
 #include "sim/solver/SolverSettings.h"
+#include "sim/util/ByteHash.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -18,7 +18,8 @@
 namespace wisp {
 
 HairSimulation::HairSimulation(int threadCount)
-    : m_solver(threadCount), m_head(std::make_shared<const HeadModel>(TriangleMesh{}))
+    : m_solver(threadCount)
+    , m_head(std::make_shared<const HeadModel>(TriangleMesh{}))
 {
 }
 HairSimulation::~HairSimulation() = default;
@@ -62,7 +63,7 @@ float scalpAreaOf(const Groom& groom)
 {
     double area = 0.0;
     for (std::size_t i = 0; i < groom.strandCount(); ++i) {
-        const float density = groom.regionSettings[groom.regionOfStrand[i]].densityPerCm2 * 1e4f;  // per m²
+        const float density = groom.regionSettings[groom.regionOfStrand[i]].densityPerCm2 * 1e4f; // per m²
         if (!(density > 0.0f))
             return 0.0f;
         area += 1.0 / density;
@@ -70,7 +71,7 @@ float scalpAreaOf(const Groom& groom)
     return static_cast<float>(area);
 }
 
-}  // namespace
+} // namespace
 
 std::string HairSimulation::start(Groom groom, const ParameterValues& values)
 {
@@ -96,7 +97,8 @@ std::string HairSimulation::start(Groom groom, const ParameterValues& values)
     m_simulatedOf.clear();
     const std::size_t count = m_solver.strandCount();
     for (std::size_t i = 0; i < count; ++i)
-        m_simulatedOf.emplace(m_groom.strandIdentity(m_allStrands ? i : m_groom.keyStrand[i]), static_cast<std::uint32_t>(i));
+        m_simulatedOf.emplace(
+            m_groom.strandIdentity(m_allStrands ? i : m_groom.keyStrand[i]), static_cast<std::uint32_t>(i));
     restoreWetness();
     m_airInSolver = false;
     return setStrandStiffness(m_groom);
@@ -128,7 +130,8 @@ std::string HairSimulation::setStrandStiffness(const Groom& groom)
     for (std::size_t i = 0; i < count; ++i) {
         const std::size_t strand = m_allStrands ? i : groom.keyStrand[i];
         const StrandStyle* style = styleOf(strand);
-        m_baseStiffness.push_back(strandStiffnessScale(groom.regionStiffnessScale[groom.regionOfStrand[strand]], style));
+        m_baseStiffness.push_back(
+            strandStiffnessScale(groom.regionStiffnessScale[groom.regionOfStrand[strand]], style));
         m_baseVolumeFactor.push_back(style && style->shape.size() >= 2 ? kCombedVolumeFactor : 1.0f);
     }
     if (std::string error = m_solver.setStiffnessScales(m_baseStiffness); !error.empty())
@@ -148,7 +151,7 @@ void HairSimulation::solveCombedRest(const Groom& groom, const ParameterValues& 
     const SolverSettings settings = solverSettingsFrom(values);
     HairCurves targets;
     std::vector<float> scales;
-    std::vector<std::pair<std::size_t, std::uint64_t>> solving;  // simulated strand, cache key
+    std::vector<std::pair<std::size_t, std::uint64_t>> solving; // simulated strand, cache key
     std::unordered_map<std::uint64_t, SolvedRest> used;
     for (std::size_t i = 0; i < simulated.strandCount(); ++i) {
         const std::size_t strand = m_allStrands ? i : groom.keyStrand[i];
@@ -157,8 +160,9 @@ void HairSimulation::solveCombedRest(const Groom& groom, const ParameterValues& 
             continue;
         const std::uint64_t identity = found->first;
         const std::span<const glm::vec3> target = simulated.strand(i);
-        const float scale = strandStiffnessScale(groom.regionStiffnessScale[groom.regionOfStrand[strand]], &found->second);
-        ByteHash hash;  // the target and the physics it is solved for
+        const float scale
+            = strandStiffnessScale(groom.regionStiffnessScale[groom.regionOfStrand[strand]], &found->second);
+        ByteHash hash; // the target and the physics it is solved for
         hash.add(target.data(), target.size_bytes());
         hash.add(scale);
         hash.add(settings.stiffness);
@@ -189,7 +193,7 @@ void HairSimulation::solveCombedRest(const Groom& groom, const ParameterValues& 
             const std::span<const glm::vec3> rest = solution.rest.strand(t);
             std::copy(rest.begin(), rest.end(), simulated.strandForWrite(i).begin());
             const std::size_t strand = m_allStrands ? i : groom.keyStrand[i];
-            used[groom.strandIdentity(strand)] = SolvedRest{key, {rest.begin(), rest.end()}};
+            used[groom.strandIdentity(strand)] = SolvedRest{ key, { rest.begin(), rest.end() } };
         }
     }
     m_restCache = std::move(used);
@@ -260,9 +264,9 @@ void HairSimulation::strandWetness(std::vector<float>& out) const
         out[i] = m_wetness.empty() ? 0.0f : m_wetness[m_groom.wispOf[i]];
 }
 
-// Wet hair's material in the solver: softer (stiffness) and less volume (the density it keeps), where its wetness moved by more than a
-// little since the solver was last told, so a slow drying costs a few updates a second, not one
-// per step.
+// Wet hair's material in the solver: softer (stiffness) and less volume (the density it keeps), where its wetness moved
+// by more than a little since the solver was last told, so a slow drying costs a few updates a second, not one per
+// step.
 void HairSimulation::updateMaterial(bool force)
 {
     const std::size_t count = m_solver.strandCount();
@@ -283,8 +287,8 @@ void HairSimulation::updateMaterial(bool force)
         volumeTargets[s] = std::max(m_baseVolumeFactor[s], wetVolumeFactor(w));
     }
     // Both are sized to the solver's strands, which the solver cannot refuse.
-    [[maybe_unused]] const bool accepted =
-        m_solver.setStiffnessScales(scales).empty() && m_solver.setVolumeTargetScales(volumeTargets).empty();
+    [[maybe_unused]] const bool accepted
+        = m_solver.setStiffnessScales(scales).empty() && m_solver.setVolumeTargetScales(volumeTargets).empty();
     assert(accepted);
 }
 
@@ -321,9 +325,11 @@ void HairSimulation::step()
             air.resize(count);
             for (std::size_t s = 0; s < count && points >= 2; ++s) {
                 const glm::vec3* p = positions.data() + s * points;
-                for (const HairDryer& dryer : m_dryers)  // the head shadows the jet
-                    air[s] += (dryerAirAt(dryer, p[points / 3], m_sdf.get()) + dryerAirAt(dryer, p[2 * points / 3], m_sdf.get()) +
-                               dryerAirAt(dryer, p[points - 1], m_sdf.get())) / 3.0f;
+                for (const HairDryer& dryer : m_dryers) // the head shadows the jet
+                    air[s] += (dryerAirAt(dryer, p[points / 3], m_sdf.get())
+                                  + dryerAirAt(dryer, p[2 * points / 3], m_sdf.get())
+                                  + dryerAirAt(dryer, p[points - 1], m_sdf.get()))
+                        / 3.0f;
             }
         }
         for (std::size_t w = 0; w < m_wetness.size(); ++w) {
@@ -333,7 +339,7 @@ void HairSimulation::step()
             const float speed = air.empty() ? 0.0f : glm::length(air[key]);
             m_wetness[w] = std::max(0.0f, m_wetness[w] + dryingRate(m_wetness[w], speed, m_dryingHalfLife) * dt);
             if (m_wetness[w] < kDryBelow)
-                m_wetness[w] = 0.0f;  // still-air drying never ends on its own
+                m_wetness[w] = 0.0f; // still-air drying never ends on its own
         }
         std::vector<float> drag;
         if (wet) {
@@ -357,7 +363,7 @@ int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::func
     SolverSettings still = settings;
     still.wind = glm::vec3(0.0f);
     still.turbulence = 0.0f;
-    constexpr float kDrapeDampingPerSecond = 8.0f;  // about critically damped for a 25 cm strand
+    constexpr float kDrapeDampingPerSecond = 8.0f; // about critically damped for a 25 cm strand
     still.dampingPerSecond = std::max(settings.dampingPerSecond, kDrapeDampingPerSecond);
     if (substeps > 0)
         still.substeps = substeps;
@@ -366,7 +372,7 @@ int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::func
     // No dryer; wet hair keeps its softness (the stiffness scales). Empty spans are always taken.
     [[maybe_unused]] const bool noAir = m_solver.setStrandAir({}, {}).empty();
     assert(noAir);
-    m_airInSolver = false;          // step() gives the air back where wetness or a dryer needs it
+    m_airInSolver = false; // step() gives the air back where wetness or a dryer needs it
     std::vector<glm::vec3> before, now;
     m_solver.copyPositions(before);
     int steps = 0;
@@ -389,21 +395,19 @@ int HairSimulation::drapeAtRest(int maxSteps, float stillMetres, const std::func
 }
 
 std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
-                                         const ParameterValues& values, const Groom* previous, Groom& out,
-                                         std::vector<StrandLook>& looks)
+    const ParameterValues& values, const Groom* previous, Groom& out, std::vector<StrandLook>& looks)
 {
     std::vector<GroomRegionInput> inputs;
     looks.clear();
     for (const GrowthRegion* r : growingRegions(regions, soloId)) {
         if (std::string error = validateRegion(*r, m_head->mesh().positions.size()); !error.empty())
             return error;
-        inputs.push_back({r->id, r->weights, groomSettingsFrom(r->values), r->values.getFloat(Param::StiffnessScale),
-                          r->importedStrands.get()});
-        looks.push_back({r->rootColour, r->tipColour, r->values.getFloat(Param::HairThickness)});
+        inputs.push_back({ r->id, r->weights, groomSettingsFrom(r->values), r->values.getFloat(Param::StiffnessScale),
+            r->importedStrands.get() });
+        looks.push_back({ r->rootColour, r->tipColour, r->values.getFloat(Param::HairThickness) });
     }
-    GroomResult result =
-        m_builder.build(m_head->mesh(), inputs, groomSettingsFrom(values), m_sdf.get(), previous, &m_head->bvh(),
-                        m_style.get());
+    GroomResult result = m_builder.build(
+        m_head->mesh(), inputs, groomSettingsFrom(values), m_sdf.get(), previous, &m_head->bvh(), m_style.get());
     if (!result.ok())
         return result.error;
     m_groomWarnings = std::move(result.warnings);
@@ -412,19 +416,19 @@ std::string HairSimulation::groomRegions(const std::vector<GrowthRegion>& region
 }
 
 std::string HairSimulation::setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions,
-                                  std::uint32_t soloId, const ParameterValues& values)
+    std::uint32_t soloId, const ParameterValues& values)
 {
     return setup(std::make_shared<const HeadModel>(head), regions, soloId, values);
 }
 
-std::string HairSimulation::setup(const TriangleMesh& head, std::span<const float> growthWeights,
-                                  const ParameterValues& values)
+std::string HairSimulation::setup(
+    const TriangleMesh& head, std::span<const float> growthWeights, const ParameterValues& values)
 {
     return setup(std::make_shared<const HeadModel>(head), growthWeights, values);
 }
 
-std::string HairSimulation::setup(HeadModelPtr head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
-                                  const ParameterValues& values)
+std::string HairSimulation::setup(
+    HeadModelPtr head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values)
 {
     if (std::string error = validateSolverSettings(solverSettingsFrom(values)); !error.empty())
         return error;
@@ -440,8 +444,8 @@ std::string HairSimulation::setup(HeadModelPtr head, const std::vector<GrowthReg
     return start(std::move(groom), values);
 }
 
-std::string HairSimulation::regroom(const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
-                                    const ParameterValues& values)
+std::string HairSimulation::regroom(
+    const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values)
 {
     if (std::string error = validateSolverSettings(solverSettingsFrom(values)); !error.empty())
         return error;
@@ -465,22 +469,23 @@ std::string HairSimulation::regroom(const std::vector<GrowthRegion>& regions, st
     std::vector<glm::vec3> positions, previous;
     m_solver.copyState(positions, previous);
     const std::vector<std::uint32_t> offsetsBefore = [&] {
-        std::vector<std::uint32_t> o{0};
+        std::vector<std::uint32_t> o{ 0 };
         for (std::size_t i = 0; i < countBefore; ++i)
             o.push_back(o.back() + static_cast<std::uint32_t>(m_groom.settings.segments + 1));
         return o;
     }();
 
     if (std::string error = start(std::move(groom), values); !error.empty())
-        return error;  // start refuses before changing the solver
+        return error; // start refuses before changing the solver
     m_looks = std::move(looks);
     m_carried = m_started = 0;
     const std::size_t countNow = m_allStrands ? m_groom.strandCount() : m_groom.wispCount();
     for (std::size_t i = 0; i < countNow; ++i) {
         const auto it = before.find(m_groom.strandIdentity(simulated(m_groom, m_allStrands, i)));
         bool carried = false;
-        if (it != before.end() && offsetsBefore[it->second + 1] <= positions.size() &&
-            glm::distance(rootsBefore[it->second], m_groom.rootPositions[simulated(m_groom, m_allStrands, i)]) < 1e-6f) {
+        if (it != before.end() && offsetsBefore[it->second + 1] <= positions.size()
+            && glm::distance(rootsBefore[it->second], m_groom.rootPositions[simulated(m_groom, m_allStrands, i)])
+                < 1e-6f) {
             const std::size_t first = offsetsBefore[it->second];
             const std::size_t count = offsetsBefore[it->second + 1] - first;
             const std::span<const glm::vec3> was = std::span(positions).subspan(first, count);
@@ -498,8 +503,8 @@ std::string HairSimulation::regroom(const std::vector<GrowthRegion>& regions, st
     return {};
 }
 
-std::string HairSimulation::setup(HeadModelPtr head, std::span<const float> growthWeights,
-                                  const ParameterValues& values)
+std::string HairSimulation::setup(
+    HeadModelPtr head, std::span<const float> growthWeights, const ParameterValues& values)
 {
     if (std::string error = validateSolverSettings(solverSettingsFrom(values)); !error.empty())
         return error;
@@ -512,18 +517,19 @@ std::string HairSimulation::setup(HeadModelPtr head, std::span<const float> grow
     if (!groom.ok())
         return groom.error;
     m_groomWarnings = std::move(groom.warnings);
-    m_looks.clear();  // one region, in the viewport's own colours
+    m_looks.clear(); // one region, in the viewport's own colours
     return start(std::move(groom.groom), values);
 }
 
 std::string HairSimulation::setupGrid(const TriangleMesh& head, int width, int height, int particlesPerStrand,
-                                      float lengthMetres, const ParameterValues& values)
+    float lengthMetres, const ParameterValues& values)
 {
     if (std::string error = validateSolverSettings(solverSettingsFrom(values)); !error.empty())
         return error;
     if (std::string error = prepareHead(std::make_shared<const HeadModel>(head)); !error.empty())
         return error;
-    GroomResult groom = buildGridGroom(m_head->mesh(), m_head->bvh(), width, height, particlesPerStrand, lengthMetres, m_sdf.get());
+    GroomResult groom
+        = buildGridGroom(m_head->mesh(), m_head->bvh(), width, height, particlesPerStrand, lengthMetres, m_sdf.get());
     if (!groom.ok())
         return groom.error;
     ParameterValues all = values;
@@ -577,10 +583,10 @@ void HairSimulation::buildFrame(HairCurves& out) const
     if (m_bodyOn) {
         bodyWorld.reserve(m_body.size());
         for (const Capsule& c : m_body)
-            bodyWorld.push_back({rotation * c.a + translation, rotation * c.b + translation, c.radiusMetres});
+            bodyWorld.push_back({ rotation * c.a + translation, rotation * c.b + translation, c.radiusMetres });
         contact.body = bodyWorld;
     }
     buildMembers(m_groom, keys, rotation, out, wetClump, &contact);
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -5,22 +5,22 @@
 //
 // Thread: owned and called by one thread.
 
-#include "sim/solver/Frame.h"
-#include "sim/groom/Groom.h"
-#include "sim/groom/GrowthRegion.h"
-#include "sim/style/HairDryer.h"
-#include "sim/params/Parameters.h"
-#include "sim/solver/Solver.h"
-#include "sim/style/StyleEdits.h"
 #include "sim/geometry/HeadModel.h"
 #include "sim/geometry/TriangleMesh.h"
+#include "sim/groom/Groom.h"
+#include "sim/groom/GrowthRegion.h"
+#include "sim/params/Parameters.h"
+#include "sim/solver/Frame.h"
+#include "sim/solver/Solver.h"
+#include "sim/style/HairDryer.h"
+#include "sim/style/StyleEdits.h"
 
 #include <functional>
 #include <memory>
 #include <optional>
 #include <span>
-#include <unordered_map>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace wisp {
@@ -36,19 +36,22 @@ public:
     // Grooms `head` where `growthWeights` allow (one region with the Wisp-group entries of
     // `values`), bakes its collider and starts the solver at rest. On error returns the message and
     // keeps what it had.
-    [[nodiscard]] std::string setup(const TriangleMesh& head, std::span<const float> growthWeights, const ParameterValues& values);
+    [[nodiscard]] std::string setup(
+        const TriangleMesh& head, std::span<const float> growthWeights, const ParameterValues& values);
     // The editor's groom: the growing regions of `regions` (see growingRegions) on `head`.
-    [[nodiscard]] std::string setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
-                      const ParameterValues& values);
+    [[nodiscard]] std::string setup(const TriangleMesh& head, const std::vector<GrowthRegion>& regions,
+        std::uint32_t soloId, const ParameterValues& values);
     // The same on a head model already built (the editor's document shares its BVH): only the
     // collider is baked here. `head` must not be null.
-    [[nodiscard]] std::string setup(HeadModelPtr head, std::span<const float> growthWeights, const ParameterValues& values);
+    [[nodiscard]] std::string setup(
+        HeadModelPtr head, std::span<const float> growthWeights, const ParameterValues& values);
     [[nodiscard]] std::string setup(HeadModelPtr head, const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
-                                    const ParameterValues& values);
+        const ParameterValues& values);
     // Regrooms on the same head (painted weights, wisp or groom parameters changed) while the hair
     // moves: every simulated strand that still exists keeps its motion, new strands start at rest,
     // removed ones vanish, nothing else jumps. On error returns the message and keeps running as before.
-    [[nodiscard]] std::string regroom(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values);
+    [[nodiscard]] std::string regroom(
+        const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values);
     // Strands whose motion the last regroom carried over, and strands it started at rest.
     std::size_t carriedStrands() const { return m_carried; }
     std::size_t startedStrands() const { return m_started; }
@@ -59,8 +62,8 @@ public:
     // How each groom region's hair looks (per entry of groom().regionIds).
     const std::vector<StrandLook>& looks() const { return m_looks; }
     // The first paper's grid layout (see buildGridGroom); every strand simulated.
-    [[nodiscard]] std::string setupGrid(const TriangleMesh& head, int width, int height, int particlesPerStrand, float lengthMetres,
-                          const ParameterValues& values);
+    [[nodiscard]] std::string setupGrid(const TriangleMesh& head, int width, int height, int particlesPerStrand,
+        float lengthMetres, const ParameterValues& values);
     // Forces and solver parameters only; takes effect at the next step.
     [[nodiscard]] std::string applyForces(const ParameterValues& values);
 
@@ -100,7 +103,7 @@ public:
     // that substep count: the editor's pacer may have lowered the running one, and the same rest
     // must look the same after New and after any Reset.
     int drapeAtRest(int maxSteps = kDrapeMaxSteps, float stillMetres = 2e-4f,
-                    const std::function<bool()>& cancelled = {}, int substeps = 0);
+        const std::function<bool()>& cancelled = {}, int substeps = 0);
     static constexpr int kDrapeMaxSteps = 600;
 
     // Every drawn strand in world space, in the groom's strand order (wet wisps clumped).
@@ -139,22 +142,22 @@ public:
 private:
     [[nodiscard]] std::string prepareHead(HeadModelPtr head);
     [[nodiscard]] std::string start(Groom groom, const ParameterValues& values);
-    [[nodiscard]] std::string groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId, const ParameterValues& values,
-                             const Groom* previous, Groom& out, std::vector<StrandLook>& looks);
+    [[nodiscard]] std::string groomRegions(const std::vector<GrowthRegion>& regions, std::uint32_t soloId,
+        const ParameterValues& values, const Groom* previous, Groom& out, std::vector<StrandLook>& looks);
     [[nodiscard]] std::string setStrandStiffness(const Groom& groom);
     void solveCombedRest(const Groom& groom, const ParameterValues& values, HairCurves& simulated);
     const StrandStyle* styleOf(std::size_t strand) const;
     std::size_t wispOfSimulated(std::size_t s) const { return m_allStrands ? m_groom.wispOf[s] : s; }
-    void saveWetness();      // live per-wisp wetness into m_liveWetness (before the groom changes)
-    void restoreWetness();   // and back, for the new groom's wisps
+    void saveWetness(); // live per-wisp wetness into m_liveWetness (before the groom changes)
+    void restoreWetness(); // and back, for the new groom's wisps
     void updateMaterial(bool force);
-    void setBody(const ParameterValues& values);  // the solver collides with m_body or not
+    void setBody(const ParameterValues& values); // the solver collides with m_body or not
 
     Solver m_solver;
-    HeadModelPtr m_head;  // never null: an empty head until the first setup
+    HeadModelPtr m_head; // never null: an empty head until the first setup
     std::shared_ptr<SignedDistanceField> m_sdf;
-    std::vector<Capsule> m_body;  // head space
-    bool m_bodyOn = false;        // the solver and the drawn members collide with m_body
+    std::vector<Capsule> m_body; // head space
+    bool m_bodyOn = false; // the solver and the drawn members collide with m_body
     Groom m_groom;
     GroomBuilder m_builder;
     std::vector<std::string> m_groomWarnings;
@@ -164,21 +167,21 @@ private:
     std::size_t m_started = 0;
 
     StyleEditsPtr m_style;
-    std::unordered_map<std::uint64_t, float> m_liveWetness;  // by key-hair identity, nonzero only
-    std::vector<float> m_wetness;                             // per wisp of m_groom
-    std::vector<float> m_baseStiffness;                       // per simulated strand: region x hairspray
-    std::vector<float> m_baseVolumeFactor;                    // per simulated strand: 1, or the comb's
-    std::vector<float> m_wetnessInSolver;                     // per simulated strand: as last given to the solver
-    bool m_airInSolver = false;                               // the solver has per-strand air set
+    std::unordered_map<std::uint64_t, float> m_liveWetness; // by key-hair identity, nonzero only
+    std::vector<float> m_wetness; // per wisp of m_groom
+    std::vector<float> m_baseStiffness; // per simulated strand: region x hairspray
+    std::vector<float> m_baseVolumeFactor; // per simulated strand: 1, or the comb's
+    std::vector<float> m_wetnessInSolver; // per simulated strand: as last given to the solver
+    bool m_airInSolver = false; // the solver has per-strand air set
     std::vector<HairDryer> m_dryers;
     float m_dryingHalfLife = 120.0f;
-    std::unordered_map<std::uint64_t, std::uint32_t> m_simulatedOf;  // identity -> solver strand
+    std::unordered_map<std::uint64_t, std::uint32_t> m_simulatedOf; // identity -> solver strand
     struct SolvedRest {
-        std::uint64_t key = 0;  // hash of the target and the physics it was solved for
+        std::uint64_t key = 0; // hash of the target and the physics it was solved for
         std::vector<glm::vec3> rest;
     };
-    std::unordered_map<std::uint64_t, SolvedRest> m_restCache;  // by identity
+    std::unordered_map<std::uint64_t, SolvedRest> m_restCache; // by identity
     float m_worstRestGap = 0.0f;
 };
 
-}  // namespace wisp
+} // namespace wisp

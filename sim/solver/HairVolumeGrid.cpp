@@ -13,14 +13,15 @@ namespace wisp {
 
 namespace {
 // body(begin, end) over [0, count): on the pool, or on the calling thread when there is none.
-void forRange(ThreadPool* pool, std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body)
+void forRange(
+    ThreadPool* pool, std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body)
 {
     if (pool)
         pool->parallelFor(count, grain, body);
     else if (count > 0)
         body(0, count);
 }
-}  // namespace
+} // namespace
 
 bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
 {
@@ -33,15 +34,15 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
     m_liveList.clear();
     m_dims = glm::ivec3(0);
     const glm::vec3 size = hi - lo;
-    if (!(std::isfinite(size.x) && std::isfinite(size.y) && std::isfinite(size.z)) || !(size.x > 0.0f) ||
-        !(size.y > 0.0f) || !(size.z > 0.0f) || !(glm::length(size) < 1e3f))
+    if (!(std::isfinite(size.x) && std::isfinite(size.y) && std::isfinite(size.z)) || !(size.x > 0.0f)
+        || !(size.y > 0.0f) || !(size.z > 0.0f) || !(glm::length(size) < 1e3f))
         return false;
     // The finest cell whose nodes (one more than the cells each way) fit the memory bound.
     const std::size_t maxNodes = kMaxBytes / kBytesPerNode;
     float cell = std::max(kFinestCellMetres, std::cbrt(size.x * size.y * size.z / static_cast<float>(maxNodes)));
     glm::ivec3 dims;
     for (;;) {
-        dims = glm::ivec3(glm::ceil(size / cell)) + 2;  // and a node beyond each end
+        dims = glm::ivec3(glm::ceil(size / cell)) + 2; // and a node beyond each end
         if (static_cast<std::size_t>(dims.x) * dims.y * dims.z <= maxNodes)
             break;
         cell *= 1.02f;
@@ -64,7 +65,9 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
 
 std::size_t HairVolumeGrid::memoryBytes() const
 {
-    return m_nodes.capacity() * sizeof(Node) + (m_hairDensity.capacity() + m_solid.capacity()) * sizeof(float) + m_chunks.capacity() * sizeof(Accumulator) + m_touched.capacity() + m_live.capacity() + m_liveList.capacity() * sizeof(std::uint32_t);
+    return m_nodes.capacity() * sizeof(Node) + (m_hairDensity.capacity() + m_solid.capacity()) * sizeof(float)
+        + m_chunks.capacity() * sizeof(Accumulator) + m_touched.capacity() + m_live.capacity()
+        + m_liveList.capacity() * sizeof(std::uint32_t);
 }
 
 void HairVolumeGrid::setSolid(const std::function<float(const glm::vec3&)>& signedDistance)
@@ -77,11 +80,11 @@ void HairVolumeGrid::setSolid(const std::function<float(const glm::vec3&)>& sign
             }
 }
 
-template <typename Fn>
-void HairVolumeGrid::forNodesOf(std::size_t brick, Fn&& fn) const
+template <typename Fn> void HairVolumeGrid::forNodesOf(std::size_t brick, Fn&& fn) const
 {
     const int bx = static_cast<int>(brick % static_cast<std::size_t>(m_bricks.x));
-    const int by = static_cast<int>((brick / static_cast<std::size_t>(m_bricks.x)) % static_cast<std::size_t>(m_bricks.y));
+    const int by
+        = static_cast<int>((brick / static_cast<std::size_t>(m_bricks.x)) % static_cast<std::size_t>(m_bricks.y));
     const int bz = static_cast<int>(brick / (static_cast<std::size_t>(m_bricks.x) * m_bricks.y));
     for (int k = bz * kBrick; k < std::min((bz + 1) * kBrick, m_dims.z); ++k)
         for (int j = by * kBrick; j < std::min((by + 1) * kBrick, m_dims.y); ++j)
@@ -104,7 +107,7 @@ void HairVolumeGrid::clearChunk(int chunk)
     std::uint8_t* touched = m_touched.data() + static_cast<std::size_t>(chunk) * bricks;
     for (std::size_t b = 0; b < bricks; ++b)
         if (touched[b]) {
-            forNodesOf(b, [&](int, int, int, std::size_t n) { a[n] = Accumulator{0.0f, 0.0f, 0.0f, 0.0f}; });
+            forNodesOf(b, [&](int, int, int, std::size_t n) { a[n] = Accumulator{ 0.0f, 0.0f, 0.0f, 0.0f }; });
             touched[b] = 0;
         }
 }
@@ -139,8 +142,8 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
     forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
         for (std::size_t l = begin; l < end; ++l)
             forNodesOf(m_liveList[l], [&](int, int, int, std::size_t n) {
-                Accumulator sum{0.0f, 0.0f, 0.0f, 0.0f};
-                for (int c = 0; c < m_activeChunks; ++c) {  // always in chunk order: the same bits on any thread count
+                Accumulator sum{ 0.0f, 0.0f, 0.0f, 0.0f };
+                for (int c = 0; c < m_activeChunks; ++c) { // always in chunk order: the same bits on any thread count
                     const Accumulator& a = m_chunks[static_cast<std::size_t>(c) * count + n];
                     sum.weight += a.weight;
                     sum.moveX += a.moveX;
@@ -176,4 +179,4 @@ double HairVolumeGrid::totalWeight() const
     return sum;
 }
 
-}  // namespace wisp
+} // namespace wisp

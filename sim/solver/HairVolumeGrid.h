@@ -29,7 +29,7 @@ class ThreadPool;
 class HairVolumeGrid {
 public:
     static constexpr int kSplatChunks = 8;
-    static constexpr std::size_t kMaxBytes = std::size_t{32} << 20;  // 32 MiB
+    static constexpr std::size_t kMaxBytes = std::size_t{ 32 } << 20; // 32 MiB
     static constexpr float kFinestCellMetres = 0.008f;
 
     // Lays nodes over [lo, hi] (head space, metres), as fine as the memory bound allows. False (and
@@ -61,10 +61,10 @@ public:
     void finish(ThreadPool* pool, float solidDensity = 0.0f);
 
     struct Sample {
-        float density = 0.0f;      // weight per m³ (the head's solid counted as solidDensity)
-        float hair = 0.0f;         // interpolated weight of the hair splatted at the nodes around (0: no hair, no move)
-        glm::vec3 move{0.0f};      // weighted mean move of the hair here
-        glm::vec3 gradient{0.0f};  // d density / d position, head space, weight per m⁴
+        float density = 0.0f; // weight per m³ (the head's solid counted as solidDensity)
+        float hair = 0.0f; // interpolated weight of the hair splatted at the nodes around (0: no hair, no move)
+        glm::vec3 move{ 0.0f }; // weighted mean move of the hair here
+        glm::vec3 gradient{ 0.0f }; // d density / d position, head space, weight per m⁴
     };
     // Trilinear at head-space `p` over the eight nodes around it, of what finish() left at each node
     // (density, its central-difference gradient, the hair's move weighted by its weight); zeros
@@ -86,64 +86,69 @@ private:
     };
     // What sample() reads, eight floats: one node of a pair (x even, x odd) shares a cache line.
     struct alignas(32) Node {
-        float density;                // hair and head, weight per m³
-        float gradX, gradY, gradZ;    // its central differences, weight per m⁴
-        float moveX, moveY, moveZ;    // the hair's summed weight x move (momentum; divided in sample())
-        float weight;                 // the hair's summed weight
+        float density; // hair and head, weight per m³
+        float gradX, gradY, gradZ; // its central differences, weight per m⁴
+        float moveX, moveY, moveZ; // the hair's summed weight x move (momentum; divided in sample())
+        float weight; // the hair's summed weight
     };
     // Hair and head at a node (clamped into the grid), for the central differences.
     float densityAt(int i, int j, int k) const
     {
-        const std::size_t n = index(std::clamp(i, 0, m_dims.x - 1), std::clamp(j, 0, m_dims.y - 1), std::clamp(k, 0, m_dims.z - 1));
+        const std::size_t n
+            = index(std::clamp(i, 0, m_dims.x - 1), std::clamp(j, 0, m_dims.y - 1), std::clamp(k, 0, m_dims.z - 1));
         return m_hairDensity[n] + m_solid[n] * m_solidDensity;
     }
     float m_solidDensity = 0.0f;
     std::size_t index(int i, int j, int k) const
     {
-        return static_cast<std::size_t>(i) + static_cast<std::size_t>(m_dims.x) * (static_cast<std::size_t>(j) +
-                                                                                   static_cast<std::size_t>(m_dims.y) * k);
+        return static_cast<std::size_t>(i)
+            + static_cast<std::size_t>(m_dims.x)
+            * (static_cast<std::size_t>(j) + static_cast<std::size_t>(m_dims.y) * k);
     }
 
-    glm::ivec3 m_dims{0};
-    glm::vec3 m_origin{0.0f};
+    glm::ivec3 m_dims{ 0 };
+    glm::vec3 m_origin{ 0.0f };
     float m_cell = 0.0f;
-    std::vector<Accumulator> m_chunks;  // kSplatChunks grids, one after the other
+    std::vector<Accumulator> m_chunks; // kSplatChunks grids, one after the other
     std::vector<Node> m_nodes;
-    std::vector<float> m_hairDensity;  // per node: the hair's weight per m³ (0 outside the live bricks)
-    std::vector<float> m_solid;        // per node: 0..1 inside the head
+    std::vector<float> m_hairDensity; // per node: the hair's weight per m³ (0 outside the live bricks)
+    std::vector<float> m_solid; // per node: 0..1 inside the head
     // Bricks of kBrick³ nodes: only those a splat touched are cleared, summed and differenced, so a
     // pass costs what the hair occupies, not the whole grid (the editor's 7,600 particles would
     // otherwise pay for 200,000 nodes in eight chunks).
     static constexpr int kBrick = 4;
     std::size_t brickIndex(int bx, int by, int bz) const
     {
-        return static_cast<std::size_t>(bx) + static_cast<std::size_t>(m_bricks.x) *
-                                                  (static_cast<std::size_t>(by) + static_cast<std::size_t>(m_bricks.y) * bz);
+        return static_cast<std::size_t>(bx)
+            + static_cast<std::size_t>(m_bricks.x)
+            * (static_cast<std::size_t>(by) + static_cast<std::size_t>(m_bricks.y) * bz);
     }
     template <typename Fn> void forNodesOf(std::size_t brick, Fn&& fn) const;
-    glm::ivec3 m_bricks{0};
+    glm::ivec3 m_bricks{ 0 };
     int m_activeChunks = kSplatChunks;
-    std::vector<std::uint8_t> m_touched;  // per chunk and brick: a splat of the chunk wrote there
-    std::vector<std::uint8_t> m_live;     // per brick: its nodes hold the last finish's sums
+    std::vector<std::uint8_t> m_touched; // per chunk and brick: a splat of the chunk wrote there
+    std::vector<std::uint8_t> m_live; // per brick: its nodes hold the last finish's sums
     std::vector<std::uint32_t> m_liveList;
 };
 
 inline void HairVolumeGrid::splat(int chunk, const glm::vec3& p, float weight, const glm::vec3& move)
 {
     const glm::vec3 g = (p - m_origin) * (1.0f / m_cell);
-    if (!(g.x >= 0.0f && g.y >= 0.0f && g.z >= 0.0f && g.x < static_cast<float>(m_dims.x - 1) &&
-          g.y < static_cast<float>(m_dims.y - 1) && g.z < static_cast<float>(m_dims.z - 1)))
-        return;  // outside, or not finite
+    if (!(g.x >= 0.0f && g.y >= 0.0f && g.z >= 0.0f && g.x < static_cast<float>(m_dims.x - 1)
+            && g.y < static_cast<float>(m_dims.y - 1) && g.z < static_cast<float>(m_dims.z - 1)))
+        return; // outside, or not finite
     const int ix = static_cast<int>(g.x), iy = static_cast<int>(g.y), iz = static_cast<int>(g.z);
     const float fx = g.x - static_cast<float>(ix), fy = g.y - static_cast<float>(iy), fz = g.z - static_cast<float>(iz);
     Accumulator* a = m_chunks.data() + static_cast<std::size_t>(chunk) * m_nodes.size() + index(ix, iy, iz);
-    const std::size_t strideY = static_cast<std::size_t>(m_dims.x), strideZ = strideY * static_cast<std::size_t>(m_dims.y);
+    const std::size_t strideY = static_cast<std::size_t>(m_dims.x),
+                      strideZ = strideY * static_cast<std::size_t>(m_dims.y);
     std::uint8_t* touched = m_touched.data() + static_cast<std::size_t>(chunk) * m_live.size();
     // The bricks of the eight nodes: one, unless the cell's far corner is in the next brick.
     const int bx = ix / kBrick, by = iy / kBrick, bz = iz / kBrick;
     const int nx = (ix + 1) / kBrick - bx, ny = (iy + 1) / kBrick - by, nz = (iz + 1) / kBrick - bz;
     std::uint8_t* brick = touched + brickIndex(bx, by, bz);
-    const std::size_t brickY = static_cast<std::size_t>(m_bricks.x), brickZ = brickY * static_cast<std::size_t>(m_bricks.y);
+    const std::size_t brickY = static_cast<std::size_t>(m_bricks.x),
+                      brickZ = brickY * static_cast<std::size_t>(m_bricks.y);
     if ((nx | ny | nz) == 0)
         *brick = 1;
     else
@@ -151,9 +156,9 @@ inline void HairVolumeGrid::splat(int chunk, const glm::vec3& p, float weight, c
             for (int y = 0; y <= ny; ++y)
                 for (int x = 0; x <= nx; ++x)
                     brick[x + y * brickY + z * brickZ] = 1;
-    const float wz[2] = {weight * (1.0f - fz), weight * fz};
-    const float wy[2] = {1.0f - fy, fy};
-    const float wx[2] = {1.0f - fx, fx};
+    const float wz[2] = { weight * (1.0f - fz), weight * fz };
+    const float wy[2] = { 1.0f - fy, fy };
+    const float wx[2] = { 1.0f - fx, fx };
     for (int dz = 0; dz < 2; ++dz)
         for (int dy = 0; dy < 2; ++dy) {
             Accumulator* row = a + dy * strideY + dz * strideZ;
@@ -172,15 +177,16 @@ inline HairVolumeGrid::Sample HairVolumeGrid::sample(const glm::vec3& p) const
 {
     Sample s;
     const glm::vec3 g = (p - m_origin) * (1.0f / m_cell);
-    if (!(g.x >= 0.0f && g.y >= 0.0f && g.z >= 0.0f && g.x < static_cast<float>(m_dims.x - 1) &&
-          g.y < static_cast<float>(m_dims.y - 1) && g.z < static_cast<float>(m_dims.z - 1)))
-        return s;  // outside, not finite, or no grid
+    if (!(g.x >= 0.0f && g.y >= 0.0f && g.z >= 0.0f && g.x < static_cast<float>(m_dims.x - 1)
+            && g.y < static_cast<float>(m_dims.y - 1) && g.z < static_cast<float>(m_dims.z - 1)))
+        return s; // outside, not finite, or no grid
     const int ix = static_cast<int>(g.x), iy = static_cast<int>(g.y), iz = static_cast<int>(g.z);
     const float fx = g.x - static_cast<float>(ix), fy = g.y - static_cast<float>(iy), fz = g.z - static_cast<float>(iz);
     const Node* base = m_nodes.data() + index(ix, iy, iz);
-    const std::size_t strideY = static_cast<std::size_t>(m_dims.x), strideZ = strideY * static_cast<std::size_t>(m_dims.y);
-    const float wz[2] = {1.0f - fz, fz}, wy[2] = {1.0f - fy, fy}, wx[2] = {1.0f - fx, fx};
-    float sum[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    const std::size_t strideY = static_cast<std::size_t>(m_dims.x),
+                      strideZ = strideY * static_cast<std::size_t>(m_dims.y);
+    const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
+    float sum[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
     for (int dz = 0; dz < 2; ++dz)
         for (int dy = 0; dy < 2; ++dy) {
             const Node* row = base + dy * strideY + dz * strideZ;
@@ -200,4 +206,4 @@ inline HairVolumeGrid::Sample HairVolumeGrid::sample(const glm::vec3& p) const
     return s;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -45,7 +45,7 @@ constexpr float kVelocityKept = 0.5f;
 // direction), times kFixedPointRelaxation. The previous positions carry over (they hold the DFTL
 // corrections a strand at rest keeps trading between its particles).
 void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessScales, const SolverSettings& settings,
-                    Solver& solver, HairCurves& rest)
+    Solver& solver, HairCurves& rest)
 {
     const std::size_t count = targets.strandCount();
     SolverSettings one = settings;
@@ -53,8 +53,8 @@ void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessS
     one.substeps = 1;
     one.wind = glm::vec3(0.0f);
     one.turbulence = 0.0f;
-    if (!solver.setStrands(rest).empty() || !solver.setSettings(one).empty() ||
-        (!stiffnessScales.empty() && !solver.setStiffnessScales(stiffnessScales).empty()))
+    if (!solver.setStrands(rest).empty() || !solver.setSettings(one).empty()
+        || (!stiffnessScales.empty() && !solver.setStiffnessScales(stiffnessScales).empty()))
         return;
 
     // Per segment: the gain that turns a missed angle into a rest turn.
@@ -66,7 +66,8 @@ void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessS
         lengths.assign(t.size(), 0.0f);
         for (int j = 1; j < n; ++j)
             lengths[j] = glm::distance(t[j], t[j - 1]);
-        const float stiffness = std::min(1.0f, settings.stiffness * (stiffnessScales.empty() ? 1.0f : stiffnessScales[i]));
+        const float stiffness
+            = std::min(1.0f, settings.stiffness * (stiffnessScales.empty() ? 1.0f : stiffnessScales[i]));
         const float rigidity = bending::rigidity(stiffness);
         for (int j = 1; j < n; ++j) {
             // The share of a miss one substep's correction moves the child.
@@ -101,12 +102,13 @@ void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessS
             for (std::size_t j = 1; j < t.size(); ++j) {
                 const std::size_t p = first + j;
                 worst = std::max(worst, glm::distance(positions[p], t[j]));
-                previous[p] = t[j] - kVelocityKept * (positions[p] - previous[p]);  // from the target
+                previous[p] = t[j] - kVelocityKept * (positions[p] - previous[p]); // from the target
                 const float length = glm::distance(t[j], t[j - 1]);
                 const glm::vec3 want = (t[j] - t[j - 1]) / length;
                 const glm::vec3 got = glm::normalize(positions[p] - positions[p - 1]);
                 tau[p] = glm::normalize(turnShortestArc(got, want, tau[p], gain[p], kMaxTurnRadians));
-                restDirection = j == 1 ? tau[p] : glm::normalize(turnShortestArc(combedParent, restDirection, tau[p], 1.0f));
+                restDirection
+                    = j == 1 ? tau[p] : glm::normalize(turnShortestArc(combedParent, restDirection, tau[p], 1.0f));
                 combedParent = want;
                 r[j] = r[j - 1] + restDirection * length;
             }
@@ -117,11 +119,11 @@ void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessS
     }
 }
 
-}  // namespace
+} // namespace
 
 RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const float> stiffnessScales,
-                                  const SolverSettings& settings, std::shared_ptr<const SignedDistanceField> collider,
-                                  int maxIterations, float toleranceMetres)
+    const SolverSettings& settings, std::shared_ptr<const SignedDistanceField> collider, int maxIterations,
+    float toleranceMetres)
 {
     RestShapeSolution out;
     out.rest = targets;
@@ -150,8 +152,8 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
     HairCurves best = out.rest;
     std::vector<float> previousGap(count, 1e30f);
     for (int k = 0; k < maxIterations; ++k) {
-        if (!solver.setStrands(out.rest).empty() || !solver.setSettings(settle).empty() ||
-            (!stiffnessScales.empty() && !solver.setStiffnessScales(stiffnessScales).empty()))
+        if (!solver.setStrands(out.rest).empty() || !solver.setSettings(settle).empty()
+            || (!stiffnessScales.empty() && !solver.setStiffnessScales(stiffnessScales).empty()))
             break;
         // Start at the target, at rest: once R is right, nothing moves.
         for (std::size_t i = 0; i < targets.strandCount(); ++i)
@@ -206,4 +208,4 @@ RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const flo
     return out;
 }
 
-}  // namespace wisp
+} // namespace wisp

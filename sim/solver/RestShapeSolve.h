@@ -28,17 +28,18 @@ namespace wisp {
 class SignedDistanceField;
 
 struct RestShapeSolution {
-    HairCurves rest;              // layout of the targets
-    float worstGapMetres = 0.0f;  // largest distance between a settled point and its target
+    HairCurves rest; // layout of the targets
+    float worstGapMetres = 0.0f; // largest distance between a settled point and its target
     int iterations = 0;
 };
 
 // `targets`: head space, the head at identity; `stiffnessScales`: per strand (see
 // Solver::setStiffnessScales), empty for 1. Uses `settings`' gravity, stiffness, substeps and time
 // step; not its volume (hair-hair interaction needs the other hair, which the solve does not have; the
-// live grid leaves combed hair alone at its combed density, HairSimulation::kCombedVolumeFactor). Thread: the caller's (single-threaded solver).
+// live grid leaves combed hair alone at its combed density, HairSimulation::kCombedVolumeFactor). Thread: the caller's
+// (single-threaded solver).
 RestShapeSolution solveRestShapes(const HairCurves& targets, std::span<const float> stiffnessScales,
-                                  const SolverSettings& settings, std::shared_ptr<const SignedDistanceField> collider,
-                                  int maxIterations = 8, float toleranceMetres = 5e-4f);
+    const SolverSettings& settings, std::shared_ptr<const SignedDistanceField> collider, int maxIterations = 8,
+    float toleranceMetres = 5e-4f);
 
-}  // namespace wisp
+} // namespace wisp

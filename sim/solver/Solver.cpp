@@ -2,15 +2,15 @@
 
 #include "sim/geometry/ShortestArc.h"
 
+#include "sim/geometry/SignedDistanceField.h"
 #include "sim/solver/BendingModel.h"
 #include "sim/solver/HairVolumeGrid.h"
-#include "sim/geometry/SignedDistanceField.h"
 #include "sim/util/ThreadPool.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <glm/vector_relational.hpp>
 #include <glm/mat3x3.hpp>
+#include <glm/vector_relational.hpp>
 
 #include <algorithm>
 #include <cstring>
@@ -32,8 +32,14 @@ using Mask = int __attribute__((vector_size(kLanes * sizeof(int))));
 
 namespace {
 
-inline Lane splat(float v) { return Lane{} + v; }
-inline Lane select(Mask m, Lane a, Lane b) { return m ? a : b; }
+inline Lane splat(float v)
+{
+    return Lane{} + v;
+}
+inline Lane select(Mask m, Lane a, Lane b)
+{
+    return m ? a : b;
+}
 
 // min, max, |a| and "any lane set" as single instructions per register. GCC lowers the portable
 // forms (a < b ? a : b, a reduction loop) to compare-and-blend, or, for a 16-lane vector on an
@@ -44,11 +50,13 @@ static_assert(sizeof(Lane) == sizeof(__m512));
 // (The zero-masked forms: the plain ones start from an undefined register GCC 12 warns about.)
 inline Lane lmin(Lane a, Lane b)
 {
-    return reinterpret_cast<Lane>(_mm512_maskz_min_ps(0xFFFF, reinterpret_cast<__m512>(a), reinterpret_cast<__m512>(b)));
+    return reinterpret_cast<Lane>(
+        _mm512_maskz_min_ps(0xFFFF, reinterpret_cast<__m512>(a), reinterpret_cast<__m512>(b)));
 }
 inline Lane lmax(Lane a, Lane b)
 {
-    return reinterpret_cast<Lane>(_mm512_maskz_max_ps(0xFFFF, reinterpret_cast<__m512>(a), reinterpret_cast<__m512>(b)));
+    return reinterpret_cast<Lane>(
+        _mm512_maskz_max_ps(0xFFFF, reinterpret_cast<__m512>(a), reinterpret_cast<__m512>(b)));
 }
 inline bool anyOf(Mask m)
 {
@@ -56,8 +64,7 @@ inline bool anyOf(Mask m)
     return _mm512_test_epi32_mask(v, v) != 0;
 }
 #elif defined(__AVX__)
-template <typename Op>
-inline Lane byHalves(Lane a, Lane b, Op op)
+template <typename Op> inline Lane byHalves(Lane a, Lane b, Op op)
 {
     Lane r;
     for (int i = 0; i < kLanes; i += 8) {
@@ -69,18 +76,30 @@ inline Lane byHalves(Lane a, Lane b, Op op)
     }
     return r;
 }
-inline Lane lmin(Lane a, Lane b) { return byHalves(a, b, [](__m256 x, __m256 y) { return _mm256_min_ps(x, y); }); }
-inline Lane lmax(Lane a, Lane b) { return byHalves(a, b, [](__m256 x, __m256 y) { return _mm256_max_ps(x, y); }); }
+inline Lane lmin(Lane a, Lane b)
+{
+    return byHalves(a, b, [](__m256 x, __m256 y) { return _mm256_min_ps(x, y); });
+}
+inline Lane lmax(Lane a, Lane b)
+{
+    return byHalves(a, b, [](__m256 x, __m256 y) { return _mm256_max_ps(x, y); });
+}
 inline bool anyOf(Mask m)
 {
-    __m256 lo, hi;  // comparison masks: every lane all ones or all zeros, so the sign bits say it
+    __m256 lo, hi; // comparison masks: every lane all ones or all zeros, so the sign bits say it
     std::memcpy(&lo, &m, sizeof lo);
     std::memcpy(&hi, reinterpret_cast<const int*>(&m) + 8, sizeof hi);
     return !_mm256_testz_ps(_mm256_or_ps(lo, hi), _mm256_or_ps(lo, hi));
 }
 #else
-inline Lane lmin(Lane a, Lane b) { return a < b ? a : b; }
-inline Lane lmax(Lane a, Lane b) { return a > b ? a : b; }
+inline Lane lmin(Lane a, Lane b)
+{
+    return a < b ? a : b;
+}
+inline Lane lmax(Lane a, Lane b)
+{
+    return a > b ? a : b;
+}
 inline bool anyOf(Mask m)
 {
     int any = 0;
@@ -146,26 +165,50 @@ inline Lane lrcp(Lane a)
 struct V3 {
     Lane x, y, z;
 };
-inline V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 operator*(const V3& a, Lane s) { return {a.x * s, a.y * s, a.z * s}; }
-inline Lane dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 operator+(const V3& a, const V3& b)
+{
+    return { a.x + b.x, a.y + b.y, a.z + b.z };
+}
+inline V3 operator-(const V3& a, const V3& b)
+{
+    return { a.x - b.x, a.y - b.y, a.z - b.z };
+}
+inline V3 operator*(const V3& a, Lane s)
+{
+    return { a.x * s, a.y * s, a.z * s };
+}
+inline Lane dot(const V3& a, const V3& b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 // |a| by clearing the sign bit (one and; -0 becomes +0, which no comparison tells apart).
-inline Lane labs(Lane a) { return reinterpret_cast<Lane>(reinterpret_cast<Mask>(a) & 0x7fffffff); }
-inline Lane l1Length(const V3& a) { return labs(a.x) + labs(a.y) + labs(a.z); }
+inline Lane labs(Lane a)
+{
+    return reinterpret_cast<Lane>(reinterpret_cast<Mask>(a) & 0x7fffffff);
+}
+inline Lane l1Length(const V3& a)
+{
+    return labs(a.x) + labs(a.y) + labs(a.z);
+}
 inline V3 cross(const V3& a, const V3& b)
 {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
 }
-inline V3 select(Mask m, const V3& a, const V3& b) { return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z}; }
-inline V3 splat(const glm::vec3& v) { return {splat(v.x), splat(v.y), splat(v.z)}; }
-inline V3 transform(const glm::mat3& m, const V3& v)  // m * v, glm is column-major
+inline V3 select(Mask m, const V3& a, const V3& b)
 {
-    return {v.x * m[0][0] + v.y * m[1][0] + v.z * m[2][0], v.x * m[0][1] + v.y * m[1][1] + v.z * m[2][1],
-            v.x * m[0][2] + v.y * m[1][2] + v.z * m[2][2]};
+    return { m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z };
+}
+inline V3 splat(const glm::vec3& v)
+{
+    return { splat(v.x), splat(v.y), splat(v.z) };
+}
+inline V3 transform(const glm::mat3& m, const V3& v) // m * v, glm is column-major
+{
+    return { v.x * m[0][0] + v.y * m[1][0] + v.z * m[2][0], v.x * m[0][1] + v.y * m[1][1] + v.z * m[2][1],
+        v.x * m[0][2] + v.y * m[1][2] + v.z * m[2][2] };
 }
 
-}  // namespace
+} // namespace
 
 // Particle j of the block's 8 strands: position and previous position (Verlet keeps no velocity).
 struct Solver::ParticleRow {
@@ -179,13 +222,13 @@ struct Solver::ParticleRow {
 // (row 0 the follicle's frame). The rest directions themselves (ShapeRow) are kept apart: a step
 // reads only the first two rows of them, and every byte a step streams costs time on a large groom.
 struct Solver::RestRow {
-    Lane length;  // (its reciprocal is divided out beside the chain: four fewer bytes to stream)
+    Lane length; // (its reciprocal is divided out beside the chain: four fewer bytes to stream)
     // Bending (BendingModel.h): the shares of this segment's bend error t_j - x_j added to
     // particle j, taken from its parent j-1 and added to j-2, for this substep (they sum to zero
     // momentum).
-    Lane bendChild;        // share of the bend error moved onto particle j this substep
-    Lane bendDamping;      // share of its move relative to its parent taken away this substep
-    Lane bendParentRatio;  // m_j / m_{j-1}
+    Lane bendChild; // share of the bend error moved onto particle j this substep
+    Lane bendDamping; // share of its move relative to its parent taken away this substep
+    Lane bendParentRatio; // m_j / m_{j-1}
     // Row j > 0: the rest direction in the parent segment's rest frame (direction, normal,
     // binormal; see advanceBlock). Row 0: the follicle frame's normal, head space.
     Lane lx, ly, lz;
@@ -209,39 +252,39 @@ using GlobalShapeRow = Solver::GlobalShapeRow;
 
 struct Solver::Block {
     std::uint32_t points = 0;
-    std::array<std::int64_t, kLanes> strand{};  // index into the caller's curves, -1 for padding
-    Lane strandLength{};                         // rest arc length per lane, metres
-    Lane stiffnessScale{};                       // per lane: multiplies the settings' stiffness
-    Lane dragScale{};                            // per lane: multiplies the drag toward the wind (wet hair)
-    Lane windX{}, windY{}, windZ{};              // per lane: wind of its own, m/s world (a hair dryer)
-    Lane volumeWeight{};       // per lane: metres of drawn hair one particle stands for (0: padding)
-    Lane volumeTargetScale{};  // per lane: multiplies the density the hair keeps (wet hair)
+    std::array<std::int64_t, kLanes> strand{}; // index into the caller's curves, -1 for padding
+    Lane strandLength{}; // rest arc length per lane, metres
+    Lane stiffnessScale{}; // per lane: multiplies the settings' stiffness
+    Lane dragScale{}; // per lane: multiplies the drag toward the wind (wet hair)
+    Lane windX{}, windY{}, windZ{}; // per lane: wind of its own, m/s world (a hair dryer)
+    Lane volumeWeight{}; // per lane: metres of drawn hair one particle stands for (0: padding)
+    Lane volumeTargetScale{}; // per lane: multiplies the density the hair keeps (wet hair)
     // Views into the solver's two row arrays: every block's rows follow the previous block's, so
     // a thread streams through memory in one sequential run that the prefetcher can follow.
     std::span<ParticleRow> state;
     std::span<RestRow> rest;
     std::span<ShapeRow> shape;
-    std::span<const GlobalShapeRow> globalShape;  // empty while the global shape is off
+    std::span<const GlobalShapeRow> globalShape; // empty while the global shape is off
 };
 
 struct StepConstants {
-    float dt = 0.0f;  // substep, seconds
-    float keep = 1.0f;     // exp(-damping dt): share of velocity kept
+    float dt = 0.0f; // substep, seconds
+    float keep = 1.0f; // exp(-damping dt): share of velocity kept
     float friction = 0;
     float offset = 0;
     float velocityCorrection = 0;
     float drag = 0;
     float turbulence = 0;
     int substeps = 1;
-    int substep = 0;  // the volume pass's substep (Solver::volumePass)
+    int substep = 0; // the volume pass's substep (Solver::volumePass)
     double time = 0;
-    glm::vec3 gravity{0.0f};
-    glm::vec3 wind{0.0f};
-    glm::mat3 rotation{1.0f};  // head to world
-    glm::vec3 translation{0.0f};
-    glm::mat3 previousRotation{1.0f};
-    glm::vec3 previousTranslation{0.0f};
-    bool transformed = false;  // head is not at the identity: SDF lookups need head space
+    glm::vec3 gravity{ 0.0f };
+    glm::vec3 wind{ 0.0f };
+    glm::mat3 rotation{ 1.0f }; // head to world
+    glm::vec3 translation{ 0.0f };
+    glm::mat3 previousRotation{ 1.0f };
+    glm::vec3 previousTranslation{ 0.0f };
+    bool transformed = false; // head is not at the identity: SDF lookups need head space
     const Solver::CollisionField* field = nullptr;
     std::vector<Capsule> capsulesWorld;
     std::uint64_t* resetCounter = nullptr;
@@ -255,10 +298,14 @@ inline Lane lsin(Lane x)
 {
     constexpr float kInvTwoPi = 0.15915494f, kTwoPi = 6.2831853f;
     const Lane turns = x * kInvTwoPi;
-    const Lane rounded = (turns + 12582912.0f) - 12582912.0f;  // round to nearest (|turns| < 2^22)
+    const Lane rounded = (turns + 12582912.0f) - 12582912.0f; // round to nearest (|turns| < 2^22)
     const Lane r = x - rounded * kTwoPi;
     const Lane r2 = r * r;
-    return r * (1.0f + r2 * (-1.0f / 6 + r2 * (1.0f / 120 + r2 * (-1.0f / 5040 + r2 * (1.0f / 362880 + r2 * (-1.0f / 39916800))))));
+    return r
+        * (1.0f
+            + r2
+                * (-1.0f / 6
+                    + r2 * (1.0f / 120 + r2 * (-1.0f / 5040 + r2 * (1.0f / 362880 + r2 * (-1.0f / 39916800))))));
 }
 
 // Gusts: a few travelling sine waves in space and time per axis, evaluated at the strand's root;
@@ -266,12 +313,13 @@ inline Lane lsin(Lane x)
 // t: the time in seconds modulo 1000 (gustTime).
 V3 gust(const V3& p, float t)
 {
-    return {0.6f * lsin(13.0f * p.x + 7.0f * p.z + 2.3f * t) + 0.4f * lsin(-9.0f * p.y + 11.0f * p.z + 3.7f * t + 1.0f),
-            0.6f * lsin(11.0f * p.y - 8.0f * p.x + 1.9f * t + 2.0f) + 0.4f * lsin(14.0f * p.z + 5.3f * t + 4.0f),
-            0.6f * lsin(12.0f * p.z + 6.0f * p.y + 2.9f * t + 3.0f) + 0.4f * lsin(-10.0f * p.x + 4.1f * t + 5.0f)};
+    return { 0.6f * lsin(13.0f * p.x + 7.0f * p.z + 2.3f * t)
+            + 0.4f * lsin(-9.0f * p.y + 11.0f * p.z + 3.7f * t + 1.0f),
+        0.6f * lsin(11.0f * p.y - 8.0f * p.x + 1.9f * t + 2.0f) + 0.4f * lsin(14.0f * p.z + 5.3f * t + 4.0f),
+        0.6f * lsin(12.0f * p.z + 6.0f * p.y + 2.9f * t + 3.0f) + 0.4f * lsin(-10.0f * p.x + 4.1f * t + 5.0f) };
 }
 
-}  // namespace
+} // namespace
 
 // The head as the solver reads it: for every node of the baked signed-distance grid, the distance
 // and the unit outward normal there (SignedDistanceField::samplesWithNormals, built once per head
@@ -281,13 +329,16 @@ V3 gust(const V3& p, float t)
 // the eight scattered loads of trilinear interpolation, which dominated the step. The error is
 // about h^2 / (2 R) for a surface of curvature radius R (0.03 mm for a 2.5 mm grid on a head).
 struct Solver::CollisionField {
-    const glm::vec4* nodes = nullptr;  // (distance, normal) per node, metres: the field's own table
-    glm::ivec3 dims{0};
-    glm::vec3 origin{0.0f};
+    const glm::vec4* nodes = nullptr; // (distance, normal) per node, metres: the field's own table
+    glm::ivec3 dims{ 0 };
+    glm::vec3 origin{ 0.0f };
     float cellSize = 0.0f;
 
     explicit CollisionField(const SignedDistanceField& sdf)
-        : nodes(sdf.samplesWithNormals().data()), dims(sdf.dims()), origin(sdf.origin()), cellSize(sdf.cellSize())
+        : nodes(sdf.samplesWithNormals().data())
+        , dims(sdf.dims())
+        , origin(sdf.origin())
+        , cellSize(sdf.cellSize())
     {
     }
 };
@@ -336,12 +387,14 @@ struct SdfSample {
     // The same transposes, eight nodes to a pair of 128-bit blocks per register.
     auto load = [&](int l) { return _mm_loadu_ps(&field.nodes[static_cast<std::size_t>(index[l])].x); };
     for (int half = 0; half < kLanes; half += 8) {
-        auto gather2 = [&](int first) { return _mm256_insertf128_ps(_mm256_castps128_ps256(load(half + first)), load(half + first + 4), 1); };
+        auto gather2 = [&](int first) {
+            return _mm256_insertf128_ps(_mm256_castps128_ps256(load(half + first)), load(half + first + 4), 1);
+        };
         const __m256 a = gather2(0), b = gather2(1), cc = gather2(2), e = gather2(3);
         const __m256 ab0 = _mm256_unpacklo_ps(a, b), ab1 = _mm256_unpackhi_ps(a, b);
         const __m256 ce0 = _mm256_unpacklo_ps(cc, e), ce1 = _mm256_unpackhi_ps(cc, e);
-        const __m256 parts[4] = {_mm256_shuffle_ps(ab0, ce0, 0x44), _mm256_shuffle_ps(ab0, ce0, 0xEE),
-                                 _mm256_shuffle_ps(ab1, ce1, 0x44), _mm256_shuffle_ps(ab1, ce1, 0xEE)};
+        const __m256 parts[4] = { _mm256_shuffle_ps(ab0, ce0, 0x44), _mm256_shuffle_ps(ab0, ce0, 0xEE),
+            _mm256_shuffle_ps(ab1, ce1, 0x44), _mm256_shuffle_ps(ab1, ce1, 0xEE) };
         std::memcpy(reinterpret_cast<float*>(&d) + half, &parts[0], sizeof parts[0]);
         std::memcpy(reinterpret_cast<float*>(&s.normal.x) + half, &parts[1], sizeof parts[1]);
         std::memcpy(reinterpret_cast<float*>(&s.normal.y) + half, &parts[2], sizeof parts[2]);
@@ -356,9 +409,9 @@ struct SdfSample {
         s.normal.z[l] = node.w;
     }
 #endif
-    const V3 nodePosition{__builtin_convertvector(ix, Lane) * field.cellSize + field.origin.x,
-                          __builtin_convertvector(iy, Lane) * field.cellSize + field.origin.y,
-                          __builtin_convertvector(iz, Lane) * field.cellSize + field.origin.z};
+    const V3 nodePosition{ __builtin_convertvector(ix, Lane) * field.cellSize + field.origin.x,
+        __builtin_convertvector(iy, Lane) * field.cellSize + field.origin.y,
+        __builtin_convertvector(iz, Lane) * field.cellSize + field.origin.z };
     s.distance = d + dot(s.normal, p - nodePosition);
     return s;
 }
@@ -395,41 +448,41 @@ constexpr float kGlobalShapeStepSeconds = 1.0f / 60.0f;
 constexpr float kGlobalShapeReach = 0.75f;
 
 struct ContactFriction {
-    Lane kinetic;  // μk
-    Lane statik;   // μs
+    Lane kinetic; // μk
+    Lane statik; // μs
 };
 
 // Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below).
 inline void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& oldPosition,
-                          const V3& position, V3& previous);
+    const V3& position, V3& previous);
 
 inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
-                           Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous,
-                           bool pushWhatIsLeft, Lane band)
+    Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous, bool pushWhatIsLeft, Lane band)
 {
     const V3 u0 = (position - parent) * inverseLength;
     const Lane along = dot(normal, u0);
-    const Lane needed = depth * inverseLength + along;  // n . u the particle needs to be on the plane
+    const Lane needed = depth * inverseLength + along; // n . u the particle needs to be on the plane
     const V3 tangent = u0 - normal * along;
     const Lane tangent2 = dot(tangent, tangent);
     // Turned as far as the sphere allows (straight out along the normal when even that is not
     // enough); whatever depth is left is pushed out, and only that much length gives way.
     const Lane reach = lmin(needed, splat(1.0f));
-    const V3 unitTangent = tangent * select(tangent2 > splat(1e-12f), lrsqrt(lmax(tangent2, splat(1e-12f))), splat(0.0f));
+    const V3 unitTangent
+        = tangent * select(tangent2 > splat(1e-12f), lrsqrt(lmax(tangent2, splat(1e-12f))), splat(0.0f));
     const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
     const Lane sine = sine2 * lrsqrt(lmax(sine2, splat(1e-20f)));
     const V3 turned = parent + (normal * reach + unitTangent * sine) * length;
     // A segment shorter than twice the hair offset only has to clear the surface itself, not the
     // offset kept above it: starting on the skin it cannot reach out of the offset, and stretching
     // it to would break its length for no contact.
-    const Lane slack = select(length < band * 2.0f, band, splat(0.0f));  // only for segments that short
+    const Lane slack = select(length < band * 2.0f, band, splat(0.0f)); // only for segments that short
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
     applyFriction(inside, depth, normal, mu, oldPosition, position, previous);
 }
 
 inline void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& oldPosition,
-                          const V3& position, V3& previous)
+    const V3& position, V3& previous)
 {
     const V3 move = position - oldPosition;
     const Lane normalPart = dot(move, normal);
@@ -452,9 +505,10 @@ inline void applyFriction(Mask inside, Lane depth, const V3& normal, const Conta
 // Solver::updateGlobalShape: full at the root, fading along the strand, the same per second at any
 // substep count.
 template <bool Transformed>
-V3 pullTowardGlobalShape(const V3& bent, const GlobalShapeRow& g, const V3& root, const V3& rootHead, const glm::mat3& rotation)
+V3 pullTowardGlobalShape(
+    const V3& bent, const GlobalShapeRow& g, const V3& root, const V3& rootHead, const glm::mat3& rotation)
 {
-    const V3 restHead{g.x, g.y, g.z};
+    const V3 restHead{ g.x, g.y, g.z };
     const V3 target = Transformed ? root + transform(rotation, restHead - rootHead) : restHead;
     return bent + (target - bent) * g.share;
 }
@@ -524,17 +578,17 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
     const std::uint32_t n = block.points;
     ParticleRow* row = block.state.data();
     const RestRow* rest = block.rest.data();
-    const GlobalShapeRow* globalShape = block.globalShape.data();  // null while it is off
+    const GlobalShapeRow* globalShape = block.globalShape.data(); // null while it is off
 
     // Roots in world space at the start and the end of this step; substeps interpolate between them.
-    const V3 rootHead{block.shape[0].x, block.shape[0].y, block.shape[0].z};
+    const V3 rootHead{ block.shape[0].x, block.shape[0].y, block.shape[0].z };
     const V3 rootEnd = Transformed ? transform(c.rotation, rootHead) + splat(c.translation) : rootHead;
-    const V3 rootStart =
-        Transformed ? transform(c.previousRotation, rootHead) + splat(c.previousTranslation) : rootHead;
+    const V3 rootStart
+        = Transformed ? transform(c.previousRotation, rootHead) + splat(c.previousTranslation) : rootHead;
 
     // Wind (eq. 1 and 2 of the force-driven hair paper) with gusts sampled at each particle, so
     // they vary along a strand (turbulence is ours).
-    const V3 baseWind = splat(c.wind) + V3{block.windX, block.windY, block.windZ};
+    const V3 baseWind = splat(c.wind) + V3{ block.windX, block.windY, block.windZ };
     const float windSpeed = glm::length(c.wind);
     const bool gusty = c.turbulence > 0.0f && windSpeed > 0.0f;
     const Lane gustAmplitude = splat(c.turbulence * windSpeed);
@@ -552,7 +606,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
     // reaction is divided by that share here; capped, so strong drag or damping at a long substep
     // (where the share is no small correction) never amplifies it much.
     const Lane kickGain = lmin((splat(1.0f) + drag * dt) * splat(1.0f / c.keep), splat(kMaxKickGain));
-    const ContactFriction mu{splat(c.friction), splat(c.friction * kStaticOverKineticFriction)};
+    const ContactFriction mu{ splat(c.friction), splat(c.friction * kStaticOverKineticFriction) };
 
     // The capsules any particle of this block can reach this step: none farther from its root than
     // its strand is long (with a margin for what contact may have stretched), so a capsule beyond
@@ -567,13 +621,15 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
         const glm::vec3 abv = capsule.b - capsule.a;
         const float ab2 = glm::dot(abv, abv);
         const V3 ab = splat(abv);
-        const Lane u = ab2 > 0.0f ? lmin(lmax(dot(rootEnd - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f)) : splat(0.0f);
+        const Lane u
+            = ab2 > 0.0f ? lmin(lmax(dot(rootEnd - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f)) : splat(0.0f);
         const V3 away = rootEnd - (a + ab * u);
         const Lane reach = block.strandLength * 1.25f + (capsule.radiusMetres + c.offset + 0.02f);
         if (anyOf(dot(away, away) < reach * reach))
             capsules[capsuleCount++] = &capsule;
     }
-    auto capsuleAt = [&](std::size_t k) -> const Capsule& { return filterCapsules ? *capsules[k] : c.capsulesWorld[k]; };
+    auto capsuleAt
+        = [&](std::size_t k) -> const Capsule& { return filterCapsules ? *capsules[k] : c.capsulesWorld[k]; };
     const std::size_t capsulesToCheck = filterCapsules ? capsuleCount : c.capsulesWorld.size();
 
     // Verlet (eq. 3) with drag toward the wind taken implicitly: v' = (keep v + k dt w) / (1 + k dt)
@@ -589,7 +645,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
         const V3 tangent = x - parentBefore;
         const Lane wt = dot(wind, tangent);
         const Lane invTangent = lrsqrt(lmax(dot(tangent, tangent), splat(1e-20f)));
-        const Lane across2 = splat(1.0f) - (wt * wt) * (invTangent * invTangent) * lrcp(select(calm, splat(1.0f), windSpeed2));
+        const Lane across2
+            = splat(1.0f) - (wt * wt) * (invTangent * invTangent) * lrcp(select(calm, splat(1.0f), windSpeed2));
         const Lane across2Safe = lmax(across2, splat(1e-20f));
         const Lane across = select(calm, splat(1.0f), across2Safe * lrsqrt(across2Safe));
         const Lane kdt = drag * across * dt;
@@ -612,8 +669,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
         const Lane length = rest[i].length;
         const Lane scale = length * lrsqrt(lmax(dot(reach, reach), splat(1e-24f)));
         V3 position = parent + reach * scale;
-        const V3 correction = reach * (scale - 1.0f);  // position - bent
-        bool looked = false;  // whether contact may have moved it (else `checked` is final)
+        const V3 correction = reach * (scale - 1.0f); // position - bent
+        bool looked = false; // whether contact may have moved it (else `checked` is final)
 
         // The field lookup is most of a step's cost (memory latency), so it is skipped while the
         // clearance bound says no lane can touch: the bound shrinks by each move's L1 length,
@@ -623,8 +680,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
         if (c.field && (Transformed || anyOf(clearance < splat(0.0f)))) {
             // The head's distance and normal at a world-space position.
             auto sampleHead = [&](const V3& at) {
-                SdfSample sample =
-                    sampleField(*c.field, Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at);
+                SdfSample sample = sampleField(
+                    *c.field, Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at);
                 if (Transformed)
                     sample.normal = transform(c.rotation, sample.normal);
                 return sample;
@@ -635,8 +692,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
             if (anyOf(inside)) {
                 // A curved surface is not its tangent plane: turn onto the plane, look again from
                 // there, and only then push what the segment cannot reach.
-                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position, previous, false,
-                               splat(c.offset));
+                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position,
+                    previous, false, splat(c.offset));
                 // What is left within half the offset (still clear of the skin) stays: turning it
                 // far along the arc below for that little would shake stiff hair lying on the head.
                 const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
@@ -648,8 +705,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
                     if (!anyOf(pass < kHeadContactPasses ? stillInside : stuck))
                         break;
                     if (pass < kHeadContactPasses) {
-                        resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before, position,
-                                       previous, false, splat(c.offset));
+                        resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before,
+                            position, previous, false, splat(c.offset));
                         // Turning converges fast on a smooth surface: look once more only where a
                         // lane was still a quarter of the offset deep before this last turn (in a
                         // crevice the last turn may put it deeper on the other wall).
@@ -679,8 +736,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
                         position = select(arcClears, onArc(hi), position);
                         applyFriction(arcClears, nextDepth, next.normal, mu, before, position, previous);
                     }
-                    resolveContact(stuck & ~arcClears, nextDepth, next.normal, mu, parent, length, inverseLength, before,
-                                   position, previous, true, splat(c.offset));
+                    resolveContact(stuck & ~arcClears, nextDepth, next.normal, mu, parent, length, inverseLength,
+                        before, position, previous, true, splat(c.offset));
                 }
             }
             // A moving head moves the field under the particles: no bound survives that.
@@ -693,16 +750,16 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
             const glm::vec3 abv = capsule.b - capsule.a;
             const float ab2 = glm::dot(abv, abv);
             const V3 ab = splat(abv);
-            const Lane u = ab2 > 0.0f ? lmin(lmax(dot(position - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f))
-                                      : splat(0.0f);
+            const Lane u
+                = ab2 > 0.0f ? lmin(lmax(dot(position - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f)) : splat(0.0f);
             const V3 away = position - (a + ab * u);
             const Lane dist = lsqrt(dot(away, away));
             const Lane depth = splat(capsule.radiusMetres + c.offset) - dist;
             const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
             if (anyOf(inside)) {
                 const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
-                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous, true,
-                               splat(c.offset));
+                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous,
+                    true, splat(c.offset));
                 looked = true;
             }
         }
@@ -726,7 +783,7 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
     for (int s = firstSubstep; s < endSubstep; ++s) {
         const Lane t = splat(static_cast<float>(s + 1) / static_cast<float>(c.substeps));
         const V3 root = rootStart + (rootEnd - rootStart) * t;
-        V3 parentBefore{row[0].x, row[0].y, row[0].z};
+        V3 parentBefore{ row[0].x, row[0].y, row[0].z };
         row[0].px = row[0].x;
         row[0].py = row[0].y;
         row[0].pz = row[0].z;
@@ -747,12 +804,13 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
         // the work is arranged to keep that chain short: everything that does not depend on the
         // parent's final position (the prediction, the bend's other terms, the next target's part
         // across the parent's direction) is computed beside it.
-        V3 parent = root;  // final position of particle j-1
-        V3 parentStart = parentBefore;  // particle j-1 at the start of the substep
-        V3 gustFrom{}, gustTo{};        // gusts at the samples either side of particle j
+        V3 parent = root; // final position of particle j-1
+        V3 parentStart = parentBefore; // particle j-1 at the start of the substep
+        V3 gustFrom{}, gustTo{}; // gusts at the samples either side of particle j
         Lane gustSpan = splat(1.0f);
-        V3 frameD{block.shape[1].x, block.shape[1].y, block.shape[1].z};  // the follicle's frame: the root segment's rest
-        V3 frameE{rest[0].lx, rest[0].ly, rest[0].lz}; // direction and a normal to it
+        V3 frameD{ block.shape[1].x, block.shape[1].y,
+            block.shape[1].z }; // the follicle's frame: the root segment's rest
+        V3 frameE{ rest[0].lx, rest[0].ly, rest[0].lz }; // direction and a normal to it
         if (Transformed) {
             frameD = transform(c.rotation, frameD);
             frameE = transform(c.rotation, frameE);
@@ -764,9 +822,10 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
         for (std::uint32_t j = 1; j < n; ++j) {
             ParticleRow& p = row[j];
             const RestRow& r = rest[j];
-            if (s == firstSubstep)  // the next block's rows (the next in memory, which this thread most likely runs next)
+            if (s
+                == firstSubstep) // the next block's rows (the next in memory, which this thread most likely runs next)
                 prefetchRows(block, j);
-            const V3 x{p.x, p.y, p.z};
+            const V3 x{ p.x, p.y, p.z };
             // Gusts are smooth over tens of centimetres: sampled at every kGustStride-th particle
             // (where the particles were at the start of the substep) and interpolated between.
             V3 gustHere{};
@@ -775,12 +834,12 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
                 if (k == 0) {
                     const std::uint32_t ahead = std::min(j + kGustStride, n - 1);
                     gustFrom = j == 1 ? gust(x, gustTime) : gustTo;
-                    gustTo = ahead == j ? gustFrom : gust(V3{row[ahead].x, row[ahead].y, row[ahead].z}, gustTime);
+                    gustTo = ahead == j ? gustFrom : gust(V3{ row[ahead].x, row[ahead].y, row[ahead].z }, gustTime);
                     gustSpan = splat(1.0f / static_cast<float>(std::max<std::uint32_t>(ahead - j, 1)));
                 }
                 gustHere = gustFrom + (gustTo - gustFrom) * (splat(static_cast<float>(k)) * gustSpan);
             }
-            const V3 predicted = predict(x, V3{p.px, p.py, p.pz}, parentBefore, gustHere);
+            const V3 predicted = predict(x, V3{ p.px, p.py, p.pz }, parentBefore, gustHere);
             parentBefore = x;
 
             // Spring toward the target and damper on the particle's motion relative to its parent:
@@ -796,7 +855,8 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
             // made up for the damping and drag that the next substep applies to it (kickGain).
             const V3 kick = (parent + reach - predicted) * (r.bendParentRatio * kickGain);
             if constexpr (GlobalShape)
-                reach = pullTowardGlobalShape<Transformed>(parent + reach, globalShape[j], root, rootHead, c.rotation) - parent;
+                reach = pullTowardGlobalShape<Transformed>(parent + reach, globalShape[j], root, rootHead, c.rotation)
+                    - parent;
             parentStart = x;
             const Lane inverseLength = 1.0f / r.length;
             const V3 position = finish(j, x, reach, parent, kick, inverseLength);
@@ -828,12 +888,12 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
     Lane farthest = splat(0.0f);
     Mask finite = Mask{} == 0;
     for (std::uint32_t j = 0; j < n; ++j) {
-        const V3 x{row[j].x, row[j].y, row[j].z};
-        const V3 pv{row[j].px, row[j].py, row[j].pz};
+        const V3 x{ row[j].x, row[j].y, row[j].z };
+        const V3 pv{ row[j].px, row[j].py, row[j].pz };
         const V3 d = x - rootEnd;
         farthest = lmax(farthest, dot(d, d));
         const V3 m = x - pv;
-        finite &= dot(m, m) < splat(1e12f);  // false for NaN
+        finite &= dot(m, m) < splat(1e12f); // false for NaN
     }
     const Lane limit = block.strandLength * 1.5f + 0.05f;
     const Mask bad = ~((farthest < limit * limit) & finite);
@@ -848,12 +908,18 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
     }
 }
 
-}  // namespace
+} // namespace
 
-Solver::Solver(int threadCount) : m_pool(std::make_unique<ThreadPool>(threadCount)) {}
+Solver::Solver(int threadCount)
+    : m_pool(std::make_unique<ThreadPool>(threadCount))
+{
+}
 Solver::~Solver() = default;
 
-int Solver::threadCount() const { return m_pool->threadCount(); }
+int Solver::threadCount() const
+{
+    return m_pool->threadCount();
+}
 
 std::string Solver::setStrands(const HairCurves& rest)
 {
@@ -864,13 +930,14 @@ std::string Solver::setStrands(const HairCurves& rest)
     for (std::size_t i = 0; i < rest.strandCount(); ++i) {
         const std::span<const glm::vec3> s = rest.strand(i);
         if (s.size() < 2)
-            return "strand " + std::to_string(i) + ": has " + std::to_string(s.size()) + " points; at least 2 are needed";
+            return "strand " + std::to_string(i) + ": has " + std::to_string(s.size())
+                + " points; at least 2 are needed";
         for (std::size_t j = 0; j < s.size(); ++j) {
             if (!std::isfinite(s[j].x) || !std::isfinite(s[j].y) || !std::isfinite(s[j].z))
                 return "strand " + std::to_string(i) + ": point " + std::to_string(j) + " is not finite";
             if (j > 0 && !(glm::distance(s[j], s[j - 1]) > 1e-7f))
-                return "strand " + std::to_string(i) + ": points " + std::to_string(j - 1) + " and " + std::to_string(j) +
-                       " coincide (zero-length segment)";
+                return "strand " + std::to_string(i) + ": points " + std::to_string(j - 1) + " and " + std::to_string(j)
+                    + " coincide (zero-length segment)";
         }
         byCount[static_cast<std::uint32_t>(s.size())].push_back(static_cast<std::uint32_t>(i));
     }
@@ -929,14 +996,14 @@ std::string Solver::setStrands(const HairCurves& rest)
         }
     }
     m_blocks = std::move(blocks);
-    m_stateRows = std::move(stateRows);  // moving keeps the buffers, so the blocks' views stay valid
+    m_stateRows = std::move(stateRows); // moving keeps the buffers, so the blocks' views stay valid
     m_restRows = std::move(restRows);
     m_shapeRows = std::move(shapeRows);
     m_slotOfStrand.assign(rest.strandCount(), {});
     for (std::uint32_t i = 0; i < m_blocks.size(); ++i)
         for (std::uint32_t l = 0; l < kLanes; ++l)
             if (m_blocks[i].strand[l] >= 0)
-                m_slotOfStrand[static_cast<std::size_t>(m_blocks[i].strand[l])] = {i, l};
+                m_slotOfStrand[static_cast<std::size_t>(m_blocks[i].strand[l])] = { i, l };
     m_restOffsets = rest.offsets;
     m_bendSharesStale = true;
     m_globalShapeStale = true;
@@ -961,15 +1028,15 @@ float estimatedScalpArea(std::span<const Solver::Block> blocks)
         for (int l = 0; l < kLanes; ++l)
             if (b.strand[l] >= 0) {
                 const glm::ivec3 c(glm::floor(glm::vec3(b.shape[0].x[l], b.shape[0].y[l], b.shape[0].z[l]) / kCell));
-                cells.push_back((static_cast<std::int64_t>(c.x & 0x1FFFFF) << 42) | (static_cast<std::int64_t>(c.y & 0x1FFFFF) << 21) |
-                                (c.z & 0x1FFFFF));
+                cells.push_back((static_cast<std::int64_t>(c.x & 0x1FFFFF) << 42)
+                    | (static_cast<std::int64_t>(c.y & 0x1FFFFF) << 21) | (c.z & 0x1FFFFF));
             }
     std::sort(cells.begin(), cells.end());
     const auto distinct = std::unique(cells.begin(), cells.end()) - cells.begin();
     return static_cast<float>(distinct) * kCell * kCell / 1.5f;
 }
 
-}  // namespace
+} // namespace
 
 // The head-space box every particle stays in (its root's box grown by its strand's length), and
 // the hair per scalp area from the particles' weights.
@@ -1002,7 +1069,7 @@ void Solver::updateVolumeBounds()
         if (fits && size.x * size.y * size.z >= 0.5f * gridSize.x * gridSize.y * gridSize.z)
             return;
     }
-    m_volumeGrid.reset();  // laid out again on the next step with volume on
+    m_volumeGrid.reset(); // laid out again on the next step with volume on
 }
 
 float Solver::volumeTargetDensity() const
@@ -1013,11 +1080,12 @@ float Solver::volumeTargetDensity() const
 std::string Solver::setStrandVolume(std::span<const float> drawnStrands, float scalpAreaSquareMetres)
 {
     if (!drawnStrands.empty() && drawnStrands.size() != m_strandCount)
-        return "drawn strands: " + std::to_string(drawnStrands.size()) + " for " + std::to_string(m_strandCount) + " strands";
+        return "drawn strands: " + std::to_string(drawnStrands.size()) + " for " + std::to_string(m_strandCount)
+            + " strands";
     for (std::size_t i = 0; i < drawnStrands.size(); ++i)
         if (!(drawnStrands[i] >= 0.0f && drawnStrands[i] <= 1e6f))
-            return "drawn strands of strand " + std::to_string(i) + ": " + std::to_string(drawnStrands[i]) +
-                   " is not a finite number of at least 0";
+            return "drawn strands of strand " + std::to_string(i) + ": " + std::to_string(drawnStrands[i])
+                + " is not a finite number of at least 0";
     if (!(scalpAreaSquareMetres >= 0.0f && scalpAreaSquareMetres <= 1e4f))
         return "scalp area: " + std::to_string(scalpAreaSquareMetres) + " m² is not a finite area of at least 0";
     for (std::size_t i = 0; i < m_strandCount; ++i) {
@@ -1034,11 +1102,12 @@ std::string Solver::setStrandVolume(std::span<const float> drawnStrands, float s
 std::string Solver::setVolumeTargetScales(std::span<const float> perStrand)
 {
     if (!perStrand.empty() && perStrand.size() != m_strandCount)
-        return "volume target scales: " + std::to_string(perStrand.size()) + " for " + std::to_string(m_strandCount) + " strands";
+        return "volume target scales: " + std::to_string(perStrand.size()) + " for " + std::to_string(m_strandCount)
+            + " strands";
     for (std::size_t i = 0; i < perStrand.size(); ++i)
         if (!(perStrand[i] >= 0.01f && perStrand[i] <= 1e3f))
-            return "volume target scale of strand " + std::to_string(i) + ": " + std::to_string(perStrand[i]) +
-                   " is not a finite number within 0.01..1000";
+            return "volume target scale of strand " + std::to_string(i) + ": " + std::to_string(perStrand[i])
+                + " is not a finite number within 0.01..1000";
     for (std::size_t i = 0; i < m_strandCount; ++i) {
         const Slot slot = m_slotOfStrand[i];
         m_blocks[slot.block].volumeTargetScale[slot.lane] = perStrand.empty() ? 1.0f : perStrand[i];
@@ -1051,8 +1120,8 @@ std::string Solver::setVolumeTargetScales(std::span<const float> perStrand)
 // twice its target that thins out over 2 cm pushes at 200 m/s² before the cap. Capped at
 // kVolumeMaxAcceleration (3 g) so a particle deep in a knot is not flung. Measured on the default
 // groom (tests/sim/VolumeTest.cpp): 1 m²/s² leaves the top at 8 mm, 4 gives 18 mm, 10 gives 20 mm.
-constexpr float kVolumeStiffness = 4.0f;         // m²/s²
-constexpr float kVolumeMaxAcceleration = 30.0f;  // m/s²
+constexpr float kVolumeStiffness = 4.0f; // m²/s²
+constexpr float kVolumeMaxAcceleration = 30.0f; // m/s²
 // The push's stiffness is at most this times (cell / substep)², measured: 1 substep at 60 Hz with
 // 8 segments leaves 0 % of tips moving at 0.6 (VolumeTest's settling cases).
 constexpr float kVolumeStableShare = 0.6f;
@@ -1084,12 +1153,13 @@ void Solver::volumePass(const StepConstants& c)
     // the pass's four loops would cost more than they do.
     constexpr std::size_t kParallelVolumeParticles = 50'000;
     ThreadPool* pool = m_particleCount >= kParallelVolumeParticles ? m_pool.get() : nullptr;
-    auto forRange = [&](std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body) {
-        if (pool)
-            pool->parallelFor(count, grain, body);
-        else if (count > 0)
-            body(0, count);
-    };
+    auto forRange
+        = [&](std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body) {
+              if (pool)
+                  pool->parallelFor(count, grain, body);
+              else if (count > 0)
+                  body(0, count);
+          };
     // Each chunk in use is cleared by the thread that splats it; finish() reads only those in use.
     grid.setChunks(pool ? HairVolumeGrid::kSplatChunks : 1);
     const glm::mat3 toHead = glm::transpose(c.rotation);
@@ -1100,10 +1170,10 @@ void Solver::volumePass(const StepConstants& c)
     // thread count.
     forRange(kChunks, 1, [&](std::size_t begin, std::size_t end) {
         for (std::size_t chunk = begin; chunk < end; ++chunk) {
-            grid.clearChunk(static_cast<int>(chunk));  // the last pass's splats, by the thread that splats now
+            grid.clearChunk(static_cast<int>(chunk)); // the last pass's splats, by the thread that splats now
             for (std::size_t i = chunk * blockCount / kChunks; i < (chunk + 1) * blockCount / kChunks; ++i) {
                 const Block& b = m_blocks[i];
-                for (int l = 0; l < kLanes; ++l) {  // strand by strand: its particles are neighbours in the grid
+                for (int l = 0; l < kLanes; ++l) { // strand by strand: its particles are neighbours in the grid
                     const float w = b.volumeWeight[l];
                     if (!(w > 0.0f))
                         continue;
@@ -1140,7 +1210,7 @@ void Solver::volumePass(const StepConstants& c)
             for (int l = 0; l < kLanes; ++l) {
                 const float keep = target * b.volumeTargetScale[l];
                 const float inverseKeep = 1.0f / keep;
-                for (std::uint32_t j = 1; j < b.points; ++j) {  // roots are pinned
+                for (std::uint32_t j = 1; j < b.points; ++j) { // roots are pinned
                     ParticleRow& r = b.state[j];
                     const glm::vec3 x(r.x[l], r.y[l], r.z[l]);
                     const glm::vec3 previous(r.px[l], r.py[l], r.pz[l]);
@@ -1181,7 +1251,7 @@ std::string Solver::setSettings(const SolverSettings& settings)
     std::string error = validateSolverSettings(settings);
     if (!error.empty())
         return error;
-    if (settings.hairOffsetMetres != m_settings.hairOffsetMetres)  // clearances are measured from the offset
+    if (settings.hairOffsetMetres != m_settings.hairOffsetMetres) // clearances are measured from the offset
         for (Block& b : m_blocks)
             for (ParticleRow& row : b.state)
                 row.clearance = splat(-1.0f);
@@ -1193,15 +1263,21 @@ void Solver::setCollider(std::shared_ptr<const SignedDistanceField> headSdf)
 {
     m_sdf = headSdf && !headSdf->empty() ? std::move(headSdf) : nullptr;
     m_field = m_sdf ? std::make_unique<CollisionField>(*m_sdf) : nullptr;
-    m_volumeGrid.reset();  // its solid is the head
+    m_volumeGrid.reset(); // its solid is the head
     for (Block& b : m_blocks)
         for (ParticleRow& row : b.state)
             row.clearance = splat(-1.0f);
 }
 
-void Solver::setCapsules(std::vector<Capsule> capsules) { m_capsules = std::move(capsules); }
+void Solver::setCapsules(std::vector<Capsule> capsules)
+{
+    m_capsules = std::move(capsules);
+}
 
-void Solver::setHeadTransform(const glm::mat4& headToWorld) { m_headToWorld = headToWorld; }
+void Solver::setHeadTransform(const glm::mat4& headToWorld)
+{
+    m_headToWorld = headToWorld;
+}
 
 void Solver::resetToRest()
 {
@@ -1220,7 +1296,7 @@ void Solver::updateBendShares(float substepSeconds)
     const float globalStiffness = m_settings.stiffness;
     if (m_bendSharesFor == glm::vec2(globalStiffness, substepSeconds) && !m_bendSharesStale)
         return;
-    m_bendSharesFor = {globalStiffness, substepSeconds};
+    m_bendSharesFor = { globalStiffness, substepSeconds };
     m_bendSharesStale = false;
     m_pool->parallelFor(m_blocks.size(), 16, [&](std::size_t begin, std::size_t end) {
         std::vector<float> lengths;
@@ -1262,7 +1338,7 @@ void Solver::updateGlobalShape(float substepSeconds)
     }
     if (!m_globalShapeStale && m_globalShapeFor == glm::vec2(g, substepSeconds) && !m_globalShapeRows.empty())
         return;
-    m_globalShapeFor = {g, substepSeconds};
+    m_globalShapeFor = { g, substepSeconds };
     m_globalShapeStale = false;
     m_globalShapeRows.resize(m_restRows.size());
     const float exponent = substepSeconds / kGlobalShapeStepSeconds;
@@ -1317,7 +1393,8 @@ void Solver::step()
     c.transformed = m_headToWorld != glm::mat4(1.0f) || m_previousHeadToWorld != glm::mat4(1.0f);
     c.field = m_field.get();
     for (const Capsule& cap : m_capsules)
-        c.capsulesWorld.push_back({c.rotation * cap.a + c.translation, c.rotation * cap.b + c.translation, cap.radiusMetres});
+        c.capsulesWorld.push_back(
+            { c.rotation * cap.a + c.translation, c.rotation * cap.b + c.translation, cap.radiusMetres });
     c.resetCounter = &m_strandsReset;
 
     // Blocks are independent within a substep, so any split over threads gives the same bits.
@@ -1327,9 +1404,11 @@ void Solver::step()
             for (std::size_t i = begin; i < stop; ++i) {
                 Block& b = m_blocks[i];
                 if (c.transformed)
-                    globalShape ? advanceBlock<true, true>(b, c, first, end) : advanceBlock<true, false>(b, c, first, end);
+                    globalShape ? advanceBlock<true, true>(b, c, first, end)
+                                : advanceBlock<true, false>(b, c, first, end);
                 else
-                    globalShape ? advanceBlock<false, true>(b, c, first, end) : advanceBlock<false, false>(b, c, first, end);
+                    globalShape ? advanceBlock<false, true>(b, c, first, end)
+                                : advanceBlock<false, false>(b, c, first, end);
             }
         });
     };
@@ -1342,7 +1421,7 @@ void Solver::step()
             advance(substep, substep + 1);
         }
     } else {
-        advance(0, c.substeps);  // each block runs all its substeps in one go, in cache
+        advance(0, c.substeps); // each block runs all its substeps in one go, in cache
     }
     m_previousHeadToWorld = m_headToWorld;
     m_time += s.timeStepSeconds;
@@ -1366,16 +1445,17 @@ void Solver::moveParticle(std::size_t strand, std::size_t point, const glm::vec3
 std::string Solver::setStiffnessScales(std::span<const float> perStrand)
 {
     if (perStrand.size() != m_strandCount)
-        return "stiffness scales: " + std::to_string(perStrand.size()) + " for " + std::to_string(m_strandCount) + " strands";
+        return "stiffness scales: " + std::to_string(perStrand.size()) + " for " + std::to_string(m_strandCount)
+            + " strands";
     for (std::size_t i = 0; i < perStrand.size(); ++i)
         if (!(perStrand[i] >= 0.0f && perStrand[i] <= 1e3f))
-            return "stiffness scale of strand " + std::to_string(i) + ": " + std::to_string(perStrand[i]) +
-                   " is not a finite number of at least 0";
+            return "stiffness scale of strand " + std::to_string(i) + ": " + std::to_string(perStrand[i])
+                + " is not a finite number of at least 0";
     for (std::size_t i = 0; i < perStrand.size(); ++i) {
         const Slot slot = m_slotOfStrand[i];
         m_blocks[slot.block].stiffnessScale[slot.lane] = perStrand[i];
     }
-    for (Block& b : m_blocks)  // padding lanes copy their block's first strand
+    for (Block& b : m_blocks) // padding lanes copy their block's first strand
         for (int l = 0; l < kLanes; ++l)
             if (b.strand[l] < 0)
                 b.stiffnessScale[l] = b.stiffnessScale[0];
@@ -1386,13 +1466,15 @@ std::string Solver::setStiffnessScales(std::span<const float> perStrand)
 std::string Solver::setStrandAir(std::span<const float> dragScale, std::span<const glm::vec3> extraWind)
 {
     if (!dragScale.empty() && dragScale.size() != m_strandCount)
-        return "drag scales: " + std::to_string(dragScale.size()) + " for " + std::to_string(m_strandCount) + " strands";
+        return "drag scales: " + std::to_string(dragScale.size()) + " for " + std::to_string(m_strandCount)
+            + " strands";
     if (!extraWind.empty() && extraWind.size() != m_strandCount)
-        return "strand winds: " + std::to_string(extraWind.size()) + " for " + std::to_string(m_strandCount) + " strands";
+        return "strand winds: " + std::to_string(extraWind.size()) + " for " + std::to_string(m_strandCount)
+            + " strands";
     for (std::size_t i = 0; i < dragScale.size(); ++i)
         if (!(dragScale[i] >= 0.0f && dragScale[i] <= 1e3f))
-            return "drag scale of strand " + std::to_string(i) + ": " + std::to_string(dragScale[i]) +
-                   " is not a finite number of at least 0";
+            return "drag scale of strand " + std::to_string(i) + ": " + std::to_string(dragScale[i])
+                + " is not a finite number of at least 0";
     for (std::size_t i = 0; i < extraWind.size(); ++i)
         if (!(std::abs(extraWind[i].x) <= 1e3f && std::abs(extraWind[i].y) <= 1e3f && std::abs(extraWind[i].z) <= 1e3f))
             return "wind of strand " + std::to_string(i) + " is not a finite speed below 1000 m/s";
@@ -1417,12 +1499,13 @@ void Solver::copyState(std::vector<glm::vec3>& positions, std::vector<glm::vec3>
         const Block& b = m_blocks[slot.block];
         for (std::uint32_t j = 0; j < b.points; ++j) {
             const ParticleRow& row = b.state[j];
-            previous[m_restOffsets[strand] + j] = {row.px[slot.lane], row.py[slot.lane], row.pz[slot.lane]};
+            previous[m_restOffsets[strand] + j] = { row.px[slot.lane], row.py[slot.lane], row.pz[slot.lane] };
         }
     }
 }
 
-bool Solver::setStrandState(std::size_t strand, std::span<const glm::vec3> positions, std::span<const glm::vec3> previous)
+bool Solver::setStrandState(
+    std::size_t strand, std::span<const glm::vec3> positions, std::span<const glm::vec3> previous)
 {
     if (strand >= m_strandCount)
         return false;
@@ -1431,9 +1514,10 @@ bool Solver::setStrandState(std::size_t strand, std::span<const glm::vec3> posit
     if (positions.size() != b.points || previous.size() != b.points)
         return false;
     for (std::uint32_t j = 0; j < b.points; ++j)
-        if (!std::isfinite(positions[j].x + positions[j].y + positions[j].z + previous[j].x + previous[j].y + previous[j].z))
+        if (!std::isfinite(
+                positions[j].x + positions[j].y + positions[j].z + previous[j].x + previous[j].y + previous[j].z))
             return false;
-    for (std::uint32_t j = 1; j < b.points; ++j) {  // the root stays where its rest shape pins it
+    for (std::uint32_t j = 1; j < b.points; ++j) { // the root stays where its rest shape pins it
         ParticleRow& row = b.state[j];
         row.x[slot.lane] = positions[j].x;
         row.y[slot.lane] = positions[j].y;
@@ -1484,7 +1568,7 @@ void Solver::copyPositions(std::vector<glm::vec3>& out) const
                     continue;
                 glm::vec3* dst = out.data() + m_restOffsets[static_cast<std::size_t>(b.strand[l])];
                 for (std::uint32_t j = 0; j < b.points; ++j)
-                    dst[j] = {b.state[j].x[l], b.state[j].y[l], b.state[j].z[l]};
+                    dst[j] = { b.state[j].x[l], b.state[j].y[l], b.state[j].z[l] };
             }
         }
     });
@@ -1492,11 +1576,10 @@ void Solver::copyPositions(std::vector<glm::vec3>& out) const
 
 std::size_t Solver::memoryBytes() const
 {
-    return m_restOffsets.capacity() * sizeof(std::uint32_t) + m_blocks.capacity() * sizeof(Block) +
-           m_slotOfStrand.capacity() * sizeof(Slot) + m_stateRows.capacity() * sizeof(ParticleRow) +
-           m_restRows.capacity() * sizeof(RestRow) + m_shapeRows.capacity() * sizeof(ShapeRow) +
-           m_globalShapeRows.capacity() * sizeof(GlobalShapeRow) +
-           (m_volumeGrid ? m_volumeGrid->memoryBytes() : 0);
+    return m_restOffsets.capacity() * sizeof(std::uint32_t) + m_blocks.capacity() * sizeof(Block)
+        + m_slotOfStrand.capacity() * sizeof(Slot) + m_stateRows.capacity() * sizeof(ParticleRow)
+        + m_restRows.capacity() * sizeof(RestRow) + m_shapeRows.capacity() * sizeof(ShapeRow)
+        + m_globalShapeRows.capacity() * sizeof(GlobalShapeRow) + (m_volumeGrid ? m_volumeGrid->memoryBytes() : 0);
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -33,12 +33,12 @@ namespace wisp {
 class HairVolumeGrid;
 class SignedDistanceField;
 class ThreadPool;
-struct StepConstants;  // one step's settings as the kernels read them (Solver.cpp)
+struct StepConstants; // one step's settings as the kernels read them (Solver.cpp)
 
 // A collider for neck and shoulders, head space; a sphere when a == b.
 struct Capsule {
-    glm::vec3 a{0.0f};
-    glm::vec3 b{0.0f};
+    glm::vec3 a{ 0.0f };
+    glm::vec3 b{ 0.0f };
     float radiusMetres = 0.0f;
 };
 
@@ -56,7 +56,7 @@ public:
     [[nodiscard]] std::string setStrands(const HairCurves& rest);
     [[nodiscard]] std::string setSettings(const SolverSettings& settings);
     const SolverSettings& settings() const { return m_settings; }
-    void setCollider(std::shared_ptr<const SignedDistanceField> headSdf);  // null: no head collision
+    void setCollider(std::shared_ptr<const SignedDistanceField> headSdf); // null: no head collision
     void setCapsules(std::vector<Capsule> capsules);
     // Rigid transform (rotation + translation) from head space to world space; roots follow it.
     void setHeadTransform(const glm::mat4& headToWorld);
@@ -119,12 +119,12 @@ public:
     // Bytes the solver holds for its particles (state, rest shape, lanes), for the memory budget.
     std::size_t memoryBytes() const;
 
-    struct CollisionField;  // the head's distances and normals, laid out for lookups (Solver.cpp)
+    struct CollisionField; // the head's distances and normals, laid out for lookups (Solver.cpp)
     struct ParticleRow;
     struct RestRow;
     struct ShapeRow;
-    struct Block;  // 16 strands of equal particle count, interleaved (defined in Solver.cpp)
-    struct GlobalShapeRow;  // a particle's rest position and its global shape share (Solver.cpp)
+    struct Block; // 16 strands of equal particle count, interleaved (defined in Solver.cpp)
+    struct GlobalShapeRow; // a particle's rest position and its global shape share (Solver.cpp)
 
     // The target density (the density hair keeps, metres of hair per m³) is hairPerScalpArea /
     // (volume x this). Not a layer one could measure on the head: hair hangs over far more than
@@ -138,14 +138,13 @@ private:
     void updateVolumeBounds();
     void volumePass(const StepConstants& c);
 
-
     std::unique_ptr<ThreadPool> m_pool;
     SolverSettings m_settings;
     std::shared_ptr<const SignedDistanceField> m_sdf;
     std::unique_ptr<CollisionField> m_field;
     std::vector<Capsule> m_capsules;
-    glm::mat4 m_headToWorld{1.0f};
-    glm::mat4 m_previousHeadToWorld{1.0f};
+    glm::mat4 m_headToWorld{ 1.0f };
+    glm::mat4 m_previousHeadToWorld{ 1.0f };
     std::vector<Block> m_blocks;
     std::vector<ParticleRow> m_stateRows;
     std::vector<RestRow> m_restRows;
@@ -153,24 +152,24 @@ private:
     // In the layout of m_restRows, only while settings().globalShape > 0 (empty otherwise, so the
     // step reads nothing more when it is off).
     std::vector<GlobalShapeRow> m_globalShapeRows;
-    std::vector<std::uint32_t> m_restOffsets;  // layout of the caller's curves
+    std::vector<std::uint32_t> m_restOffsets; // layout of the caller's curves
     struct Slot {
         std::uint32_t block;
         std::uint32_t lane;
     };
     std::vector<Slot> m_slotOfStrand;
-    std::unique_ptr<HairVolumeGrid> m_volumeGrid;  // made on the first step with volume on
-    glm::vec3 m_volumeLo{0.0f}, m_volumeHi{0.0f};   // head-space box every particle stays in
-    float m_scalpArea = 0.0f;                      // m², given or estimated
-    float m_hairPerScalpArea = 0.0f;               // metres of drawn hair per m² of scalp
+    std::unique_ptr<HairVolumeGrid> m_volumeGrid; // made on the first step with volume on
+    glm::vec3 m_volumeLo{ 0.0f }, m_volumeHi{ 0.0f }; // head-space box every particle stays in
+    float m_scalpArea = 0.0f; // m², given or estimated
+    float m_hairPerScalpArea = 0.0f; // metres of drawn hair per m² of scalp
     std::size_t m_strandCount = 0;
     std::size_t m_particleCount = 0;
     double m_time = 0.0;
     std::uint64_t m_strandsReset = 0;
-    glm::vec2 m_bendSharesFor{-1.0f};  // (stiffness, substep) the rest rows' bend shares were computed for
+    glm::vec2 m_bendSharesFor{ -1.0f }; // (stiffness, substep) the rest rows' bend shares were computed for
     bool m_bendSharesStale = true;
-    glm::vec2 m_globalShapeFor{-1.0f};  // (global shape, substep) m_globalShapeRows were computed for
-    bool m_globalShapeStale = true;     // the rest shape changed since
+    glm::vec2 m_globalShapeFor{ -1.0f }; // (global shape, substep) m_globalShapeRows were computed for
+    bool m_globalShapeStale = true; // the rest shape changed since
 };
 
-}  // namespace wisp
+} // namespace wisp

@@ -20,7 +20,8 @@ SolverSettings solverSettingsFrom(const ParameterValues& v)
     s.timeStepSeconds = v.getFloat(Param::TimeStep);
     s.substeps = v.getInt(Param::Substeps);
     s.gravity = glm::vec3(0.0f, -v.getFloat(Param::Gravity), 0.0f);
-    s.wind = windVelocity(v.getFloat(Param::WindSpeed), v.getFloat(Param::WindAzimuth), v.getFloat(Param::WindElevation));
+    s.wind
+        = windVelocity(v.getFloat(Param::WindSpeed), v.getFloat(Param::WindAzimuth), v.getFloat(Param::WindElevation));
     s.turbulence = v.getFloat(Param::Turbulence);
     s.dragPerSecond = v.getFloat(Param::Drag);
     s.dampingPerSecond = v.getFloat(Param::Damping);
@@ -34,18 +35,26 @@ SolverSettings solverSettingsFrom(const ParameterValues& v)
 }
 
 namespace {
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-}  // namespace
+bool finite(const glm::vec3& v)
+{
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+} // namespace
 
 std::string validateSolverSettings(const SolverSettings& s)
 {
     const std::string rangeError = checkParameterValues({
-        {Param::TimeStep, s.timeStepSeconds}, {Param::Substeps, s.substeps},
-        {Param::Turbulence, s.turbulence},     {Param::Drag, s.dragPerSecond},
-        {Param::Damping, s.dampingPerSecond},  {Param::Stiffness, s.stiffness},
-        {Param::Friction, s.friction},         {Param::HairOffset, s.hairOffsetMetres},
-        {Param::GlobalShape, s.globalShape},
-        {Param::Volume, s.volume},             {Param::HairFriction, s.hairFriction},
+        { Param::TimeStep, s.timeStepSeconds },
+        { Param::Substeps, s.substeps },
+        { Param::Turbulence, s.turbulence },
+        { Param::Drag, s.dragPerSecond },
+        { Param::Damping, s.dampingPerSecond },
+        { Param::Stiffness, s.stiffness },
+        { Param::Friction, s.friction },
+        { Param::HairOffset, s.hairOffsetMetres },
+        { Param::GlobalShape, s.globalShape },
+        { Param::Volume, s.volume },
+        { Param::HairFriction, s.hairFriction },
     });
     if (!rangeError.empty())
         return rangeError;
@@ -58,4 +67,4 @@ std::string validateSolverSettings(const SolverSettings& s)
     return {};
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -5,10 +5,10 @@
 // stroke point gives it in wisp-cli). Frames are world space; brush edits (StyleEdits) are head
 // space. The head does not move yet, so the two are the same frame; names say which one they mean.
 
-#include "sim/solver/Frame.h"
-#include "sim/style/HairDryer.h"
 #include "sim/geometry/HeadModel.h"
 #include "sim/groom/ScalpBrush.h"
+#include "sim/solver/Frame.h"
+#include "sim/style/HairDryer.h"
 #include "sim/style/StyleEdits.h"
 
 #include <glm/vec3.hpp>

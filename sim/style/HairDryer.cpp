@@ -14,7 +14,7 @@ namespace {
 // A round jet keeps its speed for about six nozzle diameters and then slows as 1/distance
 // (Rajaratnam, "Turbulent Jets", 1976); a 4-5 cm nozzle gives this length scale.
 constexpr float kJetCoreMetres = 0.3f;
-}  // namespace
+} // namespace
 
 glm::vec3 dryerAirAt(const HairDryer& dryer, const glm::vec3& p)
 {
@@ -36,10 +36,10 @@ glm::vec3 dryerAirAt(const HairDryer& dryer, const glm::vec3& p, const SignedDis
     const glm::vec3 air = dryerAirAt(dryer, p);
     if (!head || air == glm::vec3(0.0f))
         return air;
-    constexpr float kSkinGap = 0.01f;     // metres left untraced before p
-    constexpr float kHit = 0.001f;        // closer than this to the skin: the head is in the way
-    constexpr float kMinStep = 0.003f;    // sphere tracing creeps no slower than this
-    constexpr int kMaxSteps = 64;         // a grazing ray that is still going counts as clear
+    constexpr float kSkinGap = 0.01f; // metres left untraced before p
+    constexpr float kHit = 0.001f; // closer than this to the skin: the head is in the way
+    constexpr float kMinStep = 0.003f; // sphere tracing creeps no slower than this
+    constexpr int kMaxSteps = 64; // a grazing ray that is still going counts as clear
     const glm::vec3 offset = p - dryer.nozzle;
     const float length = glm::length(offset);
     const glm::vec3 direction = offset / length;
@@ -61,9 +61,21 @@ float dryingRate(float wetness, float airSpeed, float halfLifeSeconds)
     return -(still + 0.25f * std::max(airSpeed, 0.0f));
 }
 
-float wetStiffnessFactor(float wetness) { return 1.0f - 0.75f * std::clamp(wetness, 0.0f, 1.0f); }
-float wetDragFactor(float wetness) { return 1.0f / (1.0f + 1.5f * std::clamp(wetness, 0.0f, 1.0f)); }
-float wetVolumeFactor(float wetness) { return 1.0f + 2.0f * std::clamp(wetness, 0.0f, 1.0f); }
-float wetClumping(float wetness) { return std::clamp(wetness, 0.0f, 1.0f); }
+float wetStiffnessFactor(float wetness)
+{
+    return 1.0f - 0.75f * std::clamp(wetness, 0.0f, 1.0f);
+}
+float wetDragFactor(float wetness)
+{
+    return 1.0f / (1.0f + 1.5f * std::clamp(wetness, 0.0f, 1.0f));
+}
+float wetVolumeFactor(float wetness)
+{
+    return 1.0f + 2.0f * std::clamp(wetness, 0.0f, 1.0f);
+}
+float wetClumping(float wetness)
+{
+    return std::clamp(wetness, 0.0f, 1.0f);
+}
 
-}  // namespace wisp
+} // namespace wisp

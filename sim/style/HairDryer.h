@@ -9,11 +9,11 @@ namespace wisp {
 class SignedDistanceField;
 
 struct HairDryer {
-    glm::vec3 nozzle{0.0f};                      // world, metres: where the air leaves the dryer
-    glm::vec3 direction{0.0f, 0.0f, -1.0f};      // unit, world
-    float halfAngleRadians = 0.35f;              // the cone's opening
-    float speedMetresPerSecond = 12.0f;          // on the axis, at the nozzle (a salon dryer: 10-15)
-    float reachMetres = 1.0f;                    // no air beyond this distance along the axis
+    glm::vec3 nozzle{ 0.0f }; // world, metres: where the air leaves the dryer
+    glm::vec3 direction{ 0.0f, 0.0f, -1.0f }; // unit, world
+    float halfAngleRadians = 0.35f; // the cone's opening
+    float speedMetresPerSecond = 12.0f; // on the axis, at the nozzle (a salon dryer: 10-15)
+    float reachMetres = 1.0f; // no air beyond this distance along the axis
 };
 
 // The dryer's air velocity at `p` (m/s, world). Inside the cone the speed falls off with the
@@ -33,9 +33,11 @@ float dryingRate(float wetness, float airSpeed, float halfLifeSeconds);
 
 // Wet hair (Ward et al.; Bertails et al. 2006): water makes hair heavier, so the same air moves it
 // less; softer, so curls relax under their own weight; and it sticks together, so wisps clump.
-float wetStiffnessFactor(float wetness);  // multiplies the bending stiffness: 1 dry, 0.25 soaked
-float wetDragFactor(float wetness);       // multiplies the drag toward the wind: 1 dry, 0.4 soaked
-float wetVolumeFactor(float wetness);     // multiplies the density hair keeps (volume grid): 1 dry, 3 soaked, so wet hair takes a third of the room
-float wetClumping(float wetness);         // pulls the clump degree toward 1 (and the clump start toward the root) by this share: 0 dry, 1 soaked
+float wetStiffnessFactor(float wetness); // multiplies the bending stiffness: 1 dry, 0.25 soaked
+float wetDragFactor(float wetness); // multiplies the drag toward the wind: 1 dry, 0.4 soaked
+float wetVolumeFactor(float wetness); // multiplies the density hair keeps (volume grid): 1 dry, 3 soaked, so wet hair
+                                      // takes a third of the room
+float wetClumping(float wetness); // pulls the clump degree toward 1 (and the clump start toward the root) by this
+                                  // share: 0 dry, 1 soaked
 
-}  // namespace wisp
+} // namespace wisp

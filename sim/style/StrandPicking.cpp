@@ -10,8 +10,7 @@
 namespace wisp {
 
 std::vector<StrandPick> strandsNearRay(const HairCurves& curves, std::span<const std::uint32_t> only,
-                                       const glm::vec3& origin, const glm::vec3& direction, float radiusMetres,
-                                       float falloff, float maxDepth)
+    const glm::vec3& origin, const glm::vec3& direction, float radiusMetres, float falloff, float maxDepth)
 {
     std::vector<StrandPick> picks;
     if (!(radiusMetres > 0.0f))
@@ -35,7 +34,7 @@ std::vector<StrandPick> strandsNearRay(const HairCurves& curves, std::span<const
         if (best < r2) {
             const float weight = brushFalloff(std::sqrt(best) / radiusMetres, falloff);
             if (weight > 0.0f)
-                picks.push_back({s, weight, depth});
+                picks.push_back({ s, weight, depth });
         }
     };
     if (only.empty())
@@ -49,12 +48,12 @@ std::vector<StrandPick> strandsNearRay(const HairCurves& curves, std::span<const
 }
 
 std::vector<StrandCut> strandsCutBy(const HairCurves& curves, const glm::vec3& eye, const glm::vec3& directionA,
-                                    const glm::vec3& directionB, const std::function<bool(const glm::vec3&)>& visible)
+    const glm::vec3& directionB, const std::function<bool(const glm::vec3&)>& visible)
 {
     std::vector<StrandCut> cuts;
     const glm::vec3 normal = glm::cross(directionA, directionB);
     if (glm::length(normal) < 1e-7f)
-        return cuts;  // the cursor did not move: no blade
+        return cuts; // the cursor did not move: no blade
     const glm::vec3 n = glm::normalize(normal);
     for (std::uint32_t s = 0; s < curves.strandCount(); ++s) {
         const auto points = curves.strand(s);
@@ -68,9 +67,9 @@ std::vector<StrandCut> strandsCutBy(const HairCurves& curves, const glm::vec3& e
                 const glm::vec3 x = a + t * (b - a);
                 const glm::vec3 toX = x - eye;
                 // Inside the wedge: between the two rays, in front of the eye.
-                if (glm::dot(glm::cross(directionA, toX), n) >= 0.0f && glm::dot(glm::cross(toX, directionB), n) >= 0.0f &&
-                    glm::dot(toX, directionA + directionB) > 0.0f && (!visible || visible(x))) {
-                    cuts.push_back({s, arc + t * segment});
+                if (glm::dot(glm::cross(directionA, toX), n) >= 0.0f && glm::dot(glm::cross(toX, directionB), n) >= 0.0f
+                    && glm::dot(toX, directionA + directionB) > 0.0f && (!visible || visible(x))) {
+                    cuts.push_back({ s, arc + t * segment });
                     break;
                 }
             }
@@ -80,8 +79,8 @@ std::vector<StrandCut> strandsCutBy(const HairCurves& curves, const glm::vec3& e
     return cuts;
 }
 
-void combStrand(std::span<glm::vec3> positions, std::span<const float> segmentLengths, const glm::vec3& delta,
-                float weight)
+void combStrand(
+    std::span<glm::vec3> positions, std::span<const float> segmentLengths, const glm::vec3& delta, float weight)
 {
     const std::size_t n = positions.size();
     if (n < 2 || segmentLengths.size() + 1 != n)
@@ -113,7 +112,13 @@ float distanceToPolyline(const glm::vec3& p, std::span<const glm::vec3> line)
     return best;
 }
 
-glm::vec3 mirroredPoint(const glm::vec3& p, float planeX) { return {2.0f * planeX - p.x, p.y, p.z}; }
-glm::vec3 mirroredDirection(const glm::vec3& d) { return {-d.x, d.y, d.z}; }
+glm::vec3 mirroredPoint(const glm::vec3& p, float planeX)
+{
+    return { 2.0f * planeX - p.x, p.y, p.z };
+}
+glm::vec3 mirroredDirection(const glm::vec3& d)
+{
+    return { -d.x, d.y, d.z };
+}
 
-}  // namespace wisp
+} // namespace wisp

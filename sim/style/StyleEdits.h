@@ -45,8 +45,8 @@ using StyleEdits = std::map<std::uint64_t, StrandStyle>;
 using StyleEditsPtr = std::shared_ptr<const StyleEdits>;
 
 // Limits every brush and file respects.
-constexpr float kStyleMinLengthMetres = 0.005f;   // the Length parameter's minimum
-constexpr float kStyleMaxLengthMetres = 2.0f;     // its maximum
+constexpr float kStyleMinLengthMetres = 0.005f; // the Length parameter's minimum
+constexpr float kStyleMaxLengthMetres = 2.0f; // its maximum
 constexpr float kStyleMaxStiffnessScale = 50.0f;
 constexpr float kStyleMaxCurlRadiusMetres = 0.05f;
 constexpr float kStyleMaxCurlTurnsPerMetre = 200.0f;
@@ -63,4 +63,4 @@ std::uint64_t restShapeHash(const StrandStyle& style);
 // segment to that length (growing). Returns the input when it has fewer than 2 points.
 std::vector<glm::vec3> shapeWithLength(std::span<const glm::vec3> shape, float lengthMetres);
 
-}  // namespace wisp
+} // namespace wisp

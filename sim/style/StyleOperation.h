@@ -8,9 +8,9 @@
 //
 // Thread: any, one stroke on one thread. Never throws, never logs.
 
+#include "sim/style/BrushContext.h"
 #include "sim/style/HairDryer.h"
 #include "sim/style/StyleEdits.h"
-#include "sim/style/BrushContext.h"
 
 #include <cstdint>
 #include <memory>

@@ -8,7 +8,7 @@
 namespace wisp {
 
 struct ByteHash {
-    std::uint64_t value = 1469598103934665603ull;  // the FNV-1a offset basis
+    std::uint64_t value = 1469598103934665603ull; // the FNV-1a offset basis
 
     void add(const void* data, std::size_t size)
     {
@@ -16,11 +16,7 @@ struct ByteHash {
         for (std::size_t i = 0; i < size; ++i)
             value = (value ^ bytes[i]) * 1099511628211ull;
     }
-    template <typename T>
-    void add(const T& plain)
-    {
-        add(&plain, sizeof plain);
-    }
+    template <typename T> void add(const T& plain) { add(&plain, sizeof plain); }
 };
 
-}  // namespace wisp
+} // namespace wisp

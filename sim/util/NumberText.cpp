@@ -14,4 +14,4 @@ std::string formatNumber(double value)
     return buffer;
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -10,4 +10,4 @@ namespace wisp {
 // (glibc would print "-nan").
 std::string formatNumber(double value);
 
-}  // namespace wisp
+} // namespace wisp

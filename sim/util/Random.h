@@ -22,11 +22,14 @@ constexpr std::uint64_t hashKeys(std::uint64_t seed, std::uint64_t a, std::uint6
 }
 
 // Uniform in [0, 1).
-constexpr float unitFloat(std::uint64_t bits) { return static_cast<float>(bits >> 40) * (1.0f / 16777216.0f); }
+constexpr float unitFloat(std::uint64_t bits)
+{
+    return static_cast<float>(bits >> 40) * (1.0f / 16777216.0f);
+}
 
 constexpr float randomUnit(std::uint64_t seed, std::uint64_t a, std::uint64_t b = 0, std::uint64_t c = 0)
 {
     return unitFloat(hashKeys(seed, a, b, c));
 }
 
-}  // namespace wisp
+} // namespace wisp

@@ -10,4 +10,4 @@ inline void nameThisThread(const char* name)
     pthread_setname_np(pthread_self(), name);
 }
 
-}  // namespace wisp
+} // namespace wisp

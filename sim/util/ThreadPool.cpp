@@ -58,8 +58,8 @@ void ThreadPool::workerLoop()
     }
 }
 
-void ThreadPool::parallelFor(std::size_t count, std::size_t grain,
-                             const std::function<void(std::size_t, std::size_t)>& body)
+void ThreadPool::parallelFor(
+    std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body)
 {
     if (count == 0)
         return;
@@ -84,4 +84,4 @@ void ThreadPool::parallelFor(std::size_t count, std::size_t grain,
     m_body = nullptr;
 }
 
-}  // namespace wisp
+} // namespace wisp

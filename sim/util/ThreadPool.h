@@ -38,10 +38,10 @@ private:
     const std::function<void(std::size_t, std::size_t)>* m_body = nullptr;
     std::size_t m_count = 0;
     std::size_t m_grain = 1;
-    std::atomic<std::size_t> m_next{0};
+    std::atomic<std::size_t> m_next{ 0 };
     std::size_t m_generation = 0;
     int m_busyWorkers = 0;
     bool m_stopping = false;
 };
 
-}  // namespace wisp
+} // namespace wisp

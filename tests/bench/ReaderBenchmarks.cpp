@@ -35,8 +35,8 @@ void ReadHead(benchmark::State& state, const char* relative)
         benchmark::DoNotOptimize(triangles);
     }
     state.counters["triangles"] = static_cast<double>(triangles);
-    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
-                            static_cast<std::int64_t>(std::filesystem::file_size(path)));
+    state.SetBytesProcessed(
+        static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(std::filesystem::file_size(path)));
 }
 
 BENCHMARK_CAPTURE(ReadHead, igea_tristrips_ply, "heads/igea_tristrips.ply")->Unit(benchmark::kMillisecond);
@@ -44,4 +44,4 @@ BENCHMARK_CAPTURE(ReadHead, cy_woman_head_ply, "heads/cy_woman_head.ply")->Unit(
 BENCHMARK_CAPTURE(ReadHead, max_planck_obj, "heads/max_planck_decimated.obj")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(ReadHead, cylinder_engine_glb, "gltf/2CylinderEngine.glb")->Unit(benchmark::kMillisecond);
 
-}  // namespace
+} // namespace

@@ -4,8 +4,8 @@
 #include "../sim/MeshFixtures.h"
 #include "sim/geometry/DefaultHead.h"
 #include "sim/geometry/MeshBvh.h"
-#include "sim/groom/ScalpBrush.h"
 #include "sim/geometry/SignedDistanceField.h"
+#include "sim/groom/ScalpBrush.h"
 
 #include <benchmark/benchmark.h>
 #include <glm/geometric.hpp>
@@ -30,8 +30,8 @@ void Dab(benchmark::State& state, const TriangleMesh& mesh)
     const BrushMode mode = state.range(0) == 0 ? BrushMode::Add : BrushMode::Smooth;
     std::size_t next = 0;
     for (auto _ : state) {
-        const auto changed =
-            brush.dab(centres[next++ % centres.size()], BrushSettings{.radiusMetres = 0.02f, .mode = mode}, weights);
+        const auto changed = brush.dab(
+            centres[next++ % centres.size()], BrushSettings{ .radiusMetres = 0.02f, .mode = mode }, weights);
         benchmark::DoNotOptimize(changed.size());
     }
 }
@@ -45,7 +45,7 @@ BENCHMARK(DabDefaultHead)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 void DabDenseSphere(benchmark::State& state)
 {
-    static const TriangleMesh dense = test::makeIcosphere(0.1f, 7);  // 327,680 triangles on a 10 cm sphere
+    static const TriangleMesh dense = test::makeIcosphere(0.1f, 7); // 327,680 triangles on a 10 cm sphere
     Dab(state, dense);
 }
 BENCHMARK(DabDenseSphere)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
@@ -80,7 +80,7 @@ BENCHMARK(BakeHeadSdf)->Unit(benchmark::kMillisecond);
 
 const TriangleMesh& bvhSphere()
 {
-    static const TriangleMesh sphere = test::makeIcosphere(0.12f, 7);  // 327,680 triangles
+    static const TriangleMesh sphere = test::makeIcosphere(0.12f, 7); // 327,680 triangles
     return sphere;
 }
 
@@ -108,12 +108,12 @@ void ClosestPointBvh(benchmark::State& state)
     const MeshBvh bvh(bvhSphere());
     std::mt19937 rng(5);
     std::normal_distribution<float> gauss;
-    for (auto _ : state) {  // within a few centimetres of the surface, where grooming asks
+    for (auto _ : state) { // within a few centimetres of the surface, where grooming asks
         const glm::vec3 d = glm::normalize(glm::vec3(gauss(rng), gauss(rng), gauss(rng)) + glm::vec3(1e-6f));
         benchmark::DoNotOptimize(bvh.closestPoint((0.12f + 0.01f * gauss(rng)) * d).distance);
     }
 }
 BENCHMARK(ClosestPointBvh);
 
-}  // namespace
-}  // namespace wisp
+} // namespace
+} // namespace wisp

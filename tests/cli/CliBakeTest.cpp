@@ -23,15 +23,16 @@ namespace {
 std::string bytesOf(const fs::path& path)
 {
     std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
 }
 
 class CliBake : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        dir = fs::temp_directory_path() / ("wisp-cli-bake-" + std::to_string(::getpid()) + "-" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir = fs::temp_directory_path()
+            / ("wisp-cli-bake-" + std::to_string(::getpid()) + "-"
+                + ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir);
         fs::create_directories(dir);
     }
@@ -40,7 +41,7 @@ protected:
     fs::path dir;
 };
 
-}  // namespace
+} // namespace
 
 TEST_F(CliBake, HairSequenceFramesMoveAndAPartOfTheRangeIsByteIdentical)
 {
@@ -50,7 +51,7 @@ TEST_F(CliBake, HairSequenceFramesMoveAndAPartOfTheRangeIsByteIdentical)
     EXPECT_NE(whole.output.find("baked frames 2:4 at 24 fps (3 steps"), std::string::npos) << whole.output;
     EXPECT_FALSE(fs::exists(at("a.0001.hair")));
     std::vector<wisp::HairCurves> frames;
-    for (const char* name : {"a.0002.hair", "a.0003.hair", "a.0004.hair"}) {
+    for (const char* name : { "a.0002.hair", "a.0003.hair", "a.0004.hair" }) {
         auto read = wisp::io::readHair(at(name));
         ASSERT_TRUE(read) << read.error().toString();
         frames.push_back(read.value().strands);
@@ -110,8 +111,8 @@ TEST_F(CliBake, TheProjectsMotionAndTimelineAreBaked)
     region.weights = head.growthWeights;
     project.regions.push_back(region);
     project.motion.setKey(0.0, {});
-    project.motion.setKey(0.1, {glm::vec3(0.0f), glm::angleAxis(0.5f, glm::vec3(0, 1, 0))});
-    project.timeline = {1, 3, 20.0};
+    project.motion.setKey(0.1, { glm::vec3(0.0f), glm::angleAxis(0.5f, glm::vec3(0, 1, 0)) });
+    project.timeline = { 1, 3, 20.0 };
     ASSERT_TRUE(wisp::io::writeProject(at("p.wisp"), project));
     const CliRun run = cli("bake " + at("p.wisp") + " --no-drape --out " + at("p.#.hair"), 300);
     ASSERT_EQ(run.status, 0) << run.output;
@@ -129,20 +130,22 @@ TEST_F(CliBake, BadValuesAndUsageAreRefusedClearly)
         std::string message;
     };
     const std::vector<Case> cases = {
-        {"bake --frames 5:2 --out " + at("x.usda"), 1, "--frames/--fps: frames 5:2: the last frame comes before the first"},
-        {"bake --frames 1:2 --fps 0 --out " + at("x.usda"), 1, "fps 0 is outside 1..1000"},
-        {"bake --frames one --out " + at("x.usda"), 1, "--frames: 'one' is not A:B (e.g. 1:48)"},
-        {"bake --frames 1:2 --motion spin --out " + at("x.usda"), 1, "--motion: 'spin' is not turn, nod, shake, walk or none"},
-        {"bake --frames 1:2 --motion nod --amplitude 400 --out " + at("x.usda"), 1,
-         "--motion nod: amplitude 400 is outside 0..90 degrees"},
-        {"bake --frames 1:2 --out " + at("x.obj"), 1, "'.obj' is not a format Wisp writes"},
-        {"bake --frames 1:2 --out " + at("x.hair"), 1, "a .hair sequence needs # in the file name"},
-        {"bake --frames 1:2 --out " + at("no/x.usda"), 1, "does not exist"},
-        {"bake --frames 1:2", 2, "needs --out FILE.usda or --out PATTERN.hair"},
-        {"bake --out " + at("x.usda"), 2, "needs --frames A:B"},
-        {"bake --frames 1:5000 --memory-mib 1 --out " + at("x.usda"), 1,
-         "more than the bake's memory bound of 1.0 MiB; bake fewer frames, or export a .hair sequence"},
-        {"bake " + at("missing.wisp") + " --frames 1:2 --out " + at("x.usda"), 1, "missing.wisp"},
+        { "bake --frames 5:2 --out " + at("x.usda"), 1,
+            "--frames/--fps: frames 5:2: the last frame comes before the first" },
+        { "bake --frames 1:2 --fps 0 --out " + at("x.usda"), 1, "fps 0 is outside 1..1000" },
+        { "bake --frames one --out " + at("x.usda"), 1, "--frames: 'one' is not A:B (e.g. 1:48)" },
+        { "bake --frames 1:2 --motion spin --out " + at("x.usda"), 1,
+            "--motion: 'spin' is not turn, nod, shake, walk or none" },
+        { "bake --frames 1:2 --motion nod --amplitude 400 --out " + at("x.usda"), 1,
+            "--motion nod: amplitude 400 is outside 0..90 degrees" },
+        { "bake --frames 1:2 --out " + at("x.obj"), 1, "'.obj' is not a format Wisp writes" },
+        { "bake --frames 1:2 --out " + at("x.hair"), 1, "a .hair sequence needs # in the file name" },
+        { "bake --frames 1:2 --out " + at("no/x.usda"), 1, "does not exist" },
+        { "bake --frames 1:2", 2, "needs --out FILE.usda or --out PATTERN.hair" },
+        { "bake --out " + at("x.usda"), 2, "needs --frames A:B" },
+        { "bake --frames 1:5000 --memory-mib 1 --out " + at("x.usda"), 1,
+            "more than the bake's memory bound of 1.0 MiB; bake fewer frames, or export a .hair sequence" },
+        { "bake " + at("missing.wisp") + " --frames 1:2 --out " + at("x.usda"), 1, "missing.wisp" },
     };
     for (const Case& c : cases) {
         const CliRun r = cli(c.arguments, 120);
@@ -156,7 +159,7 @@ TEST_F(CliBake, ConvertReadsBackTheGltfGlbAndObjStrandsWispWrites)
 {
     ASSERT_EQ(cli("bake --frames 1:1 --no-drape --density 1 --out " + at("s.#.hair"), 300).status, 0);
     const std::string original = bytesOf(at("s.1.hair"));
-    for (const char* ext : {"gltf", "glb", "obj"}) {
+    for (const char* ext : { "gltf", "glb", "obj" }) {
         SCOPED_TRACE(ext);
         const std::string there = at(std::string("s.") + ext), back = at(std::string("back-") + ext + ".hair");
         const CliRun out = cli("convert " + at("s.1.hair") + " " + there);
@@ -168,6 +171,7 @@ TEST_F(CliBake, ConvertReadsBackTheGltfGlbAndObjStrandsWispWrites)
     std::ofstream(at("broken.obj")) << "v 0 0 0\nl 1 2\n";
     const CliRun broken = cli("convert " + at("broken.obj") + " " + at("x.hair"));
     EXPECT_EQ(broken.status, 1);
-    EXPECT_NE(broken.output.find(at("broken.obj") + ": line 2: vertex 2 does not exist (the file has 1)"), std::string::npos)
+    EXPECT_NE(
+        broken.output.find(at("broken.obj") + ": line 2: vertex 2 does not exist (the file has 1)"), std::string::npos)
         << broken.output;
 }

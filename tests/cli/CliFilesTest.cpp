@@ -3,8 +3,8 @@
 // the file and the problem.
 #include "io/HairFiles.h"
 
-#include "CliRunner.h"
 #include "../SharedAssets.h"
+#include "CliRunner.h"
 
 #include <gtest/gtest.h>
 
@@ -40,7 +40,7 @@ protected:
     fs::path dir;
 };
 
-}  // namespace
+} // namespace
 
 TEST_F(CliFiles, ConvertRoundTripsTheSampleStrandsExactly)
 {
@@ -57,8 +57,8 @@ TEST_F(CliFiles, ConvertRoundTripsTheSampleStrandsExactly)
 
     // With a head beside the strands, as glTF.
     const fs::path glb = dir / "bangs.glb";
-    const CliRun toGlb = cli("convert " + hair.string() + " " + glb.string() + " --head " +
-                             (kAssets / "hair/ct2hair_bangs_head.ply").string());
+    const CliRun toGlb = cli("convert " + hair.string() + " " + glb.string() + " --head "
+        + (kAssets / "hair/ct2hair_bangs_head.ply").string());
     ASSERT_EQ(toGlb.status, 0) << toGlb.output;
     const CliRun glbInfo = cli("validate " + glb.string());
     EXPECT_EQ(glbInfo.status, 0) << glbInfo.output;
@@ -116,8 +116,8 @@ TEST_F(CliFiles, ValidateNamesTheFileAndTheProblem)
 TEST_F(CliFiles, SimulateWithAPresetAHeadFileAndAnExport)
 {
     const fs::path out = dir / "curly.gltf";
-    const CliRun run = cli("simulate --steps 10 --preset " + (kPresets / "curly.json").string() + " --head " +
-                           (kAssets / "heads/max_planck_decimated.obj").string() + " --density 1 --export " + out.string());
+    const CliRun run = cli("simulate --steps 10 --preset " + (kPresets / "curly.json").string() + " --head "
+        + (kAssets / "heads/max_planck_decimated.obj").string() + " --density 1 --export " + out.string());
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_NE(run.output.find("imported at"), std::string::npos) << run.output;
     ASSERT_TRUE(fs::exists(out));
@@ -126,8 +126,8 @@ TEST_F(CliFiles, SimulateWithAPresetAHeadFileAndAnExport)
 
     // Imported strands become simulated wisps; exported at rest they keep their count.
     const fs::path rest = dir / "rest.data";
-    const CliRun hair = cli("simulate --steps 5 --hair " + (kAssets / "hair/ct2hair_bangs100.hair").string() +
-                            " --hair-scale 0.001 --rest --export " + rest.string());
+    const CliRun hair = cli("simulate --steps 5 --hair " + (kAssets / "hair/ct2hair_bangs100.hair").string()
+        + " --hair-scale 0.001 --rest --export " + rest.string());
     ASSERT_EQ(hair.status, 0) << hair.output;
     EXPECT_NE(hair.output.find("strands 100 (simulated 100"), std::string::npos) << hair.output;
     const auto back = wisp::io::readHair(rest.string());

@@ -30,9 +30,9 @@ class CliHostile : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        dir = fs::temp_directory_path() /
-              ("wisp-cli-hostile-" + std::to_string(::getpid()) + "-" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir = fs::temp_directory_path()
+            / ("wisp-cli-hostile-" + std::to_string(::getpid()) + "-"
+                + ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir);
         fs::create_directories(dir);
     }
@@ -53,7 +53,8 @@ protected:
         constexpr int n = 20;
         for (int i = 0; i < n; ++i)
             for (int j = 0; j < n; ++j)
-                text += "v " + std::to_string(0.01 * i) + " " + std::to_string(0.01 * j) + (i == n - 1 ? " 1e-42\n" : " 0\n");
+                text += "v " + std::to_string(0.01 * i) + " " + std::to_string(0.01 * j)
+                    + (i == n - 1 ? " 1e-42\n" : " 0\n");
         for (int i = 0; i + 1 < n; ++i)
             for (int j = 0; j + 1 < n; ++j) {
                 const int a = i * n + j + 1, b = a + 1, c = a + n, d = c + 1;
@@ -66,8 +67,9 @@ protected:
     // A 0.3 m tetrahedron and one vertex 16,372 units away (the issue's STL, as OBJ).
     std::string strayVertexObj() const
     {
-        return write("stray.obj", "v 0 0 0\nv 0.3 0 0\nv 0 0.3 0\nv 0 0 0.3\nv 16372 0 0\n"
-                                  "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 2 5 3\n");
+        return write("stray.obj",
+            "v 0 0 0\nv 0.3 0 0\nv 0 0.3 0\nv 0 0 0.3\nv 16372 0 0\n"
+            "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\nf 2 5 3\n");
     }
 
     std::string tetraObj() const
@@ -83,7 +85,7 @@ bool mentions(const CliRun& r, const std::string& text)
     return r.output.find(text) != std::string::npos;
 }
 
-}  // namespace
+} // namespace
 
 // SIGSEGV (exit 139) in the BVH build on a nearly flat head; validate accepted it with exit 0.
 TEST_F(CliHostile, FlatHeadIsRefusedByValidateAndSimulate)
@@ -91,7 +93,8 @@ TEST_F(CliHostile, FlatHeadIsRefusedByValidateAndSimulate)
     const std::string flat = flatObj();
     const CliRun validate = run("validate " + flat);
     EXPECT_EQ(validate.status, 1) << validate.output;
-    EXPECT_TRUE(mentions(validate, "flat.obj: the placed head is 0.19 x 0.19 x 1.001e-42 m: flat along z")) << validate.output;
+    EXPECT_TRUE(mentions(validate, "flat.obj: the placed head is 0.19 x 0.19 x 1.001e-42 m: flat along z"))
+        << validate.output;
     const CliRun simulate = run("simulate --steps 2 --head " + flat);
     EXPECT_EQ(simulate.status, 1) << simulate.output;
     EXPECT_TRUE(mentions(simulate, "flat along z")) << simulate.output;
@@ -108,7 +111,7 @@ TEST_F(CliHostile, StrayFarVertexIsRefusedBeforeGrooming)
     // before any groom is built, and the placement says why it looked wrong.
     EXPECT_TRUE(mentions(validate, "stray.obj: the placed head is")) << validate.output;
     EXPECT_TRUE(mentions(validate, "16372 units wide")) << validate.output;
-    for (const std::string scale : {"", " --scale 1", " --scale 0.001"}) {
+    for (const std::string scale : { "", " --scale 1", " --scale 0.001" }) {
         const CliRun simulate = run("simulate --steps 2 --head " + stray + scale);
         EXPECT_EQ(simulate.status, 1) << scale << ": " << simulate.output;
         EXPECT_TRUE(mentions(simulate, "stray.obj: the placed head is")) << simulate.output;
@@ -123,7 +126,7 @@ TEST_F(CliHostile, StrayFarVertexIsRefusedBeforeGrooming)
 // A FIFO named x.json made validate block forever.
 TEST_F(CliHostile, FifoIsRefusedWithoutBlocking)
 {
-    for (const std::string name : {"x.json", "x.obj", "x.hair", "x.wisp", "x.glb"}) {
+    for (const std::string name : { "x.json", "x.obj", "x.hair", "x.wisp", "x.glb" }) {
         const fs::path fifo = dir / name;
         ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
         const CliRun r = run("validate " + fifo.string());
@@ -152,16 +155,16 @@ TEST_F(CliHostile, GltfStructureAndUrisAreChecked)
     const std::string buffer = std::string(
         "\x00\x00\x02\x00\x01\x00\x00\x00\x01\x00\x03\x00\x00\x00\x03\x00\x02\x00\x01\x00\x02\x00\x03\x00", 24);
     std::string positions;
-    for (const float f : {0.0f, 0.0f, 0.0f, 0.2f, 0.0f, 0.0f, 0.0f, 0.2f, 0.0f, 0.0f, 0.0f, 0.2f})
+    for (const float f : { 0.0f, 0.0f, 0.0f, 0.2f, 0.0f, 0.0f, 0.0f, 0.2f, 0.0f, 0.0f, 0.0f, 0.2f })
         positions.append(reinterpret_cast<const char*>(&f), 4);
     write("secret.bin", buffer + positions);
     write("head/inside.bin", buffer + positions);
     const auto gltf = [&](const std::string& name, const std::string& offsetKey, const std::string& offsetValue,
                           const std::string& uri) {
         return write("head/" + name,
-                     R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":72,"uri":")" + uri + R"("}],
-            "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":24},{"buffer":0,")" + offsetKey + "\":" +
-                         offsetValue + R"(,"byteLength":48}],
+            R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":72,"uri":")" + uri + R"("}],
+            "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":24},{"buffer":0,")"
+                + offsetKey + "\":" + offsetValue + R"(,"byteLength":48}],
             "accessors":[{"bufferView":0,"componentType":5123,"count":12,"type":"SCALAR"},
                          {"bufferView":1,"componentType":5126,"count":4,"type":"VEC3"}],
             "meshes":[{"primitives":[{"attributes":{"POSITION":1},"indices":0}]}],
@@ -180,14 +183,14 @@ TEST_F(CliHostile, GltfStructureAndUrisAreChecked)
     // convert --head with a glTF reading ../secret.bin: refused, and nothing is written.
     wisp::HairCurves strands;
     strands.addStrand(3);
-    strands.positions = {{0, 0.1f, 0}, {0, 0.05f, 0}, {0, 0, 0}};
+    strands.positions = { { 0, 0.1f, 0 }, { 0, 0.05f, 0 }, { 0, 0, 0 } };
     ASSERT_TRUE(wisp::io::writeHair((dir / "s.hair").string(), strands));
     const fs::path out = dir / "out.glb";
-    const CliRun escape =
-        run("convert " + (dir / "s.hair").string() + " " + out.string() + " --head " +
-            gltf("escape.gltf", "byteOffset", "24", "../secret.bin"));
+    const CliRun escape = run("convert " + (dir / "s.hair").string() + " " + out.string() + " --head "
+        + gltf("escape.gltf", "byteOffset", "24", "../secret.bin"));
     EXPECT_EQ(escape.status, 1) << escape.output;
-    EXPECT_TRUE(mentions(escape, "buffers[0].uri: '../secret.bin' lies outside the glTF file's folder")) << escape.output;
+    EXPECT_TRUE(mentions(escape, "buffers[0].uri: '../secret.bin' lies outside the glTF file's folder"))
+        << escape.output;
     EXPECT_FALSE(fs::exists(out));
 }
 
@@ -196,11 +199,12 @@ TEST_F(CliHostile, OutputsAreCheckedBeforeAnyWork)
 {
     // 10 million steps would run for hours: refusing before the first one is what ends it.
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {"--export " + (dir / "x.xyz").string(), "--export: " + (dir / "x.xyz").string() + ": '.xyz' is not a format Wisp writes"},
-        {"--export " + (dir / "none/x.glb").string(), "the folder " + (dir / "none").string() + " does not exist"},
-        {"--out " + (dir / "none/x.txt").string(), "--out: " + (dir / "none/x.txt").string() + ": the folder"},
-        {"--out " + dir.string(), "this is a folder; give a file name"},
-        {"--export " + (dir / "s.hair/x.glb").string(), "is not a folder"},
+        { "--export " + (dir / "x.xyz").string(),
+            "--export: " + (dir / "x.xyz").string() + ": '.xyz' is not a format Wisp writes" },
+        { "--export " + (dir / "none/x.glb").string(), "the folder " + (dir / "none").string() + " does not exist" },
+        { "--out " + (dir / "none/x.txt").string(), "--out: " + (dir / "none/x.txt").string() + ": the folder" },
+        { "--out " + dir.string(), "this is a folder; give a file name" },
+        { "--export " + (dir / "s.hair/x.glb").string(), "is not a folder" },
     };
     write("s.hair", "x");
     for (const auto& [option, message] : cases) {
@@ -217,16 +221,15 @@ TEST_F(CliHostile, OutputsAreCheckedBeforeAnyWork)
 // No input makes wisp-cli exit with anything but 0, 1 or 2 (a crash is 128 + signal, a hang 124).
 TEST_F(CliHostile, EveryHostileFileEndsWithStatusOneOrTwo)
 {
-    std::vector<std::string> files = {flatObj(), strayVertexObj(), write("empty.obj", ""),
-                                      write("nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
-                                      write("inf.off", "OFF\n3 1 0\n0 0 0\ninf 0 0\n0 1 0\n3 0 1 2\n"),
-                                      write("huge.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1e39 0 0\n"
-                                                        "vertex 0 1 0\nendloop\nendfacet\nendsolid\n"),
-                                      write("garbage.glb", std::string("glTF\x02\0\0\0\x10\0\0\0", 12)),
-                                      write("deep.gltf", std::string(100000, '[')),
-                                      write("bad.json", "{\"format\": \"wisp-preset\", \"version\": [1]}"),
-                                      write("bad.wisp", "{\"format\": 3}"), write("bad.hair", "HAIR"),
-                                      write("bad.data", std::string(4, '\xff'))};
+    std::vector<std::string> files = { flatObj(), strayVertexObj(), write("empty.obj", ""),
+        write("nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+        write("inf.off", "OFF\n3 1 0\n0 0 0\ninf 0 0\n0 1 0\n3 0 1 2\n"),
+        write("huge.stl",
+            "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1e39 0 0\n"
+            "vertex 0 1 0\nendloop\nendfacet\nendsolid\n"),
+        write("garbage.glb", std::string("glTF\x02\0\0\0\x10\0\0\0", 12)), write("deep.gltf", std::string(100000, '[')),
+        write("bad.json", "{\"format\": \"wisp-preset\", \"version\": [1]}"), write("bad.wisp", "{\"format\": 3}"),
+        write("bad.hair", "HAIR"), write("bad.data", std::string(4, '\xff')) };
     for (const std::string& file : files) {
         const CliRun validate = run("validate " + file);
         EXPECT_EQ(validate.status, 1) << file << ": " << validate.output;
@@ -241,16 +244,15 @@ TEST_F(CliHostile, HairThatCannotBeUsedIsRefused)
 {
     wisp::HairCurves strands;
     strands.addStrand(3);
-    strands.positions = {{0, 0.1f, 0}, {0, 0.05f, 0}, {3e37f, 0, 0}};
+    strands.positions = { { 0, 0.1f, 0 }, { 0, 0.05f, 0 }, { 3e37f, 0, 0 } };
     const std::string huge = (dir / "huge.data").string();
     ASSERT_TRUE(wisp::io::writeHair(huge, strands));
     const CliRun scaled = run("simulate --steps 1 --hair " + huge + " --hair-scale 100");
     EXPECT_EQ(scaled.status, 1) << scaled.output;
     EXPECT_TRUE(mentions(scaled, "huge.data: point 2 is not finite once placed")) << scaled.output;
-    strands.positions = {{1e30f, 0, 0}, {1e30f, 1, 0}, {1e30f, 2, 0}};
+    strands.positions = { { 1e30f, 0, 0 }, { 1e30f, 1, 0 }, { 1e30f, 2, 0 } };
     ASSERT_TRUE(wisp::io::writeHair(huge, strands));
     const CliRun far = run("simulate --steps 1 --hair " + huge);
     EXPECT_EQ(far.status, 1) << far.output;
-    EXPECT_TRUE(mentions(far, "huge.data: point 0 lies 1e+30 m from the head, more than 10 m"))
-        << far.output;
+    EXPECT_TRUE(mentions(far, "huge.data: point 0 lies 1e+30 m from the head, more than 10 m")) << far.output;
 }

@@ -6,8 +6,8 @@
 #include "io/StrandPlacement.h"
 #include "io/StrandText.h"
 
-#include "CliRunner.h"
 #include "../SharedAssets.h"
+#include "CliRunner.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

@@ -10,7 +10,7 @@ namespace wisp::test {
 
 struct CliRun {
     int status = -1;
-    std::string output;  // stdout and stderr together
+    std::string output; // stdout and stderr together
 };
 
 // `timeoutSeconds` > 0 runs it under timeout(1): a run that blocks ends with status 124.
@@ -30,4 +30,4 @@ inline CliRun cli(const std::string& arguments, int timeoutSeconds = 0)
     return r;
 }
 
-}  // namespace wisp::test
+} // namespace wisp::test

@@ -26,9 +26,12 @@ fs::path tempDir()
     return dir;
 }
 
-void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+void writeText(const fs::path& path, const std::string& text)
+{
+    std::ofstream(path) << text;
+}
 
-}  // namespace
+} // namespace
 
 TEST(Cli, UsageAndHelp)
 {
@@ -74,8 +77,8 @@ TEST(Cli, BadValuesAreExitOneNamingTheOption)
 // Every documented range end is accepted (real parameters are floats: 0.1f is above the double 0.1).
 TEST(Cli, RangeEndsAreAccepted)
 {
-    for (const char* option : {"--time_step 0.1", "--time_step 0.001", "--curl_radius 0.05", "--length 0.005",
-                               "--length 2", "--hair_offset 0.02", "--substeps 32"}) {
+    for (const char* option : { "--time_step 0.1", "--time_step 0.001", "--curl_radius 0.05", "--length 0.005",
+             "--length 2", "--hair_offset 0.02", "--substeps 32" }) {
         const CliRun run = cli(std::string("simulate --steps 1 --density 0.5 ") + option);
         EXPECT_EQ(run.status, 0) << option << ": " << run.output;
         EXPECT_EQ(run.output.find("outside"), std::string::npos) << option << ": " << run.output;
@@ -130,14 +133,14 @@ TEST(Cli, SimulateWritesEveryDrawnStrand)
     const fs::path dir = tempDir();
     const fs::path out = dir / "strands.txt";
     writeText(dir / "look.params", "# a test look\ndensity = 3\nwind_speed = 10\n");
-    const CliRun r = cli("simulate --steps 30 --threads 2 --params " + (dir / "look.params").string() + " --out " +
-                      out.string());
+    const CliRun r
+        = cli("simulate --steps 30 --threads 2 --params " + (dir / "look.params").string() + " --out " + out.string());
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("ms per step"), std::string::npos);
     const auto curves = wisp::io::readStrandText(out.string());
     ASSERT_TRUE(curves.ok()) << curves.error().toString();
     EXPECT_GT(curves.value().strandCount(), 500u);
-    EXPECT_EQ(curves.value().pointCount(), curves.value().strandCount() * 16);  // 15 segments by default
+    EXPECT_EQ(curves.value().pointCount(), curves.value().strandCount() * 16); // 15 segments by default
     for (const glm::vec3& p : curves.value().positions)
         ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
 
@@ -145,7 +148,7 @@ TEST(Cli, SimulateWritesEveryDrawnStrand)
     ASSERT_EQ(keys.status, 0) << keys.output;
     const auto keyCurves = wisp::io::readStrandText(out.string());
     ASSERT_TRUE(keyCurves.ok());
-    EXPECT_LT(keyCurves.value().strandCount(), curves.value().strandCount() / 4);  // wisps of 12
+    EXPECT_LT(keyCurves.value().strandCount(), curves.value().strandCount() / 4); // wisps of 12
     fs::remove_all(dir);
 }
 
@@ -155,13 +158,13 @@ TEST(Cli, SimulateReadsAHeadFromAFile)
     const wisp::DefaultHead head = wisp::makeDefaultHead();
     {
         std::ofstream obj(dir / "head.obj");
-        for (const glm::vec3& p : head.mesh.positions)  // written in centimetres
+        for (const glm::vec3& p : head.mesh.positions) // written in centimetres
             obj << "v " << p.x * 100 << " " << p.y * 100 << " " << p.z * 100 << "\n";
         for (const glm::uvec3& t : head.mesh.triangles)
             obj << "f " << t.x + 1 << " " << t.y + 1 << " " << t.z + 1 << "\n";
     }
-    const CliRun r = cli("simulate --steps 5 --head " + (dir / "head.obj").string() + " --scale 0.01 --density 2 --out " +
-                      (dir / "s.txt").string());
+    const CliRun r = cli("simulate --steps 5 --head " + (dir / "head.obj").string() + " --scale 0.01 --density 2 --out "
+        + (dir / "s.txt").string());
     ASSERT_EQ(r.status, 0) << r.output;
     const auto curves = wisp::io::readStrandText((dir / "s.txt").string());
     ASSERT_TRUE(curves.ok());
@@ -180,7 +183,7 @@ TEST(Cli, BenchPrintsJsonLines)
 {
     const CliRun r = cli("bench --workload sphere --strands 200 --steps 50 --threads 2 --json");
     ASSERT_EQ(r.status, 0) << r.output;
-    for (const char* field : {"\"name\": \"sphere\"", "\"particles\": 3000", "\"threads\": 2", "\"ms_per_step\"",
-                              "\"peak_rss_mb\""})
+    for (const char* field :
+        { "\"name\": \"sphere\"", "\"particles\": 3000", "\"threads\": 2", "\"ms_per_step\"", "\"peak_rss_mb\"" })
         EXPECT_NE(r.output.find(field), std::string::npos) << field << " in " << r.output;
 }

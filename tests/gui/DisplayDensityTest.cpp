@@ -5,8 +5,8 @@
 
 #include "app/editor/Document.h"
 #include "app/editor/ProjectController.h"
-#include "io/ProjectFile.h"
 #include "app/editor/SettledScene.h"
+#include "io/ProjectFile.h"
 #include "sim/geometry/Body.h"
 #include "widgets/HairChildren.h"
 #include "widgets/HairDetail.h"
@@ -15,9 +15,9 @@
 #include <QAction>
 #include <QElapsedTimer>
 #include <QFile>
+#include <QImage>
 #include <QMenu>
 #include <QTemporaryDir>
-#include <QImage>
 
 #include <cstdio>
 #include <cstdlib>
@@ -33,10 +33,12 @@ HairCurves strandGrid(int columns, int rows, float gapAfterColumn = -1.0f)
     HairCurves c;
     for (int i = 0; i < columns; ++i)
         for (int j = 0; j < rows; ++j) {
-            const float x = 0.01f * static_cast<float>(i) + (gapAfterColumn >= 0.0f && i > gapAfterColumn ? 0.1f : 0.0f);
+            const float x
+                = 0.01f * static_cast<float>(i) + (gapAfterColumn >= 0.0f && i > gapAfterColumn ? 0.1f : 0.0f);
             const std::size_t s = c.addStrand(5);
             for (int k = 0; k < 5; ++k)
-                c.strandForWrite(s)[static_cast<std::size_t>(k)] = glm::vec3(x, -0.02f * static_cast<float>(k), 0.01f * static_cast<float>(j));
+                c.strandForWrite(s)[static_cast<std::size_t>(k)]
+                    = glm::vec3(x, -0.02f * static_cast<float>(k), 0.01f * static_cast<float>(j));
         }
     return c;
 }
@@ -94,7 +96,8 @@ protected:
     static void SetUpTestSuite()
     {
         Document document;
-        const SceneToSettle scene{ document.head(), document.regions(), document.soloRegion(), document.parameters(), {} };
+        const SceneToSettle scene{ document.head(), document.regions(), document.soloRegion(), document.parameters(),
+            {} };
         settled = new SettledFrame(settleScene(scene, 0, 2));
         head = new TriangleMesh(document.head());
     }
@@ -122,7 +125,8 @@ protected:
             for (int x = 0; x < hair.width(); ++x) {
                 const QRgb a = hair.pixel(x, y);
                 const QRgb b = bare.pixel(x, y);
-                count += std::abs(qRed(a) - qRed(b)) + std::abs(qGreen(a) - qGreen(b)) + std::abs(qBlue(a) - qBlue(b)) > 24;
+                count += std::abs(qRed(a) - qRed(b)) + std::abs(qGreen(a) - qGreen(b)) + std::abs(qBlue(a) - qBlue(b))
+                    > 24;
             }
         return static_cast<double>(count) / (static_cast<double>(hair.width()) * hair.height());
     }
@@ -158,8 +162,8 @@ TEST_F(DisplayDensityTest, FourTimesDrawsFourTimesTheStrandsAndCoversNoLess)
     const double c1 = covered(one, bare);
     const double c4 = covered(four, bare);
     const double cq = covered(quarter, bare);
-    std::printf("[ density ] %zu strands: covered pixels at 1x %.3f, 4x %.3f, 0.25x %.3f of the image\n", strands, c1,
-        c4, cq);
+    std::printf(
+        "[ density ] %zu strands: covered pixels at 1x %.3f, 4x %.3f, 0.25x %.3f of the image\n", strands, c1, c4, cq);
     EXPECT_GT(c1, 0.05);
     EXPECT_GE(c4, c1); // fuller, never sparser
     EXPECT_GE(cq, 0.9 * c1);
@@ -186,7 +190,8 @@ TEST_F(DisplayDensityTest, ThePreviewWhileSimulatingKeepsTheCoverage)
         const double preview = covered(image, bare);
         if (!shots.isEmpty())
             image.save(shots + QStringLiteral("/density-preview-%1.png").arg(std::lround(100.0f * fraction)));
-        std::printf("[ density ] preview of %.0f%% of the strands covers %.3f of the image, full detail %.3f (ratio %.2f)\n",
+        std::printf(
+            "[ density ] preview of %.0f%% of the strands covers %.3f of the image, full detail %.3f (ratio %.2f)\n",
             100.0 * fraction, preview, full, preview / full);
         EXPECT_GE(preview, 0.9 * full) << fraction;
     }

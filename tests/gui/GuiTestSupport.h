@@ -37,8 +37,8 @@ inline bool waitUntil(const std::function<bool()>& done, int timeoutMs = kWaitMs
 
 // Waits for `count` frames published after `since` (a publishedFrames() taken before the request:
 // a paused step is published within microseconds, maybe before the wait starts).
-inline bool waitForFramesSince(const SimulationHost& host, std::uint64_t since, std::uint64_t count,
-                               int timeoutMs = kWaitMs)
+inline bool waitForFramesSince(
+    const SimulationHost& host, std::uint64_t since, std::uint64_t count, int timeoutMs = kWaitMs)
 {
     return waitUntil([&] { return host.publishedFrames() >= since + count; }, timeoutMs);
 }
@@ -75,8 +75,8 @@ inline std::unique_ptr<MainWindow> openEditor(int width = 1300, int height = 850
 
 // Mean root and tip of a frame's strands, metres.
 struct Ends {
-    glm::vec3 tip{0.0f};
-    glm::vec3 root{0.0f};
+    glm::vec3 tip{ 0.0f };
+    glm::vec3 root{ 0.0f };
 };
 
 inline Ends meanEnds(const FramePtr& frame)
@@ -103,4 +103,4 @@ inline void typeValue(ParameterPanel* panel, Param id, const QString& text)
     QTest::keyClick(spin, Qt::Key_Return);
 }
 
-}  // namespace wisp::test
+} // namespace wisp::test

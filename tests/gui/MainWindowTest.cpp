@@ -1,10 +1,10 @@
 // The editor as an artist uses it: the real window, real widgets driven by mouse and key events,
 // and the published frames checked against the physics.
+#include "app/editor/MainWindow.h"
+#include "GuiTestSupport.h"
 #include "app/editor/Document.h"
 #include "app/editor/FileMenu.h"
-#include "app/editor/MainWindow.h"
 #include "app/editor/SimulationHost.h"
-#include "GuiTestSupport.h"
 #include "widgets/ParameterPanel.h"
 #include "widgets/Viewport.h"
 
@@ -62,13 +62,16 @@ protected:
         window->document()->undoStack()->clear();
         ASSERT_TRUE(waitForFrames(*window->simulation(), 5));
     }
-    void settle(int frames = 90) { ASSERT_TRUE(waitForFrames(*window->simulation(), static_cast<std::uint64_t>(frames))); }
+    void settle(int frames = 90)
+    {
+        ASSERT_TRUE(waitForFrames(*window->simulation(), static_cast<std::uint64_t>(frames)));
+    }
     FramePtr frame() const { return window->simulation()->latestFrame(); }
 
     std::unique_ptr<MainWindow> window;
 };
 
-}  // namespace
+} // namespace
 
 TEST_F(EditorTest, StartsPlayingTheDefaultHeadAndHairstyle)
 {
@@ -105,11 +108,11 @@ TEST_F(EditorTest, WindFromThePanelMovesTheTipsItsWay)
     typeValue(window->forcePanel(), Param::WindSpeed, QStringLiteral("0"));
     settle();
     const float calmX = meanEnds(frame()).tip.x;
-    typeValue(window->forcePanel(), Param::WindAzimuth, QStringLiteral("0"));  // toward +X
+    typeValue(window->forcePanel(), Param::WindAzimuth, QStringLiteral("0")); // toward +X
     typeValue(window->forcePanel(), Param::WindSpeed, QStringLiteral("20"));
     settle();
     EXPECT_GT(meanEnds(frame()).tip.x, calmX + 0.01f);
-    EXPECT_GT(frame()->wind.x, 15.0f);  // the viewport's arrow gets it too
+    EXPECT_GT(frame()->wind.x, 15.0f); // the viewport's arrow gets it too
 }
 
 TEST_F(EditorTest, OneSliderDragIsOneUndoStep)
@@ -174,11 +177,11 @@ TEST_F(EditorTest, ResetReturnsToRest)
         window->resetAction()->trigger();
         return waitUntil([&] { return frame()->step == 0; });
     };
-    QTest::keyClick(window->viewport(), Qt::Key_Space);  // pause
+    QTest::keyClick(window->viewport(), Qt::Key_Space); // pause
     ASSERT_FALSE(window->simulation()->isPlaying());
     ASSERT_TRUE(resetAndWait());
     const FramePtr rest = frame();
-    QTest::keyClick(window->viewport(), Qt::Key_Space);  // play: the hair moves off its rest shape
+    QTest::keyClick(window->viewport(), Qt::Key_Space); // play: the hair moves off its rest shape
     settle(30);
     EXPECT_GT(frame()->step, 0u);
     QTest::keyClick(window->viewport(), Qt::Key_Space);
@@ -218,10 +221,10 @@ TEST_F(EditorTest, NewAndResetWhilePausedShowTheHairHangingAtRest)
 {
     window->fileMenu()->setInteractive(false);
     SimulationHost* host = window->simulation();
-    QTest::keyClick(window->viewport(), Qt::Key_Space);  // pause
+    QTest::keyClick(window->viewport(), Qt::Key_Space); // pause
     ASSERT_FALSE(host->isPlaying());
     const std::uint64_t groomBefore = frame()->groomVersion;
-    QTest::keyClick(window->viewport(), Qt::Key_N, Qt::ControlModifier);  // File ▸ New
+    QTest::keyClick(window->viewport(), Qt::Key_N, Qt::ControlModifier); // File ▸ New
     ASSERT_TRUE(waitUntil([&] { return frame()->groomVersion > groomBefore; }));
     QTest::qWait(200);
     EXPECT_FALSE(host->isPlaying());
@@ -269,7 +272,7 @@ TEST(Editor, ClosingWhileSimulatingJoinsTheSimulationThread)
     window->show();
     ASSERT_TRUE(QTest::qWaitForWindowExposed(window.get()));
     ASSERT_TRUE(waitForFrames(*window->simulation(), 10));
-    EXPECT_GE(wispThreads(), 1);  // the simulation thread is really there, and named
+    EXPECT_GE(wispThreads(), 1); // the simulation thread is really there, and named
     // Closing does not wait for simulation work: the thread is joined (counted below). The timer is
     // only a hang guard (30 s, times the sanitizer factor), far above what a healthy close takes.
     QElapsedTimer timer;

@@ -1,12 +1,12 @@
 // Scalp painting as an artist does it: the real window, the brush driven by mouse and key events
 // on the viewport, and the published frames' roots checked against where the stroke went.
+#include "GuiTestSupport.h"
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
 #include "app/editor/MainWindow.h"
 #include "app/editor/PaintTool.h"
 #include "app/editor/SimulationHost.h"
 #include "app/editor/WispPanel.h"
-#include "GuiTestSupport.h"
 #include "sim/geometry/MeshBvh.h"
 #include "sim/style/StrandPicking.h"
 #include "widgets/ParameterPanel.h"
@@ -40,12 +40,15 @@ std::set<Root> rootsOf(const FramePtr& frame)
     std::set<Root> roots;
     for (std::size_t s = 0; s < frame->strands.strandCount(); ++s) {
         const glm::vec3 p = frame->strands.strand(s).front();
-        roots.insert({p.x, p.y, p.z});
+        roots.insert({ p.x, p.y, p.z });
     }
     return roots;
 }
 
-glm::vec3 asVec(const Root& r) { return {std::get<0>(r), std::get<1>(r), std::get<2>(r)}; }
+glm::vec3 asVec(const Root& r)
+{
+    return { std::get<0>(r), std::get<1>(r), std::get<2>(r) };
+}
 
 class PaintingTest : public ::testing::Test {
 protected:
@@ -68,8 +71,7 @@ protected:
     void settle()
     {
         QSignalSpy ready(window->simulation(), &SimulationHost::sceneReady);
-        while (ready.wait(600 * WISP_SLOW_BUILD_FACTOR)) {
-        }
+        while (ready.wait(600 * WISP_SLOW_BUILD_FACTOR)) { }
     }
     FramePtr frame() const { return window->simulation()->latestFrame(); }
 
@@ -77,7 +79,7 @@ protected:
     glm::vec3 cheek(float dy) const
     {
         const Aabb box = boundsOf(window->document()->head());
-        return bvh->closestPoint({box.max.x + 0.05f, box.center().y - 0.01f + dy, box.center().z + 0.02f}).point;
+        return bvh->closestPoint({ box.max.x + 0.05f, box.center().y - 0.01f + dy, box.center().z + 0.02f }).point;
     }
     void lookFromTheRight()
     {
@@ -89,7 +91,7 @@ protected:
     QPoint screenOf(const glm::vec3& p) const
     {
         const glm::vec2 s = window->viewport()->project(p);
-        return {static_cast<int>(std::lround(s.x)), static_cast<int>(std::lround(s.y))};
+        return { static_cast<int>(std::lround(s.x)), static_cast<int>(std::lround(s.y)) };
     }
     // Drags the brush through `points` (world, on the head) with the given modifiers; returns the
     // surface points the stroke passed through.
@@ -111,19 +113,19 @@ protected:
     std::unique_ptr<MeshBvh> bvh;
 };
 
-}  // namespace
+} // namespace
 
 TEST_F(PaintingTest, AStrokeAddsRootsOnlyNearItAndItsMirrorAndUndoRedoAreExact)
 {
     lookFromTheRight();
-    QTest::keyClick(window->viewport(), Qt::Key_B);  // the paint tool, as an artist switches to it
+    QTest::keyClick(window->viewport(), Qt::Key_B); // the paint tool, as an artist switches to it
     ASSERT_TRUE(window->paintTool()->isActive());
     const float radius = window->paintTool()->settings().radiusMetres;
     ASSERT_TRUE(window->paintTool()->settings().mirrorX) << "symmetry is on by default";
 
     const std::set<Root> before = rootsOf(frame());
     const std::vector<float> weightsBefore = window->document()->region(0).weights;
-    const std::vector<glm::vec3> line{cheek(-0.015f), cheek(0.0f), cheek(0.015f)};
+    const std::vector<glm::vec3> line{ cheek(-0.015f), cheek(0.0f), cheek(0.015f) };
     stroke(line);
     ASSERT_EQ(window->document()->undoStack()->count(), 1) << "one stroke, one undo step";
     const std::set<Root> after = rootsOf(frame());
@@ -133,7 +135,7 @@ TEST_F(PaintingTest, AStrokeAddsRootsOnlyNearItAndItsMirrorAndUndoRedoAreExact)
     const float plane = window->paintTool()->mirrorPlaneX();
     std::vector<glm::vec3> mirrored;
     for (const glm::vec3& p : line)
-        mirrored.push_back({2.0f * plane - p.x, p.y, p.z});
+        mirrored.push_back({ 2.0f * plane - p.x, p.y, p.z });
     int nearStroke = 0, nearMirror = 0;
     for (const Root& r : after) {
         if (before.count(r))
@@ -163,8 +165,8 @@ TEST_F(PaintingTest, AStrokeAddsRootsOnlyNearItAndItsMirrorAndUndoRedoAreExact)
     // Erasing never adds roots. (A member's root is rebuilt from its key hair's, so when erasing
     // picks a new key for a wisp its members' roots may differ in the last bits.)
     for (const Root& r : erased) {
-        const bool existed = std::any_of(after.begin(), after.end(),
-                                         [&](const Root& a) { return glm::distance(asVec(a), asVec(r)) < 1e-5f; });
+        const bool existed = std::any_of(
+            after.begin(), after.end(), [&](const Root& a) { return glm::distance(asVec(a), asVec(r)) < 1e-5f; });
         EXPECT_TRUE(existed) << "erasing added a root";
     }
 }
@@ -184,13 +186,13 @@ TEST_F(PaintingTest, BracketKeysResizeTheBrushAndTheRingFollowsTheCursor)
     // A hover (no button): sent to the viewport as Qt delivers it (QTest::mouseMove moves the real
     // pointer, which Xvfb does not always report).
     const QPoint at = screenOf(cheek(0.0f));
-    QMouseEvent hover(QEvent::MouseMove, at, window->viewport()->mapToGlobal(at), Qt::NoButton, Qt::NoButton,
-                      Qt::NoModifier);
+    QMouseEvent hover(
+        QEvent::MouseMove, at, window->viewport()->mapToGlobal(at), Qt::NoButton, Qt::NoButton, Qt::NoModifier);
     QApplication::sendEvent(window->viewport(), &hover);
     ASSERT_TRUE(window->viewport()->brushCursor().has_value());
     EXPECT_LT(glm::distance(window->viewport()->brushCursor()->centre, cheek(0.0f)), 0.004f);
     EXPECT_TRUE(window->viewport()->brushCursor()->mirrored);
-    window->paintAction()->trigger();  // off: no ring
+    window->paintAction()->trigger(); // off: no ring
     EXPECT_FALSE(window->viewport()->brushCursor().has_value());
 }
 
@@ -201,7 +203,7 @@ TEST_F(PaintingTest, WispSizeOfOneRegionChangesOnlyThatRegionsStrands)
     doc->addRegion(QStringLiteral("Sideburns"));
     ASSERT_EQ(doc->currentRegion(), 1);
     window->paintAction()->trigger();
-    stroke({cheek(-0.015f), cheek(0.0f), cheek(0.015f)});
+    stroke({ cheek(-0.015f), cheek(0.0f), cheek(0.015f) });
     const FramePtr before = frame();
     ASSERT_FALSE(before->lookOfStrand.empty());
 
@@ -217,7 +219,7 @@ TEST_F(PaintingTest, WispSizeOfOneRegionChangesOnlyThatRegionsStrands)
         for (std::size_t s = 0; s < f->strands.strandCount(); ++s)
             if (f->lookOfStrand[s] == look) {
                 const auto points = f->strands.strand(s);
-                out[{points[0].x, points[0].y, points[0].z}] = {points.begin(), points.end()};
+                out[{ points[0].x, points[0].y, points[0].z }] = { points.begin(), points.end() };
             }
         return out;
     };

@@ -1,8 +1,8 @@
 // The preset browser on a real Document: the bundled presets are listed, applying one is one undo
 // step, the artist's own presets are saved, listed, applied and deleted in a test-mode user folder,
 // and a broken preset is shown greyed and cannot be applied.
-#include "app/editor/Document.h"
 #include "app/editor/PresetBrowser.h"
+#include "app/editor/Document.h"
 
 #include <QDir>
 #include <QFile>
@@ -109,19 +109,19 @@ protected:
     std::unique_ptr<PresetBrowser> browser;
 };
 
-}  // namespace
+} // namespace
 
 TEST_F(PresetBrowserTest, ListsTheSixBundledPresetsByNameWithTheirDescriptions)
 {
-    ASSERT_EQ(list()->count(), 6);  // the user folder is empty
-    const QStringList expected = {QStringLiteral("Curly"), QStringLiteral("Short bob"),     QStringLiteral("Straight"),
-                                  QStringLiteral("Wavy"),  QStringLiteral("Windy"),         QStringLiteral("Zero gravity")};
+    ASSERT_EQ(list()->count(), 6); // the user folder is empty
+    const QStringList expected = { QStringLiteral("Curly"), QStringLiteral("Short bob"), QStringLiteral("Straight"),
+        QStringLiteral("Wavy"), QStringLiteral("Windy"), QStringLiteral("Zero gravity") };
     for (int row = 0; row < 6; ++row) {
         QListWidgetItem* item = list()->item(row);
-        EXPECT_EQ(item->text(), expected[row]);  // sorted by name
+        EXPECT_EQ(item->text(), expected[row]); // sorted by name
         EXPECT_TRUE(item->data(PresetBrowser::kBundledRole).toBool());
         EXPECT_TRUE(item->data(PresetBrowser::kErrorRole).toString().isEmpty()) << item->text().toStdString();
-        EXPECT_FALSE(item->icon().isNull());  // the bundled mark
+        EXPECT_FALSE(item->icon().isNull()); // the bundled mark
     }
     EXPECT_TRUE(list()->item(rowNamed(QStringLiteral("Curly")))->toolTip().contains(QStringLiteral("Tight ringlets")));
     // Nothing selected: nothing to apply or delete. (Showing the list focuses it, which makes
@@ -147,7 +147,7 @@ TEST_F(PresetBrowserTest, ApplyingCurlyIsOneUndoStepThatRestoresTheLookExactly)
     QSignalSpy messages(browser.get(), &PresetBrowser::message);
 
     ASSERT_NO_FATAL_FAILURE(clickRow(list(), rowNamed(QStringLiteral("Curly"))));
-    EXPECT_FALSE(browser->deleteButton()->isEnabled());  // bundled
+    EXPECT_FALSE(browser->deleteButton()->isEnabled()); // bundled
     ASSERT_NO_FATAL_FAILURE(click(browser->applyButton()));
 
     EXPECT_EQ(current().values.get(Param::CurlRadius), radius);
@@ -188,8 +188,8 @@ TEST_F(PresetBrowserTest, ASavedPresetIsListedAndBringsTheLookBack)
     EXPECT_TRUE(QFileInfo::exists(path));
     ASSERT_EQ(list()->count(), 7);
     const int row = rowNamed(QStringLiteral("My Look"));
-    ASSERT_EQ(row, 6);  // after the bundled ones
-    EXPECT_EQ(list()->currentRow(), row);  // the new preset is selected
+    ASSERT_EQ(row, 6); // after the bundled ones
+    EXPECT_EQ(list()->currentRow(), row); // the new preset is selected
     EXPECT_FALSE(list()->item(row)->data(PresetBrowser::kBundledRole).toBool());
     EXPECT_EQ(list()->item(row)->data(PresetBrowser::kPathRole).toString(), path);
     EXPECT_TRUE(browser->deleteButton()->isEnabled());
@@ -218,27 +218,30 @@ TEST_F(PresetBrowserTest, AnEmptyNameIsRefused)
     EXPECT_FALSE(browser->savePreset(QStringLiteral("   "), true));
     EXPECT_EQ(messages.count(), 1);
     EXPECT_EQ(list()->count(), 6);
-    EXPECT_TRUE(QDir(PresetBrowser::userFolder()).entryList({QStringLiteral("*.json")}, QDir::Files).isEmpty());
+    EXPECT_TRUE(QDir(PresetBrowser::userFolder()).entryList({ QStringLiteral("*.json") }, QDir::Files).isEmpty());
 }
 
 TEST_F(PresetBrowserTest, NamesBecomeSafeFileNames)
 {
     const QString folder = PresetBrowser::userFolder() + QLatin1Char('/');
-    EXPECT_EQ(PresetBrowser::userPresetPath(QStringLiteral("../../etc/passwd")), folder + QStringLiteral("etc-passwd.json"));
-    EXPECT_EQ(PresetBrowser::userPresetPath(QStringLiteral("  Wet: look?  ")), folder + QStringLiteral("wet-look.json"));
+    EXPECT_EQ(
+        PresetBrowser::userPresetPath(QStringLiteral("../../etc/passwd")), folder + QStringLiteral("etc-passwd.json"));
+    EXPECT_EQ(
+        PresetBrowser::userPresetPath(QStringLiteral("  Wet: look?  ")), folder + QStringLiteral("wet-look.json"));
     EXPECT_EQ(PresetBrowser::userPresetPath(QStringLiteral("???")), folder + QStringLiteral("preset.json"));
     EXPECT_EQ(PresetBrowser::userPresetPath(QStringLiteral("Con")), folder + QStringLiteral("con-preset.json"));
-    EXPECT_EQ(PresetBrowser::userPresetPath(QStringLiteral("Böse Locken")), folder + QStringLiteral("böse-locken.json"));
+    EXPECT_EQ(
+        PresetBrowser::userPresetPath(QStringLiteral("Böse Locken")), folder + QStringLiteral("böse-locken.json"));
 }
 
 TEST_F(PresetBrowserTest, ABrokenPresetIsGreyedWithItsErrorAndCannotBeApplied)
 {
     writeFile(PresetBrowser::userFolder() + QStringLiteral("/bad.json"),
-              R"({"format": "wisp-preset", "version": 2, "name": "Bad",
+        R"({"format": "wisp-preset", "version": 2, "name": "Bad",
                   "regions": [{"name": "A", "clump_degree": 3.0}]})");
     ASSERT_NO_FATAL_FAILURE(click(browser->refreshButton()));
     ASSERT_EQ(list()->count(), 7);
-    const int row = rowNamed(QStringLiteral("bad"));  // it has no name to show but its file's
+    const int row = rowNamed(QStringLiteral("bad")); // it has no name to show but its file's
     ASSERT_EQ(row, 6);
     QListWidgetItem* item = list()->item(row);
     EXPECT_TRUE(item->toolTip().contains(QStringLiteral("regions[0].clump_degree"))) << item->toolTip().toStdString();
@@ -252,7 +255,7 @@ TEST_F(PresetBrowserTest, ABrokenPresetIsGreyedWithItsErrorAndCannotBeApplied)
 
     ASSERT_NO_FATAL_FAILURE(clickRow(list(), row));
     EXPECT_FALSE(browser->applyButton()->isEnabled());
-    EXPECT_TRUE(browser->deleteButton()->isEnabled());  // a broken user preset can still go
+    EXPECT_TRUE(browser->deleteButton()->isEnabled()); // a broken user preset can still go
     QTest::mouseClick(browser->applyButton(), Qt::LeftButton);
     QTest::keyClick(list(), Qt::Key_Return);
     EXPECT_FALSE(browser->applyPreset(row));
@@ -266,7 +269,7 @@ TEST_F(PresetBrowserTest, ABrokenPresetIsGreyedWithItsErrorAndCannotBeApplied)
 TEST_F(PresetBrowserTest, LoadingWarningsAreReportedWhenThePresetIsApplied)
 {
     writeFile(PresetBrowser::userFolder() + QStringLiteral("/shiny.json"),
-              R"({"format": "wisp-preset", "version": 2, "name": "Shiny",
+        R"({"format": "wisp-preset", "version": 2, "name": "Shiny",
                   "regions": [{"name": "A", "wisp": {"length": 0.3, "sheen": 1.0}}]})");
     browser->refresh();
     const int row = rowNamed(QStringLiteral("Shiny"));

@@ -2,6 +2,8 @@
 // prompt, autosave (the first change at once) and recovery (only of sessions whose process is gone,
 // at the project's path), temporaries of killed saves removed at start, a head opened without
 // freezing the window, hair imported as a region and exported from the running simulation.
+#include "../SharedAssets.h"
+#include "GuiTestSupport.h"
 #include "app/editor/Document.h"
 #include "app/editor/ExportHairDialog.h"
 #include "app/editor/FileMenu.h"
@@ -9,8 +11,6 @@
 #include "app/editor/MainWindow.h"
 #include "app/editor/ProjectController.h"
 #include "app/editor/SimulationHost.h"
-#include "GuiTestSupport.h"
-#include "../SharedAssets.h"
 #include "io/HairFiles.h"
 #include "io/ProjectFile.h"
 #include "sim/geometry/MeshBvh.h"
@@ -20,8 +20,8 @@
 #include <QAction>
 #include <QApplication>
 #include <QDir>
-#include <QMenu>
 #include <QFile>
+#include <QMenu>
 #include <QMessageBox>
 #include <QSignalSpy>
 #include <QStandardPaths>
@@ -55,7 +55,7 @@ void answerNextMessageBox(QMessageBox::StandardButton button, bool* asked)
                 box->button(button)->click();
                 return;
             }
-        answerNextMessageBox(button, asked);  // not open yet
+        answerNextMessageBox(button, asked); // not open yet
     });
 }
 
@@ -75,8 +75,14 @@ QList<QByteArray> lockLines(const QString& lockPath)
     EXPECT_TRUE(lock.open(QIODevice::ReadOnly)) << lockPath.toStdString();
     return lock.readAll().split('\n');
 }
-QByteArray lockPidOf(const QString& lockPath) { return lockLines(lockPath).value(0); }
-QString lockProjectOf(const QString& lockPath) { return QString::fromUtf8(lockLines(lockPath).value(1)); }
+QByteArray lockPidOf(const QString& lockPath)
+{
+    return lockLines(lockPath).value(0);
+}
+QString lockProjectOf(const QString& lockPath)
+{
+    return QString::fromUtf8(lockLines(lockPath).value(1));
+}
 
 // Makes a session's lock say its process is gone, as after a crash or kill -9 (its project line kept).
 void killSession(const QString& lockPath)
@@ -119,7 +125,7 @@ protected:
     void TearDown() override
     {
         if (window)
-            window->document()->undoStack()->setClean();  // close without a prompt
+            window->document()->undoStack()->setClean(); // close without a prompt
     }
     Document* doc() const { return window->document(); }
     ProjectController* projects() const { return window->fileMenu()->projects(); }
@@ -128,7 +134,7 @@ protected:
     QTemporaryDir dir;
 };
 
-}  // namespace
+} // namespace
 
 TEST_F(ProjectFilesTest, SavedProjectReopensExactlyWithItsCamera)
 {
@@ -205,11 +211,11 @@ TEST_F(ProjectFilesTest, ASecondEditorIsNotOfferedTheWorkOfALiveOne)
     // Another editor starts while this one runs (its lock holds a live pid: this process's).
     QStringList asked;
     auto other = startEditor(FileMenu::RecoveryAnswer::Discard, &asked);
-    other->fileMenu()->offerRecovery();  // as its first show did: nothing to offer
+    other->fileMenu()->offerRecovery(); // as its first show did: nothing to offer
     EXPECT_FALSE(other->fileMenu()->projects()->recoveryAvailable());
     EXPECT_TRUE(asked.isEmpty()) << asked.value(0).toStdString();
     EXPECT_NE(other->fileMenu()->projects()->autosavePath(), projects()->autosavePath()) << "each session its own";
-    other.reset();  // a clean exit removes only its own files
+    other.reset(); // a clean exit removes only its own files
     EXPECT_TRUE(QFileInfo::exists(projects()->autosavePath())) << "the live session's autosave stays";
     EXPECT_TRUE(QFileInfo::exists(projects()->sessionLockPath()));
 }
@@ -249,7 +255,7 @@ TEST_F(ProjectFilesTest, AnEditorThatDiedIsOfferedItsWorkBackAtItsPath)
     next->fileMenu()->setInteractive(false);
     ASSERT_TRUE(recovered->save()) << recovered->lastError().toStdString();
     EXPECT_FALSE(QFileInfo::exists(recovered->autosavePath()));
-    doc()->undoStack()->setClean();  // the first window stands in for the session that died
+    doc()->undoStack()->setClean(); // the first window stands in for the session that died
     ASSERT_TRUE(projects()->open(path)) << projects()->lastError().toStdString();
     EXPECT_DOUBLE_EQ(doc()->parameters().get(Param::WindSpeed), 7.0);
     EXPECT_EQ(doc()->regionCount(), 2);
@@ -286,14 +292,15 @@ TEST_F(ProjectFilesTest, RecoveryLaterKeepsTheWorkForTheNextStartAndDiscardRemov
 
 TEST_F(ProjectFilesTest, TheFirstChangeIsAutosavedAtOnceThenOncePerInterval)
 {
-    projects()->setAutosaveIntervalMs(3600 * 1000);  // no tick during the first part
+    projects()->setAutosaveIntervalMs(3600 * 1000); // no tick during the first part
     QSignalSpy autosaved(projects(), &ProjectController::autosaved);
     window->activateWindow();
     ASSERT_TRUE(QTest::qWaitForWindowActive(window.get()));
     typeValue(window->forcePanel(), Param::Gravity, QStringLiteral("2"));
     ASSERT_TRUE(waitUntil([&] { return autosaved.count() == 1; })) << "the first change is protected at once";
     EXPECT_EQ(autosaved.front().front().toString(), projects()->autosavePath());
-    EXPECT_DOUBLE_EQ(io::readProject(projects()->autosavePath().toStdString()).value().project.parameters.get(Param::Gravity), 2.0);
+    EXPECT_DOUBLE_EQ(
+        io::readProject(projects()->autosavePath().toStdString()).value().project.parameters.get(Param::Gravity), 2.0);
 
     // More changes wait for the interval: after 100 rounds of the event loop, still one autosave.
     typeValue(window->forcePanel(), Param::Gravity, QStringLiteral("3"));
@@ -302,7 +309,8 @@ TEST_F(ProjectFilesTest, TheFirstChangeIsAutosavedAtOnceThenOncePerInterval)
     EXPECT_EQ(autosaved.count(), 1);
     projects()->setAutosaveIntervalMs(1);
     ASSERT_TRUE(waitUntil([&] { return autosaved.count() == 2; })) << "the interval's tick saves them";
-    EXPECT_DOUBLE_EQ(io::readProject(projects()->autosavePath().toStdString()).value().project.parameters.get(Param::Gravity), 3.0);
+    EXPECT_DOUBLE_EQ(
+        io::readProject(projects()->autosavePath().toStdString()).value().project.parameters.get(Param::Gravity), 3.0);
 
     // A quiet interval (ticks with nothing to save): the next change goes at once again.
     for (int i = 0; i < 20; ++i)
@@ -322,15 +330,15 @@ TEST_F(ProjectFilesTest, TheFirstChangeIsAutosavedAtOnceThenOncePerInterval)
 TEST_F(ProjectFilesTest, TemporariesOfKilledSavesAreRemovedAtStartButNotThoseOfLiveOnes)
 {
     const QString path = dir.filePath(QStringLiteral("look.wisp"));
-    ASSERT_TRUE(projects()->saveAs(path));  // its folder is a recent project's
+    ASSERT_TRUE(projects()->saveAs(path)); // its folder is a recent project's
     const QString data = QFileInfo(projects()->autosavePath()).absolutePath();
     const QString dead = QString::number(deadPid());
     const QString live = QString::number(::getpid());
-    const QStringList stale = {data + QStringLiteral("/autosave-1-0.wisp.0123456789abcdef.tmp-") + dead,
-                               path + QStringLiteral(".fedcba9876543210.tmp-") + dead,
-                               path + QStringLiteral(".bak.00000000ffffffff.tmp-") + dead};
-    const QStringList kept = {data + QStringLiteral("/autosave-1-0.wisp.0123456789abcdef.tmp-") + live,
-                              path + QStringLiteral(".fedcba9876543210.tmp-") + live};
+    const QStringList stale = { data + QStringLiteral("/autosave-1-0.wisp.0123456789abcdef.tmp-") + dead,
+        path + QStringLiteral(".fedcba9876543210.tmp-") + dead,
+        path + QStringLiteral(".bak.00000000ffffffff.tmp-") + dead };
+    const QStringList kept = { data + QStringLiteral("/autosave-1-0.wisp.0123456789abcdef.tmp-") + live,
+        path + QStringLiteral(".fedcba9876543210.tmp-") + live };
     for (const QString& name : stale + kept) {
         QFile file(name);
         ASSERT_TRUE(file.open(QIODevice::WriteOnly)) << name.toStdString();
@@ -354,11 +362,12 @@ TEST_F(ProjectFilesTest, AHeadOpensOnAWorkerThreadAtItsUnitAndTheWindowKeepsDraw
     QSignalSpy refused(window->fileMenu()->headImporter(), &HeadImporter::failed);
     const std::uint64_t paints = window->viewport()->paintCount();
     ASSERT_TRUE(window->fileMenu()->openAny(QString::fromStdString(planck)));
-    ASSERT_TRUE(waitUntil([&] { return headChanged.count() > 0 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
+    ASSERT_TRUE(
+        waitUntil([&] { return headChanged.count() > 0 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
     ASSERT_EQ(refused.count(), 0) << refused.front().front().toString().toStdString();
     EXPECT_EQ(doc()->head().positions.size(), 5272u);
     const Aabb box = boundsOf(doc()->head());
-    const float extent = std::max({box.size().x, box.size().y, box.size().z});
+    const float extent = std::max({ box.size().x, box.size().y, box.size().z });
     EXPECT_GT(extent, 0.15f);
     EXPECT_LT(extent, 0.4f);
     EXPECT_NEAR(box.center().y, 0.0f, 1e-4f) << "centred";
@@ -371,7 +380,7 @@ TEST_F(ProjectFilesTest, AHeadOpensOnAWorkerThreadAtItsUnitAndTheWindowKeepsDraw
     const float height = box.size().y;
     ASSERT_TRUE(window->fileMenu()->placeAgain(0.002f, std::nullopt));
     EXPECT_NEAR(boundsOf(doc()->head()).size().y, 2.0f * height, 1e-4f);
-    ASSERT_TRUE(window->fileMenu()->placeAgain(0.001f, io::Axis::PosZ));  // Z-up: the file's z becomes height
+    ASSERT_TRUE(window->fileMenu()->placeAgain(0.001f, io::Axis::PosZ)); // Z-up: the file's z becomes height
     EXPECT_EQ(doc()->headPlacement().up, io::Axis::PosZ);
     EXPECT_EQ(doc()->headPlacement().front, io::Axis::NegY);
     doc()->undoStack()->undo();
@@ -383,7 +392,8 @@ TEST_F(ProjectFilesTest, AHeadOpensOnAWorkerThreadAtItsUnitAndTheWindowKeepsDraw
         EXPECT_FALSE(window->fileMenu()->placeAgain(1e-6f, std::nullopt));
         ASSERT_EQ(scaleSaid.count(), 1);
         const QString text = scaleSaid.front().front().toString();
-        EXPECT_TRUE(text.contains(QStringLiteral("max_planck_decimated.obj: the placed head is"))) << text.toStdString();
+        EXPECT_TRUE(text.contains(QStringLiteral("max_planck_decimated.obj: the placed head is")))
+            << text.toStdString();
         EXPECT_NEAR(boundsOf(doc()->head()).size().y, height, 1e-5f);
     }
 
@@ -406,7 +416,7 @@ TEST_F(ProjectFilesTest, ImportedHairBecomesASimulatedRegionAndExportsBack)
     // The frame's strands of the second region (look 1) are the imported ones.
     EXPECT_TRUE(waitUntil([&] {
         const FramePtr f = window->simulation()->latestFrame();
-        return std::count(f->lookOfStrand.begin(), f->lookOfStrand.end(), std::uint16_t{1}) == 100;
+        return std::count(f->lookOfStrand.begin(), f->lookOfStrand.end(), std::uint16_t{ 1 }) == 100;
     }));
 
     // Export the rest pose, key hairs only, and read it back.
@@ -415,7 +425,7 @@ TEST_F(ProjectFilesTest, ImportedHairBecomesASimulatedRegionAndExportsBack)
     ASSERT_EQ(window->fileMenu()->exportHair(path, true, true), QString());
     const auto back = io::readHair(path.toStdString());
     ASSERT_TRUE(back);
-    const HairCurves expected = strandsForExport(*frame, {true, true});
+    const HairCurves expected = strandsForExport(*frame, { true, true });
     EXPECT_EQ(back.value().strands.strandCount(), frame->groomShape->keyStrands.size());
     ASSERT_EQ(back.value().strands.positions.size(), expected.positions.size());
     for (std::size_t i = 0; i < expected.positions.size(); ++i)
@@ -440,7 +450,8 @@ TEST_F(ProjectFilesTest, HairImportedAfterItsHeadLandsOnItsScalp)
     QSignalSpy headChanged(doc(), &Document::headChanged);
     QSignalSpy refused(window->fileMenu()->headImporter(), &HeadImporter::failed);
     ASSERT_TRUE(window->fileMenu()->openAny(QString::fromStdString(head)));
-    ASSERT_TRUE(waitUntil([&] { return headChanged.count() > 0 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
+    ASSERT_TRUE(
+        waitUntil([&] { return headChanged.count() > 0 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
     ASSERT_EQ(refused.count(), 0) << refused.front().front().toString().toStdString();
     EXPECT_EQ(doc()->headPlacement().up, io::Axis::PosX);
     ASSERT_GT(said.count(), 0);
@@ -461,7 +472,8 @@ TEST_F(ProjectFilesTest, HairImportedAfterItsHeadLandsOnItsScalp)
     // A head that needs a word: the status line carries the placement's warning.
     const std::string woman = (kAssets / "heads/cy_woman_head.ply").string();
     ASSERT_TRUE(window->fileMenu()->openAny(QString::fromStdString(woman)));
-    ASSERT_TRUE(waitUntil([&] { return headChanged.count() > 1 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
+    ASSERT_TRUE(
+        waitUntil([&] { return headChanged.count() > 1 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
     EXPECT_TRUE(said.back().front().toString().contains(QStringLiteral("check: the skull is 64.7")))
         << said.back().front().toString().toStdString();
     // Head Up Axis ▸ +Y keeps the file's axes (the head lies on its back), one undo step.
@@ -485,7 +497,10 @@ TEST_F(ProjectFilesTest, AFlatHeadIsRefusedAndTheHeadStays)
     constexpr int n = 20;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j)
-            obj += QStringLiteral("v %1 %2 %3\n").arg(0.01 * i).arg(0.01 * j).arg(i == n - 1 ? QStringLiteral("1e-42") : QStringLiteral("0"));
+            obj += QStringLiteral("v %1 %2 %3\n")
+                       .arg(0.01 * i)
+                       .arg(0.01 * j)
+                       .arg(i == n - 1 ? QStringLiteral("1e-42") : QStringLiteral("0"));
     for (int i = 0; i + 1 < n; ++i)
         for (int j = 0; j + 1 < n; ++j) {
             const int a = i * n + j + 1, b = a + 1, c = a + n, d = c + 1;
@@ -501,7 +516,8 @@ TEST_F(ProjectFilesTest, AFlatHeadIsRefusedAndTheHeadStays)
     QSignalSpy headChanged(doc(), &Document::headChanged);
     QSignalSpy refused(window->fileMenu()->headImporter(), &HeadImporter::failed);
     ASSERT_TRUE(window->fileMenu()->openAny(path));
-    ASSERT_TRUE(waitUntil([&] { return headChanged.count() > 0 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
+    ASSERT_TRUE(
+        waitUntil([&] { return headChanged.count() > 0 || refused.count() > 0; }, 20000 * WISP_SLOW_BUILD_FACTOR));
     ASSERT_EQ(refused.count(), 1);
     const QString message = refused.front().front().toString();
     EXPECT_TRUE(message.contains(QStringLiteral("flat.obj"))) << message.toStdString();

@@ -1,8 +1,8 @@
 // The region and wisp panels as an artist uses them: real widgets on a real Document, driven by
 // mouse and key events, every edit checked in the document and through undo and redo.
-#include "app/editor/Document.h"
 #include "app/editor/RegionPanel.h"
 #include "GuiTestSupport.h"
+#include "app/editor/Document.h"
 #include "app/editor/WispPanel.h"
 #include "widgets/ParameterPanel.h"
 
@@ -64,8 +64,8 @@ QPoint checkBoxCentre(QListWidget* list, int row)
     QStyleOptionViewItem option;
     option.initFrom(list->viewport());
     option.rect = list->visualItemRect(item);
-    option.features = QStyleOptionViewItem::HasCheckIndicator | QStyleOptionViewItem::HasDisplay |
-                      QStyleOptionViewItem::HasDecoration;
+    option.features = QStyleOptionViewItem::HasCheckIndicator | QStyleOptionViewItem::HasDisplay
+        | QStyleOptionViewItem::HasDecoration;
     option.checkState = item->checkState();
     option.text = item->text();
     option.icon = item->icon();
@@ -92,7 +92,8 @@ void typeName(QListWidget* list, QLineEdit* editor, const QString& text)
     else
         QTest::keyClicks(editor, text);
     QTest::keyClick(editor, Qt::Key_Return);
-    EXPECT_TRUE(QTest::qWaitFor([&] { return openNameEditor(list) == nullptr; }, 2000)) << "the name editor stayed open";
+    EXPECT_TRUE(QTest::qWaitFor([&] { return openNameEditor(list) == nullptr; }, 2000))
+        << "the name editor stayed open";
 }
 
 // F2 on the list opens the name editor on the current row.
@@ -207,7 +208,7 @@ protected:
     }
 
     std::unique_ptr<Document> document;
-    std::unique_ptr<RegionPanel> panel;  // destroyed before the document it watches
+    std::unique_ptr<RegionPanel> panel; // destroyed before the document it watches
 };
 
 TEST_F(RegionPanelTest, StartsWithTheDocumentsOneRegionSelected)
@@ -220,7 +221,8 @@ TEST_F(RegionPanelTest, StartsWithTheDocumentsOneRegionSelected)
     EXPECT_FALSE(panel->downButton()->isEnabled());
     EXPECT_TRUE(panel->addButton()->isEnabled());
     EXPECT_FALSE(panel->soloButton()->isChecked());
-    for (QToolButton* b : {panel->addButton(), panel->removeButton(), panel->upButton(), panel->downButton(), panel->soloButton()})
+    for (QToolButton* b :
+        { panel->addButton(), panel->removeButton(), panel->upButton(), panel->downButton(), panel->soloButton() })
         EXPECT_FALSE(b->toolTip().isEmpty()) << b->objectName().toStdString();
 }
 
@@ -324,28 +326,28 @@ TEST_F(RegionPanelTest, UpAndDownReorderRegionsWhoKeepTheirIdentity)
     ASSERT_EQ(document->currentRegion(), 2);
 
     ASSERT_NO_FATAL_FAILURE(click(panel->upButton()));
-    EXPECT_EQ(documentIds(*document), (std::vector<std::uint32_t>{a, c, b}));
-    EXPECT_EQ(document->currentRegion(), 1);  // the selection stays on the moved region
+    EXPECT_EQ(documentIds(*document), (std::vector<std::uint32_t>{ a, c, b }));
+    EXPECT_EQ(document->currentRegion(), 1); // the selection stays on the moved region
     expectRowsMatchDocument();
     ASSERT_NO_FATAL_FAILURE(click(panel->upButton()));
-    EXPECT_EQ(documentIds(*document), (std::vector<std::uint32_t>{c, a, b}));
+    EXPECT_EQ(documentIds(*document), (std::vector<std::uint32_t>{ c, a, b }));
     EXPECT_EQ(document->currentRegion(), 0);
     EXPECT_FALSE(panel->upButton()->isEnabled());
     expectRowsMatchDocument();
     ASSERT_NO_FATAL_FAILURE(click(panel->downButton()));
-    EXPECT_EQ(documentIds(*document), (std::vector<std::uint32_t>{a, c, b}));
+    EXPECT_EQ(documentIds(*document), (std::vector<std::uint32_t>{ a, c, b }));
     expectRowsMatchDocument();
 
     const int steps = undo()->count();
     undo()->undo();
-    EXPECT_EQ(documentIds(*document), (std::vector<std::uint32_t>{c, a, b}));
+    EXPECT_EQ(documentIds(*document), (std::vector<std::uint32_t>{ c, a, b }));
     expectRowsMatchDocument();
     undo()->undo();
     undo()->undo();
     EXPECT_EQ(documentIds(*document), original);
     expectRowsMatchDocument();
     undo()->redo();
-    EXPECT_EQ(documentIds(*document), (std::vector<std::uint32_t>{a, c, b}));
+    EXPECT_EQ(documentIds(*document), (std::vector<std::uint32_t>{ a, c, b }));
     expectRowsMatchDocument();
     EXPECT_EQ(undo()->count(), steps);
 }
@@ -470,7 +472,7 @@ protected:
     QUndoStack* undo() const { return document->undoStack(); }
 
     std::unique_ptr<Document> document;
-    std::unique_ptr<WispPanel> panel;  // destroyed before the document it watches
+    std::unique_ptr<WispPanel> panel; // destroyed before the document it watches
 };
 
 TEST_F(WispPanelTest, ShowsTheWispParametersOnlyInRegistryOrder)
@@ -487,7 +489,7 @@ TEST_F(WispPanelTest, ShowsTheWispParametersOnlyInRegistryOrder)
     // Registry order: each row sits below the one before it.
     for (std::size_t i = 1; i < expected.size(); ++i)
         EXPECT_LT(parameters()->sliderFor(expected[i - 1])->mapTo(panel.get(), QPoint()).y(),
-                  parameters()->sliderFor(expected[i])->mapTo(panel.get(), QPoint()).y());
+            parameters()->sliderFor(expected[i])->mapTo(panel.get(), QPoint()).y());
     EXPECT_EQ(panel->titleLabel()->text(), QStringLiteral("Fringe"));
     EXPECT_TRUE(panel->isEnabled());
 }
@@ -560,7 +562,7 @@ TEST_F(WispPanelTest, ColourButtonsSetTheRegionsColoursThroughTheDialog)
     EXPECT_EQ(undo()->count(), 1);
     const QImage swatch = panel->rootColourButton()->icon().pixmap(panel->rootColourButton()->iconSize()).toImage();
     EXPECT_EQ(swatch.pixelColor(swatch.width() / 2, swatch.height() / 2), QColor(255, 0, 0));
-    QTest::qWait(0);  // lets the closed dialog delete itself
+    QTest::qWait(0); // lets the closed dialog delete itself
 
     // Cancelling changes nothing.
     ASSERT_NO_FATAL_FAILURE(click(panel->tipColourButton()));
@@ -589,4 +591,4 @@ TEST_F(WispPanelTest, FollowsUndoOfTheRegionStructure)
     EXPECT_NEAR(parameters()->value(Param::CurlTurns), 30.0, 1e-9);
 }
 
-}  // namespace
+} // namespace

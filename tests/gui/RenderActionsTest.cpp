@@ -61,7 +61,8 @@ TEST(RenderActions, ABadFileIsRefusedAndNamed)
     auto window = test::openEditor();
     QTemporaryDir dir;
     RenderActions* render = window->fileMenu()->renderActions();
-    const QString error = render->renderImage({ dir.filePath(QStringLiteral("no/such/x.png")), QSize(64, 64), false, 1 });
+    const QString error
+        = render->renderImage({ dir.filePath(QStringLiteral("no/such/x.png")), QSize(64, 64), false, 1 });
     EXPECT_TRUE(error.contains(dir.filePath(QStringLiteral("no/such")))) << error.toStdString();
     EXPECT_EQ(pngCount(dir.path()), 0);
 }
@@ -84,7 +85,8 @@ TEST(RenderActions, RenderTurntableWritesNFrames)
     EXPECT_EQ(QDir(dir.path()).entryList(QDir::Files, QDir::Name),
         (QStringList{ "turn_0001.png", "turn_0002.png", "turn_0003.png", "turn_0004.png", "turn_0005.png" }));
     EXPECT_EQ(QImage(dir.filePath(QStringLiteral("turn_0003.png"))).size(), QSize(80, 64));
-    EXPECT_NE(QImage(dir.filePath(QStringLiteral("turn_0001.png"))), QImage(dir.filePath(QStringLiteral("turn_0002.png"))));
+    EXPECT_NE(
+        QImage(dir.filePath(QStringLiteral("turn_0001.png"))), QImage(dir.filePath(QStringLiteral("turn_0002.png"))));
     EXPECT_FALSE(render->turntableRunning());
     EXPECT_EQ(render->progressDialog(), nullptr);
 }

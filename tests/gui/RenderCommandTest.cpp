@@ -2,8 +2,8 @@
 // size with hair in it, a turntable of N frames, and refuses bad arguments and files with exit
 // status 1 and a message naming them, before any work and without leaving a file behind.
 
-#include "app/editor/ImageFiles.h"
 #include "app/editor/RenderCommand.h"
+#include "app/editor/ImageFiles.h"
 
 #include <QDir>
 #include <QFile>
@@ -73,8 +73,9 @@ TEST(RenderCommand, WritesA640SquarePngWithHair)
     QTemporaryDir dir;
     ASSERT_TRUE(dir.isValid());
     const QString out = dir.filePath(QStringLiteral("x.png"));
-    const ProcessRun run = runWisp({ QStringLiteral("--render"), out, QStringLiteral("--size"), QStringLiteral("640x640"),
-        QStringLiteral("--preset"), writeGreenPreset(dir), QStringLiteral("--settle"), QStringLiteral("0.5") });
+    const ProcessRun run
+        = runWisp({ QStringLiteral("--render"), out, QStringLiteral("--size"), QStringLiteral("640x640"),
+            QStringLiteral("--preset"), writeGreenPreset(dir), QStringLiteral("--settle"), QStringLiteral("0.5") });
     ASSERT_EQ(run.exitCode, 0) << run.output.toStdString();
     const QImage image(out);
     ASSERT_FALSE(image.isNull());
@@ -92,8 +93,8 @@ TEST(RenderCommand, ATransparentBackgroundIsTransparentAroundTheHead)
 {
     QTemporaryDir dir;
     const QString out = dir.filePath(QStringLiteral("t.png"));
-    const ProcessRun run = runWisp({ QStringLiteral("--render"), out, QStringLiteral("--size"), QStringLiteral("200x160"),
-        QStringLiteral("--settle"), QStringLiteral("0"), QStringLiteral("--transparent") });
+    const ProcessRun run = runWisp({ QStringLiteral("--render"), out, QStringLiteral("--size"),
+        QStringLiteral("200x160"), QStringLiteral("--settle"), QStringLiteral("0"), QStringLiteral("--transparent") });
     ASSERT_EQ(run.exitCode, 0) << run.output.toStdString();
     const QImage image = QImage(out).convertToFormat(QImage::Format_ARGB32);
     ASSERT_EQ(image.size(), QSize(200, 160));

@@ -16,13 +16,13 @@
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
-#include <mutex>
 #include <cmath>
+#include <condition_variable>
 #include <ctime>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 
@@ -63,8 +63,8 @@ ParameterValues with(ParameterValues v, std::initializer_list<std::pair<Param, d
     if (c.offsets.empty() || c.offsets.front() != 0)
         return ::testing::AssertionFailure() << "offsets do not start at 0";
     if (c.offsets.back() != c.positions.size())
-        return ::testing::AssertionFailure() << "offsets end at " << c.offsets.back() << " for " << c.positions.size()
-                                             << " positions";
+        return ::testing::AssertionFailure()
+            << "offsets end at " << c.offsets.back() << " for " << c.positions.size() << " positions";
     for (std::size_t i = 1; i < c.offsets.size(); ++i)
         if (c.offsets[i] < c.offsets[i - 1] + 2)
             return ::testing::AssertionFailure() << "strand " << i - 1 << " has fewer than 2 points";
@@ -76,8 +76,8 @@ ParameterValues with(ParameterValues v, std::initializer_list<std::pair<Param, d
 
 long threadCount()
 {
-    return static_cast<long>(std::distance(std::filesystem::directory_iterator("/proc/self/task"),
-                                           std::filesystem::directory_iterator()));
+    return static_cast<long>(
+        std::distance(std::filesystem::directory_iterator("/proc/self/task"), std::filesystem::directory_iterator()));
 }
 
 // The pacer's clock, moved by the test (SimulationHost::SecondsClock). Each read returns the time
@@ -153,7 +153,10 @@ struct ReleaseOnExit {
 // Generous bounds for waits that only catch a hang (the sanitizer build is ~10x slower).
 constexpr int kSceneWaitMs = 120000 * WISP_SLOW_BUILD_FACTOR;
 
-double processCpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+double processCpuSeconds()
+{
+    return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
 
 class SimulationHostTest : public ::testing::Test {
 protected:
@@ -195,11 +198,11 @@ protected:
         return sum;
     }
 
-    std::shared_ptr<TestClock> clock;  // before host: destroyed after it
+    std::shared_ptr<TestClock> clock; // before host: destroyed after it
     std::unique_ptr<SimulationHost> host;
 };
 
-}  // namespace
+} // namespace
 
 TEST_F(SimulationHostTest, PublishesARestFrameAfterSetSceneAndFramesOncePlaying)
 {
@@ -217,7 +220,7 @@ TEST_F(SimulationHostTest, PublishesARestFrameAfterSetSceneAndFramesOncePlaying)
     EXPECT_EQ(rest->simulatedSeconds, 0.0);
     EXPECT_GT(rest->strands.strandCount(), 100u);
     EXPECT_GT(rest->simulatedStrands, 0u);
-    EXPECT_LT(rest->simulatedStrands, rest->strands.strandCount());  // keys only, by default
+    EXPECT_LT(rest->simulatedStrands, rest->strands.strandCount()); // keys only, by default
     EXPECT_GT(rest->simulatedParticles, rest->simulatedStrands);
     EXPECT_FALSE(host->isPlaying());
     EXPECT_EQ(host->effectiveSubsteps(), lightValues().getInt(Param::Substeps));
@@ -226,7 +229,7 @@ TEST_F(SimulationHostTest, PublishesARestFrameAfterSetSceneAndFramesOncePlaying)
     EXPECT_TRUE(host->isPlaying());
     ASSERT_EQ(playing.count(), 1);
     EXPECT_TRUE(playing.front().front().toBool());
-    host->play();  // already playing: no second signal
+    host->play(); // already playing: no second signal
     EXPECT_EQ(playing.count(), 1);
 
     ASSERT_TRUE(waitForFrames(*host, 30));
@@ -248,11 +251,11 @@ TEST_F(SimulationHostTest, KeepsRealTimeWithoutRunningAhead)
     // steps than the one due at once, and each time step it moves on buys exactly one more.
     useTestClock();
     ASSERT_TRUE(startScene(lightValues()));
-    const double timeStep = solverSettingsFrom(lightValues()).timeStepSeconds;  // a float, as the solver has it
+    const double timeStep = solverSettingsFrom(lightValues()).timeStepSeconds; // a float, as the solver has it
     const std::uint64_t groomed = host->publishedFrames();
     host->play();
     ASSERT_TRUE(waitUntil([&] { return host->latestFrame()->step >= 1; }));
-    QTest::qWait(100);  // time for the simulation thread to run ahead, would it
+    QTest::qWait(100); // time for the simulation thread to run ahead, would it
     EXPECT_EQ(host->latestFrame()->step, 1u);
     for (std::uint64_t expected = 2; expected <= 6; ++expected) {
         clock->advance(timeStep);
@@ -271,15 +274,15 @@ TEST_F(SimulationHostTest, HeavierGravityThroughSetParametersLowersTheTipsWithou
 {
     // Stiff enough hair to hold some of its shape (at the default stiffness the weight of the hair
     // below each joint already hangs it almost straight down at 9.81 m/s²).
-    ASSERT_TRUE(startScene(with(lightValues(), {{Param::Stiffness, 0.6}})));
+    ASSERT_TRUE(startScene(with(lightValues(), { { Param::Stiffness, 0.6 } })));
     host->play();
     const float lightTip = settledEnds().tip.y;
 
-    host->setParameters(with(lightValues(), {{Param::Stiffness, 0.6}, {Param::Gravity, 20.0}}));
+    host->setParameters(with(lightValues(), { { Param::Stiffness, 0.6 }, { Param::Gravity, 20.0 } }));
     EXPECT_TRUE(host->isPlaying());
     const float heavyTip = settledEnds().tip.y;
     EXPECT_LT(heavyTip, lightTip - 0.003f);
-    EXPECT_EQ(host->latestFrame()->groomVersion, 1u);  // forces only: same groom, same strands
+    EXPECT_EQ(host->latestFrame()->groomVersion, 1u); // forces only: same groom, same strands
 }
 
 TEST_F(SimulationHostTest, NegativeGravityFloatsTheTipsAboveTheRoots)
@@ -287,7 +290,7 @@ TEST_F(SimulationHostTest, NegativeGravityFloatsTheTipsAboveTheRoots)
     ASSERT_TRUE(startScene(lightValues()));
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 5));
-    host->setParameters(with(lightValues(), {{Param::Gravity, -2.8}, {Param::Stiffness, 0.02}}));
+    host->setParameters(with(lightValues(), { { Param::Gravity, -2.8 }, { Param::Stiffness, 0.02 } }));
     const Ends floating = settledEnds(120);
     EXPECT_GT(floating.tip.y, floating.root.y + 0.05f);
 }
@@ -297,11 +300,11 @@ TEST_F(SimulationHostTest, WindTowardPlusXMovesTheTipsTowardPlusX)
     ASSERT_TRUE(startScene(lightValues()));
     host->play();
     const float calmX = settledEnds().tip.x;
-    const ParameterValues windy = with(lightValues(), {{Param::WindSpeed, 10.0}, {Param::WindAzimuth, 0.0}});
+    const ParameterValues windy = with(lightValues(), { { Param::WindSpeed, 10.0 }, { Param::WindAzimuth, 0.0 } });
     host->setParameters(windy);
     const float windyX = settledEnds().tip.x;
     EXPECT_GT(windyX, calmX + 0.01f);
-    const glm::vec3 wind = host->latestFrame()->wind;  // for the viewport's arrow
+    const glm::vec3 wind = host->latestFrame()->wind; // for the viewport's arrow
     EXPECT_NEAR(wind.x, solverSettingsFrom(windy).wind.x, 1e-5f);
     EXPECT_NEAR(wind.x, 10.0f, 1e-4f);
 }
@@ -311,8 +314,8 @@ TEST_F(SimulationHostTest, OnlyTheNewestParametersMatter)
     ASSERT_TRUE(startScene(lightValues()));
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 3));
-    for (int i = 1; i <= 200; ++i)  // a slider dragged faster than the solver steps
-        host->setParameters(with(lightValues(), {{Param::WindSpeed, 0.1 * i}, {Param::WindAzimuth, 0.0}}));
+    for (int i = 1; i <= 200; ++i) // a slider dragged faster than the solver steps
+        host->setParameters(with(lightValues(), { { Param::WindSpeed, 0.1 * i }, { Param::WindAzimuth, 0.0 } }));
     ASSERT_TRUE(waitForFrames(*host, 3));
     EXPECT_NEAR(host->latestFrame()->wind.x, 20.0f, 1e-3f);
 }
@@ -327,12 +330,13 @@ TEST_F(SimulationHostTest, GuiThreadCallsReturnWhileTheSimulationThreadIsStuck)
     ASSERT_TRUE(waitUntil([&] { return host->latestFrame()->step >= 1; }));
     QSignalSpy ready(host.get(), &SimulationHost::sceneReady);
     {
-        const ReleaseOnExit releaseOnExit{*clock};
+        const ReleaseOnExit releaseOnExit{ *clock };
         clock->hold();
         ASSERT_TRUE(clock->waitUntilHeld());
         for (int i = 1; i <= 200; ++i)
-            host->setParameters(with(lightValues(), {{Param::WindSpeed, 0.1 * i}, {Param::WindAzimuth, 0.0}}));
-        host->setParameters(with(lightValues(), {{Param::WindSpeed, 20.0}, {Param::WindAzimuth, 0.0}, {Param::Segments, 7.0}}));
+            host->setParameters(with(lightValues(), { { Param::WindSpeed, 0.1 * i }, { Param::WindAzimuth, 0.0 } }));
+        host->setParameters(
+            with(lightValues(), { { Param::WindSpeed, 20.0 }, { Param::WindAzimuth, 0.0 }, { Param::Segments, 7.0 } }));
         host->pause();
         host->stepOnce();
         EXPECT_TRUE(clock->isHeld()) << "the simulation thread moved on: the calls may have waited for it";
@@ -351,18 +355,18 @@ TEST_F(SimulationHostTest, PauseStopsFramesAndStepOnceAddsExactlyOne)
     QSignalSpy playing(host.get(), &SimulationHost::playingChanged);
     ASSERT_TRUE(startScene(lightValues()));
     const std::uint64_t groomed = host->publishedFrames();
-    host->stepOnce();  // paused from the start: one step
+    host->stepOnce(); // paused from the start: one step
     ASSERT_TRUE(waitForFramesSince(*host, groomed, 1));
     EXPECT_EQ(host->latestFrame()->step, 1u);
 
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 10));
-    host->stepOnce();  // ignored while playing
+    host->stepOnce(); // ignored while playing
     host->pause();
     EXPECT_FALSE(host->isPlaying());
     ASSERT_EQ(playing.count(), 2);
     EXPECT_FALSE(playing.at(1).front().toBool());
-    QTest::qWait(50);  // a step that was running when pause() came still lands
+    QTest::qWait(50); // a step that was running when pause() came still lands
     const std::uint64_t paused = host->publishedFrames();
     const std::uint64_t step = host->latestFrame()->step;
     QTest::qWait(300);
@@ -437,7 +441,7 @@ TEST_F(SimulationHostTest, GroomParameterRegroomsOnTheSimulationThreadKeepingThe
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 10));
     QSignalSpy ready(host.get(), &SimulationHost::sceneReady);
-    host->setParameters(with(lightValues(), {{Param::Segments, 7.0}}));  // returns at once: see GuiThreadCalls...
+    host->setParameters(with(lightValues(), { { Param::Segments, 7.0 } })); // returns at once: see GuiThreadCalls...
     // Until the new groom is ready the previous frames stay visible, each whole (a bounded loop: 2 ms
     // per look, a hang guard of kSceneWaitMs).
     for (int look = 0; ready.count() == 0 && look < kSceneWaitMs / 2; ++look) {
@@ -455,10 +459,10 @@ TEST_F(SimulationHostTest, GroomParameterRegroomsOnTheSimulationThreadKeepingThe
     EXPECT_EQ(frame->groomVersion, 2u);
     for (std::size_t s = 0; s < frame->strands.strandCount(); ++s)
         ASSERT_EQ(frame->strands.pointsIn(s), 8u);
-    EXPECT_GE(frame->step, 10u);  // playing carried on with the new groom
+    EXPECT_GE(frame->step, 10u); // playing carried on with the new groom
 
     // simulate_all_strands regrooms as well: every drawn strand is simulated.
-    host->setParameters(with(lightValues(), {{Param::Segments, 7.0}, {Param::SimulateAllStrands, 1.0}}));
+    host->setParameters(with(lightValues(), { { Param::Segments, 7.0 }, { Param::SimulateAllStrands, 1.0 } }));
     ASSERT_TRUE(ready.wait(kSceneWaitMs));
     ASSERT_TRUE(waitForFrames(*host, 2));
     EXPECT_EQ(host->latestFrame()->groomVersion, 3u);
@@ -494,7 +498,7 @@ TEST_F(SimulationHostTest, RefusedSceneReportsAnErrorAndThePreviousSceneKeepsPub
     EXPECT_TRUE(host->isPlaying());
 
     // The previous scene still takes parameter changes, regrooms included (on the previous head).
-    host->setParameters(with(lightValues(), {{Param::Segments, 5.0}}));
+    host->setParameters(with(lightValues(), { { Param::Segments, 5.0 } }));
     ASSERT_TRUE(ready.wait(kSceneWaitMs));
     EXPECT_EQ(host->latestFrame()->groomVersion, 2u);
     EXPECT_EQ(host->latestFrame()->strands.strandCount(), strands);
@@ -508,9 +512,9 @@ TEST_F(SimulationHostTest, FramesAreNeverHalfBuilt)
     ASSERT_TRUE(waitForFrames(*host, 3));
     // A second reader thread (like a render thread) beside the GUI thread, while the simulation
     // thread steps, regrooms and resets.
-    std::atomic<bool> stop{false};
-    std::atomic<int> readerFailures{0};
-    std::atomic<long> readerFrames{0};
+    std::atomic<bool> stop{ false };
+    std::atomic<int> readerFailures{ 0 };
+    std::atomic<long> readerFrames{ 0 };
     std::thread reader([&] {
         FramePtr previous;
         while (!stop.load()) {
@@ -530,12 +534,13 @@ TEST_F(SimulationHostTest, FramesAreNeverHalfBuilt)
     for (int look = 0; (look < 300 || !regroomedTwice()) && look < kSceneWaitMs; ++look) {
         if (look >= round * 50) {
             ++round;
-            host->setParameters(with(lightValues(), {{Param::Segments, 6.0 + round % 3}, {Param::Gravity, round}}));
+            host->setParameters(
+                with(lightValues(), { { Param::Segments, 6.0 + round % 3 }, { Param::Gravity, round } }));
             if (round % 2 == 0)
                 host->resetToRest();
         }
         const FramePtr frame = host->latestFrame();
-        EXPECT_TRUE(isWhole(frame));  // not ASSERT: the reader thread must be joined
+        EXPECT_TRUE(isWhole(frame)); // not ASSERT: the reader thread must be joined
         QTest::qWait(1);
     }
     stop.store(true);
@@ -551,7 +556,7 @@ TEST_F(SimulationHostTest, SlowStepsRunInSlowMotionShedSubstepsAndGetThemBackWhe
     // paced step (three reads) costs two time steps of which one is the solver's.
     const double kTimeStep = solverSettingsFrom(lightValues()).timeStepSeconds;
     useTestClock();
-    ASSERT_TRUE(startScene(with(lightValues(), {{Param::Substeps, 8.0}})));
+    ASSERT_TRUE(startScene(with(lightValues(), { { Param::Substeps, 8.0 } })));
     ASSERT_EQ(host->effectiveSubsteps(), 8);
     clock->setPerRead(kTimeStep);
     host->play();
@@ -583,14 +588,13 @@ TEST_F(SimulationHostTest, FallingBehindOnTheRealClockShedsSubsteps)
     // End to end on the steady clock: every strand of the default density at 32 substeps and 1 ms
     // time steps is more than any machine steps in real time. Only the outcome is checked, with
     // waits that catch a hang (the decisions themselves are counted in the tests above and below).
-    const ParameterValues heavy = with(lightValues(), {{Param::Density, 8.0},
-                                                       {Param::SimulateAllStrands, 1.0},
-                                                       {Param::Substeps, 32.0},
-                                                       {Param::TimeStep, 0.001},
-                                                       // The grid's pass per substep would make the drape before
-                                                       // sceneReady take minutes on a loaded 2-core machine; the
-                                                       // scene is too heavy for real time without it.
-                                                       {Param::Volume, 0.0}});
+    const ParameterValues heavy = with(lightValues(),
+        { { Param::Density, 8.0 }, { Param::SimulateAllStrands, 1.0 }, { Param::Substeps, 32.0 },
+            { Param::TimeStep, 0.001 },
+            // The grid's pass per substep would make the drape before
+            // sceneReady take minutes on a loaded 2-core machine; the
+            // scene is too heavy for real time without it.
+            { Param::Volume, 0.0 } });
     ASSERT_TRUE(startScene(heavy));
     EXPECT_EQ(host->effectiveSubsteps(), 32);
     host->play();
@@ -633,9 +637,9 @@ TEST_F(SimulationHostTest, DestroyingMidRegroomDropsQueuedWorkAndJoins)
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 5));
     QSignalSpy ready(host.get(), &SimulationHost::sceneReady);
-    host->setScene(defaultHead().mesh, defaultHead().growthWeights, ParameterValues{});  // the default groom
-    QTest::qWait(20);  // let the simulation thread start grooming
-    host->setParameters(with(ParameterValues{}, {{Param::Segments, 20.0}}));  // queued behind it, dropped
+    host->setScene(defaultHead().mesh, defaultHead().growthWeights, ParameterValues{}); // the default groom
+    QTest::qWait(20); // let the simulation thread start grooming
+    host->setParameters(with(ParameterValues{}, { { Param::Segments, 20.0 } })); // queued behind it, dropped
     const auto start = std::chrono::steady_clock::now();
     host.reset();
     EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::milliseconds(kHangGuardMs));
@@ -667,13 +671,13 @@ TEST(SimulationHostPacer, KeepsAFixedCadenceAndCatchesUpASmallDelay)
     pacer.restart(10.0);
     EXPECT_EQ(pacer.dueSeconds(), 10.0);
     for (int i = 0; i < 100; ++i) {
-        const double start = pacer.dueSeconds() + 0.0002;  // wake-ups are a little late
+        const double start = pacer.dueSeconds() + 0.0002; // wake-ups are a little late
         const auto report = pacer.finishStep(start, start + 0.002, 0.0015, dt);
         EXPECT_FALSE(report.fallingBehind);
         EXPECT_EQ(report.timeScale, 1.0);
         EXPECT_FALSE(report.substepsChanged);
     }
-    EXPECT_NEAR(pacer.dueSeconds(), 10.0 + 100 * dt, 1e-9);  // no drift from the late wake-ups
+    EXPECT_NEAR(pacer.dueSeconds(), 10.0 + 100 * dt, 1e-9); // no drift from the late wake-ups
     // One wake-up late by most of a step: the next step stays on the cadence (it comes sooner, so
     // the pair catches up) and the late frame is not called slow motion.
     const double cadence = pacer.dueSeconds();
@@ -778,7 +782,7 @@ TEST(SimulationHostPacer, GivesSubstepsBackOneAtATimeWhenThereIsHeadroom)
         }
         return changes;
     };
-    run(SimulationHostPacer::kReduceAfterSteps, 0.010);  // 41 ms a step: over budget
+    run(SimulationHostPacer::kReduceAfterSteps, 0.010); // 41 ms a step: over budget
     EXPECT_EQ(pacer.substeps(), 1);
     // The machine got faster (another program quit): 1 ms a substep.
     run(SimulationHostPacer::kRestoreAfterSteps - 1, 0.001);

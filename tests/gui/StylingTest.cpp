@@ -1,19 +1,19 @@
 // Styling on live hair as an artist does it: the real window, each salon brush picked by its
 // shortcut and driven by mouse events on the viewport, the published frames measured.
+#include "GuiTestSupport.h"
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
 #include "app/editor/FileMenu.h"
-#include "app/editor/ProjectController.h"
-#include "io/PresetFile.h"
 #include "app/editor/MainWindow.h"
 #include "app/editor/PaintTool.h"
 #include "app/editor/PresetBrowser.h"
+#include "app/editor/ProjectController.h"
 #include "app/editor/SimulationHost.h"
 #include "app/editor/StylePanel.h"
 #include "app/editor/StyleTool.h"
-#include "GuiTestSupport.h"
-#include "sim/style/HairDryer.h"
+#include "io/PresetFile.h"
 #include "sim/geometry/SignedDistanceField.h"
+#include "sim/style/HairDryer.h"
 #include "sim/style/StrandPicking.h"
 #include "widgets/Viewport.h"
 
@@ -52,7 +52,7 @@ Strands byIdentity(const FramePtr& frame, bool rest = false)
     const HairCurves& curves = rest ? frame->groomShape->rest : frame->strands;
     for (std::size_t i = 0; i < curves.strandCount(); ++i) {
         const auto s = curves.strand(i);
-        out[frame->groomShape->identities[i]] = {s.begin(), s.end()};
+        out[frame->groomShape->identities[i]] = { s.begin(), s.end() };
     }
     return out;
 }
@@ -98,7 +98,7 @@ protected:
         window->simulation()->pause();
         ASSERT_TRUE(wisp::test::waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
         settle();
-        runSteps(240);  // hanging, at rest
+        runSteps(240); // hanging, at rest
         box = boundsOf(doc->head());
     }
 
@@ -106,8 +106,7 @@ protected:
     void settle()
     {
         QSignalSpy ready(window->simulation(), &SimulationHost::sceneReady);
-        while (ready.wait(800 * WISP_SLOW_BUILD_FACTOR)) {
-        }
+        while (ready.wait(800 * WISP_SLOW_BUILD_FACTOR)) { }
     }
     // Steps a paused simulation `count` times, as fast as it goes.
     void runSteps(int count)
@@ -135,7 +134,7 @@ protected:
     QPoint screenOf(const glm::vec3& p) const
     {
         const glm::vec2 s = window->viewport()->project(p);
-        return {static_cast<int>(std::lround(s.x)), static_cast<int>(std::lround(s.y))};
+        return { static_cast<int>(std::lround(s.x)), static_cast<int>(std::lround(s.y)) };
     }
     // Presses at the first point, moves through the others (in `steps` even moves between each
     // pair) and releases at the last: real mouse events on the viewport.
@@ -166,19 +165,19 @@ protected:
     // The right side of the head at height dy below its centre, just outside it.
     glm::vec3 rightSide(float dy, float dz = 0.0f) const
     {
-        return {box.max.x + 0.01f, box.center().y - dy, box.center().z + dz};
+        return { box.max.x + 0.01f, box.center().y - dy, box.center().z + dz };
     }
 
     std::unique_ptr<MainWindow> window;
     Aabb box;
 };
 
-}  // namespace
+} // namespace
 
 TEST_F(StylingTest, CutShortensTheStrandsTheStrokeCrossesThereAndUndoRestoresThem)
 {
     const float cutY = box.center().y - 0.10f;
-    look(90.0f, {box.center().x, cutY, box.center().z});  // from the right, the eye level with the cut
+    look(90.0f, { box.center().x, cutY, box.center().z }); // from the right, the eye level with the cut
     pick(Qt::Key_X, StyleBrush::Cut);
     const FramePtr before = frame();
     const Strands hanging = byIdentity(before);
@@ -188,17 +187,17 @@ TEST_F(StylingTest, CutShortensTheStrandsTheStrokeCrossesThereAndUndoRestoresThe
 
     // A horizontal snip across the hair that hangs at the right side, front to back.
     const float zFront = box.max.z + 0.02f, zBack = box.min.z - 0.02f;
-    stroke({{box.max.x + 0.05f, cutY, zFront}, {box.max.x + 0.05f, cutY, zBack}}, Qt::NoModifier, 20);
+    stroke({ { box.max.x + 0.05f, cutY, zFront }, { box.max.x + 0.05f, cutY, zBack } }, Qt::NoModifier, 20);
     EXPECT_EQ(document()->undoStack()->count(), undoBefore + 1) << "one stroke, one undo step";
     const FramePtr after = frame();
     const Strands restAfter = byIdentity(after, true);
 
     // Where each hanging strand crossed the cut's level (its first crossing from the root).
     const std::set<std::uint64_t> keys = keyIdentities(before);
-    std::map<std::uint64_t, std::uint64_t> keyOf;  // strand -> its wisp's key hair
+    std::map<std::uint64_t, std::uint64_t> keyOf; // strand -> its wisp's key hair
     for (std::size_t i = 0; i < before->groomShape->identities.size(); ++i)
-        keyOf[before->groomShape->identities[i]] =
-            before->groomShape->identities[before->groomShape->keyOfWisp[before->groomShape->wispOf[i]]];
+        keyOf[before->groomShape->identities[i]]
+            = before->groomShape->identities[before->groomShape->keyOfWisp[before->groomShape->wispOf[i]]];
     int cut = 0, kept = 0;
     for (const auto& [id, points] : hanging) {
         std::optional<float> crossing;
@@ -212,7 +211,7 @@ TEST_F(StylingTest, CutShortensTheStrandsTheStrokeCrossesThereAndUndoRestoresThe
                 const float t = a / (a - b);
                 crossing = arc + t * segment;
                 at = glm::mix(points[j - 1], points[j], t);
-                hangs = std::abs(a - b) > 0.7f * segment;  // not lying along the blade (along the jaw)
+                hangs = std::abs(a - b) > 0.7f * segment; // not lying along the blade (along the jaw)
             }
             arc += segment;
         }
@@ -220,12 +219,13 @@ TEST_F(StylingTest, CutShortensTheStrandsTheStrokeCrossesThereAndUndoRestoresThe
         const float lengthAfter = strandLength(restAfter.at(id));
         // X symmetry is on: the stroke also cuts, mirrored, the hair at the left side.
         const float side = std::abs(at.x - window->paintTool()->mirrorPlaneX());
-        const float margin = 0.25f * (zFront - zBack);  // the blade narrows toward the head: keep clear of its ends
-        if (crossing && hangs && *crossing < lengthBefore - 0.02f && side > 0.35f * box.size().x && at.z < zFront - margin &&
-            at.z > zBack + margin) {
+        const float margin = 0.25f * (zFront - zBack); // the blade narrows toward the head: keep clear of its ends
+        if (crossing && hangs && *crossing < lengthBefore - 0.02f && side > 0.35f * box.size().x
+            && at.z < zFront - margin && at.z > zBack + margin) {
             // Plainly in view at a side: cut where the stroke crossed it (a key hair exactly; a
             // member, which rides beside its key at an offset, about there).
-            EXPECT_NEAR(lengthAfter, *crossing, keys.count(id) ? 0.01f : 0.035f) << "strand " << id << " was " << lengthBefore << " crossing at " << at.x << " " << at.y << " " << at.z;
+            EXPECT_NEAR(lengthAfter, *crossing, keys.count(id) ? 0.01f : 0.035f)
+                << "strand " << id << " was " << lengthBefore << " crossing at " << at.x << " " << at.y << " " << at.z;
             EXPECT_LT(lengthAfter, lengthBefore - 0.01f) << "strand " << id;
             ++cut;
         } else if (!crossing && (keys.count(id) || !document()->style()->count(keyOf.at(id)))) {
@@ -259,7 +259,7 @@ TEST_F(StylingTest, CutShortensTheStrandsTheStrokeCrossesThereAndUndoRestoresThe
 TEST_F(StylingTest, CombedHairFollowsTheStrokeAndStaysAfterFiveHundredSteps)
 {
     const float combY = box.center().y - 0.08f;
-    look(90.0f, {box.center().x, combY, box.center().z});
+    look(90.0f, { box.center().x, combY, box.center().z });
     pick(Qt::Key_C, StyleBrush::Comb);
     const FramePtr before = frame();
     const Strands tipsBefore = byIdentity(before);
@@ -268,7 +268,7 @@ TEST_F(StylingTest, CombedHairFollowsTheStrokeAndStaysAfterFiveHundredSteps)
 
     // Comb the side hair backward (-z), 6 cm.
     const glm::vec3 from = rightSide(0.08f, 0.02f), to = rightSide(0.08f, -0.04f);
-    stroke({from + glm::vec3(0.04f, 0, 0), to + glm::vec3(0.04f, 0, 0)}, Qt::NoModifier, 12);
+    stroke({ from + glm::vec3(0.04f, 0, 0), to + glm::vec3(0.04f, 0, 0) }, Qt::NoModifier, 12);
     const StyleEdits& combed = *document()->style();
     ASSERT_GT(combed.size(), 3u) << "the comb caught no strand";
     for (const auto& [id, style] : combed)
@@ -292,7 +292,8 @@ TEST_F(StylingTest, CombedHairFollowsTheStrokeAndStaysAfterFiveHundredSteps)
     host->pause();
     QTest::qWait(50);
     const double shiftAfter = meanTipShiftZ(frame());
-    EXPECT_LT(shiftAfter, 0.7 * combedShift) << "the hair sagged back: combed " << combedShift << ", now " << shiftAfter;
+    EXPECT_LT(shiftAfter, 0.7 * combedShift)
+        << "the hair sagged back: combed " << combedShift << ", now " << shiftAfter;
     EXPECT_GT(shiftAfter, 1.5 * combedShift) << "the hair kept moving past the comb";
 
     undo();
@@ -302,7 +303,7 @@ TEST_F(StylingTest, CombedHairFollowsTheStrokeAndStaysAfterFiveHundredSteps)
 
 TEST_F(StylingTest, SprayedHairMovesLessInStrongWindThanUnsprayedHair)
 {
-    look(90.0f, {box.center().x, box.center().y - 0.05f, box.center().z});
+    look(90.0f, { box.center().x, box.center().y - 0.05f, box.center().z });
     pick(Qt::Key_S, StyleBrush::Hairspray);
     // One side only, full strength, set in the Brush panel as an artist does.
     window->brushPanel()->mirrorBox()->click();
@@ -316,7 +317,7 @@ TEST_F(StylingTest, SprayedHairMovesLessInStrongWindThanUnsprayedHair)
     window->viewport()->setFocus();
     const StyleEdits styleBefore = *document()->style();
     const Strands restBefore = byIdentity(frame(), true);
-    stroke({rightSide(0.06f, 0.025f) + glm::vec3(0.03f, 0, 0), rightSide(0.06f, -0.025f) + glm::vec3(0.03f, 0, 0)});
+    stroke({ rightSide(0.06f, 0.025f) + glm::vec3(0.03f, 0, 0), rightSide(0.06f, -0.025f) + glm::vec3(0.03f, 0, 0) });
     const StyleEdits sprayed = *document()->style();
     ASSERT_GT(sprayed.size(), 3u);
     double meanScale = 0.0;
@@ -334,12 +335,13 @@ TEST_F(StylingTest, SprayedHairMovesLessInStrongWindThanUnsprayedHair)
     runSteps(150);
     const Strands blown = byIdentity(frame());
     const Strands still = byIdentity(calm);
-    double moved[2] = {0, 0};
-    int count[2] = {0, 0};
+    double moved[2] = { 0, 0 };
+    int count[2] = { 0, 0 };
     for (const std::uint64_t id : keyIdentities(calm)) {
         const bool isSprayed = sprayed.count(id) > 0;
         // Only hair hanging at the right side, where the spray went, compares like with like.
-        if (still.at(id).back().x < box.center().x + 0.3f * box.size().x || still.at(id).back().y > box.center().y - 0.05f)
+        if (still.at(id).back().x < box.center().x + 0.3f * box.size().x
+            || still.at(id).back().y > box.center().y - 0.05f)
             continue;
         moved[isSprayed] += glm::distance(blown.at(id).back(), still.at(id).back());
         ++count[isSprayed];
@@ -351,24 +353,24 @@ TEST_F(StylingTest, SprayedHairMovesLessInStrongWindThanUnsprayedHair)
     EXPECT_LT(sprayedMoved, 0.5 * unsprayed);
 
     document()->editParameter(Param::WindSpeed, 0.0, false);
-    document()->undoStack()->undo();  // the wind
+    document()->undoStack()->undo(); // the wind
     document()->undoStack()->undo();
-    document()->undoStack()->undo();  // the azimuth
-    undo();                           // the spray, by its shortcut
+    document()->undoStack()->undo(); // the azimuth
+    undo(); // the spray, by its shortcut
     EXPECT_EQ(*document()->style(), styleBefore);
     EXPECT_TRUE(byIdentity(frame(), true) == restBefore) << "undo did not give back the exact groom";
 }
 
 TEST_F(StylingTest, WetWispsClumpAndSpreadAgainOnceDry)
 {
-    document()->editParameter(Param::DryingTime, 1.0, false);  // a one-second half-life
+    document()->editParameter(Param::DryingTime, 1.0, false); // a one-second half-life
     settle();
-    look(90.0f, {box.center().x, box.center().y - 0.05f, box.center().z});
+    look(90.0f, { box.center().x, box.center().y - 0.05f, box.center().z });
     pick(Qt::Key_W, StyleBrush::Wet);
     const FramePtr dry = frame();
     const StyleEdits styleBefore = *document()->style();
-    stroke({rightSide(0.0f, 0.06f) + glm::vec3(0.03f, 0, 0), rightSide(0.0f, -0.06f) + glm::vec3(0.03f, 0, 0),
-            rightSide(0.12f, -0.06f) + glm::vec3(0.03f, 0, 0)});
+    stroke({ rightSide(0.0f, 0.06f) + glm::vec3(0.03f, 0, 0), rightSide(0.0f, -0.06f) + glm::vec3(0.03f, 0, 0),
+        rightSide(0.12f, -0.06f) + glm::vec3(0.03f, 0, 0) });
     const StyleEdits wetted = *document()->style();
     ASSERT_GT(wetted.size(), 2u);
     const FramePtr wet = frame();
@@ -399,12 +401,12 @@ TEST_F(StylingTest, WetWispsClumpAndSpreadAgainOnceDry)
 
 TEST_F(StylingTest, PermGivesTheTouchedWispsTheSetCurlAndLeavesTheOthers)
 {
-    look(90.0f, {box.center().x, box.center().y - 0.05f, box.center().z});
+    look(90.0f, { box.center().x, box.center().y - 0.05f, box.center().z });
     pick(Qt::Key_P, StyleBrush::Curl);
     // The curl is typed into the panel as an artist does.
     QDoubleSpinBox* radius = window->stylePanel()->curlRadiusBox();
     QDoubleSpinBox* turns = window->stylePanel()->curlTurnsBox();
-    for (auto [box, text] : {std::pair{radius, QStringLiteral("8")}, std::pair{turns, QStringLiteral("12")}}) {
+    for (auto [box, text] : { std::pair{ radius, QStringLiteral("8") }, std::pair{ turns, QStringLiteral("12") } }) {
         box->setFocus();
         QTest::keyClick(box, Qt::Key_A, Qt::ControlModifier);
         QTest::keyClicks(box, text);
@@ -417,7 +419,7 @@ TEST_F(StylingTest, PermGivesTheTouchedWispsTheSetCurlAndLeavesTheOthers)
     const FramePtr before = frame();
     const Strands restBefore = byIdentity(before, true);
     const StyleEdits styleBefore = *document()->style();
-    stroke({rightSide(0.02f, 0.05f) + glm::vec3(0.03f, 0, 0), rightSide(0.02f, -0.05f) + glm::vec3(0.03f, 0, 0)});
+    stroke({ rightSide(0.02f, 0.05f) + glm::vec3(0.03f, 0, 0), rightSide(0.02f, -0.05f) + glm::vec3(0.03f, 0, 0) });
     const StyleEdits permed = *document()->style();
     ASSERT_GT(permed.size(), 2u);
     const FramePtr after = frame();
@@ -433,8 +435,8 @@ TEST_F(StylingTest, PermGivesTheTouchedWispsTheSetCurlAndLeavesTheOthers)
             // The period: the strand winds about its own centre line 12 times per metre. The centre
             // line is the running mean over one period; the winding is summed turn by turn.
             const float length = strandLength(rest);
-            const std::size_t window = std::max<std::size_t>(3, static_cast<std::size_t>(std::lround(
-                                                                    (rest.size() - 1) / (12.0f * length))));
+            const std::size_t window
+                = std::max<std::size_t>(3, static_cast<std::size_t>(std::lround((rest.size() - 1) / (12.0f * length))));
             double angle = 0.0;
             glm::vec3 previous(0.0f);
             for (std::size_t j = window / 2; j + window / 2 < rest.size(); ++j) {
@@ -446,7 +448,8 @@ TEST_F(StylingTest, PermGivesTheTouchedWispsTheSetCurlAndLeavesTheOthers)
                 glm::vec3 offset = rest[j] - centre;
                 offset -= glm::dot(offset, tangent) * tangent;
                 if (glm::length(previous) > 0.0f && glm::length(offset) > 1e-4f)
-                    angle += std::acos(std::clamp(glm::dot(glm::normalize(previous), glm::normalize(offset)), -1.0f, 1.0f));
+                    angle += std::acos(
+                        std::clamp(glm::dot(glm::normalize(previous), glm::normalize(offset)), -1.0f, 1.0f));
                 if (glm::length(offset) > 1e-4f)
                     previous = offset;
             }
@@ -468,20 +471,20 @@ TEST_F(StylingTest, PermGivesTheTouchedWispsTheSetCurlAndLeavesTheOthers)
 
 TEST_F(StylingTest, TheDryerBlowsTheHairInItsConeAwayFromTheCursorAndDriesIt)
 {
-    document()->editParameter(Param::DryingTime, 3600.0, false);  // no drying but the dryer's
+    document()->editParameter(Param::DryingTime, 3600.0, false); // no drying but the dryer's
     settle();
     // Wet the right side first.
-    look(90.0f, {box.center().x, box.center().y - 0.05f, box.center().z});
+    look(90.0f, { box.center().x, box.center().y - 0.05f, box.center().z });
     pick(Qt::Key_W, StyleBrush::Wet);
-    stroke({rightSide(-0.02f, 0.08f) + glm::vec3(0.03f, 0, 0), rightSide(-0.02f, -0.08f) + glm::vec3(0.03f, 0, 0),
-            rightSide(0.12f, -0.08f) + glm::vec3(0.03f, 0, 0), rightSide(0.12f, 0.08f) + glm::vec3(0.03f, 0, 0)});
+    stroke({ rightSide(-0.02f, 0.08f) + glm::vec3(0.03f, 0, 0), rightSide(-0.02f, -0.08f) + glm::vec3(0.03f, 0, 0),
+        rightSide(0.12f, -0.08f) + glm::vec3(0.03f, 0, 0), rightSide(0.12f, 0.08f) + glm::vec3(0.03f, 0, 0) });
     const StyleEdits wetStyle = *document()->style();
     ASSERT_GT(wetStyle.size(), 3u);
-    runSteps(120);  // wet hair is softer: let it settle
+    runSteps(120); // wet hair is softer: let it settle
 
     // From the front, aim the dryer at the hair beside the right cheek: the air blows backward.
-    const glm::vec3 aim{box.center().x + 0.25f * box.size().x, box.center().y - 0.03f, box.center().z};  // the cheek
-    look(0.0f, {box.center().x, aim.y, box.center().z}, 0.8f);
+    const glm::vec3 aim{ box.center().x + 0.25f * box.size().x, box.center().y - 0.03f, box.center().z }; // the cheek
+    look(0.0f, { box.center().x, aim.y, box.center().z }, 0.8f);
     pick(Qt::Key_D, StyleBrush::BlowDry);
     const FramePtr calm = frame();
     const int undoBefore = document()->undoStack()->count();
@@ -508,35 +511,36 @@ TEST_F(StylingTest, TheDryerBlowsTheHairInItsConeAwayFromTheCursorAndDriesIt)
     const float hitDepth = glm::dot(hit->point - view->rayAt(at).origin, axis);
     dryer.nozzle = view->rayAt(at).origin + axis * (hitDepth - kDryerDistanceMetres);
     const TriangleMesh& head = document()->head();
-    const float extent = std::max({box.size().x, box.size().y, box.size().z});
+    const float extent = std::max({ box.size().x, box.size().y, box.size().z });
     const SignedDistanceField field = SignedDistanceField::bake(head, extent / 96.0f, 0.1f * extent + 0.01f);
     HairDryer mirror = dryer;
     mirror.nozzle = mirroredPoint(dryer.nozzle, window->paintTool()->mirrorPlaneX());
     mirror.direction = mirroredDirection(dryer.direction);
     const Strands still = byIdentity(calm), moved = byIdentity(blown);
     const GroomShape& g = *calm->groomShape;
-    double along[2] = {0, 0}, wetness[2] = {0, 0};
-    int count[2] = {0, 0}, mirrored = 0;
+    double along[2] = { 0, 0 }, wetness[2] = { 0, 0 };
+    int count[2] = { 0, 0 }, mirrored = 0;
     for (std::uint32_t w = 0; w < g.keyOfWisp.size(); ++w) {
         const std::uint32_t key = g.keyOfWisp[w];
         const std::uint64_t id = g.identities[key];
         const auto& strand = still.at(id);
-        float air[2] = {0.0f, 0.0f}, anyAir = 0.0f;
+        float air[2] = { 0.0f, 0.0f }, anyAir = 0.0f;
         for (int d = 0; d < 2; ++d) {
             const HairDryer& one = d == 0 ? dryer : mirror;
             for (std::size_t j = strand.size() / 2; j < strand.size(); ++j)
-                air[d] += glm::length(dryerAirAt(one, strand[j], &field)) / static_cast<float>(strand.size() - strand.size() / 2);
+                air[d] += glm::length(dryerAirAt(one, strand[j], &field))
+                    / static_cast<float>(strand.size() - strand.size() / 2);
             for (const glm::vec3& p : strand)
                 anyAir = std::max(anyAir, glm::length(dryerAirAt(one, p, &field)));
         }
         const int which = air[1] > air[0] ? 1 : 0;
         if (air[which] < 1.0f && anyAir > 0.3f)
-            continue;  // a cone's edge (outside: no more than a breath of air anywhere on it)
+            continue; // a cone's edge (outside: no more than a breath of air anywhere on it)
         const bool inCone = air[which] >= 1.0f;
         mirrored += inCone && which == 1;
         along[inCone] += glm::dot(moved.at(id).back() - strand.back(), (which == 0 ? dryer : mirror).direction);
         ++count[inCone];
-        if (inCone && wetStyle.count(id)) {  // how wet it is now, of how wet the brush made it
+        if (inCone && wetStyle.count(id)) { // how wet it is now, of how wet the brush made it
             wetness[0] += wetStyle.at(id).wetness;
             wetness[1] += blown->wetness.empty() ? 0.0 : blown->wetness[key];
         }
@@ -558,11 +562,11 @@ TEST_F(StylingTest, TheDryerBlowsTheHairInItsConeAwayFromTheCursorAndDriesIt)
 
 TEST_F(StylingTest, GrowAndShrinkChangeTheLengthUnderTheBrushAndToolsAreExclusive)
 {
-    look(90.0f, {box.center().x, box.center().y - 0.05f, box.center().z});
+    look(90.0f, { box.center().x, box.center().y - 0.05f, box.center().z });
     pick(Qt::Key_G, StyleBrush::Length);
     const Strands restBefore = byIdentity(frame(), true);
     QSignalSpy said(window->statusBar(), &QStatusBar::messageChanged);
-    stroke({rightSide(0.05f, 0.05f) + glm::vec3(0.03f, 0, 0), rightSide(0.05f, -0.05f) + glm::vec3(0.03f, 0, 0)});
+    stroke({ rightSide(0.05f, 0.05f) + glm::vec3(0.03f, 0, 0), rightSide(0.05f, -0.05f) + glm::vec3(0.03f, 0, 0) });
     const StyleEdits grown = *document()->style();
     ASSERT_GT(grown.size(), 3u);
     // The status bar said what the stroke did (a slow build may have cleared it again since).
@@ -576,7 +580,7 @@ TEST_F(StylingTest, GrowAndShrinkChangeTheLengthUnderTheBrushAndToolsAreExclusiv
     int grownKeys = 0;
     for (const auto& [id, style] : grown) {
         if (!keys.count(id))
-            continue;  // members ride beside their keys: their drawn length follows the key's
+            continue; // members ride beside their keys: their drawn length follows the key's
         EXPECT_NEAR(strandLength(restGrown.at(id)), style.lengthMetres, 0.001f) << id;
         EXPECT_GT(strandLength(restGrown.at(id)), strandLength(restBefore.at(id))) << id;
         grownBy += strandLength(restGrown.at(id)) - strandLength(restBefore.at(id));
@@ -585,8 +589,8 @@ TEST_F(StylingTest, GrowAndShrinkChangeTheLengthUnderTheBrushAndToolsAreExclusiv
     ASSERT_GT(grownKeys, 2);
     EXPECT_GT(grownBy / grownKeys, 0.005) << "a stroke grew the hair by less than 5 mm";
     // Ctrl shrinks, on the same hair.
-    stroke({rightSide(0.05f, 0.05f) + glm::vec3(0.03f, 0, 0), rightSide(0.05f, -0.05f) + glm::vec3(0.03f, 0, 0)},
-           Qt::ControlModifier);
+    stroke({ rightSide(0.05f, 0.05f) + glm::vec3(0.03f, 0, 0), rightSide(0.05f, -0.05f) + glm::vec3(0.03f, 0, 0) },
+        Qt::ControlModifier);
     const Strands restShrunk = byIdentity(frame(), true);
     int shorter = 0;
     for (const auto& [id, style] : *document()->style())
@@ -614,12 +618,13 @@ TEST_F(StylingTest, GrowAndShrinkChangeTheLengthUnderTheBrushAndToolsAreExclusiv
 
 TEST_F(StylingTest, EditsComeBackWithTheProjectAndPresetsLeaveThem)
 {
-    look(90.0f, {box.center().x, box.center().y - 0.08f, box.center().z});
+    look(90.0f, { box.center().x, box.center().y - 0.08f, box.center().z });
     pick(Qt::Key_X, StyleBrush::Cut);
-    stroke({{box.max.x + 0.05f, box.center().y - 0.08f, box.max.z}, {box.max.x + 0.05f, box.center().y - 0.08f, box.min.z}},
-           Qt::NoModifier, 16);
+    stroke({ { box.max.x + 0.05f, box.center().y - 0.08f, box.max.z },
+               { box.max.x + 0.05f, box.center().y - 0.08f, box.min.z } },
+        Qt::NoModifier, 16);
     pick(Qt::Key_P, StyleBrush::Curl);
-    stroke({rightSide(0.0f, 0.05f) + glm::vec3(0.03f, 0, 0), rightSide(0.0f, -0.05f) + glm::vec3(0.03f, 0, 0)});
+    stroke({ rightSide(0.0f, 0.05f) + glm::vec3(0.03f, 0, 0), rightSide(0.0f, -0.05f) + glm::vec3(0.03f, 0, 0) });
     const StyleEdits styled = *document()->style();
     ASSERT_GT(styled.size(), 10u);
     const Strands rest = byIdentity(frame(), true);
@@ -659,7 +664,7 @@ TEST_F(StylingTest, AStrokeNeverLeavesAnEditTheProjectFileWouldRefuse)
 {
     const std::uint64_t id = frame()->groomShape->identities[0];
     document()->beginStyleStroke();
-    document()->strokeStyle()[id].wetness = 3.0f;  // what no tool should make
+    document()->strokeStyle()[id].wetness = 3.0f; // what no tool should make
     document()->strokeStyle()[id + 1].lengthMetres = 0.1f;
     document()->styleStrokeUpdated();
     EXPECT_EQ(document()->endStyleStroke(QStringLiteral("Test")), 1);
@@ -686,15 +691,15 @@ TEST_F(StylingTest, CutThenCurlyPresetLeavesNoStrandStickingOut)
     ASSERT_TRUE(wisp::test::waitUntil([&] { return frame()->groomVersion > groomBefore; }));
     settle();
     ASSERT_FALSE(host->isPlaying());
-    runSteps(150);  // hanging
+    runSteps(150); // hanging
 
     // The cut: from the front, a horizontal stroke across the face at eyebrow height (the brow
     // ridge of the built-in head), both sides (X symmetry).
     const float browY = box.min.y + 0.62f * box.size().y;
-    look(0.0f, {box.center().x, browY, box.center().z}, 0.6f);
+    look(0.0f, { box.center().x, browY, box.center().z }, 0.6f);
     pick(Qt::Key_X, StyleBrush::Cut);
     const float zFront = box.max.z + 0.03f;
-    stroke({{box.min.x - 0.04f, browY, zFront}, {box.max.x + 0.04f, browY, zFront}}, Qt::NoModifier, 24);
+    stroke({ { box.min.x - 0.04f, browY, zFront }, { box.max.x + 0.04f, browY, zFront } }, Qt::NoModifier, 24);
     const StyleEdits cut = *document()->style();
     ASSERT_GT(cut.size(), 20u) << "the stroke cut almost nothing: the test proves nothing";
 
@@ -741,7 +746,8 @@ TEST_F(StylingTest, CutThenCurlyPresetLeavesNoStrandStickingOut)
             reach = std::max(reach, glm::distance(p, s.front()));
         if (reach > allowed) {
             if (tooFar < 5)
-                ADD_FAILURE() << "strand " << i << " (length " << g.lengths[i] << ") reaches " << reach << " m from its root";
+                ADD_FAILURE() << "strand " << i << " (length " << g.lengths[i] << ") reaches " << reach
+                              << " m from its root";
             ++tooFar;
         }
         worstReach = std::max(worstReach, reach - allowed);
@@ -762,8 +768,8 @@ TEST_F(StylingTest, CutThenCurlyPresetLeavesNoStrandStickingOut)
             // but no shorter than the helix's axis: 1 / sqrt(1 + (2 pi r T)^2) = 0.66 of it for Curly.
             ++keysMeasured;
             const float restLength = strandLength(g.rest.strand(i));
-            if (std::abs(strandLength(s) - restLength) > 0.01f * restLength + 1e-4f ||
-                restLength > g.lengths[i] * 1.001f || restLength < 0.65f * g.lengths[i]) {
+            if (std::abs(strandLength(s) - restLength) > 0.01f * restLength + 1e-4f
+                || restLength > g.lengths[i] * 1.001f || restLength < 0.65f * g.lengths[i]) {
                 ++wrongLength;
             }
             const auto edit = cut.find(g.identities[i]);
@@ -774,7 +780,8 @@ TEST_F(StylingTest, CutThenCurlyPresetLeavesNoStrandStickingOut)
         }
         // No member is longer than its key by more than the groom's length variation allows.
         if (i != key) {
-            EXPECT_LE(g.lengths[i], g.lengths[key] * 1.5f + 1e-4f) << "member " << i << " of a key " << g.lengths[key] << " long";
+            EXPECT_LE(g.lengths[i], g.lengths[key] * 1.5f + 1e-4f)
+                << "member " << i << " of a key " << g.lengths[key] << " long";
         }
     }
     EXPECT_EQ(tooFar, 0) << "worst by " << worstReach << " m";
@@ -790,7 +797,7 @@ TEST_F(StylingTest, TheCombCatchesTheStrandsItsRingCovers)
 {
     window->paintTool()->setMirror(false);
     const float combY = box.center().y - 0.06f;
-    look(90.0f, {box.center().x, combY, box.center().z});
+    look(90.0f, { box.center().x, combY, box.center().z });
     pick(Qt::Key_C, StyleBrush::Comb);
     const FramePtr before = frame();
     const GroomShape& shape = *before->groomShape;
@@ -818,7 +825,7 @@ TEST_F(StylingTest, TheCombCatchesTheStrandsItsRingCovers)
     ASSERT_GE(under.size(), 20u) << "too little hair under the ring: the test proves nothing";
 
     QSignalSpy said(window->statusBar(), &QStatusBar::messageChanged);
-    stroke({from, to}, Qt::NoModifier, 6);
+    stroke({ from, to }, Qt::NoModifier, 6);
     // Caught: the strands whose wisp's key hair the comb moved (members follow their key).
     std::set<std::uint64_t> combedKeys;
     for (const auto& [id, style] : *document()->style())
@@ -845,11 +852,11 @@ TEST_F(StylingTest, TheCombCatchesTheStrandsItsRingCovers)
 // Before: a stroke that changed nothing left its warning on the status bar through the next stroke.
 TEST_F(StylingTest, ANewStrokeClearsTheLastStrokesWarning)
 {
-    look(90.0f, {box.center().x, box.center().y - 0.05f, box.center().z});
+    look(90.0f, { box.center().x, box.center().y - 0.05f, box.center().z });
     pick(Qt::Key_X, StyleBrush::Cut);
     // Far above the head: nothing to cut.
-    stroke({glm::vec3(box.max.x + 0.05f, box.max.y + 0.15f, box.center().z + 0.05f),
-            glm::vec3(box.max.x + 0.05f, box.max.y + 0.15f, box.center().z - 0.05f)});
+    stroke({ glm::vec3(box.max.x + 0.05f, box.max.y + 0.15f, box.center().z + 0.05f),
+        glm::vec3(box.max.x + 0.05f, box.max.y + 0.15f, box.center().z - 0.05f) });
     ASSERT_EQ(window->statusBar()->currentMessage(), QStringLiteral("Cut: no strand under the brush changed"));
     pick(Qt::Key_W, StyleBrush::Wet);
     Viewport* view = window->viewport();
@@ -864,8 +871,8 @@ TEST_F(StylingTest, ANewStrokeClearsTheLastStrokesWarning)
 
 TEST_F(StylingTest, TheDryerBlowsFromTheEyeTowardTheSurfaceAndShowsItsCone)
 {
-    const glm::vec3 aim{box.center().x + 0.25f * box.size().x, box.center().y - 0.03f, box.center().z};
-    look(0.0f, {box.center().x, aim.y, box.center().z}, 0.8f);
+    const glm::vec3 aim{ box.center().x + 0.25f * box.size().x, box.center().y - 0.03f, box.center().z };
+    look(0.0f, { box.center().x, aim.y, box.center().z }, 0.8f);
     pick(Qt::Key_D, StyleBrush::BlowDry);
     Viewport* view = window->viewport();
     const QPoint at = screenOf(aim);
@@ -881,8 +888,8 @@ TEST_F(StylingTest, TheDryerBlowsFromTheEyeTowardTheSurfaceAndShowsItsCone)
     EXPECT_NEAR(glm::distance(cursor.dryerNozzle, hit->point), kDryerDistanceMetres, 1e-4f);
     EXPECT_LT(glm::distance(cursor.dryerNozzle, ray.origin), hitDepth);
     EXPECT_GT(cursor.radiusMetres, 0.02f);
-    const std::vector<GuideVertex> cone =
-        buildDryerCone(cursor.dryerNozzle, cursor.centre, cursor.dryerHalfAngleRadians, 0.002f, 1.0f);
+    const std::vector<GuideVertex> cone
+        = buildDryerCone(cursor.dryerNozzle, cursor.centre, cursor.dryerHalfAngleRadians, 0.002f, 1.0f);
     EXPECT_FALSE(cone.empty());
 
     QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, at);
@@ -890,7 +897,8 @@ TEST_F(StylingTest, TheDryerBlowsFromTheEyeTowardTheSurfaceAndShowsItsCone)
     ASSERT_FALSE(dryers.empty()) << "no dryer blows while the button is held";
     const HairDryer& dryer = dryers.front();
     const glm::vec3 eyeToSurface = glm::normalize(hit->point - ray.origin);
-    EXPECT_GT(glm::dot(dryer.direction, eyeToSurface), 0.9999f) << "the dryer does not blow from the eye at the surface";
+    EXPECT_GT(glm::dot(dryer.direction, eyeToSurface), 0.9999f)
+        << "the dryer does not blow from the eye at the surface";
     EXPECT_LT(glm::dot(dryer.direction, hit->normal), 0.0f) << "the dryer blows away from the surface";
     // The air reaches the aimed point, on the axis, at speed.
     EXPECT_GT(glm::length(dryerAirAt(dryer, hit->point)), 5.0f);

@@ -1,14 +1,14 @@
 // The 3D viewport, checked on its pixels: the real widget on a real GL context (Mesa llvmpipe under
 // Xvfb in CI), the default head, and hand-made strands at known places, located in the image by
 // projecting them with the viewport's own camera.
-#include "GuiTestSupport.h"
 #include "widgets/Viewport.h"
+#include "GuiTestSupport.h"
 #include "sim/geometry/Body.h"
 #include "sim/geometry/DefaultHead.h"
-#include "sim/solver/HairSimulation.h"
+#include "sim/geometry/MeshBvh.h"
 #include "sim/params/Parameters.h"
 #include "sim/solver/Frame.h"
-#include "sim/geometry/MeshBvh.h"
+#include "sim/solver/HairSimulation.h"
 #include "widgets/GuideGeometry.h"
 #include "widgets/HairDetail.h"
 #include "widgets/HairStripLayout.h"
@@ -859,7 +859,8 @@ TEST_F(ViewportTest, AThinStrandStaysAContinuousLineWhileTheViewOrbits)
         for (int s = 0; s <= 60; ++s) {
             const glm::vec2 p = viewport->project(glm::mix(top, bottom, 0.05f + 0.45f * static_cast<float>(s) / 60.0f));
             const QColor background = Viewport::backgroundColour((p.y + 0.5) / image.height());
-            const int touched = countPixels(image, [&](QColor c) { return !near(c, background, 10); }, around(p, 1));
+            const int touched = countPixels(
+                image, [&](QColor c) { return !near(c, background, 10); }, around(p, 1));
             ++samples;
             gaps += touched > 0 ? 0 : 1;
             // The strand's ink in the 3x3 pixels around the sample (green over the background: the
@@ -1168,7 +1169,7 @@ TEST_F(ViewportTest, OverlayBrushAndLooksSurviveANewContext)
 struct PaintRun {
     int paints = 0;
     double drawnFractionSum = 0.0;
-    int fullPaints = 0;  // paints that drew every strand
+    int fullPaints = 0; // paints that drew every strand
     double seconds = 0.0;
     double perSecond() const { return seconds > 0.0 ? paints / seconds : 0.0; }
     double meanDrawnFraction() const { return paints > 0 ? drawnFractionSum / paints : 0.0; }
@@ -1190,7 +1191,7 @@ PaintRun paintFrames(Viewport& viewport, const std::vector<FramePtr>& frames, in
     feeder.start();
     while (run.paints < paints && timer.elapsed() < wisp::test::kWaitMs) {
         QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-        if (viewport.paintCount() != seen) {  // one look per paint or more: the last paint's share
+        if (viewport.paintCount() != seen) { // one look per paint or more: the last paint's share
             run.paints += static_cast<int>(viewport.paintCount() - seen);
             seen = viewport.paintCount();
             run.drawnFractionSum += viewport.lastDrawnFraction();
@@ -1331,7 +1332,8 @@ TEST_F(ViewportTest, ShadowsDarkenTheHairAndTheSkinUnderIt)
     int underHairDarker = 0;
     for (int y = 40; y < on.height(); ++y)
         for (int x = 110; x < on.width(); ++x)
-            if (isSkin(bare.pixelColor(x, y)) && isSkin(off.pixelColor(x, y)) && off.pixelColor(x, y) == bare.pixelColor(x, y)) {
+            if (isSkin(bare.pixelColor(x, y)) && isSkin(off.pixelColor(x, y))
+                && off.pixelColor(x, y) == bare.pixelColor(x, y)) {
                 ++underHair;
                 underHairDarker += luminance(on.pixelColor(x, y)) < 0.9 * luminance(bare.pixelColor(x, y)) ? 1 : 0;
             }

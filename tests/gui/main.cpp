@@ -27,5 +27,8 @@ int main(int argc, char** argv)
 // Qt's D-Bus link and Mesa's driver (unloaded at exit, so its frames have no symbols) leave a few
 // allocations LeakSanitizer cannot attribute or suppress by name; GUI test processes run without
 // leak detection. The sim, io and CLI tests keep it. ASAN_OPTIONS in the environment still wins.
-extern "C" const char* __asan_default_options() { return "detect_leaks=0"; }
+extern "C" const char* __asan_default_options()
+{
+    return "detect_leaks=0";
+}
 #endif

@@ -23,18 +23,18 @@ ParameterValues longHair(bool body)
     v.set(Param::Density, 1.0);
     v.set(Param::Length, 0.5);
     v.set(Param::Segments, 30);
-    v.set(Param::SimulateAllStrands, 1);  // every strand a chain of particles
+    v.set(Param::SimulateAllStrands, 1); // every strand a chain of particles
     v.set(Param::Body, body ? 1 : 0);
     return v;
 }
 
 struct Settled {
     std::size_t strands = 0;
-    float deepest = 0.0f;         // the deepest any particle is inside a capsule, metres (0: none)
-    std::size_t inside = 0;       // particles more than 1 mm inside a capsule
-    std::size_t onShoulders = 0;  // strands lying on a shoulder: a particle within 3 mm of its upper surface
-    std::size_t tipsBelow = 0;    // of those, tips below the shoulders' lower side
-    float meanTipY = 0.0f;        // metres
+    float deepest = 0.0f; // the deepest any particle is inside a capsule, metres (0: none)
+    std::size_t inside = 0; // particles more than 1 mm inside a capsule
+    std::size_t onShoulders = 0; // strands lying on a shoulder: a particle within 3 mm of its upper surface
+    std::size_t tipsBelow = 0; // of those, tips below the shoulders' lower side
+    float meanTipY = 0.0f; // metres
 };
 
 // Above the capsule's axis, within 60° of straight up from it: where hair lies on a shoulder.
@@ -49,14 +49,14 @@ bool onUpperSide(const Capsule& c, const glm::vec3& p)
 Settled settle(bool bodyOn, const std::vector<Capsule>& body)
 {
     auto sim = makeSimulation(longHair(bodyOn));
-    run(*sim, 600);  // 10 s
+    run(*sim, 600); // 10 s
     std::vector<glm::vec3> p;
     sim->copySimulated(p);
     const HairCurves& layout = sim->groom().rest;
     Settled s;
     s.strands = layout.strandCount();
-    const float shoulderBottom = std::min(body[kBodyLeftShoulder].b.y, body[kBodyLeftShoulder].a.y) -
-                                 body[kBodyLeftShoulder].radiusMetres;
+    const float shoulderBottom
+        = std::min(body[kBodyLeftShoulder].b.y, body[kBodyLeftShoulder].a.y) - body[kBodyLeftShoulder].radiusMetres;
     for (std::size_t i = 0; i < layout.strandCount(); ++i) {
         bool touches = false;
         for (std::uint32_t j = layout.offsets[i]; j < layout.offsets[i + 1]; ++j) {
@@ -75,14 +75,15 @@ Settled settle(bool bodyOn, const std::vector<Capsule>& body)
             s.tipsBelow += tip.y < shoulderBottom;
         }
     }
-    std::printf("body %s: %zu strands; deepest inside a capsule %.4f m, particles inside %zu; strands on the shoulders %zu, "
-                "their tips below the shoulders %zu; mean tip height %.3f m (shoulders' lower side %.3f m)\n",
-                bodyOn ? "on" : "off", layout.strandCount(), s.deepest, s.inside, s.onShoulders, s.tipsBelow, s.meanTipY,
-                shoulderBottom);
+    std::printf(
+        "body %s: %zu strands; deepest inside a capsule %.4f m, particles inside %zu; strands on the shoulders %zu, "
+        "their tips below the shoulders %zu; mean tip height %.3f m (shoulders' lower side %.3f m)\n",
+        bodyOn ? "on" : "off", layout.strandCount(), s.deepest, s.inside, s.onShoulders, s.tipsBelow, s.meanTipY,
+        shoulderBottom);
     return s;
 }
 
-}  // namespace
+} // namespace
 
 TEST(Body, DefaultBodySitsUnderTheBuiltInHead)
 {
@@ -90,11 +91,12 @@ TEST(Body, DefaultBodySitsUnderTheBuiltInHead)
     ASSERT_EQ(body.size(), 4u);
     const Aabb head = boundsOf(defaultHead().mesh);
     // The shoulders are below the chin and wider than the head; the neck is under it.
-    for (std::size_t c : {kBodyLeftShoulder, kBodyRightShoulder})
+    for (std::size_t c : { kBodyLeftShoulder, kBodyRightShoulder })
         EXPECT_LT(std::max(body[c].a.y, body[c].b.y) + body[c].radiusMetres, head.min.y + 0.01f);
     EXPECT_LT(body[kBodyLeftShoulder].b.x - body[kBodyLeftShoulder].radiusMetres, head.min.x);
     EXPECT_GT(body[kBodyRightShoulder].b.x + body[kBodyRightShoulder].radiusMetres, head.max.x);
-    const float across = body[kBodyRightShoulder].b.x - body[kBodyLeftShoulder].b.x + 2.0f * body[kBodyRightShoulder].radiusMetres;
+    const float across
+        = body[kBodyRightShoulder].b.x - body[kBodyLeftShoulder].b.x + 2.0f * body[kBodyRightShoulder].radiusMetres;
     EXPECT_GT(across, 0.36f);
     EXPECT_LT(across, 0.46f);
 }
@@ -104,7 +106,7 @@ TEST(Body, LongHairRestsOnTheShouldersWithoutEnteringThemAndPassesThroughWithout
     const std::vector<Capsule> body = defaultBody(defaultHead().mesh);
     const Settled on = settle(true, body);
     const Settled off = settle(false, body);
-    EXPECT_EQ(on.inside, 0u) << "deepest " << on.deepest;  // none more than 1 mm inside a capsule
+    EXPECT_EQ(on.inside, 0u) << "deepest " << on.deepest; // none more than 1 mm inside a capsule
     EXPECT_LT(on.deepest, 0.001f);
     // Without the body the same hair falls through where it would be.
     EXPECT_GT(off.inside, 1000u);

@@ -54,7 +54,7 @@ double measuredTurnsPerMetre(std::span<const glm::vec3> p, int window, float fro
         const glm::vec3 t = glm::normalize(centre[j + 1] - centre[j - 1]);
         if (j == first) {
             e = glm::normalize(glm::cross(t, std::abs(t.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
-        } else {  // parallel transport: remove the new tangent's part, keep unit length
+        } else { // parallel transport: remove the new tangent's part, keep unit length
             e = glm::normalize(e - t * glm::dot(e, t));
         }
         const glm::vec3 o = p[j] - centre[j];
@@ -78,7 +78,7 @@ Groom curlyGroom(double radius, double turns)
     v.set(Param::Density, 0.5);
     v.set(Param::Length, 0.5);
     v.set(Param::LengthVariation, 0.0);
-    v.set(Param::Segments, 120);  // 4.2 mm segments
+    v.set(Param::Segments, 120); // 4.2 mm segments
     v.set(Param::CurlRadius, radius);
     v.set(Param::CurlTurns, turns);
     GroomResult groom = buildGroom(defaultHead().mesh, defaultHead().growthWeights, groomSettingsFrom(v));
@@ -86,7 +86,7 @@ Groom curlyGroom(double radius, double turns)
     return std::move(groom.groom);
 }
 
-}  // namespace
+} // namespace
 
 TEST(Curl, TurnsAreCountedPerMetreOfHairAndTheArcLengthIsTheLength)
 {
@@ -107,8 +107,8 @@ TEST(Curl, TurnsBeyondTheTightestCoilOfTheRadiusAreClampedToIt)
     const CurlHelix h = curlHelix(0.5f, 120, 0.02f, 10.0f);
     EXPECT_TRUE(h.clamped);
     EXPECT_NEAR(h.turnsPerMetre, kMaxCurlWrap / (glm::two_pi<float>() * 0.02f), 1e-4f);
-    EXPECT_NEAR(h.pitchMetres, std::sqrt(1.0f / (h.turnsPerMetre * h.turnsPerMetre) - std::pow(0.04f * glm::pi<float>(), 2.0f)),
-                1e-5f);
+    EXPECT_NEAR(h.pitchMetres,
+        std::sqrt(1.0f / (h.turnsPerMetre * h.turnsPerMetre) - std::pow(0.04f * glm::pi<float>(), 2.0f)), 1e-5f);
     const CurlHelix loose = curlHelix(0.5f, 120, 0.01f, 6.0f);
     EXPECT_FALSE(loose.clamped);
     EXPECT_FLOAT_EQ(loose.turnsPerMetre, 6.0f);

@@ -1,7 +1,7 @@
 #include "sim/geometry/DefaultHead.h"
 
-#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
@@ -54,10 +54,10 @@ TEST(DefaultHead, IsClosedManifoldAndConsistentlyOriented)
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
     for (const glm::uvec3& t : mesh.triangles)
         for (int k = 0; k < 3; ++k)
-            ++directed[{t[k], t[(k + 1) % 3]}];
+            ++directed[{ t[k], t[(k + 1) % 3] }];
     std::size_t wrong = 0;
     for (const auto& [edge, count] : directed)
-        if (count != 1 || directed.count({edge.second, edge.first}) != 1)
+        if (count != 1 || directed.count({ edge.second, edge.first }) != 1)
             ++wrong;
     EXPECT_EQ(wrong, 0u);
 
@@ -69,7 +69,7 @@ TEST(DefaultHead, IsClosedManifoldAndConsistentlyOriented)
     std::size_t pinched = 0;
     for (const auto& next : fan) {
         if (next.empty()) {
-            ++pinched;  // an unused vertex
+            ++pinched; // an unused vertex
             continue;
         }
         const std::uint32_t start = next.begin()->first;
@@ -108,7 +108,7 @@ TEST(DefaultHead, HasNoDegenerateTriangles)
     for (std::uint32_t t = 0; t < mesh.triangleCount(); ++t) {
         const glm::uvec3 tri = mesh.triangles[t];
         ASSERT_TRUE(tri.x != tri.y && tri.y != tri.z && tri.z != tri.x) << "triangle " << t;
-        ASSERT_GT(triangleArea(mesh, t), 1e-8f) << "triangle " << t;  // cells are ~1.4e-5 m²
+        ASSERT_GT(triangleArea(mesh, t), 1e-8f) << "triangle " << t; // cells are ~1.4e-5 m²
     }
 }
 
@@ -116,12 +116,12 @@ TEST(DefaultHead, HasHumanProportions)
 {
     const TriangleMesh& mesh = head().mesh;
     const Aabb box = boundsOf(mesh);
-    EXPECT_GT(box.max.y, 0.11f);  // crown
+    EXPECT_GT(box.max.y, 0.11f); // crown
     EXPECT_LT(box.max.y, 0.13f);
     const float chin = chinY(mesh);
-    EXPECT_GT(box.max.y - chin, 0.22f);  // chin to crown
+    EXPECT_GT(box.max.y - chin, 0.22f); // chin to crown
     EXPECT_LT(box.max.y - chin, 0.245f);
-    EXPECT_GT(chin - box.min.y, 0.08f);  // the neck below the chin
+    EXPECT_GT(chin - box.min.y, 0.08f); // the neck below the chin
     EXPECT_LT(chin - box.min.y, 0.12f);
 
     // Width of the skull above the ears, and with the ears.
@@ -194,14 +194,14 @@ TEST(DefaultHead, GrowthWeightsCoverTheScalpOnly)
     const Aabb box = boundsOf(mesh);
     auto weightNear = [&](glm::vec3 p) { return h.growthWeights[nearestVertex(mesh, p)]; };
 
-    EXPECT_GT(weightNear({0.0f, box.max.y, 0.0f}), 0.99f);     // crown
-    EXPECT_GT(weightNear({0.0f, 0.0f, box.min.z}), 0.99f);     // back of the head
-    EXPECT_GT(weightNear({box.max.x, 0.06f, -0.01f}), 0.99f);  // side, above the ear
-    EXPECT_GT(weightNear({0.0f, -0.05f, -0.2f}), 0.99f);       // down to the nape
-    EXPECT_LT(weightNear({0.0f, 0.0f, 1.0f}), 0.01f);          // nose tip
-    EXPECT_LT(weightNear({0.0f, chinY(mesh), 0.1f}), 0.01f);   // chin
-    EXPECT_LT(weightNear({0.0f, 0.05f, 0.2f}), 0.01f);         // forehead
-    EXPECT_LT(weightNear({box.max.x, 0.0f, 0.0f}), 0.01f);     // ear
+    EXPECT_GT(weightNear({ 0.0f, box.max.y, 0.0f }), 0.99f); // crown
+    EXPECT_GT(weightNear({ 0.0f, 0.0f, box.min.z }), 0.99f); // back of the head
+    EXPECT_GT(weightNear({ box.max.x, 0.06f, -0.01f }), 0.99f); // side, above the ear
+    EXPECT_GT(weightNear({ 0.0f, -0.05f, -0.2f }), 0.99f); // down to the nape
+    EXPECT_LT(weightNear({ 0.0f, 0.0f, 1.0f }), 0.01f); // nose tip
+    EXPECT_LT(weightNear({ 0.0f, chinY(mesh), 0.1f }), 0.01f); // chin
+    EXPECT_LT(weightNear({ 0.0f, 0.05f, 0.2f }), 0.01f); // forehead
+    EXPECT_LT(weightNear({ box.max.x, 0.0f, 0.0f }), 0.01f); // ear
 
     // Neck and its cap, and the whole face below the brow, are bare.
     for (std::size_t v = 0; v < mesh.vertexCount(); ++v) {
@@ -227,7 +227,7 @@ TEST(DefaultHead, HairlineIsSoftAndPlausible)
         if (h.growthWeights[v] > 0.99f)
             firstFull = std::min(firstFull, p.y);
     }
-    EXPECT_GT(lastBare, 0.065f);  // a forehead's height above the brow
+    EXPECT_GT(lastBare, 0.065f); // a forehead's height above the brow
     EXPECT_LT(firstFull, 0.095f);
     EXPECT_GT(firstFull - lastBare, 0.004f);
     EXPECT_LT(firstFull - lastBare, 0.02f);
@@ -244,8 +244,8 @@ TEST(DefaultHead, HairlineIsSoftAndPlausible)
     EXPECT_LT(hairArea / area, 0.5);
 
     // Left and right hairlines match.
-    const std::size_t left = nearestVertex(mesh, {-0.07f, 0.02f, 0.02f});
-    const std::size_t right = nearestVertex(mesh, {0.07f, 0.02f, 0.02f});
+    const std::size_t left = nearestVertex(mesh, { -0.07f, 0.02f, 0.02f });
+    const std::size_t right = nearestVertex(mesh, { 0.07f, 0.02f, 0.02f });
     EXPECT_NEAR(h.growthWeights[left], h.growthWeights[right], 0.05f);
 }
 
@@ -260,5 +260,5 @@ TEST(DefaultHead, IsDeterministic)
     EXPECT_TRUE(a.growthWeights == b.growthWeights);
 }
 
-}  // namespace
-}  // namespace wisp
+} // namespace
+} // namespace wisp

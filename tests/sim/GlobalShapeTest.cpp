@@ -18,7 +18,7 @@ ParameterValues windy(double globalShape)
 {
     ParameterValues v = testParameters();
     EXPECT_EQ(v.set(Param::WindSpeed, 10.0), "");
-    EXPECT_EQ(v.set(Param::WindAzimuth, 0.0), "");  // toward +x, across the hair
+    EXPECT_EQ(v.set(Param::WindAzimuth, 0.0), ""); // toward +x, across the hair
     EXPECT_EQ(v.set(Param::GlobalShape, globalShape), "");
     return v;
 }
@@ -38,7 +38,7 @@ double meanDistanceFromRest(const HairSimulation& sim, double share)
     return sum / static_cast<double>(rest.strandCount());
 }
 
-}  // namespace
+} // namespace
 
 TEST(GlobalShape, IsOffByDefaultAndInTheRegistry)
 {
@@ -56,13 +56,13 @@ TEST(GlobalShape, HoldsTheGroomAgainstWindAndHoldsTheRootsMoreThanTheTips)
 {
     auto free = makeSimulation(windy(0.0), 1);
     auto held = makeSimulation(windy(1.0), 1);
-    run(*free, 180);  // 3 s of 10 m/s wind
+    run(*free, 180); // 3 s of 10 m/s wind
     run(*held, 180);
     const double freeTips = meanDistanceFromRest(*free, 1.0), heldTips = meanDistanceFromRest(*held, 1.0);
     const double heldNearRoot = meanDistanceFromRest(*held, 0.2), freeNearRoot = meanDistanceFromRest(*free, 0.2);
     std::printf("[ figures  ] 10 m/s wind, 3 s: tips %.1f mm from rest with global shape 0, %.1f mm with 1; "
                 "a fifth along the strand %.1f and %.1f mm\n",
-                freeTips * 1e3, heldTips * 1e3, freeNearRoot * 1e3, heldNearRoot * 1e3);
+        freeTips * 1e3, heldTips * 1e3, freeNearRoot * 1e3, heldNearRoot * 1e3);
     EXPECT_GT(freeTips, 0.05) << "the wind hardly moved the free hair: the test proves nothing";
     EXPECT_LT(heldTips, 0.6 * freeTips) << "the global shape did not hold the tips";
     EXPECT_LT(heldNearRoot, 0.25 * heldTips) << "the pull does not fade along the strand";
@@ -83,7 +83,7 @@ TEST(GlobalShape, FollowsTheHeadWhenItTurns)
     const HairCurves rest = keyRestCurves(held->groom());
     double sum = 0.0;
     for (std::size_t i = 0; i < rest.strandCount(); ++i) {
-        const std::size_t j = rest.offsets[i] + 2;  // near the root: held hardest
+        const std::size_t j = rest.offsets[i] + 2; // near the root: held hardest
         sum += glm::distance(p[j], glm::vec3(turned * glm::vec4(rest.positions[j], 1.0f)));
     }
     EXPECT_LT(sum / static_cast<double>(rest.strandCount()), 0.003) << "the held pose did not turn with the head";
@@ -105,7 +105,7 @@ TEST(GlobalShape, GivesTheSameBitsOnOneThreadAndOnFour)
 TEST(GlobalShape, HairStillSettlesWithItOn)
 {
     // As SettlingTest's bar: after 10 s without wind, fewer than 1 % of tips still move 1 mm a step.
-    for (const int substeps : {1, 4}) {
+    for (const int substeps : { 1, 4 }) {
         ParameterValues v = testParameters();
         ASSERT_EQ(v.set(Param::GlobalShape, 1.0), "");
         ASSERT_EQ(v.set(Param::Substeps, substeps), "");
@@ -121,6 +121,7 @@ TEST(GlobalShape, HairStillSettlesWithItOn)
             const std::size_t tip = rest.offsets[i + 1] - 1;
             moving += glm::distance(before[tip], after[tip]) > 1e-3f ? 1 : 0;
         }
-        EXPECT_LT(static_cast<double>(moving), 0.01 * static_cast<double>(rest.strandCount())) << substeps << " substeps";
+        EXPECT_LT(static_cast<double>(moving), 0.01 * static_cast<double>(rest.strandCount()))
+            << substeps << " substeps";
     }
 }

@@ -25,19 +25,19 @@ GroomResult groomDefaultHead(const GroomSettings& s)
     return buildGroom(defaultHead().mesh, defaultHead().growthWeights, s);
 }
 
-}  // namespace
+} // namespace
 
 TEST(Groom, DensityMatchesTheRequestedStrandsPerSquareCentimetre)
 {
     const TriangleMesh& mesh = defaultHead().mesh;
     const std::vector<float>& w = defaultHead().growthWeights;
-    double weightedAreaCm2 = 0.0;  // area times the mean weight of each triangle
+    double weightedAreaCm2 = 0.0; // area times the mean weight of each triangle
     for (std::uint32_t t = 0; t < mesh.triangleCount(); ++t) {
         const glm::uvec3 tri = mesh.triangles[t];
         weightedAreaCm2 += triangleArea(mesh, t) * 1e4 * (w[tri.x] + w[tri.y] + w[tri.z]) / 3.0;
     }
-    for (double density : {2.0, 8.0}) {
-        const GroomResult r = groomDefaultHead(settingsWith({{Param::Density, density}}));
+    for (double density : { 2.0, 8.0 }) {
+        const GroomResult r = groomDefaultHead(settingsWith({ { Param::Density, density } }));
         ASSERT_TRUE(r.ok()) << r.error;
         const double measured = static_cast<double>(r.groom.strandCount()) / weightedAreaCm2;
         EXPECT_NEAR(measured, density, 0.15 * density) << "strands " << r.groom.strandCount();
@@ -46,7 +46,7 @@ TEST(Groom, DensityMatchesTheRequestedStrandsPerSquareCentimetre)
 
 TEST(Groom, RootsAreBlueNoiseNotClustered)
 {
-    const GroomResult r = groomDefaultHead(settingsWith({{Param::Density, 8.0}}));
+    const GroomResult r = groomDefaultHead(settingsWith({ { Param::Density, 8.0 } }));
     ASSERT_TRUE(r.ok()) << r.error;
     // Poisson-disk spacing: no two roots closer than the thinning radius sqrt(0.52 / density).
     const float radius = std::sqrt(0.52f / 8.0e4f);
@@ -64,7 +64,7 @@ TEST(Groom, SameSeedSameGroomOtherSeedOtherGroom)
 {
     const GroomResult a = groomDefaultHead(settingsWith({}));
     const GroomResult b = groomDefaultHead(settingsWith({}));
-    const GroomResult c = groomDefaultHead(settingsWith({{Param::Seed, 99}}));
+    const GroomResult c = groomDefaultHead(settingsWith({ { Param::Seed, 99 } }));
     ASSERT_TRUE(a.ok() && b.ok() && c.ok());
     EXPECT_EQ(a.groom.rest.positions, b.groom.rest.positions);
     EXPECT_EQ(a.groom.wispOf, b.groom.wispOf);
@@ -127,8 +127,8 @@ TEST(Groom, ZeroWeightRemovesRootsThereAndOnlyThere)
 
 TEST(Groom, WispsHoldAboutWispSizeStrandsAroundOneKeyHair)
 {
-    for (int wispSize : {4, 16}) {
-        const GroomResult r = groomDefaultHead(settingsWith({{Param::WispSize, wispSize}}));
+    for (int wispSize : { 4, 16 }) {
+        const GroomResult r = groomDefaultHead(settingsWith({ { Param::WispSize, wispSize } }));
         ASSERT_TRUE(r.ok()) << r.error;
         const double mean = static_cast<double>(r.groom.strandCount()) / static_cast<double>(r.groom.wispCount());
         EXPECT_NEAR(mean, wispSize, 0.4 * wispSize);
@@ -163,29 +163,30 @@ Spread memberSpread(const Groom& g, float clumpRate)
     s.beforeClump /= n;
     return s;
 }
-}  // namespace
+} // namespace
 
 TEST(Groom, ClumpDegreeOnePullsMembersOntoTheKeyAndMinusOneSpreadsThem)
 {
     const double rate = 0.4;
     const GroomResult one = groomDefaultHead(
-        settingsWith({{Param::ClumpDegree, 1.0}, {Param::ClumpRate, rate}, {Param::LengthVariation, 0.0}}));
+        settingsWith({ { Param::ClumpDegree, 1.0 }, { Param::ClumpRate, rate }, { Param::LengthVariation, 0.0 } }));
     const GroomResult zero = groomDefaultHead(
-        settingsWith({{Param::ClumpDegree, 0.0}, {Param::ClumpRate, rate}, {Param::LengthVariation, 0.0}}));
+        settingsWith({ { Param::ClumpDegree, 0.0 }, { Param::ClumpRate, rate }, { Param::LengthVariation, 0.0 } }));
     const GroomResult minus = groomDefaultHead(
-        settingsWith({{Param::ClumpDegree, -1.0}, {Param::ClumpRate, rate}, {Param::LengthVariation, 0.0}}));
+        settingsWith({ { Param::ClumpDegree, -1.0 }, { Param::ClumpRate, rate }, { Param::LengthVariation, 0.0 } }));
     ASSERT_TRUE(one.ok() && zero.ok() && minus.ok());
-    const Spread s1 = memberSpread(one.groom, rate), s0 = memberSpread(zero.groom, rate), sm = memberSpread(minus.groom, rate);
-    EXPECT_LT(s1.atTip, 1e-5);                        // on the key hair
-    EXPECT_NEAR(s0.atTip, s0.atRoot, 0.05 * s0.atRoot);  // parallel: the root spacing is kept
-    EXPECT_NEAR(sm.atTip, 2.0 * sm.atRoot, 0.1 * sm.atRoot);  // spread to twice the wisp radius
+    const Spread s1 = memberSpread(one.groom, rate), s0 = memberSpread(zero.groom, rate),
+                 sm = memberSpread(minus.groom, rate);
+    EXPECT_LT(s1.atTip, 1e-5); // on the key hair
+    EXPECT_NEAR(s0.atTip, s0.atRoot, 0.05 * s0.atRoot); // parallel: the root spacing is kept
+    EXPECT_NEAR(sm.atTip, 2.0 * sm.atRoot, 0.1 * sm.atRoot); // spread to twice the wisp radius
     // Clump-rate: before that fraction of the length, members have not started to clump.
     EXPECT_NEAR(s1.beforeClump, s1.atRoot, 0.05 * s1.atRoot);
 }
 
 TEST(Groom, LengthAndVariationSetStrandLengths)
 {
-    const GroomResult r = groomDefaultHead(settingsWith({{Param::Length, 0.3}, {Param::LengthVariation, 0.2}}));
+    const GroomResult r = groomDefaultHead(settingsWith({ { Param::Length, 0.3 }, { Param::LengthVariation, 0.2 } }));
     ASSERT_TRUE(r.ok()) << r.error;
     float shortest = INFINITY, longest = 0;
     for (std::size_t w = 0; w < r.groom.wispCount(); ++w) {
@@ -197,7 +198,7 @@ TEST(Groom, LengthAndVariationSetStrandLengths)
     }
     EXPECT_GE(shortest, 0.3f * 0.8f * 0.99f);
     EXPECT_LE(longest, 0.3f * 1.2f * 1.01f);
-    EXPECT_GT(longest - shortest, 0.3f * 0.2f);  // the variation is used
+    EXPECT_GT(longest - shortest, 0.3f * 0.2f); // the variation is used
 }
 
 TEST(Groom, BadInputGivesAClearErrorNotACrash)
@@ -216,7 +217,7 @@ TEST(Groom, BadInputGivesAClearErrorNotACrash)
     GroomSettings s = ok;
     s.lengthMetres = 0.0f;
     EXPECT_NE(buildGroom(mesh, weights, s).error.find("length"), std::string::npos);
-    for (int segments : {0, 1}) {
+    for (int segments : { 0, 1 }) {
         s = ok;
         s.segments = segments;
         EXPECT_NE(buildGroom(mesh, weights, s).error.find("segments"), std::string::npos);
@@ -245,11 +246,11 @@ TEST(Groom, PoreCandidatesAreCappedWithAWarning)
     TriangleMesh box;
     for (int i = 0; i < 8; ++i)
         box.positions.push_back(glm::vec3(2.0f * (i & 1), 2.0f * ((i >> 1) & 1), 1.0f * ((i >> 2) & 1)));
-    box.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                     {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-    const GroomSettings settings = settingsWith({{Param::Density, 8.0}});
+    box.triangles = { { 0, 2, 1 }, { 1, 2, 3 }, { 4, 5, 6 }, { 5, 7, 6 }, { 0, 1, 4 }, { 1, 5, 4 }, { 2, 6, 3 },
+        { 3, 6, 7 }, { 0, 4, 2 }, { 2, 4, 6 }, { 1, 3, 5 }, { 3, 7, 5 } };
+    const GroomSettings settings = settingsWith({ { Param::Density, 8.0 } });
     const std::vector<float> weights(box.positions.size(), 1.0f);
-    const GroomRegionInput region{0, weights, settings, 1.0f};
+    const GroomRegionInput region{ 0, weights, settings, 1.0f };
     GroomBuilder builder;
     EXPECT_EQ(builder.maxPoreCandidates(), kMaxPoreCandidates);
     builder.setMaxPoreCandidates(20'000);
@@ -259,7 +260,7 @@ TEST(Groom, PoreCandidatesAreCappedWithAWarning)
     EXPECT_GT(builder.poreCandidates(), 19'000u);
     ASSERT_EQ(capped.warnings.size(), 1u);
     EXPECT_NE(capped.warnings[0].find("on the head's 160000 cm² needs 5120000 pore candidates; capped at 20000"),
-              std::string::npos)
+        std::string::npos)
         << capped.warnings[0];
     // Sparser, evenly: about 20,000 / 4 pores' worth of strands over the whole box, not a corner.
     EXPECT_GT(capped.groom.strandCount(), 3000u);
@@ -271,9 +272,10 @@ TEST(Groom, PoreCandidatesAreCappedWithAWarning)
         headAreaM2 += triangleArea(defaultHead().mesh, t);
     EXPECT_LT(headAreaM2 * 200.0 * 1e4 * 4.0, static_cast<double>(kMaxPoreCandidates));
     GroomBuilder normal;
-    const GroomRegionInput head{0, defaultHead().growthWeights, settings, 1.0f};
+    const GroomRegionInput head{ 0, defaultHead().growthWeights, settings, 1.0f };
     const GroomResult r = normal.build(defaultHead().mesh, std::span(&head, 1), settings, nullptr);
     ASSERT_TRUE(r.ok()) << r.error;
     EXPECT_TRUE(r.warnings.empty());
-    EXPECT_NEAR(static_cast<double>(normal.poreCandidates()), headAreaM2 * 8.0 * 1e4 * 4.0, 0.02 * headAreaM2 * 8e4 * 4.0);
+    EXPECT_NEAR(
+        static_cast<double>(normal.poreCandidates()), headAreaM2 * 8.0 * 1e4 * 4.0, 0.02 * headAreaM2 * 8e4 * 4.0);
 }

@@ -23,12 +23,12 @@ HeadMotion shake()
 BakeOptions quick(int first, int last)
 {
     BakeOptions o;
-    o.range = {first, last, 24.0};
-    o.drapeFirst = false;  // the drape has its own tests; these measure the bake
+    o.range = { first, last, 24.0 };
+    o.drapeFirst = false; // the drape has its own tests; these measure the bake
     return o;
 }
 
-}  // namespace
+} // namespace
 
 TEST(HairBake, StepsDivideEachFrame)
 {
@@ -70,12 +70,14 @@ TEST(HairBake, KeepsEveryFrameWithTheHeadAndTheTipsMove)
         // The roots sit on the head where its transform put it.
         for (std::size_t s = 0; s < rest.strandCount(); s += 7) {
             const glm::vec3 root(frame->headToWorld * glm::vec4(rest.positions[rest.offsets[s]], 1.0f));
-            ASSERT_LT(glm::distance(frame->positions[rest.offsets[s]], root), 1e-4f) << "frame " << f << " strand " << s;
+            ASSERT_LT(glm::distance(frame->positions[rest.offsets[s]], root), 1e-4f)
+                << "frame " << f << " strand " << s;
         }
         if (f > 1) {
             const BakedFrame& before = *r.cache.find(f - 1);
             for (std::size_t s = 0; s < rest.strandCount(); ++s)
-                tipTravel += glm::distance(frame->positions[rest.offsets[s + 1] - 1], before.positions[rest.offsets[s + 1] - 1]);
+                tipTravel += glm::distance(
+                    frame->positions[rest.offsets[s + 1] - 1], before.positions[rest.offsets[s + 1] - 1]);
         }
     }
     // The head shakes 30 degrees: the tips travel centimetres per frame on average.
@@ -110,15 +112,16 @@ TEST(HairBake, RefusesABakeOverTheMemoryBoundBeforeSimulating)
     BakeOptions o = quick(1, 100);
     o.memoryBoundBytes = 50 * bytesPerBakedFrame(sim->groom().rest.pointCount());
     const BakeResult r = bakeMotion(*sim, shake(), glm::vec3(0.0f), o);
-    EXPECT_NE(r.error.find("a bake of 100 frames of " + std::to_string(sim->groom().rest.pointCount()) + " points needs"),
-              std::string::npos)
+    EXPECT_NE(
+        r.error.find("a bake of 100 frames of " + std::to_string(sim->groom().rest.pointCount()) + " points needs"),
+        std::string::npos)
         << r.error;
     EXPECT_NE(r.error.find("more than the bake's memory bound"), std::string::npos);
     EXPECT_EQ(r.stepsRun, 0u);
     EXPECT_TRUE(r.cache.frames.empty());
     // Streamed (not kept), the same range needs no bound.
     o.keepFrames = false;
-    o.range = {1, 3, 24.0};
+    o.range = { 1, 3, 24.0 };
     int streamed = 0;
     o.onFrame = [&](const BakedFrame& f, const BakeCache& layout) {
         EXPECT_EQ(f.positions.size(), layout.pointCount());
@@ -141,7 +144,7 @@ TEST(HairBake, CancelStopsBetweenSteps)
     EXPECT_TRUE(r.cancelled);
     // Asked once after the drape, then before each step: 9 steps ran.
     EXPECT_EQ(r.stepsRun, 9u);
-    EXPECT_EQ(r.cache.frames.size(), 4u);  // frame 1, then 3 steps a frame
+    EXPECT_EQ(r.cache.frames.size(), 4u); // frame 1, then 3 steps a frame
     EXPECT_FALSE(r.cache.complete());
 }
 
@@ -150,12 +153,13 @@ TEST(HairBake, RefusesBadRangesAndMotions)
     auto sim = makeSimulation(testParameters());
     BakeOptions o = quick(5, 2);
     EXPECT_EQ(bakeMotion(*sim, shake(), glm::vec3(0.0f), o).error, "frames 5:2: the last frame comes before the first");
-    o.range = {0, 2, 24.0};
+    o.range = { 0, 2, 24.0 };
     EXPECT_EQ(bakeMotion(*sim, shake(), glm::vec3(0.0f), o).error, "frames 0:2: frames start at 1 (frame 1 is 0 s)");
-    o.range = {1, 2, 0.0};
+    o.range = { 1, 2, 0.0 };
     EXPECT_EQ(bakeMotion(*sim, shake(), glm::vec3(0.0f), o).error, "fps 0 is outside 1..1000");
-    o.range = {1, 2, 24.0};
+    o.range = { 1, 2, 24.0 };
     HeadMotion bad;
-    bad.setProcedural({MotionKind::Nod, -1.0, 1.0, 0.0});
-    EXPECT_EQ(bakeMotion(*sim, bad, glm::vec3(0.0f), o).error, "head motion: motion: amplitude -1 is outside 0..90 degrees");
+    bad.setProcedural({ MotionKind::Nod, -1.0, 1.0, 0.0 });
+    EXPECT_EQ(
+        bakeMotion(*sim, bad, glm::vec3(0.0f), o).error, "head motion: motion: amplitude -1 is outside 0..90 degrees");
 }

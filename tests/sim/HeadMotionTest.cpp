@@ -17,7 +17,7 @@ namespace {
 
 HeadPose pose(glm::vec3 t, double yawDegrees)
 {
-    return {t, glm::angleAxis(static_cast<float>(glm::radians(yawDegrees)), glm::vec3(0, 1, 0))};
+    return { t, glm::angleAxis(static_cast<float>(glm::radians(yawDegrees)), glm::vec3(0, 1, 0)) };
 }
 
 glm::dvec3 velocityBefore(const HeadMotion& m, double t, double h)
@@ -38,16 +38,19 @@ double angularSpeed(const HeadMotion& m, double a, double b)
 }
 
 // Yaw (radians, about +Y) of a point around the pivot, from +Z toward +X.
-double yawOf(const glm::vec3& p, const glm::vec3& pivot) { return std::atan2(p.x - pivot.x, p.z - pivot.z); }
+double yawOf(const glm::vec3& p, const glm::vec3& pivot)
+{
+    return std::atan2(p.x - pivot.x, p.z - pivot.z);
+}
 
-}  // namespace
+} // namespace
 
 TEST(HeadMotion, KeysAreHitExactlyAndHeldOutsideTheirSpan)
 {
     HeadMotion m;
-    m.setKey(1.0, pose({0.0f, 0.0f, 0.0f}, 0.0));
-    m.setKey(2.0, pose({0.1f, 0.02f, 0.0f}, 40.0));
-    m.setKey(2.5, pose({0.05f, 0.0f, -0.03f}, -20.0));
+    m.setKey(1.0, pose({ 0.0f, 0.0f, 0.0f }, 0.0));
+    m.setKey(2.0, pose({ 0.1f, 0.02f, 0.0f }, 40.0));
+    m.setKey(2.5, pose({ 0.05f, 0.0f, -0.03f }, -20.0));
     ASSERT_EQ(m.keys().size(), 3u);
     for (const HeadKey& k : m.keys()) {
         const HeadPose p = m.poseAt(k.timeSeconds);
@@ -59,7 +62,7 @@ TEST(HeadMotion, KeysAreHitExactlyAndHeldOutsideTheirSpan)
     // Hold means hold: the same pose a second later.
     EXPECT_EQ(m.poseAt(9.0), m.poseAt(10.0));
     // Setting a key at an existing time replaces it.
-    m.setKey(2.0, pose({0.2f, 0.0f, 0.0f}, 10.0));
+    m.setKey(2.0, pose({ 0.2f, 0.0f, 0.0f }, 10.0));
     EXPECT_EQ(m.keys().size(), 3u);
     EXPECT_FLOAT_EQ(m.keys()[1].pose.translationMetres.x, 0.2f);
 }
@@ -68,10 +71,10 @@ TEST(HeadMotion, VelocityIsContinuousAcrossKeys)
 {
     HeadMotion m;
     // Unevenly spaced: Catmull-Rom tangents must account for the spacing or the speed jumps.
-    m.setKey(0.0, pose({0.0f, 0.0f, 0.0f}, 0.0));
-    m.setKey(0.4, pose({0.1f, 0.0f, 0.0f}, 30.0));
-    m.setKey(1.5, pose({0.15f, 0.05f, 0.0f}, -30.0));
-    m.setKey(1.7, pose({0.0f, 0.0f, 0.02f}, 0.0));
+    m.setKey(0.0, pose({ 0.0f, 0.0f, 0.0f }, 0.0));
+    m.setKey(0.4, pose({ 0.1f, 0.0f, 0.0f }, 30.0));
+    m.setKey(1.5, pose({ 0.15f, 0.05f, 0.0f }, -30.0));
+    m.setKey(1.7, pose({ 0.0f, 0.0f, 0.02f }, 0.0));
     // One-sided differences over h differ by about acceleration x h even where the velocity is
     // continuous (up to ~80 rad/s² here, so 0.008 rad/s); a jump would be of the order of the
     // speed itself (0.3 to 3 m/s or rad/s here).
@@ -95,7 +98,7 @@ TEST(HeadMotion, VelocityIsContinuousAcrossKeys)
 
 TEST(HeadMotion, ProceduralMotionsStartAtRestAndReachTheirAmplitude)
 {
-    for (MotionKind kind : {MotionKind::Turn, MotionKind::Nod, MotionKind::Shake, MotionKind::Walk}) {
+    for (MotionKind kind : { MotionKind::Turn, MotionKind::Nod, MotionKind::Shake, MotionKind::Walk }) {
         SCOPED_TRACE(std::string(motionName(kind)));
         HeadMotion m;
         ProceduralMotion p = motionPreset(kind);
@@ -113,8 +116,8 @@ TEST(HeadMotion, ProceduralMotionsStartAtRestAndReachTheirAmplitude)
             const double t = 0.5 + period * (1.0 + i / 400.0);
             const HeadPose q = m.poseAt(t);
             const double value = kind == MotionKind::Walk
-                                     ? static_cast<double>(q.translationMetres.y)
-                                     : glm::degrees(2.0 * std::acos(std::min(1.0, std::abs(double(q.rotation.w)))));
+                ? static_cast<double>(q.translationMetres.y)
+                : glm::degrees(2.0 * std::acos(std::min(1.0, std::abs(double(q.rotation.w)))));
             peak = std::max(peak, value);
         }
         EXPECT_NEAR(peak, p.amplitude, 0.01 * p.amplitude);
@@ -124,7 +127,7 @@ TEST(HeadMotion, ProceduralMotionsStartAtRestAndReachTheirAmplitude)
 TEST(HeadMotion, WalkBobsTwicePerStrideAndSwaysOnce)
 {
     HeadMotion m;
-    m.setProcedural({MotionKind::Walk, 0.04, 1.0, 0.0});
+    m.setProcedural({ MotionKind::Walk, 0.04, 1.0, 0.0 });
     // From the second stride on, the envelope is 1: count upward crossings of the mean height and
     // of zero sway over 4 strides.
     int bobs = 0, sways = 0;
@@ -146,7 +149,7 @@ TEST(HeadMotion, RotationTurnsAboutThePivot)
     // The top of the neck: below the head's centre and inside it.
     EXPECT_LT(pivot.y, 0.0f);
     EXPECT_GT(pivot.y, -0.2f);
-    const glm::mat4 m = headToWorld(pose({0.0f, 0.1f, 0.0f}, 90.0), pivot);
+    const glm::mat4 m = headToWorld(pose({ 0.0f, 0.1f, 0.0f }, 90.0), pivot);
     const glm::vec3 movedPivot(m * glm::vec4(pivot, 1.0f));
     EXPECT_LT(glm::distance(movedPivot, pivot + glm::vec3(0.0f, 0.1f, 0.0f)), 1e-6f);
     // The nose (+Z) turns toward +X for a positive yaw.
@@ -158,23 +161,23 @@ TEST(HeadMotion, ValidationAndKeyEditing)
 {
     HeadMotion m;
     m.setKey(0.0, {});
-    m.setKey(1.0, pose({0.1f, 0, 0}, 10.0));
+    m.setKey(1.0, pose({ 0.1f, 0, 0 }, 10.0));
     EXPECT_EQ(m.validate(), "");
     std::size_t at = 99;
     EXPECT_EQ(m.moveKey(0, 2.0, &at), "");
     EXPECT_EQ(at, 1u);
     EXPECT_DOUBLE_EQ(m.keys()[1].timeSeconds, 2.0);
-    EXPECT_NE(m.moveKey(0, 2.0), "");  // a key is there already
+    EXPECT_NE(m.moveKey(0, 2.0), ""); // a key is there already
     EXPECT_FALSE(m.removeKey(5));
     EXPECT_TRUE(m.removeKey(0));
     EXPECT_EQ(m.keys().size(), 1u);
 
-    m.setProcedural({MotionKind::Turn, 120.0, 1.0, 0.0});
+    m.setProcedural({ MotionKind::Turn, 120.0, 1.0, 0.0 });
     EXPECT_EQ(m.validate(), "motion: amplitude 120 is outside 0..90 degrees");
-    m.setProcedural({MotionKind::Walk, 0.04, std::nan(""), 0.0});
+    m.setProcedural({ MotionKind::Walk, 0.04, std::nan(""), 0.0 });
     EXPECT_EQ(m.validate(), "motion: frequency nan Hz is outside 0.01..10 Hz");
     m.setProcedural({});
-    m.setKey(3.0, {glm::vec3(0.0f), glm::quat(2.0f, 0.0f, 0.0f, 0.0f)});
+    m.setKey(3.0, { glm::vec3(0.0f), glm::quat(2.0f, 0.0f, 0.0f, 0.0f) });
     EXPECT_EQ(m.validate(), "keys[1]: rotation is not a unit quaternion (length 2)");
     EXPECT_EQ(motionFromName("shake"), MotionKind::Shake);
     EXPECT_EQ(motionFromName("spin"), std::nullopt);
@@ -185,7 +188,7 @@ TEST(HeadMotion, ValidationAndKeyEditing)
 TEST(HeadMotion, TurningTheHeadMakesTheTipsLagThenFollow)
 {
     ParameterValues v = testParameters();
-    v.set(Param::Length, 0.3);  // long enough to swing
+    v.set(Param::Length, 0.3); // long enough to swing
     auto sim = makeSimulation(v);
     sim->drapeAtRest();
     const glm::vec3 pivot = pivotOf(defaultHead().mesh);
@@ -222,7 +225,8 @@ TEST(HeadMotion, TurningTheHeadMakesTheTipsLagThenFollow)
     const HairCurves keys = keyRestCurves(sim->groom());
     const glm::mat4 head = motion.headToWorldAt(0.4, pivot);
     for (std::size_t s = 0; s < keys.strandCount(); ++s)
-        ASSERT_LT(glm::distance(p[keys.offsets[s]], glm::vec3(head * glm::vec4(keys.positions[keys.offsets[s]], 1.0f))), 1e-4f);
+        ASSERT_LT(glm::distance(p[keys.offsets[s]], glm::vec3(head * glm::vec4(keys.positions[keys.offsets[s]], 1.0f))),
+            1e-4f);
 
     // Held still for 3 s, the hair follows: the tips end where the head faces, within a few degrees.
     for (int i = 0; i < static_cast<int>(3.0f / dt); ++i) {

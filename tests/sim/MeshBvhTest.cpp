@@ -1,5 +1,5 @@
-#include "MeshFixtures.h"
 #include "sim/geometry/MeshBvh.h"
+#include "MeshFixtures.h"
 #include "sim/geometry/TriangleMesh.h"
 
 #include <glm/geometric.hpp>
@@ -39,10 +39,11 @@ BruteClosest bruteClosest(const TriangleMesh& mesh, const glm::vec3& p)
     BruteClosest best;
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
         const glm::uvec3 tri = mesh.triangles[t];
-        const TrianglePoint q = closestPointOnTriangle(p, mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]);
+        const TrianglePoint q
+            = closestPointOnTriangle(p, mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]);
         const float d = glm::length(q.point - p);
         if (d < best.distance)
-            best = {d, t};
+            best = { d, t };
     }
     return best;
 }
@@ -79,8 +80,8 @@ void expectClosestMatchesBruteForce(const TriangleMesh& mesh, int samples, float
     ASSERT_FALSE(bvh.empty());
     const Aabb box = boundsOf(mesh);
     std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> ux(box.min.x - grow, box.max.x + grow), uy(box.min.y - grow, box.max.y + grow),
-        uz(box.min.z - grow, box.max.z + grow);
+    std::uniform_real_distribution<float> ux(box.min.x - grow, box.max.x + grow),
+        uy(box.min.y - grow, box.max.y + grow), uz(box.min.z - grow, box.max.z + grow);
     for (int i = 0; i < samples; ++i) {
         const glm::vec3 p(ux(rng), uy(rng), uz(rng));
         const BruteClosest expected = bruteClosest(mesh, p);
@@ -125,9 +126,9 @@ TEST(MeshBvh, ClosestPointMatchesBruteForceOnRealHead)
 
 TEST(MeshBvh, RaycastMatchesBruteForce)
 {
-    for (const TriangleMesh& mesh : {makeIcosphere(0.1f, 3), planckHead()}) {
+    for (const TriangleMesh& mesh : { makeIcosphere(0.1f, 3), planckHead() }) {
         if (mesh.triangles.empty())
-            continue;  // the head is optional; the sphere alone still covers the logic
+            continue; // the head is optional; the sphere alone still covers the logic
         const MeshBvh bvh(mesh);
         const Aabb box = boundsOf(mesh);
         std::mt19937 rng(4);
@@ -136,7 +137,8 @@ TEST(MeshBvh, RaycastMatchesBruteForce)
         int hits = 0;
         for (int i = 0; i < 2000; ++i) {
             // Origins inside and around the box, random directions (not unit length on purpose).
-            const glm::vec3 o = box.min - 0.25f * box.size() + 1.5f * box.size() * glm::vec3(unit(rng), unit(rng), unit(rng));
+            const glm::vec3 o
+                = box.min - 0.25f * box.size() + 1.5f * box.size() * glm::vec3(unit(rng), unit(rng), unit(rng));
             // Half the rays aim near the middle of the box so that plenty of them hit.
             glm::vec3 d = 0.7f * glm::vec3(gauss(rng), gauss(rng), gauss(rng));
             if (i % 2 == 0)
@@ -152,7 +154,7 @@ TEST(MeshBvh, RaycastMatchesBruteForce)
             EXPECT_NEAR(glm::length(got->point - (o + got->t * d)), 0.0f, 1e-6f);
             EXPECT_NEAR(glm::length(pointOn(mesh, got->surface) - got->point), 0.0f, 1e-5f);
         }
-        EXPECT_GT(hits, 500);  // the test means nothing if nothing is hit
+        EXPECT_GT(hits, 500); // the test means nothing if nothing is hit
     }
 }
 
@@ -161,17 +163,17 @@ TEST(MeshBvh, RaysAlongAxesAndFromInside)
     const TriangleMesh sphere = makeIcosphere(0.1f, 4);
     const MeshBvh bvh(sphere);
     // Axis-aligned directions have zero components: the slab test must not produce NaN.
-    for (const glm::vec3& d : {glm::vec3(1, 0, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, 2)}) {
+    for (const glm::vec3& d : { glm::vec3(1, 0, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, 2) }) {
         const auto fromOutside = bvh.raycast(-0.5f * d / glm::length(d), d, 1.0f);
         ASSERT_TRUE(fromOutside);
-        EXPECT_NEAR(fromOutside->t * glm::length(d), 0.5f - 0.1f, 1e-3f);  // the facets sit inside the sphere by < 1 mm
-        const auto fromCentre = bvh.raycast(glm::vec3(0.0f), d, 1.0f);  // back faces count too
+        EXPECT_NEAR(fromOutside->t * glm::length(d), 0.5f - 0.1f, 1e-3f); // the facets sit inside the sphere by < 1 mm
+        const auto fromCentre = bvh.raycast(glm::vec3(0.0f), d, 1.0f); // back faces count too
         ASSERT_TRUE(fromCentre);
         EXPECT_NEAR(fromCentre->t * glm::length(d), 0.1f, 1e-3f);
     }
-    EXPECT_FALSE(bvh.raycast(glm::vec3(0.5f, 0, 0), glm::vec3(1, 0, 0), 10.0f));        // pointing away
-    EXPECT_FALSE(bvh.raycast(glm::vec3(-0.5f, 0, 0), glm::vec3(1, 0, 0), 0.3f));        // too short
-    EXPECT_FALSE(bvh.raycast(glm::vec3(0.0f), glm::vec3(0.0f), 1.0f));                  // no direction
+    EXPECT_FALSE(bvh.raycast(glm::vec3(0.5f, 0, 0), glm::vec3(1, 0, 0), 10.0f)); // pointing away
+    EXPECT_FALSE(bvh.raycast(glm::vec3(-0.5f, 0, 0), glm::vec3(1, 0, 0), 0.3f)); // too short
+    EXPECT_FALSE(bvh.raycast(glm::vec3(0.0f), glm::vec3(0.0f), 1.0f)); // no direction
     EXPECT_FALSE(bvh.raycast(glm::vec3(NAN, 0, 0), glm::vec3(1, 0, 0), 1.0f));
 }
 
@@ -187,12 +189,12 @@ TEST(MeshBvh, OwnsItsDataAndHandlesBadInput)
         // A NaN corner, an index out of range and a zero-area triangle: the first two are dropped.
         mesh->positions.push_back(glm::vec3(NAN));
         const auto nanIndex = static_cast<unsigned>(mesh->positions.size() - 1);
-        mesh->triangles.push_back({0, 1, nanIndex});
-        mesh->triangles.push_back({0, 1, 100000});
-        mesh->triangles.push_back({0, 0, 0});
+        mesh->triangles.push_back({ 0, 1, nanIndex });
+        mesh->triangles.push_back({ 0, 1, 100000 });
+        mesh->triangles.push_back({ 0, 0, 0 });
         bvh = MeshBvh(*mesh);
         EXPECT_EQ(bvh.triangleCount(), mesh->triangleCount() - 2);
-    }  // the mesh is gone; the BVH keeps working from its own copy
+    } // the mesh is gone; the BVH keeps working from its own copy
     const auto c = bvh.closestPoint(glm::vec3(0.3f, 0.0f, 0.0f));
     EXPECT_NEAR(c.distance, 0.2f, 1e-3f);
     EXPECT_TRUE(bvh.raycast(glm::vec3(0.3f, 0.0f, 0.0f), glm::vec3(-1, 0, 0), 1.0f));
@@ -204,7 +206,7 @@ TEST(MeshBvh, OwnsItsDataAndHandlesBadInput)
 
     // Every triangle on one spot: the build must split by count instead of recursing forever.
     TriangleMesh pile;
-    pile.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    pile.positions = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } };
     pile.triangles.assign(1000, glm::uvec3(0, 1, 2));
     const MeshBvh pileBvh(pile);
     EXPECT_NEAR(pileBvh.closestPoint(glm::vec3(0.2f, 0.2f, 1.0f)).distance, 1.0f, 1e-6f);
@@ -223,16 +225,18 @@ TEST(MeshBvh, BuildsOnASubnormalThickness)
     const int n = 6;
     for (int i = 0; i <= n; ++i)
         for (int k = 0; k <= n; ++k)
-            mesh.positions.push_back({0.05f * static_cast<float>(i), i % 3 == 0 && k % 2 == 0 ? thin : 0.0f, 0.05f * static_cast<float>(k)});
+            mesh.positions.push_back({ 0.05f * static_cast<float>(i), i % 3 == 0 && k % 2 == 0 ? thin : 0.0f,
+                0.05f * static_cast<float>(k) });
     for (int i = 0; i < n; ++i)
         for (int k = 0; k < n; ++k) {
             const auto v = static_cast<unsigned>(i * (n + 1) + k);
-            mesh.triangles.push_back({v, v + 1, v + n + 1});
-            mesh.triangles.push_back({v + 1, v + n + 2, v + n + 1});
+            mesh.triangles.push_back({ v, v + 1, v + n + 1 });
+            mesh.triangles.push_back({ v + 1, v + n + 2, v + n + 1 });
         }
     const MeshBvh bvh(mesh);
     ASSERT_EQ(bvh.triangleCount(), mesh.triangleCount());
-    for (const glm::vec3 p : {glm::vec3(0.12f, 0.1f, 0.07f), glm::vec3(-0.1f, -0.2f, 0.31f), glm::vec3(0.3f, 0.0f, 0.3f)})
+    for (const glm::vec3 p :
+        { glm::vec3(0.12f, 0.1f, 0.07f), glm::vec3(-0.1f, -0.2f, 0.31f), glm::vec3(0.3f, 0.0f, 0.3f) })
         EXPECT_NEAR(bvh.closestPoint(p).distance, bruteClosest(mesh, p).distance, 1e-6f) << p.x << " " << p.z;
     const auto hit = bvh.raycast(glm::vec3(0.17f, 1.0f, 0.22f), glm::vec3(0.0f, -1.0f, 0.0f), 2.0f);
     ASSERT_TRUE(hit);
@@ -243,7 +247,7 @@ TEST(MeshBvh, BuildsOnASubnormalThickness)
 // times are figures in tests/bench (wisp_benchmarks), not assertions here.
 TEST(MeshBvh, LargeMeshQueriesAnswer)
 {
-    const TriangleMesh sphere = makeIcosphere(0.12f, 7);  // 327,680 triangles
+    const TriangleMesh sphere = makeIcosphere(0.12f, 7); // 327,680 triangles
     const MeshBvh bvh(sphere);
 
     std::mt19937 rng(5);
@@ -255,7 +259,7 @@ TEST(MeshBvh, LargeMeshQueriesAnswer)
         hits += bvh.raycast(-0.5f * d + 0.05f * glm::vec3(gauss(rng), gauss(rng), gauss(rng)), d, 1.0f).has_value();
     }
     float sum = 0.0f;
-    for (int i = 0; i < kRays; ++i) {  // within a few centimetres of the surface, where grooming asks
+    for (int i = 0; i < kRays; ++i) { // within a few centimetres of the surface, where grooming asks
         const glm::vec3 d = glm::normalize(glm::vec3(gauss(rng), gauss(rng), gauss(rng)) + glm::vec3(1e-6f));
         sum += bvh.closestPoint((0.12f + 0.01f * gauss(rng)) * d).distance;
     }
@@ -272,15 +276,16 @@ TEST(MeshBvh, SubnormalCentroidExtentBuildsAndAnswers)
     constexpr int n = 20;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j)
-            flat.positions.push_back({0.01f * static_cast<float>(i), 0.01f * static_cast<float>(j), i == n - 1 ? 1e-42f : 0.0f});
+            flat.positions.push_back(
+                { 0.01f * static_cast<float>(i), 0.01f * static_cast<float>(j), i == n - 1 ? 1e-42f : 0.0f });
     for (std::uint32_t i = 0; i + 1 < n; ++i)
         for (std::uint32_t j = 0; j + 1 < n; ++j) {
             const std::uint32_t a = i * n + j, b = a + 1, c = a + n, d = c + 1;
-            flat.triangles.push_back({a, b, d});
-            flat.triangles.push_back({a, d, c});
+            flat.triangles.push_back({ a, b, d });
+            flat.triangles.push_back({ a, d, c });
         }
     ASSERT_GT(boundsOf(flat).size().z, 0.0f);
-    ASSERT_TRUE(std::isinf(16.0f / (0.5f * 1e-42f)));  // the case the old binning could not take
+    ASSERT_TRUE(std::isinf(16.0f / (0.5f * 1e-42f))); // the case the old binning could not take
     expectClosestMatchesBruteForce(flat, 200, 0.05f, 3);
     // Finite coordinates whose extent overflows to inf (-3e38 .. 3e38): the build still ends.
     TriangleMesh wide = flat;
@@ -291,5 +296,5 @@ TEST(MeshBvh, SubnormalCentroidExtentBuildsAndAnswers)
     EXPECT_FALSE(bvh.empty());
 }
 
-}  // namespace
-}  // namespace wisp
+} // namespace
+} // namespace wisp

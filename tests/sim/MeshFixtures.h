@@ -27,11 +27,11 @@ inline TriangleMesh makeIcosphere(float radius, int subdivisions)
 {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
     TriangleMesh m;
-    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    m.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    m.positions = { { -1, t, 0 }, { 1, t, 0 }, { -1, -t, 0 }, { 1, -t, 0 }, { 0, -1, t }, { 0, 1, t }, { 0, -1, -t },
+        { 0, 1, -t }, { t, 0, -1 }, { t, 0, 1 }, { -t, 0, -1 }, { -t, 0, 1 } };
+    m.triangles = { { 0, 11, 5 }, { 0, 5, 1 }, { 0, 1, 7 }, { 0, 7, 10 }, { 0, 10, 11 }, { 1, 5, 9 }, { 5, 11, 4 },
+        { 11, 10, 2 }, { 10, 7, 6 }, { 7, 1, 8 }, { 3, 9, 4 }, { 3, 4, 2 }, { 3, 2, 6 }, { 3, 6, 8 }, { 3, 8, 9 },
+        { 4, 9, 5 }, { 2, 4, 11 }, { 6, 2, 10 }, { 8, 6, 7 }, { 9, 8, 1 } };
     for (int s = 0; s < subdivisions; ++s) {
         std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;
         auto midpoint = [&](unsigned a, unsigned b) {
@@ -47,10 +47,10 @@ inline TriangleMesh makeIcosphere(float radius, int subdivisions)
         next.reserve(4 * m.triangles.size());
         for (const glm::uvec3& tri : m.triangles) {
             const unsigned ab = midpoint(tri.x, tri.y), bc = midpoint(tri.y, tri.z), ca = midpoint(tri.z, tri.x);
-            next.push_back({tri.x, ab, ca});
-            next.push_back({tri.y, bc, ab});
-            next.push_back({tri.z, ca, bc});
-            next.push_back({ab, bc, ca});
+            next.push_back({ tri.x, ab, ca });
+            next.push_back({ tri.y, bc, ab });
+            next.push_back({ tri.z, ca, bc });
+            next.push_back({ ab, bc, ca });
         }
         m.triangles = std::move(next);
     }
@@ -81,7 +81,7 @@ inline TriangleMesh readObj(const std::filesystem::path& path, float scale)
             while (s >> word)
                 corners.push_back(static_cast<unsigned>(std::stoul(word)) - 1);
             for (std::size_t i = 2; i < corners.size(); ++i)
-                mesh.triangles.push_back({corners[0], corners[i - 1], corners[i]});
+                mesh.triangles.push_back({ corners[0], corners[i - 1], corners[i] });
         }
     }
     return mesh;
@@ -93,4 +93,4 @@ inline std::filesystem::path planckPath()
     return wisp::test::sharedAssetsDir() / "heads" / "max_planck_decimated.obj";
 }
 
-}  // namespace wisp::test
+} // namespace wisp::test

@@ -1,5 +1,5 @@
-#include "sim/groom/Groom.h"
 #include "sim/params/Parameters.h"
+#include "sim/groom/Groom.h"
 #include "sim/solver/SolverSettings.h"
 
 #include <gtest/gtest.h>
@@ -35,7 +35,7 @@ TEST(Parameters, RefusesOutOfRangeAndNonFiniteValuesNamingTheKey)
     EXPECT_EQ(v.set(Param::Gravity, INFINITY), "gravity: inf is not a finite number");
     EXPECT_EQ(v.set(Param::Segments, 1), "segments: 1 is outside 2..127");
     EXPECT_EQ(v.set(Param::Segments, 0), "segments: 0 is outside 2..127");
-    EXPECT_TRUE(v.set(Param::Gravity, -2.8).empty());  // negative gravity is allowed: hair floats
+    EXPECT_TRUE(v.set(Param::Gravity, -2.8).empty()); // negative gravity is allowed: hair floats
     EXPECT_DOUBLE_EQ(v.get(Param::Gravity), -2.8);
 }
 
@@ -43,7 +43,7 @@ TEST(Parameters, IntegerAndToggleParametersRefuseFractionsNamingThem)
 {
     ParameterValues v;
     EXPECT_EQ(v.set(Param::Substeps, 2.5), "substeps: 2.5 is not a whole number");
-    EXPECT_EQ(v.getInt(Param::Substeps), 2);  // kept
+    EXPECT_EQ(v.getInt(Param::Substeps), 2); // kept
     EXPECT_EQ(v.set(Param::WispSize, 7.6), "wisp_size: 7.6 is not a whole number");
     EXPECT_EQ(v.set(Param::SimulateAllStrands, 0.5), "simulate_all_strands: 0.5 is not 0 or 1");
     EXPECT_EQ(v.set(Param::Body, 2), "body: 2 is outside 0..1");
@@ -57,7 +57,7 @@ TEST(Parameters, IntegerAndToggleParametersRefuseFractionsNamingThem)
 TEST(Parameters, EveryRangeEndIsAcceptedAsWrittenAndAsAFloat)
 {
     for (const ParameterInfo& p : allParameters()) {
-        for (double end : {p.minimum, p.maximum}) {
+        for (double end : { p.minimum, p.maximum }) {
             EXPECT_EQ(checkParameterValue(p.id, end), "") << p.key << " " << end;
             if (p.kind == ParamKind::Real) {
                 EXPECT_EQ(checkParameterValue(p.id, static_cast<double>(static_cast<float>(end))), "") << p.key;
@@ -70,7 +70,7 @@ TEST(Parameters, EveryRangeEndIsAcceptedAsWrittenAndAsAFloat)
             EXPECT_NE(checkParameterValue(p.id, below), "") << p.key;
         }
     }
-    EXPECT_GT(static_cast<double>(0.1f), 0.1);  // why: the time step's upper end
+    EXPECT_GT(static_cast<double>(0.1f), 0.1); // why: the time step's upper end
     EXPECT_EQ(checkParameterValue(Param::TimeStep, static_cast<double>(0.1f)), "");
     EXPECT_EQ(checkParameterValue(Param::CurlRadius, static_cast<double>(0.05f)), "");
     EXPECT_EQ(checkParameterValue(Param::Length, static_cast<double>(0.005f)), "");
@@ -80,17 +80,17 @@ TEST(Parameters, EveryRangeEndIsAcceptedAsWrittenAndAsAFloat)
 TEST(Parameters, SolverAndGroomSettingsAcceptTheRangeEnds)
 {
     ParameterValues v;
-    for (Param id : {Param::TimeStep, Param::Drag, Param::Damping, Param::Stiffness, Param::Friction, Param::HairOffset,
-                     Param::Turbulence, Param::Substeps}) {
-        for (double end : {parameterInfo(id).minimum, parameterInfo(id).maximum}) {
+    for (Param id : { Param::TimeStep, Param::Drag, Param::Damping, Param::Stiffness, Param::Friction,
+             Param::HairOffset, Param::Turbulence, Param::Substeps }) {
+        for (double end : { parameterInfo(id).minimum, parameterInfo(id).maximum }) {
             ParameterValues w = v;
             ASSERT_EQ(w.set(id, end), "");
             EXPECT_EQ(validateSolverSettings(solverSettingsFrom(w)), "") << parameterInfo(id).key << " " << end;
         }
     }
-    for (Param id : {Param::Density, Param::WispSize, Param::ClumpDegree, Param::ClumpRate, Param::Length,
-                     Param::LengthVariation, Param::Segments, Param::CurlRadius, Param::CurlTurns, Param::HairOffset}) {
-        for (double end : {parameterInfo(id).minimum, parameterInfo(id).maximum}) {
+    for (Param id : { Param::Density, Param::WispSize, Param::ClumpDegree, Param::ClumpRate, Param::Length,
+             Param::LengthVariation, Param::Segments, Param::CurlRadius, Param::CurlTurns, Param::HairOffset }) {
+        for (double end : { parameterInfo(id).minimum, parameterInfo(id).maximum }) {
             ParameterValues w = v;
             ASSERT_EQ(w.set(id, end), "");
             EXPECT_EQ(validateGroomSettings(groomSettingsFrom(w)), "") << parameterInfo(id).key << " " << end;
@@ -137,7 +137,7 @@ TEST(Parameters, GravityIsCentredAndWispSizeLogarithmic)
 
     const SliderRange size = sliderRangeOf(parameterInfo(Param::WispSize));
     EXPECT_EQ(size.scale, SliderScale::Log);
-    EXPECT_NEAR(sliderFractionOf(size, 32.0), 0.5, 1e-12);  // 1..1024: the middle is sqrt(1024)
+    EXPECT_NEAR(sliderFractionOf(size, 32.0), 0.5, 1e-12); // 1..1024: the middle is sqrt(1024)
     EXPECT_EQ(sliderValueAt(size, 0.5), 32.0);
     // A range from 0 has a soft zero: wind 0..100 m/s puts 1.5 m/s well inside the travel.
     const SliderRange wind = sliderRangeOf(parameterInfo(Param::WindSpeed));
@@ -174,5 +174,6 @@ TEST(Parameters, ToolSettingsAreClampedAndCheckedAgainstTheirOneRange)
     EXPECT_DOUBLE_EQ(clampToToolSetting(ToolSetting::PermTurns, 500.0), 200.0);
     EXPECT_EQ(checkToolSetting(ToolSetting::PermRadius, 0.01, "--curl-radius"), "");
     EXPECT_EQ(checkToolSetting(ToolSetting::PermRadius, 0.2, "--curl-radius"), "--curl-radius: 0.2 is outside 0..0.05");
-    EXPECT_EQ(checkToolSetting(ToolSetting::BrushFalloff, std::nan(""), "falloff"), "falloff: nan is not a finite number");
+    EXPECT_EQ(
+        checkToolSetting(ToolSetting::BrushFalloff, std::nan(""), "falloff"), "falloff: nan is not a finite number");
 }

@@ -47,11 +47,12 @@ ParameterValues with(std::initializer_list<std::pair<Param, double>> changes)
     return v;
 }
 
-}  // namespace
+} // namespace
 
 TEST(Physics, SegmentsKeepTheirLengthUnderGravityAndStrongWind)
 {
-    auto sim = makeSimulation(with({{Param::WindSpeed, 30.0}, {Param::WindAzimuth, 0.0}, {Param::Turbulence, 0.5}}));
+    auto sim
+        = makeSimulation(with({ { Param::WindSpeed, 30.0 }, { Param::WindAzimuth, 0.0 }, { Param::Turbulence, 0.5 } }));
     run(*sim, 1000);
     EXPECT_LT(worstStretch(*sim), 0.01);
     EXPECT_EQ(sim->solver().strandsReset(), 0u);
@@ -79,9 +80,10 @@ TEST(Physics, StrongerGravityHangsTipsLowerAndMovesThemLess)
 {
     // Under the same gusty wind, heavier hair hangs lower and sways less (Fig. 7 of the paper).
     double tipY[2], sway[2];
-    const double gravities[2] = {9.8, 17.8};
+    const double gravities[2] = { 9.8, 17.8 };
     for (int i = 0; i < 2; ++i) {
-        auto sim = makeSimulation(with({{Param::Gravity, gravities[i]}, {Param::WindSpeed, 6.0}, {Param::Turbulence, 1.0}}));
+        auto sim = makeSimulation(
+            with({ { Param::Gravity, gravities[i] }, { Param::WindSpeed, 6.0 }, { Param::Turbulence, 1.0 } }));
         run(*sim, 240);
         double travelled = 0.0;
         glm::vec3 last = tipStats(*sim).meanTip;
@@ -100,7 +102,7 @@ TEST(Physics, StrongerGravityHangsTipsLowerAndMovesThemLess)
 
 TEST(Physics, NegativeGravityFloatsTipsAboveTheRoots)
 {
-    auto sim = makeSimulation(with({{Param::Gravity, -2.8}, {Param::Stiffness, 0.05}}));
+    auto sim = makeSimulation(with({ { Param::Gravity, -2.8 }, { Param::Stiffness, 0.05 } }));
     run(*sim, 600);
     const TipStats s = tipStats(*sim);
     EXPECT_GT(s.meanTip.y, s.meanRoot.y + 0.05f);
@@ -109,16 +111,16 @@ TEST(Physics, NegativeGravityFloatsTipsAboveTheRoots)
 TEST(Physics, WindMovesTipsItsWayFurtherWhenFaster)
 {
     auto settle = [](double speed, double azimuth, double elevation) {
-        auto sim = makeSimulation(with({{Param::WindSpeed, speed}, {Param::WindAzimuth, azimuth},
-                                        {Param::WindElevation, elevation}, {Param::Drag, 2.0}}));
+        auto sim = makeSimulation(with({ { Param::WindSpeed, speed }, { Param::WindAzimuth, azimuth },
+            { Param::WindElevation, elevation }, { Param::Drag, 2.0 } }));
         run(*sim, 400);
         return tipStats(*sim).meanTip;
     };
     const glm::vec3 calm = settle(0.0, 0.0, 0.0);
-    const glm::vec3 toRight = settle(8.0, 0.0, 0.0);        // blows toward +X
+    const glm::vec3 toRight = settle(8.0, 0.0, 0.0); // blows toward +X
     const glm::vec3 toRightFast = settle(16.0, 0.0, 0.0);
-    const glm::vec3 toLeft = settle(8.0, 180.0, 0.0);       // toward -X
-    const glm::vec3 up = settle(8.0, 0.0, 90.0);            // toward +Y
+    const glm::vec3 toLeft = settle(8.0, 180.0, 0.0); // toward -X
+    const glm::vec3 up = settle(8.0, 0.0, 90.0); // toward +Y
     EXPECT_GT(toRight.x, calm.x + 0.02f);
     EXPECT_GT(toRightFast.x, toRight.x + 0.01f);
     EXPECT_LT(toLeft.x, calm.x - 0.02f);
@@ -127,7 +129,7 @@ TEST(Physics, WindMovesTipsItsWayFurtherWhenFaster)
 
 TEST(Physics, RootsStayOnTheScalp)
 {
-    auto sim = makeSimulation(with({{Param::WindSpeed, 20.0}, {Param::Turbulence, 1.0}}));
+    auto sim = makeSimulation(with({ { Param::WindSpeed, 20.0 }, { Param::Turbulence, 1.0 } }));
     run(*sim, 200);
     std::vector<glm::vec3> p;
     sim->copySimulated(p);
@@ -152,13 +154,14 @@ TEST(Physics, RootsFollowTheHeadTransform)
     const Groom& g = sim->groom();
     const HairCurves keys = keyRestCurves(g);
     for (std::size_t w = 0; w < g.wispCount(); ++w)
-        EXPECT_LT(glm::distance(p[keys.offsets[w]], pointOn(defaultHead().mesh, g.roots[g.keyStrand[w]]) + shift), 1e-5f);
+        EXPECT_LT(
+            glm::distance(p[keys.offsets[w]], pointOn(defaultHead().mesh, g.roots[g.keyStrand[w]]) + shift), 1e-5f);
     EXPECT_LT(worstStretch(*sim), 0.01);
 }
 
 TEST(Physics, SameResultWithOneAndTwoThreads)
 {
-    const ParameterValues v = with({{Param::WindSpeed, 10.0}, {Param::Turbulence, 1.0}});
+    const ParameterValues v = with({ { Param::WindSpeed, 10.0 }, { Param::Turbulence, 1.0 } });
     auto one = makeSimulation(v, 1);
     auto two = makeSimulation(v, 2);
     ASSERT_EQ(one->solver().threadCount(), 1);
@@ -174,8 +177,8 @@ TEST(Physics, SameResultWithOneAndTwoThreads)
 
 TEST(Physics, HostileSettingsGiveNoNanAndLittleStretch)
 {
-    auto sim = makeSimulation(with({{Param::TimeStep, 1.0 / 15.0}, {Param::Gravity, 50.0}, {Param::WindSpeed, 50.0},
-                                    {Param::Turbulence, 1.0}, {Param::Substeps, 1}}));
+    auto sim = makeSimulation(with({ { Param::TimeStep, 1.0 / 15.0 }, { Param::Gravity, 50.0 },
+        { Param::WindSpeed, 50.0 }, { Param::Turbulence, 1.0 }, { Param::Substeps, 1 } }));
     run(*sim, 300);
     EXPECT_TRUE(allFinite(*sim));
     EXPECT_LT(worstStretch(*sim), 0.05);
@@ -185,7 +188,7 @@ TEST(Physics, ABrokenStrandIsResetAndDoesNotSpread)
 {
     // Volume 0: strands that do not interact must not change by a bit (with volume on, the others
     // feel the broken strand leave the grid; VolumeTest checks that nothing goes non-finite).
-    const ParameterValues v = with({{Param::Volume, 0.0}});
+    const ParameterValues v = with({ { Param::Volume, 0.0 } });
     auto broken = makeSimulation(v, 2);
     auto reference = makeSimulation(v, 2);
     run(*broken, 20);
@@ -200,9 +203,10 @@ TEST(Physics, ABrokenStrandIsResetAndDoesNotSpread)
     reference->copySimulated(b);
     const HairCurves keys = keyRestCurves(broken->groom());
     for (std::size_t s = 0; s < keys.strandCount(); ++s) {
-        const bool same = std::memcmp(a.data() + keys.offsets[s], b.data() + keys.offsets[s],
-                                      keys.pointsIn(s) * sizeof(glm::vec3)) == 0;
-        if (s == 3)  // back at its rest shape
+        const bool same
+            = std::memcmp(a.data() + keys.offsets[s], b.data() + keys.offsets[s], keys.pointsIn(s) * sizeof(glm::vec3))
+            == 0;
+        if (s == 3) // back at its rest shape
             for (std::uint32_t j = keys.offsets[s]; j < keys.offsets[s + 1]; ++j)
                 EXPECT_LT(glm::distance(a[j], keys.positions[j]), 1e-5f);
         else
@@ -212,7 +216,7 @@ TEST(Physics, ABrokenStrandIsResetAndDoesNotSpread)
 
 TEST(Physics, ResetReturnsToRest)
 {
-    auto sim = makeSimulation(with({{Param::WindSpeed, 10.0}}));
+    auto sim = makeSimulation(with({ { Param::WindSpeed, 10.0 } }));
     run(*sim, 50);
     sim->resetToRest();
     std::vector<glm::vec3> p;

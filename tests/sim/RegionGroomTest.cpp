@@ -2,10 +2,10 @@
 // running simulation.
 #include "SimFixtures.h"
 
-#include "sim/groom/GrowthRegion.h"
-#include "sim/solver/HairSimulation.h"
 #include "sim/geometry/MeshBvh.h"
+#include "sim/groom/GrowthRegion.h"
 #include "sim/groom/ScalpBrush.h"
+#include "sim/solver/HairSimulation.h"
 
 #include <gtest/gtest.h>
 
@@ -36,7 +36,7 @@ std::pair<std::vector<float>, std::vector<float>> halves()
     std::vector<float> left = defaultHead().growthWeights, right = left;
     for (std::size_t i = 0; i < head.positions.size(); ++i)
         (head.positions[i].x < mid ? right[i] : left[i]) = 0.0f;
-    return {left, right};
+    return { left, right };
 }
 
 std::map<std::uint64_t, std::vector<glm::vec3>> strandsByIdentity(const Groom& groom, const HairCurves& curves)
@@ -44,17 +44,17 @@ std::map<std::uint64_t, std::vector<glm::vec3>> strandsByIdentity(const Groom& g
     std::map<std::uint64_t, std::vector<glm::vec3>> out;
     for (std::size_t i = 0; i < groom.strandCount(); ++i) {
         const auto s = curves.strand(i);
-        out[groom.strandIdentity(i)] = {s.begin(), s.end()};
+        out[groom.strandIdentity(i)] = { s.begin(), s.end() };
     }
     return out;
 }
 
-}  // namespace
+} // namespace
 
 TEST(RegionGroom, EachRegionGrowsWithItsOwnWispSettingsAndOnlyWhereItIsPainted)
 {
     auto [left, right] = halves();
-    std::vector<GrowthRegion> regions{regionNamed(0, "Left", left), regionNamed(1, "Right", right)};
+    std::vector<GrowthRegion> regions{ regionNamed(0, "Left", left), regionNamed(1, "Right", right) };
     regions[1].values.set(Param::Length, 0.10);
     regions[1].values.set(Param::LengthVariation, 0.0);
     regions[0].values.set(Param::Length, 0.30);
@@ -64,7 +64,7 @@ TEST(RegionGroom, EachRegionGrowsWithItsOwnWispSettingsAndOnlyWhereItIsPainted)
     const Groom& g = sim.groom();
     ASSERT_EQ(g.regionIds.size(), 2u);
     const float mid = boundsOf(defaultHead().mesh).center().x;
-    std::size_t perRegion[2] = {0, 0};
+    std::size_t perRegion[2] = { 0, 0 };
     for (std::size_t i = 0; i < g.strandCount(); ++i) {
         const int r = g.regionOfStrand[i];
         ++perRegion[r];
@@ -84,15 +84,15 @@ TEST(RegionGroom, EachRegionGrowsWithItsOwnWispSettingsAndOnlyWhereItIsPainted)
 TEST(RegionGroom, HiddenAndSoloDecideWhichRegionsGrow)
 {
     auto [left, right] = halves();
-    std::vector<GrowthRegion> regions{regionNamed(0, "Left", left), regionNamed(7, "Right", right)};
+    std::vector<GrowthRegion> regions{ regionNamed(0, "Left", left), regionNamed(7, "Right", right) };
     HairSimulation sim(1);
     ASSERT_EQ(sim.setup(defaultHead().mesh, regions, 7, testParameters()), "");
-    EXPECT_EQ(sim.groom().regionIds, std::vector<std::uint32_t>{7});
+    EXPECT_EQ(sim.groom().regionIds, std::vector<std::uint32_t>{ 7 });
     regions[1].visible = false;
     ASSERT_EQ(sim.regroom(regions, kNoSolo, testParameters()), "");
-    EXPECT_EQ(sim.groom().regionIds, std::vector<std::uint32_t>{0});
+    EXPECT_EQ(sim.groom().regionIds, std::vector<std::uint32_t>{ 0 });
     regions[0].visible = false;
-    ASSERT_EQ(sim.regroom(regions, kNoSolo, testParameters()), "");  // nothing grows: allowed, empty
+    ASSERT_EQ(sim.regroom(regions, kNoSolo, testParameters()), ""); // nothing grows: allowed, empty
     EXPECT_EQ(sim.groom().strandCount(), 0u);
     sim.step();
     HairCurves frame;
@@ -103,7 +103,7 @@ TEST(RegionGroom, HiddenAndSoloDecideWhichRegionsGrow)
 TEST(RegionGroom, ChangingOneRegionsWispSettingsChangesOnlyItsStrands)
 {
     auto [left, right] = halves();
-    std::vector<GrowthRegion> regions{regionNamed(0, "Left", left), regionNamed(1, "Right", right)};
+    std::vector<GrowthRegion> regions{ regionNamed(0, "Left", left), regionNamed(1, "Right", right) };
     HairSimulation sim(1);
     ASSERT_EQ(sim.setup(defaultHead().mesh, regions, kNoSolo, testParameters()), "");
     const Groom before = sim.groom();
@@ -119,7 +119,7 @@ TEST(RegionGroom, ChangingOneRegionsWispSettingsChangesOnlyItsStrands)
         const auto it = b.find(id);
         ASSERT_NE(it, b.end()) << "wisp settings do not add or remove roots";
         if (isLeft) {
-            EXPECT_EQ(it->second, points);  // bit-identical rest shapes
+            EXPECT_EQ(it->second, points); // bit-identical rest shapes
             ++leftSame;
         } else if (it->second != points) {
             ++rightChanged;
@@ -133,14 +133,14 @@ TEST(RegionGroom, ChangingOneRegionsWispSettingsChangesOnlyItsStrands)
 TEST(RegionGroom, ADabAddsRootsOnlyNearItAndReusesEveryOtherWisp)
 {
     const TriangleMesh& head = defaultHead().mesh;
-    std::vector<GrowthRegion> regions{regionNamed(0, "Scalp", defaultHead().growthWeights)};
+    std::vector<GrowthRegion> regions{ regionNamed(0, "Scalp", defaultHead().growthWeights) };
     HairSimulation sim(1);
     ASSERT_EQ(sim.setup(head, regions, kNoSolo, testParameters()), "");
     const Groom before = sim.groom();
 
     // Paint on the cheek, where the default map grows nothing.
     const Aabb box = boundsOf(head);
-    const glm::vec3 cheek = sim.bvh().closestPoint({box.max.x, box.center().y - 0.02f, box.center().z + 0.03f}).point;
+    const glm::vec3 cheek = sim.bvh().closestPoint({ box.max.x, box.center().y - 0.02f, box.center().z + 0.03f }).point;
     BrushSettings brush;
     brush.radiusMetres = 0.02f;
     brush.strength = 1.0f;
@@ -164,7 +164,7 @@ TEST(RegionGroom, ADabAddsRootsOnlyNearItAndReusesEveryOtherWisp)
 
 TEST(RegionGroom, RegroomKeepsTheMotionOfStrandsThatStayAndStartsNewOnesAtRest)
 {
-    std::vector<GrowthRegion> regions{regionNamed(0, "Scalp", defaultHead().growthWeights)};
+    std::vector<GrowthRegion> regions{ regionNamed(0, "Scalp", defaultHead().growthWeights) };
     ParameterValues v = testParameters();
     v.set(Param::WindSpeed, 10.0);
     v.set(Param::WindAzimuth, 0.0);
@@ -208,7 +208,7 @@ TEST(RegionGroom, RegroomKeepsTheMotionOfStrandsThatStayAndStartsNewOnesAtRest)
 TEST(RegionGroom, StiffnessScaleMakesARegionHoldItsShapeAgainstGravity)
 {
     auto [left, right] = halves();
-    std::vector<GrowthRegion> regions{regionNamed(0, "Left", left), regionNamed(1, "Right", right)};
+    std::vector<GrowthRegion> regions{ regionNamed(0, "Left", left), regionNamed(1, "Right", right) };
     regions[0].values.set(Param::StiffnessScale, 0.0);
     regions[1].values.set(Param::StiffnessScale, 4.0);
     ParameterValues v = testParameters();
@@ -221,8 +221,8 @@ TEST(RegionGroom, StiffnessScaleMakesARegionHoldItsShapeAgainstGravity)
     HairCurves frame;
     sim.buildFrame(frame);
     const Groom& g = sim.groom();
-    double sag[2] = {0, 0};
-    int count[2] = {0, 0};
+    double sag[2] = { 0, 0 };
+    int count[2] = { 0, 0 };
     for (std::size_t w = 0; w < g.wispCount(); ++w) {
         const std::uint32_t k = g.keyStrand[w];
         const int r = g.regionOfStrand[k];
@@ -236,7 +236,7 @@ TEST(RegionGroom, StiffnessScaleMakesARegionHoldItsShapeAgainstGravity)
 
 TEST(RegionGroom, BadRegionsAreRefusedByName)
 {
-    std::vector<GrowthRegion> regions{regionNamed(0, "Fringe", defaultHead().growthWeights)};
+    std::vector<GrowthRegion> regions{ regionNamed(0, "Fringe", defaultHead().growthWeights) };
     HairSimulation sim(1);
     ASSERT_EQ(sim.setup(defaultHead().mesh, regions, kNoSolo, testParameters()), "");
     const std::size_t strands = sim.groom().strandCount();
@@ -248,7 +248,8 @@ TEST(RegionGroom, BadRegionsAreRefusedByName)
     EXPECT_NE(sim.regroom(bad, kNoSolo, testParameters()).find("region 'Fringe'"), std::string::npos);
     bad = regions;
     bad[0].tipColour.y = 2.0f;
-    EXPECT_EQ(sim.regroom(bad, kNoSolo, testParameters()), "region 'Fringe': colour component 2.000000 is outside 0..1");
+    EXPECT_EQ(
+        sim.regroom(bad, kNoSolo, testParameters()), "region 'Fringe': colour component 2.000000 is outside 0..1");
     EXPECT_EQ(sim.groom().strandCount(), strands) << "a refused regroom keeps the running groom";
     EXPECT_EQ(validateRegion(regions[0], defaultHead().mesh.positions.size()), "");
 }
@@ -259,18 +260,18 @@ TEST(RegionGroom, ImportedStrandsBecomeWispsRootedOnTheHeadWithTheirShape)
     const Aabb box = boundsOf(head);
     // Three strands of 5, 9 and 30 points starting a few millimetres off the crown, hanging down.
     auto imported = std::make_shared<HairCurves>();
-    const int counts[3] = {5, 9, 30};
+    const int counts[3] = { 5, 9, 30 };
     for (int s = 0; s < 3; ++s) {
         const glm::vec3 start(box.center().x + 0.02f * static_cast<float>(s - 1), box.max.y + 0.004f, box.center().z);
         const auto points = imported->strandForWrite(imported->addStrand(static_cast<std::uint32_t>(counts[s])));
         for (int j = 0; j < counts[s]; ++j)
             points[j] = start + glm::vec3(0.03f * std::sin(0.3f * j), -0.2f * j / (counts[s] - 1), 0.0f);
     }
-    std::vector<GrowthRegion> regions{regionNamed(0, "Scalp", defaultHead().growthWeights),
-                                      regionNamed(5, "Imported", std::vector<float>(head.positions.size(), 0.0f))};
+    std::vector<GrowthRegion> regions{ regionNamed(0, "Scalp", defaultHead().growthWeights),
+        regionNamed(5, "Imported", std::vector<float>(head.positions.size(), 0.0f)) };
     regions[1].importedStrands = imported;
     HairSimulation sim(1);
-    ASSERT_EQ(sim.setup(head, regions, 5, testParameters()), "");  // solo: only the imported strands
+    ASSERT_EQ(sim.setup(head, regions, 5, testParameters()), ""); // solo: only the imported strands
     const Groom& g = sim.groom();
     ASSERT_EQ(g.strandCount(), 3u);
     ASSERT_EQ(g.wispCount(), 3u);
@@ -289,7 +290,8 @@ TEST(RegionGroom, ImportedStrandsBecomeWispsRootedOnTheHeadWithTheirShape)
             originalLength += glm::distance(original[j], original[j - 1]);
         for (std::size_t j = 1; j < rest.size(); ++j)
             restLength += glm::distance(rest[j], rest[j - 1]);
-        EXPECT_NEAR(restLength, originalLength, 0.02f * originalLength);  // chords of a resampled wave run a little short
+        EXPECT_NEAR(
+            restLength, originalLength, 0.02f * originalLength); // chords of a resampled wave run a little short
         EXPECT_LT(glm::distance(rest.back(), original.back() + shift), 1e-5f);
     }
     for (int i = 0; i < 100; ++i)
@@ -303,15 +305,15 @@ TEST(RegionGroom, ImportedStrandsBecomeWispsRootedOnTheHeadWithTheirShape)
 
 TEST(RegionGroom, ResamplingKeepsEndsAndSpacesPointsEvenly)
 {
-    const std::vector<glm::vec3> polyline{{0, 0, 0}, {0, -0.1f, 0}, {0.3f, -0.1f, 0}};
+    const std::vector<glm::vec3> polyline{ { 0, 0, 0 }, { 0, -0.1f, 0 }, { 0.3f, -0.1f, 0 } };
     const std::vector<glm::vec3> r = resampleByArcLength(polyline, 5);
     ASSERT_EQ(r.size(), 5u);
     EXPECT_EQ(r.front(), polyline.front());
     EXPECT_EQ(r.back(), polyline.back());
     for (std::size_t j = 1; j < r.size(); ++j)
-        EXPECT_NEAR(glm::distance(r[j], r[j - 1]), 0.1f, 0.02f);  // corners cut a chord a little short
-    EXPECT_TRUE(resampleByArcLength(std::vector<glm::vec3>{{1, 1, 1}}, 5).empty());
-    EXPECT_TRUE(resampleByArcLength(std::vector<glm::vec3>{{1, 1, 1}, {1, 1, 1}}, 5).empty());
+        EXPECT_NEAR(glm::distance(r[j], r[j - 1]), 0.1f, 0.02f); // corners cut a chord a little short
+    EXPECT_TRUE(resampleByArcLength(std::vector<glm::vec3>{ { 1, 1, 1 } }, 5).empty());
+    EXPECT_TRUE(resampleByArcLength(std::vector<glm::vec3>{ { 1, 1, 1 }, { 1, 1, 1 } }, 5).empty());
 }
 
 namespace {
@@ -346,4 +348,4 @@ TEST(ScalpCoverage, TakesTheStrongestGrowingRegionPerVertex)
     EXPECT_EQ(scalpCoverage(hidden, kNoSolo, 4)[3], glm::vec4(0.9f, 0.8f, 0.7f, 0.4f));
 }
 
-}  // namespace
+} // namespace

@@ -75,7 +75,8 @@ HairCurves lockAt(float degreesBelowHorizontal)
     const auto points = curves.strandForWrite(s);
     const float a = glm::radians(degreesBelowHorizontal);
     for (int j = 0; j <= kSegments; ++j)
-        points[static_cast<std::size_t>(j)] = 0.2f * static_cast<float>(j) / kSegments * glm::vec3(std::cos(a), -std::sin(a), 0.0f);
+        points[static_cast<std::size_t>(j)]
+            = 0.2f * static_cast<float>(j) / kSegments * glm::vec3(std::cos(a), -std::sin(a), 0.0f);
     return curves;
 }
 
@@ -94,7 +95,7 @@ glm::vec3 settledTip(const HairCurves& rest, const HairCurves& start, SolverSett
     return positions.back();
 }
 
-}  // namespace
+} // namespace
 
 // Issue 11: the editor solves a combed rest shape for the substeps the artist asked for, and its
 // pacer may then run fewer (a slow machine) or the artist more. The static shape the solver holds
@@ -108,27 +109,29 @@ TEST(RestShapeSolve, ACombedLockHoldsWhereverThePacerTakesTheSubstepCount)
     // 0.6: a combed strand of default hair (the comb sets 2.4 x 0.25); 0.45, softer hair combed.
     settings.dampingPerSecond = 1.0f;
     settings.dragPerSecond = 0.8f;
-    for (const float stiffness : {0.45f, 0.6f})
-    for (const float below : {0.0f, 30.0f, 50.0f}) {
-        settings.stiffness = stiffness;
-        const HairCurves combed = lockAt(below);
-        const RestShapeSolution solved = solveRestShapes(combed, {}, settings, nullptr);
-        EXPECT_LT(solved.worstGapMetres, 0.001f) << below << " degrees: the solve did not converge";
-        const HairCurves unsolved = combed;  // the comb's shape taken as the rest shape sags
-        const float sag = glm::distance(settledTip(unsolved, combed, settings, 2, 500), combed.positions.back());
-        EXPECT_GT(sag, 0.005f) << below << " degrees: the lock does not sag unsolved: the test proves nothing";
-        float nearest = 1e30f, farthest = 0.0f;
-        for (const int substeps : {1, 2, 4, 8}) {
-            const float gap = glm::distance(settledTip(solved.rest, combed, settings, substeps, 500), combed.positions.back());
-            std::printf("[ figures  ] lock of stiffness %.2f combed %2.0f degrees below horizontal, solved at 2 "
-                        "substeps, run at %d: tip %.2f mm from the comb (unsolved: %.1f mm)\n",
-                        stiffness, below, substeps, gap * 1e3, sag * 1e3);
-            // Before the bend's reaction made up for damping and drag: 1.3 to 2.1 mm at stiffness
-            // 0.6, 9.9 to 17.9 mm at 0.45.
-            EXPECT_LT(gap, 0.001f) << below << " degrees, " << substeps << " substeps: the lock left the comb";
-            nearest = std::min(nearest, gap);
-            farthest = std::max(farthest, gap);
+    for (const float stiffness : { 0.45f, 0.6f })
+        for (const float below : { 0.0f, 30.0f, 50.0f }) {
+            settings.stiffness = stiffness;
+            const HairCurves combed = lockAt(below);
+            const RestShapeSolution solved = solveRestShapes(combed, {}, settings, nullptr);
+            EXPECT_LT(solved.worstGapMetres, 0.001f) << below << " degrees: the solve did not converge";
+            const HairCurves unsolved = combed; // the comb's shape taken as the rest shape sags
+            const float sag = glm::distance(settledTip(unsolved, combed, settings, 2, 500), combed.positions.back());
+            EXPECT_GT(sag, 0.005f) << below << " degrees: the lock does not sag unsolved: the test proves nothing";
+            float nearest = 1e30f, farthest = 0.0f;
+            for (const int substeps : { 1, 2, 4, 8 }) {
+                const float gap
+                    = glm::distance(settledTip(solved.rest, combed, settings, substeps, 500), combed.positions.back());
+                std::printf("[ figures  ] lock of stiffness %.2f combed %2.0f degrees below horizontal, solved at 2 "
+                            "substeps, run at %d: tip %.2f mm from the comb (unsolved: %.1f mm)\n",
+                    stiffness, below, substeps, gap * 1e3, sag * 1e3);
+                // Before the bend's reaction made up for damping and drag: 1.3 to 2.1 mm at stiffness
+                // 0.6, 9.9 to 17.9 mm at 0.45.
+                EXPECT_LT(gap, 0.001f) << below << " degrees, " << substeps << " substeps: the lock left the comb";
+                nearest = std::min(nearest, gap);
+                farthest = std::max(farthest, gap);
+            }
+            EXPECT_LT(farthest - nearest, 0.0005f)
+                << below << " degrees: the lock rests elsewhere at another substep count";
         }
-        EXPECT_LT(farthest - nearest, 0.0005f) << below << " degrees: the lock rests elsewhere at another substep count";
-    }
 }

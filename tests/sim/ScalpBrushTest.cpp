@@ -1,6 +1,6 @@
+#include "sim/groom/ScalpBrush.h"
 #include "MeshFixtures.h"
 #include "sim/geometry/DefaultHead.h"
-#include "sim/groom/ScalpBrush.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -43,10 +43,13 @@ std::uint32_t nearestVertex(const TriangleMesh& mesh, glm::vec3 to)
 // A point on the scalp well off the mid-plane (the right side, above the ear), and its mirror image.
 glm::vec3 sideCentre()
 {
-    static const glm::vec3 centre = head().positions[nearestVertex(head(), {0.2f, 0.09f, -0.02f})];
+    static const glm::vec3 centre = head().positions[nearestVertex(head(), { 0.2f, 0.09f, -0.02f })];
     return centre;
 }
-glm::vec3 mirrorOf(glm::vec3 p) { return {2.0f * brush().mirrorPlaneX() - p.x, p.y, p.z}; }
+glm::vec3 mirrorOf(glm::vec3 p)
+{
+    return { 2.0f * brush().mirrorPlaneX() - p.x, p.y, p.z };
+}
 
 // Distance from vertex v to the nearer of the dab's centres.
 float nearestCentreDistance(std::uint32_t v, glm::vec3 centre, bool mirror)
@@ -56,7 +59,10 @@ float nearestCentreDistance(std::uint32_t v, glm::vec3 centre, bool mirror)
     return mirror ? std::min(d, glm::distance(p, mirrorOf(centre))) : d;
 }
 
-bool sameBits(float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }
+bool sameBits(float a, float b)
+{
+    return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
+}
 
 std::vector<std::uint32_t> changedBetween(const std::vector<float>& before, const std::vector<float>& after)
 {
@@ -84,12 +90,12 @@ TEST(ScalpBrush, MirrorPlaneIsTheHeadsCentre)
     EXPECT_EQ(brush().vertexCount(), head().vertexCount());
     const glm::vec3 c = sideCentre();
     std::printf("[ value    ] side centre (%.4f, %.4f, %.4f) m, mirror plane x = %.6f m\n", c.x, c.y, c.z,
-                brush().mirrorPlaneX());
+        brush().mirrorPlaneX());
 }
 
 TEST(ScalpBrush, AddRaisesWeightsInsideBothSpheresAndNowhereElse)
 {
-    const BrushSettings s{.radiusMetres = 0.02f, .strength = 0.5f, .falloff = 0.5f, .mode = BrushMode::Add};
+    const BrushSettings s{ .radiusMetres = 0.02f, .strength = 0.5f, .falloff = 0.5f, .mode = BrushMode::Add };
     const glm::vec3 centre = sideCentre();
     ASSERT_GT(centre.x - brush().mirrorPlaneX(), 2.0f * s.radiusMetres) << "the two spheres must not overlap here";
 
@@ -114,12 +120,12 @@ TEST(ScalpBrush, AddRaisesWeightsInsideBothSpheresAndNowhereElse)
         }
     }
     EXPECT_GT(raisedRight, 20);
-    EXPECT_GT(raisedLeft, 20);  // the mirrored dab
+    EXPECT_GT(raisedLeft, 20); // the mirrored dab
 }
 
 TEST(ScalpBrush, EraseLowersWeightsTowardZero)
 {
-    const BrushSettings s{.radiusMetres = 0.02f, .strength = 0.5f, .falloff = 0.0f, .mode = BrushMode::Erase};
+    const BrushSettings s{ .radiusMetres = 0.02f, .strength = 0.5f, .falloff = 0.0f, .mode = BrushMode::Erase };
     const std::vector<float> before(head().vertexCount(), 0.8f);
     std::vector<float> after = before;
     const std::vector<std::uint32_t> changed = brush().dab(sideCentre(), s, after);
@@ -133,17 +139,18 @@ TEST(ScalpBrush, EraseLowersWeightsTowardZero)
     }
     // Full strength clears to exactly 0, and more erasing changes nothing further.
     std::vector<float> cleared = before;
-    brush().dab(sideCentre(), BrushSettings{.strength = 1.0f, .falloff = 0.0f, .mode = BrushMode::Erase}, cleared);
+    brush().dab(sideCentre(), BrushSettings{ .strength = 1.0f, .falloff = 0.0f, .mode = BrushMode::Erase }, cleared);
     EXPECT_EQ(cleared[nearestVertex(head(), sideCentre())], 0.0f);
     std::vector<float> again = cleared;
     EXPECT_TRUE(
-        brush().dab(sideCentre(), BrushSettings{.strength = 1.0f, .falloff = 0.0f, .mode = BrushMode::Erase}, again)
+        brush()
+            .dab(sideCentre(), BrushSettings{ .strength = 1.0f, .falloff = 0.0f, .mode = BrushMode::Erase }, again)
             .empty());
 }
 
 TEST(ScalpBrush, SmoothCalmsANoisyPatchAndLeavesTheRestAlone)
 {
-    const BrushSettings s{.radiusMetres = 0.02f, .strength = 1.0f, .falloff = 0.5f, .mode = BrushMode::Smooth};
+    const BrushSettings s{ .radiusMetres = 0.02f, .strength = 1.0f, .falloff = 0.5f, .mode = BrushMode::Smooth };
     const glm::vec3 centre = sideCentre();
     const std::vector<float> before = variedWeights(head().vertexCount(), 0.0f, 1.0f, 7);
     std::vector<float> after = before;
@@ -181,7 +188,7 @@ TEST(ScalpBrush, SmoothCalmsANoisyPatchAndLeavesTheRestAlone)
 
 TEST(ScalpBrush, HardEdgeChangesTheWholeDiskEqually)
 {
-    const BrushSettings s{.radiusMetres = 0.02f, .strength = 0.3f, .falloff = 0.0f, .mirrorX = false};
+    const BrushSettings s{ .radiusMetres = 0.02f, .strength = 0.3f, .falloff = 0.0f, .mirrorX = false };
     const glm::vec3 centre = sideCentre();
     std::vector<float> w(head().vertexCount(), 0.0f);
     const std::vector<std::uint32_t> changed = brush().dab(centre, s, w);
@@ -193,15 +200,15 @@ TEST(ScalpBrush, HardEdgeChangesTheWholeDiskEqually)
 
 TEST(ScalpBrush, SmoothFalloffGivesLessAtTheRimThanAtTheCentre)
 {
-    const BrushSettings s{.radiusMetres = 0.02f, .strength = 0.3f, .falloff = 1.0f, .mirrorX = false};
-    const glm::vec3 centre = sideCentre();  // a vertex: distance 0 there
+    const BrushSettings s{ .radiusMetres = 0.02f, .strength = 0.3f, .falloff = 1.0f, .mirrorX = false };
+    const glm::vec3 centre = sideCentre(); // a vertex: distance 0 there
     std::vector<float> w(head().vertexCount(), 0.0f);
     brush().dab(centre, s, w);
     EXPECT_EQ(w[nearestVertex(head(), centre)], 0.3f);
 
     // The change never grows with distance, and the outer 15% gets less than 7% of the centre's
     // (1 - smoothstep(0.85) = 0.061).
-    std::vector<std::pair<float, float>> byDistance;  // (metres, weight)
+    std::vector<std::pair<float, float>> byDistance; // (metres, weight)
     for (std::uint32_t v : brush().verticesNear(centre, s.radiusMetres))
         byDistance.emplace_back(glm::distance(head().positions[v], centre), w[v]);
     std::sort(byDistance.begin(), byDistance.end());
@@ -217,7 +224,7 @@ TEST(ScalpBrush, SmoothFalloffGivesLessAtTheRimThanAtTheCentre)
     EXPECT_EQ(brushFalloff(0.0f, 1.0f), 1.0f);
     EXPECT_EQ(brushFalloff(1.0f, 1.0f), 0.0f);
     EXPECT_FLOAT_EQ(brushFalloff(0.5f, 1.0f), 0.5f);
-    EXPECT_EQ(brushFalloff(0.75f, 0.5f), 0.5f);  // halfway through the outer half
+    EXPECT_EQ(brushFalloff(0.75f, 0.5f), 0.5f); // halfway through the outer half
     EXPECT_EQ(brushFalloff(1.0f, 0.0f), 1.0f);
     EXPECT_EQ(brushFalloff(1.01f, 0.0f), 0.0f);
 }
@@ -226,14 +233,14 @@ TEST(ScalpBrush, FullStrengthAddReachesOneAtTheCentre)
 {
     const glm::vec3 centre = sideCentre();
     std::vector<float> w = variedWeights(head().vertexCount(), 0.0f, 0.5f, 3);
-    brush().dab(centre, BrushSettings{.strength = 1.0f}, w);
+    brush().dab(centre, BrushSettings{ .strength = 1.0f }, w);
     EXPECT_EQ(w[nearestVertex(head(), centre)], 1.0f);
     EXPECT_EQ(w[nearestVertex(head(), mirrorOf(centre))], 1.0f);
 }
 
 TEST(ScalpBrush, WithoutMirrorOnlyOneSideChanges)
 {
-    const BrushSettings s{.radiusMetres = 0.03f, .mirrorX = false};
+    const BrushSettings s{ .radiusMetres = 0.03f, .mirrorX = false };
     const std::vector<float> before(head().vertexCount(), 0.0f);
     std::vector<float> after = before;
     const std::vector<std::uint32_t> changed = brush().dab(sideCentre(), s, after);
@@ -248,14 +255,14 @@ TEST(ScalpBrush, WithoutMirrorOnlyOneSideChanges)
 TEST(ScalpBrush, OverlappingMirrorSpheresPaintOnce)
 {
     // 5 mm off the mid-plane on the crown: the spheres' centres lie 1 cm apart, 2 cm radius each.
-    const glm::vec3 centre = head().positions[nearestVertex(head(), {brush().mirrorPlaneX() + 0.005f, 0.2f, 0.0f})];
+    const glm::vec3 centre = head().positions[nearestVertex(head(), { brush().mirrorPlaneX() + 0.005f, 0.2f, 0.0f })];
     const float offPlane = std::abs(centre.x - brush().mirrorPlaneX());
     ASSERT_GT(offPlane, 0.0005f);
     ASSERT_LT(offPlane, 0.008f);
 
-    for (float falloff : {0.0f, 1.0f}) {
+    for (float falloff : { 0.0f, 1.0f }) {
         SCOPED_TRACE(falloff);
-        const BrushSettings s{.radiusMetres = 0.02f, .strength = 0.5f, .falloff = falloff};
+        const BrushSettings s{ .radiusMetres = 0.02f, .strength = 0.5f, .falloff = falloff };
         std::vector<float> w(head().vertexCount(), 0.0f);
         const std::vector<std::uint32_t> changed = brush().dab(centre, s, w);
         EXPECT_EQ(changed, changedBetween(std::vector<float>(w.size(), 0.0f), w));
@@ -283,33 +290,33 @@ TEST(ScalpBrush, InvalidInputChangesNothing)
         const bool nothingReturned = brush().dab(centre, s, w).empty();
         return nothingReturned && changedBetween(before, w).empty();
     };
-    EXPECT_TRUE(refused(sideCentre(), BrushSettings{.radiusMetres = 0.0f}));
-    EXPECT_TRUE(refused(sideCentre(), BrushSettings{.radiusMetres = 0.6f}));
-    EXPECT_TRUE(refused(sideCentre(), BrushSettings{.radiusMetres = nan}));
-    EXPECT_TRUE(refused(sideCentre(), BrushSettings{.strength = nan}));
-    EXPECT_TRUE(refused(sideCentre(), BrushSettings{.strength = -0.1f}));
-    EXPECT_TRUE(refused(sideCentre(), BrushSettings{.falloff = 2.0f}));
-    EXPECT_TRUE(refused(sideCentre(), BrushSettings{.mode = static_cast<BrushMode>(7)}));
-    EXPECT_TRUE(refused({nan, 0.1f, 0.0f}, BrushSettings{}));
-    EXPECT_TRUE(refused({0.0f, inf, 0.0f}, BrushSettings{}));
-    EXPECT_TRUE(refused({5.0f, 5.0f, 5.0f}, BrushSettings{}));  // far from the head: nothing within reach
-    EXPECT_FALSE(refused(sideCentre(), BrushSettings{}));      // the control: a valid dab does change something
+    EXPECT_TRUE(refused(sideCentre(), BrushSettings{ .radiusMetres = 0.0f }));
+    EXPECT_TRUE(refused(sideCentre(), BrushSettings{ .radiusMetres = 0.6f }));
+    EXPECT_TRUE(refused(sideCentre(), BrushSettings{ .radiusMetres = nan }));
+    EXPECT_TRUE(refused(sideCentre(), BrushSettings{ .strength = nan }));
+    EXPECT_TRUE(refused(sideCentre(), BrushSettings{ .strength = -0.1f }));
+    EXPECT_TRUE(refused(sideCentre(), BrushSettings{ .falloff = 2.0f }));
+    EXPECT_TRUE(refused(sideCentre(), BrushSettings{ .mode = static_cast<BrushMode>(7) }));
+    EXPECT_TRUE(refused({ nan, 0.1f, 0.0f }, BrushSettings{}));
+    EXPECT_TRUE(refused({ 0.0f, inf, 0.0f }, BrushSettings{}));
+    EXPECT_TRUE(refused({ 5.0f, 5.0f, 5.0f }, BrushSettings{})); // far from the head: nothing within reach
+    EXPECT_FALSE(refused(sideCentre(), BrushSettings{})); // the control: a valid dab does change something
 
-    for (std::size_t size : {head().vertexCount() - 1, head().vertexCount() + 1, std::size_t(0)}) {
+    for (std::size_t size : { head().vertexCount() - 1, head().vertexCount() + 1, std::size_t(0) }) {
         std::vector<float> w(size, 0.5f);
         EXPECT_TRUE(brush().dab(sideCentre(), BrushSettings{}, w).empty()) << size;
         EXPECT_TRUE(std::all_of(w.begin(), w.end(), [](float x) { return x == 0.5f; }));
     }
     std::vector<float> none;
-    EXPECT_TRUE(ScalpBrush().dab({0, 0, 0}, BrushSettings{}, none).empty());
+    EXPECT_TRUE(ScalpBrush().dab({ 0, 0, 0 }, BrushSettings{}, none).empty());
 
     EXPECT_EQ(validateBrush(BrushSettings{}), "");
-    EXPECT_EQ(validateBrush(BrushSettings{.radiusMetres = 0.0f}), "brush radius: 0 is outside 0.0005..0.5 m");
-    EXPECT_EQ(validateBrush(BrushSettings{.strength = nan}), "brush strength: nan is not a finite number");
-    EXPECT_EQ(validateBrush(BrushSettings{.strength = -nan}), "brush strength: nan is not a finite number");
-    EXPECT_EQ(validateBrush(BrushSettings{.falloff = 1.5f}), "brush falloff: 1.5 is outside 0..1");
-    EXPECT_EQ(validateBrush(BrushSettings{.mode = static_cast<BrushMode>(7)}),
-              "brush mode: 7 is not add, erase or smooth");
+    EXPECT_EQ(validateBrush(BrushSettings{ .radiusMetres = 0.0f }), "brush radius: 0 is outside 0.0005..0.5 m");
+    EXPECT_EQ(validateBrush(BrushSettings{ .strength = nan }), "brush strength: nan is not a finite number");
+    EXPECT_EQ(validateBrush(BrushSettings{ .strength = -nan }), "brush strength: nan is not a finite number");
+    EXPECT_EQ(validateBrush(BrushSettings{ .falloff = 1.5f }), "brush falloff: 1.5 is outside 0..1");
+    EXPECT_EQ(
+        validateBrush(BrushSettings{ .mode = static_cast<BrushMode>(7) }), "brush mode: 7 is not add, erase or smooth");
 }
 
 TEST(ScalpBrush, NonFiniteWeightsAreRepairedWhereTheBrushTouches)
@@ -317,9 +324,9 @@ TEST(ScalpBrush, NonFiniteWeightsAreRepairedWhereTheBrushTouches)
     std::vector<float> w(head().vertexCount(), 0.0f);
     const std::uint32_t v = nearestVertex(head(), sideCentre());
     w[v] = std::numeric_limits<float>::quiet_NaN();
-    const std::vector<std::uint32_t> changed =
-        brush().dab(sideCentre(), BrushSettings{.strength = 0.25f, .falloff = 0.0f, .mode = BrushMode::Erase}, w);
-    EXPECT_EQ(changed, std::vector<std::uint32_t>{v});  // the others are 0 already
+    const std::vector<std::uint32_t> changed
+        = brush().dab(sideCentre(), BrushSettings{ .strength = 0.25f, .falloff = 0.0f, .mode = BrushMode::Erase }, w);
+    EXPECT_EQ(changed, std::vector<std::uint32_t>{ v }); // the others are 0 already
     EXPECT_EQ(w[v], 0.0f);
 }
 
@@ -327,13 +334,13 @@ TEST(ScalpBrush, VerticesNearMatchesAScanOfAllVertices)
 {
     const TriangleMesh sphere = test::makeIcosphere(0.1f, 4);
     const ScalpBrush sphereBrush(sphere);
-    for (const TriangleMesh* meshPointer : {&sphere, &head()}) {
+    for (const TriangleMesh* meshPointer : { &sphere, &head() }) {
         const TriangleMesh& mesh = *meshPointer;
         const ScalpBrush& b = &mesh == &sphere ? sphereBrush : brush();
         std::mt19937 rng(5);
         for (int i = 0; i < 50; ++i) {
             const glm::vec3 centre = mesh.positions[rng() % mesh.positions.size()];
-            const float radius = std::array{0.0f, 0.003f, 0.02f, 0.05f, 1.0f}[i % 5];
+            const float radius = std::array{ 0.0f, 0.003f, 0.02f, 0.05f, 1.0f }[i % 5];
             std::vector<std::uint32_t> expected;
             for (std::uint32_t v = 0; v < mesh.positions.size(); ++v)
                 if (glm::dot(mesh.positions[v] - centre, mesh.positions[v] - centre) <= radius * radius)
@@ -341,7 +348,7 @@ TEST(ScalpBrush, VerticesNearMatchesAScanOfAllVertices)
             ASSERT_EQ(b.verticesNear(centre, radius), expected) << "radius " << radius;
         }
     }
-    EXPECT_TRUE(brush().verticesNear({0, 0, 0}, -1.0f).empty());
+    EXPECT_TRUE(brush().verticesNear({ 0, 0, 0 }, -1.0f).empty());
 }
 
 TEST(ScalpBrush, MalformedMeshesAreSafe)
@@ -349,14 +356,14 @@ TEST(ScalpBrush, MalformedMeshesAreSafe)
     const float nan = std::numeric_limits<float>::quiet_NaN();
     // A NaN vertex is never painted, and a triangle naming a missing vertex adds no neighbours.
     TriangleMesh sphere = test::makeIcosphere(0.1f, 3);
-    sphere.positions[0] = {nan, 0.0f, 0.0f};
-    sphere.triangles.push_back({1, 2, 999999});
+    sphere.positions[0] = { nan, 0.0f, 0.0f };
+    sphere.triangles.push_back({ 1, 2, 999999 });
     const ScalpBrush sphereBrush(sphere);
     EXPECT_FLOAT_EQ(sphereBrush.mirrorPlaneX(), 0.0f);
     std::vector<float> w(sphere.vertexCount(), 0.0f);
     const glm::vec3 centre = sphere.positions[1];
-    for (BrushMode mode : {BrushMode::Add, BrushMode::Smooth})
-        sphereBrush.dab(centre, BrushSettings{.radiusMetres = 0.5f, .mode = mode}, w);
+    for (BrushMode mode : { BrushMode::Add, BrushMode::Smooth })
+        sphereBrush.dab(centre, BrushSettings{ .radiusMetres = 0.5f, .mode = mode }, w);
     EXPECT_EQ(w[0], 0.0f);
     EXPECT_GT(w[1], 0.0f);
 
@@ -379,5 +386,5 @@ TEST(ScalpBrush, MalformedMeshesAreSafe)
     EXPECT_TRUE(hugeBrush.verticesNear(huge.positions[2], 1.0f).empty());
 }
 
-}  // namespace
-}  // namespace wisp
+} // namespace
+} // namespace wisp

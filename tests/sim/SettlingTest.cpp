@@ -4,16 +4,16 @@
 #include "MeshFixtures.h"
 #include "SimFixtures.h"
 
-#include "sim/groom/GrowthMap.h"
 #include "sim/geometry/MeshBvh.h"
 #include "sim/geometry/SignedDistanceField.h"
+#include "sim/groom/GrowthMap.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <optional>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 using namespace wisp;
 using namespace wisp::test;
@@ -22,7 +22,7 @@ namespace {
 
 ParameterValues still(std::initializer_list<std::pair<Param, double>> changes)
 {
-    ParameterValues v = testParameters();  // no wind, no turbulence, a light groom
+    ParameterValues v = testParameters(); // no wind, no turbulence, a light groom
     for (const auto& [id, value] : changes)
         EXPECT_EQ(v.set(id, value), "") << parameterInfo(id).key;
     return v;
@@ -45,7 +45,7 @@ double shareStillMoving(HairSimulation& sim, float metres)
 bool insideMesh(const MeshBvh& bvh, const glm::vec3& p)
 {
     int votes = 0;
-    for (const glm::vec3& direction : {glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), glm::vec3(-0.6f, 0.0f, -0.8f)}) {
+    for (const glm::vec3& direction : { glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), glm::vec3(-0.6f, 0.0f, -0.8f) }) {
         int crossings = 0;
         glm::vec3 origin = p;
         for (int guard = 0; guard < 64; ++guard) {
@@ -61,8 +61,8 @@ bool insideMesh(const MeshBvh& bvh, const glm::vec3& p)
 }
 
 struct DrawnMeasure {
-    double worstStretch = 0.0;   // largest |length / rest length - 1| of any drawn segment
-    double deepestMetres = 0.0;  // deepest drawn particle inside the head mesh
+    double worstStretch = 0.0; // largest |length / rest length - 1| of any drawn segment
+    double deepestMetres = 0.0; // deepest drawn particle inside the head mesh
     bool worstIsKey = false;
     std::size_t strands = 0;
 };
@@ -110,15 +110,15 @@ TriangleMesh placedPlanck()
     return mesh;
 }
 
-}  // namespace
+} // namespace
 
 TEST(Settling, TipsAgreeAcrossSubstepCounts)
 {
     // The same hair settled with 1, 2, 4 and 8 substeps per step comes to the same shape: a
     // stiffness means the same at any substep count.
     std::vector<std::vector<glm::vec3>> tips;
-    for (int substeps : {1, 2, 4, 8}) {
-        auto sim = makeSimulation(still({{Param::Substeps, substeps}}));
+    for (int substeps : { 1, 2, 4, 8 }) {
+        auto sim = makeSimulation(still({ { Param::Substeps, substeps } }));
         run(*sim, 600);
         tips.push_back(simulatedTips(*sim));
     }
@@ -139,33 +139,33 @@ struct SettleCase {
     bool curly;
 };
 
-class SettlingCases : public testing::TestWithParam<SettleCase> {};
+class SettlingCases : public testing::TestWithParam<SettleCase> { };
 
 TEST_P(SettlingCases, FewerThanOnePercentOfTipsStillMoveAfterTenSeconds)
 {
     const SettleCase c = GetParam();
-    ParameterValues v = still({{Param::Substeps, c.substeps}, {Param::Segments, c.segments}});
+    ParameterValues v = still({ { Param::Substeps, c.substeps }, { Param::Segments, c.segments } });
     if (c.curly) {
         v.set(Param::CurlRadius, 0.008);
         v.set(Param::CurlTurns, 25.0);
     }
     auto sim = makeSimulation(v);
-    run(*sim, 600);  // 10 s at 60 Hz
+    run(*sim, 600); // 10 s at 60 Hz
     const double moving = shareStillMoving(*sim, 0.001f);
     std::printf("figure: %s, %d substeps, %d segments: %.1f %% of tips still move > 1 mm a step after 10 s\n",
-                c.curly ? "curly" : "straight", c.substeps, c.segments, moving * 100.0);
+        c.curly ? "curly" : "straight", c.substeps, c.segments, moving * 100.0);
     EXPECT_LT(moving, 0.01);
 }
 
 INSTANTIATE_TEST_SUITE_P(SubstepsSegmentsCurl, SettlingCases,
-                         testing::Values(SettleCase{1, 8, false}, SettleCase{8, 8, false}, SettleCase{1, 40, false},
-                                         SettleCase{8, 40, false}, SettleCase{2, 40, true}, SettleCase{1, 40, true},
-                                         SettleCase{8, 40, true}, SettleCase{4, 15, false}));
+    testing::Values(SettleCase{ 1, 8, false }, SettleCase{ 8, 8, false }, SettleCase{ 1, 40, false },
+        SettleCase{ 8, 40, false }, SettleCase{ 2, 40, true }, SettleCase{ 1, 40, true }, SettleCase{ 8, 40, true },
+        SettleCase{ 4, 15, false }));
 
 struct DrawnCase {
     bool planck;
-    float windSpeed;     // m/s
-    float windAzimuth;   // degrees
+    float windSpeed; // m/s
+    float windAzimuth; // degrees
     bool curly;
     // The bars of issue 11, for every case. Max Planck under 30 m/s side wind used to reach 16-30 %
     // and 1-5 mm: strands blown into the crevice by the ear, where turning onto the tangent plane
@@ -175,12 +175,13 @@ struct DrawnCase {
     double maxDepthMetres = 0.001;
 };
 
-class DrawnStrands : public testing::TestWithParam<DrawnCase> {};
+class DrawnStrands : public testing::TestWithParam<DrawnCase> { };
 
 TEST_P(DrawnStrands, KeepTheirLengthAndStayOutOfTheHead)
 {
     const DrawnCase c = GetParam();
-    ParameterValues v = still({{Param::WindSpeed, c.windSpeed}, {Param::WindAzimuth, c.windAzimuth}, {Param::Density, 4.0}});
+    ParameterValues v
+        = still({ { Param::WindSpeed, c.windSpeed }, { Param::WindAzimuth, c.windAzimuth }, { Param::Density, 4.0 } });
     if (c.curly) {
         v.set(Param::CurlRadius, 0.008);
         v.set(Param::CurlTurns, 25.0);
@@ -197,7 +198,7 @@ TEST_P(DrawnStrands, KeepTheirLengthAndStayOutOfTheHead)
     ASSERT_EQ(sim.setup(head, weights, v), "");
     const MeshBvh bvh(head);
     DrawnMeasure worst;
-    for (int k = 0; k < 8; ++k) {  // while it moves, not only once settled
+    for (int k = 0; k < 8; ++k) { // while it moves, not only once settled
         run(sim, 30);
         const DrawnMeasure m = measureDrawn(sim, bvh);
         if (m.worstStretch > worst.worstStretch) {
@@ -207,27 +208,26 @@ TEST_P(DrawnStrands, KeepTheirLengthAndStayOutOfTheHead)
         worst.deepestMetres = std::max(worst.deepestMetres, m.deepestMetres);
         worst.strands = m.strands;
     }
-    ASSERT_GT(worst.strands, sim.groom().wispCount());  // members are drawn, not only keys
+    ASSERT_GT(worst.strands, sim.groom().wispCount()); // members are drawn, not only keys
     std::printf("figure: drawn strands, %s, %s%s: max stretch %.2f %%, deepest %.2f mm inside\n",
-                c.planck ? "Max Planck" : "built-in head",
-                c.windSpeed > 0.0f ? (c.windAzimuth == 0.0f ? "30 m/s wind toward +X" : "30 m/s wind toward -X") : "gravity",
-                c.curly ? ", curly" : "", worst.worstStretch * 100.0, worst.deepestMetres * 1000.0);
+        c.planck ? "Max Planck" : "built-in head",
+        c.windSpeed > 0.0f ? (c.windAzimuth == 0.0f ? "30 m/s wind toward +X" : "30 m/s wind toward -X") : "gravity",
+        c.curly ? ", curly" : "", worst.worstStretch * 100.0, worst.deepestMetres * 1000.0);
     EXPECT_LE(worst.worstStretch, c.maxStretch) << (worst.worstIsKey ? "a key hair" : "a member");
     EXPECT_LE(worst.deepestMetres, c.maxDepthMetres);
 }
 
 INSTANTIATE_TEST_SUITE_P(HeadsAndWinds, DrawnStrands,
-                         testing::Values(DrawnCase{false, 0.0f, 0.0f, false}, DrawnCase{false, 30.0f, 0.0f, false},
-                                         DrawnCase{false, 30.0f, 180.0f, false},
-                                         DrawnCase{false, 0.0f, 0.0f, true}, DrawnCase{true, 0.0f, 0.0f, false},
-                                         DrawnCase{true, 30.0f, 0.0f, false}, DrawnCase{true, 30.0f, 180.0f, false},
-                                         DrawnCase{false, 30.0f, 0.0f, true}));
+    testing::Values(DrawnCase{ false, 0.0f, 0.0f, false }, DrawnCase{ false, 30.0f, 0.0f, false },
+        DrawnCase{ false, 30.0f, 180.0f, false }, DrawnCase{ false, 0.0f, 0.0f, true },
+        DrawnCase{ true, 0.0f, 0.0f, false }, DrawnCase{ true, 30.0f, 0.0f, false },
+        DrawnCase{ true, 30.0f, 180.0f, false }, DrawnCase{ false, 30.0f, 0.0f, true }));
 
 TEST(Stability, StrongDragAtTheLongestTimeStepDoesNotGainEnergy)
 {
     // Drag 50/s at a 0.0999 s step with one substep (k dt ≈ 5) used to blow up; implicit drag
     // only ever takes velocity toward the wind's.
-    ParameterValues v = still({{Param::Drag, 50.0}, {Param::TimeStep, 0.0999}, {Param::Substeps, 1}});
+    ParameterValues v = still({ { Param::Drag, 50.0 }, { Param::TimeStep, 0.0999 }, { Param::Substeps, 1 } });
     auto sim = makeSimulation(v);
     // Energy per unit mass, summed over particles: kinetic + gravitational (y up).
     const double dt = v.getFloat(Param::TimeStep);
@@ -256,14 +256,14 @@ TEST(Stability, StrongDragAtTheLongestTimeStepDoesNotGainEnergy)
             kinetic += 0.5 * glm::dot(p1[i] - p0[i], p1[i] - p0[i]) / (dt * dt);
     }
     EXPECT_LE(last, first);
-    EXPECT_LT(kinetic / static_cast<double>(p1.size()), 1e-4);  // at rest: below (1.4 cm/s)² / 2 a particle
+    EXPECT_LT(kinetic / static_cast<double>(p1.size()), 1e-4); // at rest: below (1.4 cm/s)² / 2 a particle
     EXPECT_EQ(sim->solver().strandsReset(), 0u);
 }
 
 TEST(DrawnStrandsOnTheBody, NoDrawnParticleEndsInsideTheNeckOrShoulders)
 {
     // Long hair reaches the shoulders: every drawn strand, members included, stays out of them.
-    ParameterValues v = still({{Param::Length, 0.5}, {Param::Density, 3.0}, {Param::Segments, 20}});
+    ParameterValues v = still({ { Param::Length, 0.5 }, { Param::Density, 3.0 }, { Param::Segments, 20 } });
     ASSERT_EQ(v.set(Param::Body, 1), "");
     HairSimulation sim;
     ASSERT_EQ(sim.setup(defaultHead().mesh, defaultHead().growthWeights, v), "");

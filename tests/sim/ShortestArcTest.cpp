@@ -50,7 +50,8 @@ TEST(ShortestArc, ParallelInputsTurnNothing)
 
 TEST(ShortestArc, AntiparallelInputsTakeTheHalfTurnAboutAFixedPerpendicular)
 {
-    for (const glm::vec3& a : { glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::normalize(glm::vec3(0.3f, -0.2f, 0.9f)) }) {
+    for (const glm::vec3& a :
+        { glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::normalize(glm::vec3(0.3f, -0.2f, 0.9f)) }) {
         const glm::vec3 axis = anyPerpendicular(a);
         EXPECT_NEAR(glm::dot(axis, a), 0.0f, 1e-6f);
         EXPECT_NEAR(glm::length(axis), 1.0f, 1e-6f);

@@ -1,6 +1,6 @@
+#include "sim/geometry/SignedDistanceField.h"
 #include "MeshFixtures.h"
 #include "sim/geometry/MeshBvh.h"
-#include "sim/geometry/SignedDistanceField.h"
 #include "sim/geometry/TriangleMesh.h"
 
 #include <glm/geometric.hpp>
@@ -61,9 +61,11 @@ int expectExactBandAndBoundedFarField(const TriangleMesh& mesh, const SignedDist
                 if (exact <= band * 0.999f) {
                     ++bandSamples;
                     if (std::abs(value - exact) > 1e-6f + 1e-5f * exact && ++failures < 10)
-                        ADD_FAILURE() << "band sample " << i << "," << j << "," << k << ": " << value << " vs " << exact;
+                        ADD_FAILURE() << "band sample " << i << "," << j << "," << k << ": " << value << " vs "
+                                      << exact;
                 } else if (exact > band * 1.001f) {
-                    if ((value > exact + 1e-6f || value < exact - kSqrt3 * h - 1e-6f || value < band * 0.999f) && ++failures < 10)
+                    if ((value > exact + 1e-6f || value < exact - kSqrt3 * h - 1e-6f || value < band * 0.999f)
+                        && ++failures < 10)
                         ADD_FAILURE() << "far sample " << i << "," << j << "," << k << ": " << value << " vs " << exact;
                 }
             }
@@ -74,7 +76,7 @@ int expectExactBandAndBoundedFarField(const TriangleMesh& mesh, const SignedDist
 TEST(SignedDistanceField, SphereMatchesAnalyticDistance)
 {
     const float radius = 0.1f, h = 0.005f;
-    const TriangleMesh sphere = makeIcosphere(radius, 4);  // facets sit < 0.1 mm inside the sphere
+    const TriangleMesh sphere = makeIcosphere(radius, 4); // facets sit < 0.1 mm inside the sphere
     std::string error;
     const SignedDistanceField field = SignedDistanceField::bake(sphere, h, 0.02f, &error);
     ASSERT_FALSE(field.empty()) << error;
@@ -118,14 +120,15 @@ TEST(SignedDistanceField, FarFieldGrowsMonotonically)
 {
     const SignedDistanceField field = SignedDistanceField::bake(makeIcosphere(0.1f, 3), 0.004f, 0.06f);
     ASSERT_FALSE(field.empty());
-    for (const glm::vec3& dir : {glm::vec3(1, 0, 0), glm::normalize(glm::vec3(1, 1, 1)), glm::normalize(glm::vec3(-0.3f, 0.2f, -1))}) {
+    for (const glm::vec3& dir :
+        { glm::vec3(1, 0, 0), glm::normalize(glm::vec3(1, 1, 1)), glm::normalize(glm::vec3(-0.3f, 0.2f, -1)) }) {
         float previous = field.distance(glm::vec3(0.0f));
-        for (float r = 0.0f; r < 0.5f; r += 0.001f) {  // out past the grid (0.16 m) too
+        for (float r = 0.0f; r < 0.5f; r += 0.001f) { // out past the grid (0.16 m) too
             const float d = field.distance(r * dir);
             EXPECT_GE(d, previous - 1e-6f) << "at radius " << r;
             previous = d;
         }
-        EXPECT_GT(previous, 0.3f);  // outside the grid the value keeps growing with the distance to the box
+        EXPECT_GT(previous, 0.3f); // outside the grid the value keeps growing with the distance to the box
         EXPECT_TRUE(std::isfinite(glm::length(field.gradient(0.5f * dir))));
         EXPECT_GT(glm::dot(field.gradient(0.5f * dir), dir), 0.5f);
     }
@@ -139,7 +142,7 @@ TEST(SignedDistanceField, OpenMeshKeepsItsInside)
     std::vector<glm::uvec3> kept;
     for (const glm::uvec3& t : open.triangles) {
         const float y = (open.positions[t.x].y + open.positions[t.y].y + open.positions[t.z].y) / 3.0f;
-        if (y < 0.07f)  // the hole is about 0.14 m across
+        if (y < 0.07f) // the hole is about 0.14 m across
             kept.push_back(t);
     }
     ASSERT_LT(kept.size(), open.triangles.size());
@@ -147,11 +150,11 @@ TEST(SignedDistanceField, OpenMeshKeepsItsInside)
     std::string error;
     const SignedDistanceField field = SignedDistanceField::bake(open, 0.005f, 0.03f, &error);
     ASSERT_FALSE(field.empty()) << error;
-    for (const glm::vec3& p : {glm::vec3(0.0f), glm::vec3(0, -0.05f, 0), glm::vec3(0.05f, 0, 0), glm::vec3(0, 0, -0.06f),
-                              glm::vec3(0, 0.04f, 0), glm::vec3(0.03f, 0.05f, 0.0f), glm::vec3(0, -0.09f, 0)})
+    for (const glm::vec3& p : { glm::vec3(0.0f), glm::vec3(0, -0.05f, 0), glm::vec3(0.05f, 0, 0),
+             glm::vec3(0, 0, -0.06f), glm::vec3(0, 0.04f, 0), glm::vec3(0.03f, 0.05f, 0.0f), glm::vec3(0, -0.09f, 0) })
         EXPECT_LT(field.distance(p), 0.0f) << p.x << "," << p.y << "," << p.z;
-    for (const glm::vec3& p : {glm::vec3(0, 0.12f, 0), glm::vec3(0.0f, 0.11f, 0.05f), glm::vec3(0.12f, 0, 0),
-                              glm::vec3(0, -0.12f, 0), glm::vec3(0.08f, 0.08f, 0.08f)})
+    for (const glm::vec3& p : { glm::vec3(0, 0.12f, 0), glm::vec3(0.0f, 0.11f, 0.05f), glm::vec3(0.12f, 0, 0),
+             glm::vec3(0, -0.12f, 0), glm::vec3(0.08f, 0.08f, 0.08f) })
         EXPECT_GT(field.distance(p), 0.0f) << p.x << "," << p.y << "," << p.z;
     // Distances stay exact near the remaining surface.
     EXPECT_NEAR(field.distance(glm::vec3(0, -0.105f, 0)), 0.005f, 0.0015f);
@@ -170,9 +173,9 @@ TEST(SignedDistanceField, OverlappingShellsAreInside)
         mesh.triangles.push_back(t + glm::uvec3(base));
     const SignedDistanceField field = SignedDistanceField::bake(mesh, 0.004f, 0.02f);
     ASSERT_FALSE(field.empty());
-    EXPECT_LT(field.distance(glm::vec3(0.075f, 0, 0)), 0.0f);  // in both
-    EXPECT_LT(field.distance(glm::vec3(0.05f, 0, 0)), 0.0f);   // in the head only
-    EXPECT_LT(field.distance(glm::vec3(0.11f, 0, 0)), 0.0f);   // in the eye only
+    EXPECT_LT(field.distance(glm::vec3(0.075f, 0, 0)), 0.0f); // in both
+    EXPECT_LT(field.distance(glm::vec3(0.05f, 0, 0)), 0.0f); // in the head only
+    EXPECT_LT(field.distance(glm::vec3(0.11f, 0, 0)), 0.0f); // in the eye only
     EXPECT_GT(field.distance(glm::vec3(0.13f, 0, 0)), 0.0f);
 }
 
@@ -194,10 +197,11 @@ TEST(SignedDistanceField, GridAlignedCubeHasExactSigns)
 {
     TriangleMesh cube;
     const float s = 0.05f;
-    cube.positions = {{-s, -s, -s}, {s, -s, -s}, {s, s, -s}, {-s, s, -s}, {-s, -s, s}, {s, -s, s}, {s, s, s}, {-s, s, s}};
-    cube.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                      {2, 3, 7}, {2, 7, 6}, {1, 2, 6}, {1, 6, 5}, {0, 4, 7}, {0, 7, 3}};
-    const float h = 0.01f;  // the faces sit on sample planes
+    cube.positions = { { -s, -s, -s }, { s, -s, -s }, { s, s, -s }, { -s, s, -s }, { -s, -s, s }, { s, -s, s },
+        { s, s, s }, { -s, s, s } };
+    cube.triangles = { { 0, 2, 1 }, { 0, 3, 2 }, { 4, 5, 6 }, { 4, 6, 7 }, { 0, 1, 5 }, { 0, 5, 4 }, { 2, 3, 7 },
+        { 2, 7, 6 }, { 1, 2, 6 }, { 1, 6, 5 }, { 0, 4, 7 }, { 0, 7, 3 } };
+    const float h = 0.01f; // the faces sit on sample planes
     const SignedDistanceField field = SignedDistanceField::bake(cube, h, 0.03f);
     ASSERT_FALSE(field.empty());
     const glm::ivec3 n = field.dims();
@@ -208,7 +212,7 @@ TEST(SignedDistanceField, GridAlignedCubeHasExactSigns)
                 const glm::vec3 q = glm::abs(p);
                 const float m = std::max(q.x, std::max(q.y, q.z));
                 if (std::abs(m - s) < 1e-4f)
-                    continue;  // on the surface: either sign is right
+                    continue; // on the surface: either sign is right
                 const bool inside = m < s;
                 ASSERT_EQ(field.sample(i, j, k) < 0.0f, inside) << p.x << "," << p.y << "," << p.z;
             }
@@ -239,7 +243,8 @@ TEST(SignedDistanceField, RealHeadSignsMatchExactWindingNumber)
         if (std::abs(value) < 1e-4f)
             continue;
         const double w = windingNumber(head, samplePosition(field, i, j, k));
-        EXPECT_EQ(value < 0.0f, w > 0.5) << "sample " << i << "," << j << "," << k << " value " << value << " winding " << w;
+        EXPECT_EQ(value<0.0f, w> 0.5) << "sample " << i << "," << j << "," << k << " value " << value << " winding "
+                                      << w;
         inside += value < 0.0f;
     }
     EXPECT_GT(inside, 10);
@@ -277,11 +282,11 @@ TEST(SignedDistanceField, BadInputGivesAnEmptyFieldAndAMessage)
     nan.positions[3].y = NAN;
     expectRejected(nan, 0.01f, 0.01f, "NaN vertex");
     TriangleMesh outOfRange = sphere;
-    outOfRange.triangles.push_back({0, 1, 1000});
+    outOfRange.triangles.push_back({ 0, 1, 1000 });
     expectRejected(outOfRange, 0.01f, 0.01f, "index out of range");
     TriangleMesh flat;
-    flat.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
-    flat.triangles = {{0, 1, 2}};
+    flat.positions = { { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 } };
+    flat.triangles = { { 0, 1, 2 } };
     expectRejected(flat, 0.01f, 0.01f, "zero area");
     expectRejected(sphere, 0.0f, 0.01f, "zero cell size");
     expectRejected(sphere, -0.01f, 0.01f, "negative cell size");
@@ -302,7 +307,8 @@ TEST(SignedDistanceField, BadInputGivesAnEmptyFieldAndAMessage)
     std::string error;
     const SignedDistanceField coarse = SignedDistanceField::bake(millimetres, 2.5f, 20.0f, &error);
     ASSERT_FALSE(coarse.empty()) << error;
-    EXPECT_LE(static_cast<std::size_t>(coarse.dims().x) * coarse.dims().y * coarse.dims().z, SignedDistanceField::kMaxSamples);
+    EXPECT_LE(static_cast<std::size_t>(coarse.dims().x) * coarse.dims().y * coarse.dims().z,
+        SignedDistanceField::kMaxSamples);
     EXPECT_LT(coarse.distance(glm::vec3(0.0f)), -50.0f);
 
     // The empty field answers without crashing: nothing to collide with.
@@ -321,7 +327,7 @@ TEST(SignedDistanceField, HugeGridIsCappedByGrowingTheCell)
     EXPECT_LE(static_cast<std::size_t>(n.x) * n.y * n.z, SignedDistanceField::kMaxSamples);
     EXPECT_GT(static_cast<std::size_t>(n.x) * n.y * n.z, SignedDistanceField::kMaxSamples / 2);
     EXPECT_GT(field.cellSize(), 1e-6f);
-    EXPECT_GE(field.origin().x + (n.x - 1) * field.cellSize(), 0.12f - 1e-6f);  // still covers the box
+    EXPECT_GE(field.origin().x + (n.x - 1) * field.cellSize(), 0.12f - 1e-6f); // still covers the box
     EXPECT_LT(field.distance(glm::vec3(0.0f)), -0.09f);
     EXPECT_NEAR(field.distance(glm::vec3(0.105f, 0, 0)), 0.005f, 0.001f);
 }
@@ -344,14 +350,16 @@ TEST(SignedDistanceField, SamplesWithNormalsAreOneSharedTableOfOutwardNormals)
     for (int k = 0; k < n.z; k += 3)
         for (int j = 0; j < n.y; j += 3)
             for (int i = 0; i < n.x; i += 3) {
-                const glm::vec4 node = table[static_cast<std::size_t>(i) + static_cast<std::size_t>(n.x) * (j + static_cast<std::size_t>(n.y) * k)];
+                const glm::vec4 node = table[static_cast<std::size_t>(i)
+                    + static_cast<std::size_t>(n.x) * (j + static_cast<std::size_t>(n.y) * k)];
                 ASSERT_EQ(node.x, field.sample(i, j, k));
                 const glm::vec3 normal(node.y, node.z, node.w);
                 ASSERT_NEAR(glm::length(normal), 1.0f, 1e-5f);
                 const glm::vec3 at = field.origin() + glm::vec3(i, j, k) * h;
                 if (std::abs(glm::length(at) - radius) < 0.01f) {
                     ++nearSurface;
-                    EXPECT_GT(glm::dot(normal, glm::normalize(at)), 0.95f) << "at " << at.x << " " << at.y << " " << at.z;
+                    EXPECT_GT(glm::dot(normal, glm::normalize(at)), 0.95f)
+                        << "at " << at.x << " " << at.y << " " << at.z;
                 }
             }
     EXPECT_GT(nearSurface, 500);
@@ -369,12 +377,13 @@ TEST(SignedDistanceField, GradientIsNeverNaN)
         const glm::vec3 g = field.gradient(p);
         ASSERT_NEAR(glm::length(g), 1.0f, 1e-4f);
     }
-    for (const glm::vec3& p : {glm::vec3(0.0f), glm::vec3(NAN), glm::vec3(INFINITY, 0, 0), glm::vec3(1e30f), field.origin()}) {
+    for (const glm::vec3& p :
+        { glm::vec3(0.0f), glm::vec3(NAN), glm::vec3(INFINITY, 0, 0), glm::vec3(1e30f), field.origin() }) {
         const glm::vec3 g = field.gradient(p);
         EXPECT_TRUE(std::isfinite(g.x) && std::isfinite(g.y) && std::isfinite(g.z));
         EXPECT_NEAR(glm::length(g), 1.0f, 1e-4f);
     }
 }
 
-}  // namespace
-}  // namespace wisp
+} // namespace
+} // namespace wisp

@@ -50,8 +50,8 @@ inline void run(HairSimulation& sim, int steps)
 }
 
 struct TipStats {
-    glm::vec3 meanTip{0.0f};
-    glm::vec3 meanRoot{0.0f};
+    glm::vec3 meanTip{ 0.0f };
+    glm::vec3 meanRoot{ 0.0f };
 };
 
 inline TipStats tipStats(const HairSimulation& sim)
@@ -81,4 +81,4 @@ inline std::vector<glm::vec3> simulatedTips(const HairSimulation& sim)
     return tips;
 }
 
-}  // namespace wisp::test
+} // namespace wisp::test

@@ -21,7 +21,7 @@ HairCurves helix(float radius, float turnsPerMetre, float axialLength, int segme
     for (int j = 0; j <= segments; ++j) {
         const float z = axialLength * static_cast<float>(j) / static_cast<float>(segments);
         const float theta = glm::two_pi<float>() * turnsPerMetre * z;
-        p[j] = {radius * std::cos(theta) - radius, -z, radius * std::sin(theta)};
+        p[j] = { radius * std::cos(theta) - radius, -z, radius * std::sin(theta) };
     }
     return c;
 }
@@ -40,9 +40,9 @@ double curlPeriodInPoints(std::span<const glm::vec3> p)
     };
     std::size_t lag = 1;
     while (lag + 1 < t.size() / 2 && correlation(lag + 1) < correlation(lag))
-        ++lag;  // down to the first minimum (half a turn)
+        ++lag; // down to the first minimum (half a turn)
     while (lag + 1 < t.size() / 2 && correlation(lag + 1) > correlation(lag))
-        ++lag;  // up to the next maximum (a full turn)
+        ++lag; // up to the next maximum (a full turn)
     // Refine between samples with a parabola through the peak.
     const double a = correlation(lag - 1), b = correlation(lag), c = correlation(lag + 1);
     const double denom = a - 2 * b + c;
@@ -54,13 +54,13 @@ SolverSettings calm()
     SolverSettings s;
     s.timeStepSeconds = 1.0f / 60.0f;
     s.substeps = 4;
-    s.gravity = {0.0f, -9.81f, 0.0f};
+    s.gravity = { 0.0f, -9.81f, 0.0f };
     s.dampingPerSecond = 1.0f;
     s.stiffness = 0.5f;
     return s;
 }
 
-}  // namespace
+} // namespace
 
 TEST(Solver, CurlsKeepTheirPeriodAfterSettling)
 {
@@ -72,7 +72,7 @@ TEST(Solver, CurlsKeepTheirPeriodAfterSettling)
     Solver solver(1);
     ASSERT_EQ(solver.setStrands(rest), "");
     SolverSettings s = calm();
-    s.wind = {3.0f, 0.0f, 0.0f};
+    s.wind = { 3.0f, 0.0f, 0.0f };
     s.dragPerSecond = 1.0f;
     ASSERT_EQ(solver.setSettings(s), "");
     for (int i = 0; i < 600; ++i)
@@ -92,7 +92,7 @@ TEST(Solver, GravityPullsAStraightStrandDownToItsFullLength)
     HairCurves c;
     auto p = c.strandForWrite(c.addStrand(11));
     for (int j = 0; j <= 10; ++j)
-        p[j] = {0.02f * static_cast<float>(j), 0.0f, 0.0f};  // sticking out sideways, 0.2 m
+        p[j] = { 0.02f * static_cast<float>(j), 0.0f, 0.0f }; // sticking out sideways, 0.2 m
     Solver solver(1);
     ASSERT_EQ(solver.setStrands(c), "");
     SolverSettings s = calm();
@@ -120,7 +120,7 @@ TEST(Solver, StrandsDrapeOverASphereColliderWithoutEnteringIt)
     }
     Solver solver(2);
     ASSERT_EQ(solver.setStrands(c), "");
-    solver.setCapsules({Capsule{{0, 0, 0}, {0, 0, 0}, 0.1f}});
+    solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
     SolverSettings s = calm();
     s.stiffness = 0.0f;
     s.friction = 0.3f;
@@ -135,27 +135,27 @@ TEST(Solver, StrandsDrapeOverASphereColliderWithoutEnteringIt)
         EXPECT_GT(glm::length(x), 0.1f - 1e-4f);
         lowest = std::min(lowest, x.y);
     }
-    EXPECT_LT(lowest, -0.05f);  // they fell around the sphere, not through it
+    EXPECT_LT(lowest, -0.05f); // they fell around the sphere, not through it
 }
 
 TEST(Solver, RefusesBrokenStrandsAndSettings)
 {
     Solver solver(1);
     HairCurves one;
-    one.strandForWrite(one.addStrand(1))[0] = {0, 0, 0};
+    one.strandForWrite(one.addStrand(1))[0] = { 0, 0, 0 };
     EXPECT_NE(solver.setStrands(one).find("at least 2"), std::string::npos);
 
     HairCurves nan;
     auto p = nan.strandForWrite(nan.addStrand(3));
-    p[0] = {0, 0, 0};
-    p[1] = {0, -0.1f, 0};
-    p[2] = {NAN, 0, 0};
+    p[0] = { 0, 0, 0 };
+    p[1] = { 0, -0.1f, 0 };
+    p[2] = { NAN, 0, 0 };
     EXPECT_NE(solver.setStrands(nan).find("not finite"), std::string::npos);
 
     HairCurves zero;
     auto q = zero.strandForWrite(zero.addStrand(3));
-    q[0] = q[1] = {0, 0, 0};
-    q[2] = {0, -0.1f, 0};
+    q[0] = q[1] = { 0, 0, 0 };
+    q[2] = { 0, -0.1f, 0 };
     EXPECT_NE(solver.setStrands(zero).find("coincide"), std::string::npos);
 
     SolverSettings s = calm();

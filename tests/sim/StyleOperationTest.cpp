@@ -2,11 +2,11 @@
 // groom, measured on the edits it leaves and the live effects it asks for.
 #include "SimFixtures.h"
 
-#include "sim/style/StrandPicking.h"
 #include "sim/style/BlowDryOperation.h"
 #include "sim/style/CombOperation.h"
 #include "sim/style/CutOperation.h"
 #include "sim/style/LengthOperation.h"
+#include "sim/style/StrandPicking.h"
 #include "sim/style/StyleOperation.h"
 #include "sim/style/WispDabOperation.h"
 

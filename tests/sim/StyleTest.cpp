@@ -2,20 +2,20 @@
 // with a solved rest shape, perm, hairspray, wet hair drying, the blow-dryer.
 #include "SimFixtures.h"
 
+#include "sim/geometry/SignedDistanceField.h"
 #include "sim/groom/Groom.h"
 #include "sim/groom/GrowthRegion.h"
+#include "sim/solver/HairSimulation.h"
 #include "sim/style/HairDryer.h"
 #include "sim/style/StrandPicking.h"
-#include "sim/solver/HairSimulation.h"
-#include "sim/geometry/SignedDistanceField.h"
 #include "sim/style/StyleEdits.h"
 
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -32,7 +32,7 @@ std::vector<GrowthRegion> scalp(const ParameterValues& v)
     r.name = "Scalp";
     r.weights = defaultHead().growthWeights;
     r.values = v;
-    return {r};
+    return { r };
 }
 
 struct Styled {
@@ -40,7 +40,9 @@ struct Styled {
     std::vector<GrowthRegion> regions;
     ParameterValues values;
 
-    explicit Styled(const ParameterValues& v) : regions(scalp(v)), values(v)
+    explicit Styled(const ParameterValues& v)
+        : regions(scalp(v))
+        , values(v)
     {
         EXPECT_EQ(sim->setup(defaultHead().mesh, regions, kNoSolo, v), "");
     }
@@ -81,13 +83,13 @@ float wispSpread(const Groom& g, const HairCurves& frame, std::size_t w)
     return n == 0 ? 0.0f : static_cast<float>(sum / n);
 }
 
-}  // namespace
+} // namespace
 
 TEST(Style, CutShortensTheEditedStrandsToTheCutLengthAndLeavesTheOthers)
 {
     Styled s(testParameters());
     const HairCurves before = s.groom().rest;
-    std::map<std::uint64_t, std::size_t> cut;  // every third wisp, key and members
+    std::map<std::uint64_t, std::size_t> cut; // every third wisp, key and members
     StyleEdits edits;
     for (std::size_t i = 0; i < s.groom().strandCount(); ++i)
         if (s.groom().wispOf[i] % 3 == 0) {
@@ -121,9 +123,9 @@ TEST(Style, CutShortensTheEditedStrandsToTheCutLengthAndLeavesTheOthers)
 TEST(Style, ShapeWithLengthCutsAtTheArcLengthAndGrowsAlongTheTip)
 {
     // As long as it is: unchanged, and no point repeated (a repeated point is an invalid edit).
-    const std::vector<glm::vec3> line{{0, 0, 0}, {0, -0.1f, 0}};
+    const std::vector<glm::vec3> line{ { 0, 0, 0 }, { 0, -0.1f, 0 } };
     EXPECT_EQ(shapeWithLength(line, 0.1f), line);
-    const std::vector<glm::vec3> shape{{0, 0, 0}, {0, -0.1f, 0}, {0.1f, -0.1f, 0}};
+    const std::vector<glm::vec3> shape{ { 0, 0, 0 }, { 0, -0.1f, 0 }, { 0.1f, -0.1f, 0 } };
     const std::vector<glm::vec3> cut = shapeWithLength(shape, 0.15f);
     ASSERT_EQ(cut.size(), 3u);
     EXPECT_NEAR(glm::distance(cut[2], glm::vec3(0.05f, -0.1f, 0)), 0.0f, 1e-6f);
@@ -147,7 +149,7 @@ CombHold combAndHold(double volume)
     v.set(Param::Damping, 4.0);
     v.set(Param::Volume, volume);
     Styled s(v);
-    s.run(300);  // settled under gravity
+    s.run(300); // settled under gravity
     const Groom& g = s.groom();
     const HairCurves settled = s.frame();
     // Comb every fourth key hair 30 degrees sideways about its root (about the head's forward axis),
@@ -159,7 +161,7 @@ CombHold combAndHold(double volume)
         const auto strand = settled.strand(k);
         const glm::mat3 turn(glm::rotate(glm::mat4(1.0f), glm::radians(30.0f), glm::vec3(0, 0, 1)));
         std::vector<glm::vec3> combed;
-        bool clear = true;  // a comb lays hair over the head, never into it
+        bool clear = true; // a comb lays hair over the head, never into it
         for (const glm::vec3& p : strand) {
             combed.push_back(strand.front() + turn * (p - strand.front()));
             clear = clear && (combed.size() < 3 || s.sim->collider()->distance(combed.back()) > 0.004f);
@@ -174,7 +176,7 @@ CombHold combAndHold(double volume)
     EXPECT_EQ(error, "");
     if (targets.size() <= 10u || !error.empty())
         return out;
-    EXPECT_LT(s.sim->worstRestGapMetres(), 0.02f);  // hair lying on the head: contact and friction
+    EXPECT_LT(s.sim->worstRestGapMetres(), 0.02f); // hair lying on the head: contact and friction
     // Released where it was settled, the combed hair swings to the combed shape and stays there.
     s.run(500);
     const HairCurves after = s.frame();
@@ -198,7 +200,7 @@ CombHold combAndHold(double volume)
     return out;
 }
 
-}  // namespace
+} // namespace
 
 TEST(Style, CombedHairRestsWhereItWasCombedNotWhereGravityPullsIt)
 {
@@ -217,7 +219,7 @@ TEST(Style, CombedHairStaysCombedWithVolumeOn)
     const CombHold hold = combAndHold(0.5);
     const float worst = hold.tipGaps.empty() ? 1e9f : *std::max_element(hold.tipGaps.begin(), hold.tipGaps.end());
     std::printf("volume 0.5: combed tips moved %.1f mm by the comb, %.1f mm from it after 500 steps (worst %.1f mm)\n",
-                1e3 * hold.meanMoved, 1e3 * hold.meanGap, 1e3 * worst);
+        1e3 * hold.meanMoved, 1e3 * hold.meanGap, 1e3 * worst);
     EXPECT_GT(hold.meanMoved, 0.05);
     EXPECT_LT(hold.meanGap, 0.01);
     // As at volume 0, every combed tip within 2 cm (measured: worst 3.4 mm; 29 mm when combed hair
@@ -233,7 +235,7 @@ TEST(Style, RestSolveBeatsTakingTheCombedShapeAsTheRestShape)
     Styled s(v);
     const Groom& g = s.groom();
     const std::uint32_t k = g.keyStrand[0];
-    std::vector<glm::vec3> horizontal;  // out sideways from the root, 20 cm
+    std::vector<glm::vec3> horizontal; // out sideways from the root, 20 cm
     const glm::vec3 root = g.rest.strand(k).front();
     for (int j = 0; j <= g.settings.segments; ++j)
         horizontal.push_back(root + glm::vec3(0.2f * j / g.settings.segments, 0.0f, 0.0f));
@@ -307,8 +309,8 @@ TEST(Style, HairsprayHoldsAWispAgainstStrongWind)
     ASSERT_EQ(s.sim->applyForces(windy), "");
     s.run(200);
     const HairCurves blown = s.frame();
-    double moved[2] = {0, 0};
-    int count[2] = {0, 0};
+    double moved[2] = { 0, 0 };
+    int count[2] = { 0, 0 };
     for (std::size_t w = 0; w < s.groom().wispCount(); ++w) {
         const std::uint32_t k = s.groom().keyStrand[w];
         const int sprayed = w % 2 == 0;
@@ -325,8 +327,8 @@ TEST(Style, WetWispsClumpAndSpreadAgainAsTheyDry)
     ParameterValues v = testParameters();
     v.set(Param::WispSize, 8);
     v.set(Param::ClumpDegree, 0.0);
-    v.set(Param::LengthVariation, 0.0);  // members as long as their key: spread is the distance to it
-    v.set(Param::DryingTime, 1.0);  // a one-second half-life, so the test dries in a few seconds
+    v.set(Param::LengthVariation, 0.0); // members as long as their key: spread is the distance to it
+    v.set(Param::DryingTime, 1.0); // a one-second half-life, so the test dries in a few seconds
     Styled s(v);
     s.run(100);
     const HairCurves dry = s.frame();
@@ -339,7 +341,7 @@ TEST(Style, WetWispsClumpAndSpreadAgainAsTheyDry)
     const Groom& g = s.groom();
     for (std::size_t w = 0; w < g.wispCount(); ++w) {
         if (wispSpread(g, dry, w) < 1e-3f)
-            continue;  // a wisp of one strand
+            continue; // a wisp of one strand
         if (w % 2 == 0)
             EXPECT_LT(wispSpread(g, wet, w), 0.4f * wispSpread(g, dry, w)) << "wet wisp " << w << " did not clump";
         else
@@ -375,7 +377,7 @@ TEST(Style, TheDryerBlowsStrandsInItsConeAwayFromTheNozzleAndDriesThem)
     for (std::size_t w = 0; w < s.groom().wispCount(); ++w)
         edits[s.groom().strandIdentity(s.groom().keyStrand[w])].wetness = 1.0f;
     ASSERT_EQ(s.apply(edits), "");
-    s.run(300);  // wet hair is softer: let it settle
+    s.run(300); // wet hair is softer: let it settle
     const HairCurves calm = s.frame();
     const Groom& g = s.groom();
     // The dryer beside the right cheek, blowing backward (-z) along the hair that hangs at the
@@ -383,15 +385,15 @@ TEST(Style, TheDryerBlowsStrandsInItsConeAwayFromTheNozzleAndDriesThem)
     const Aabb box = boundsOf(defaultHead().mesh);
     HairDryer dryer;
     dryer.nozzle = glm::vec3(box.center().x + 0.45f * box.size().x, box.center().y - 0.1f, box.center().z + 0.2f);
-    dryer.direction = {0.0f, 0.0f, -1.0f};
+    dryer.direction = { 0.0f, 0.0f, -1.0f };
     dryer.halfAngleRadians = 0.3f;
-    s.sim->setDryers({dryer});
+    s.sim->setDryers({ dryer });
     s.run(120);
     s.sim->setDryers({});
     const HairCurves blown = s.frame();
     // In the cone: the strand's middle and tip were in the air; outside: none of it was.
-    double along[2] = {0, 0}, wetness[2] = {0, 0};
-    int count[2] = {0, 0};
+    double along[2] = { 0, 0 }, wetness[2] = { 0, 0 };
+    int count[2] = { 0, 0 };
     for (std::size_t w = 0; w < g.wispCount(); ++w) {
         const std::uint32_t k = g.keyStrand[w];
         const auto strand = calm.strand(k);
@@ -401,7 +403,7 @@ TEST(Style, TheDryerBlowsStrandsInItsConeAwayFromTheNozzleAndDriesThem)
         for (const glm::vec3& p : strand)
             anyAir = std::max(anyAir, glm::length(dryerAirAt(dryer, p)));
         if (air < 1.0f && anyAir > 0.0f)
-            continue;  // at the cone's edge
+            continue; // at the cone's edge
         const bool inCone = air >= 1.0f;
         along[inCone] += glm::dot(blown.strand(k).back() - strand.back(), dryer.direction);
         wetness[inCone] += s.sim->wispWetness()[w];
@@ -424,7 +426,7 @@ TEST(Style, WetnessLastsAcrossRegroomsAndIsNotReappliedUnlessTheEditChanges)
     StyleEdits edits;
     edits[id].wetness = 1.0f;
     ASSERT_EQ(s.apply(edits), "");
-    s.run(static_cast<int>(1.0 / v.get(Param::TimeStep)));  // one half-life
+    s.run(static_cast<int>(1.0 / v.get(Param::TimeStep))); // one half-life
     const float half = s.sim->wispWetness()[0];
     EXPECT_NEAR(half, 0.5f, 0.03f);
     // Another edit (a cut elsewhere) regrooms; the wet wisp keeps its live wetness.
@@ -441,12 +443,13 @@ TEST(Style, BadEditsAreNamed)
 {
     StrandStyle bad;
     bad.wetness = 3.0f;
-    EXPECT_NE(validateStrandStyle(42, bad).find("strand 42: wetness 3"), std::string::npos) << validateStrandStyle(42, bad);
+    EXPECT_NE(validateStrandStyle(42, bad).find("strand 42: wetness 3"), std::string::npos)
+        << validateStrandStyle(42, bad);
     bad = {};
     bad.lengthMetres = std::nanf("");
     EXPECT_NE(validateStrandStyle(42, bad).find("length"), std::string::npos);
     bad = {};
-    bad.shape = {{0, 0, 0}, {0, std::numeric_limits<float>::infinity(), 0}};
+    bad.shape = { { 0, 0, 0 }, { 0, std::numeric_limits<float>::infinity(), 0 } };
     EXPECT_NE(validateStrandStyle(42, bad).find("shape"), std::string::npos);
     EXPECT_EQ(validateStrandStyle(42, StrandStyle{}), "");
 }
@@ -457,10 +460,10 @@ TEST(Style, TheHeadShadowsTheDryersJet)
     Styled s(v);
     const Aabb box = boundsOf(defaultHead().mesh);
     HairDryer dryer;
-    dryer.nozzle = box.center() + glm::vec3(0.0f, 0.0f, box.size().z * 0.5f + 0.1f);  // in front of the face
-    dryer.direction = {0.0f, 0.0f, -1.0f};
-    const glm::vec3 behind = box.center() - glm::vec3(0.0f, 0.0f, box.size().z * 0.5f + 0.02f);  // behind the head
-    const glm::vec3 before = box.center() + glm::vec3(0.0f, 0.0f, box.size().z * 0.5f + 0.03f);  // at the face
+    dryer.nozzle = box.center() + glm::vec3(0.0f, 0.0f, box.size().z * 0.5f + 0.1f); // in front of the face
+    dryer.direction = { 0.0f, 0.0f, -1.0f };
+    const glm::vec3 behind = box.center() - glm::vec3(0.0f, 0.0f, box.size().z * 0.5f + 0.02f); // behind the head
+    const glm::vec3 before = box.center() + glm::vec3(0.0f, 0.0f, box.size().z * 0.5f + 0.03f); // at the face
     EXPECT_GT(glm::length(dryerAirAt(dryer, behind)), 1.0f) << "without the head the jet reaches it";
     EXPECT_EQ(glm::length(dryerAirAt(dryer, behind, s.sim->collider())), 0.0f) << "the jet went through the head";
     EXPECT_EQ(dryerAirAt(dryer, before, s.sim->collider()), dryerAirAt(dryer, before));
@@ -472,9 +475,9 @@ TEST(Style, TheHeadShadowsTheDryersJet)
 // substeps, its tips end within a few millimetres of the comb, and of each other.
 TEST(Style, ACombedLockHoldsAtAnySubstepCountThePacerRuns)
 {
-    ParameterValues v = testParameters();  // 2 substeps, as the editor asks by default
+    ParameterValues v = testParameters(); // 2 substeps, as the editor asks by default
     Styled s(v);
-    s.run(240);  // hanging, at rest
+    s.run(240); // hanging, at rest
     const Groom& g = s.groom();
     const HairCurves settled = s.frame();
     // Comb every third key hair 35 degrees backward about its root (about the head's x axis), as a
@@ -497,15 +500,15 @@ TEST(Style, ACombedLockHoldsAtAnySubstepCountThePacerRuns)
         targets[g.strandIdentity(k)] = combed;
     }
     ASSERT_GT(targets.size(), 8u);
-    ASSERT_EQ(s.apply(edits), "");  // the rest shapes are solved for 2 substeps
+    ASSERT_EQ(s.apply(edits), ""); // the rest shapes are solved for 2 substeps
 
-    std::map<int, std::map<std::uint64_t, glm::vec3>> tips;  // by substep count, by identity
-    for (const int substeps : {1, 2, 4, 8}) {
+    std::map<int, std::map<std::uint64_t, glm::vec3>> tips; // by substep count, by identity
+    for (const int substeps : { 1, 2, 4, 8 }) {
         ParameterValues paced = v;
-        paced.set(Param::Substeps, substeps);  // what the pacer does: forces only, no new solve
+        paced.set(Param::Substeps, substeps); // what the pacer does: forces only, no new solve
         ASSERT_EQ(s.sim->applyForces(paced), "");
         for (const auto& [id, combed] : targets)
-            ASSERT_TRUE(s.sim->holdStrand(id, combed));  // released from the comb
+            ASSERT_TRUE(s.sim->holdStrand(id, combed)); // released from the comb
         s.run(500);
         const HairCurves after = s.frame();
         const Groom& now = s.groom();
@@ -521,11 +524,11 @@ TEST(Style, ACombedLockHoldsAtAnySubstepCountThePacerRuns)
         ASSERT_EQ(tips[substeps].size(), targets.size());
         gap /= static_cast<double>(targets.size());
         std::printf("[ figures  ] combed lock solved at 2 substeps, run at %d: mean tip %.2f mm from the comb\n",
-                    substeps, gap * 1e3);
+            substeps, gap * 1e3);
         // Before the bend's reaction made up for damping and drag: 3.3, 4.8, 5.6 and 6.1 mm.
         EXPECT_LT(gap, 0.001) << "at " << substeps << " substeps the combed lock sagged away from the comb";
     }
-    for (const int substeps : {1, 4, 8}) {
+    for (const int substeps : { 1, 4, 8 }) {
         double apart = 0.0;
         for (const auto& [id, tip] : tips[substeps])
             apart += glm::distance(tip, tips[2][id]);

@@ -3,8 +3,8 @@
 // standing off the scalp on top, one lock resting on another, settling, determinism, cost-free off.
 #include "SimFixtures.h"
 
-#include "sim/solver/HairVolumeGrid.h"
 #include "sim/geometry/MeshBvh.h"
+#include "sim/solver/HairVolumeGrid.h"
 #include "sim/util/ThreadPool.h"
 
 #include <gtest/gtest.h>
@@ -29,20 +29,20 @@ TEST(HairVolumeGrid, SplatConservesWeightAndSamplesWhatWasSplatted)
     ThreadPool pool(2);
     HairVolumeGrid grid;
     ASSERT_TRUE(grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f)));
-    EXPECT_FLOAT_EQ(grid.cellMetres(), HairVolumeGrid::kFinestCellMetres);  // a small box gets the finest cells
+    EXPECT_FLOAT_EQ(grid.cellMetres(), HairVolumeGrid::kFinestCellMetres); // a small box gets the finest cells
     grid.clear(&pool);
     // A uniform block of hair moving at (1, 2, 3) mm per substep, one particle per 2 mm.
     int count = 0;
     for (float x = -0.05f; x < 0.05f; x += 0.002f)
         for (float y = -0.05f; y < 0.05f; y += 0.002f)
             for (float z = -0.05f; z < 0.05f; z += 0.002f) {
-                grid.splat(count % HairVolumeGrid::kSplatChunks, {x, y, z}, 0.5f, {0.001f, 0.002f, 0.003f});
+                grid.splat(count % HairVolumeGrid::kSplatChunks, { x, y, z }, 0.5f, { 0.001f, 0.002f, 0.003f });
                 ++count;
             }
     grid.finish(&pool);
     EXPECT_NEAR(grid.totalWeight(), 0.5 * count, 1e-3 * count);
     // Inside the block: weight per volume, its move, and no gradient.
-    const HairVolumeGrid::Sample inside = grid.sample({0.003f, -0.011f, 0.017f});
+    const HairVolumeGrid::Sample inside = grid.sample({ 0.003f, -0.011f, 0.017f });
     const float expected = 0.5f / (0.002f * 0.002f * 0.002f);
     EXPECT_NEAR(inside.density, expected, 0.02f * expected);
     EXPECT_NEAR(inside.move.x, 0.001f, 1e-6f);
@@ -50,12 +50,12 @@ TEST(HairVolumeGrid, SplatConservesWeightAndSamplesWhatWasSplatted)
     EXPECT_NEAR(inside.move.z, 0.003f, 1e-6f);
     EXPECT_LT(glm::length(inside.gradient), 0.05f * expected / grid.cellMetres());
     // At the block's +X face the density falls outward: the gradient points back in (-X).
-    const HairVolumeGrid::Sample edge = grid.sample({0.05f, 0.0f, 0.0f});
+    const HairVolumeGrid::Sample edge = grid.sample({ 0.05f, 0.0f, 0.0f });
     EXPECT_LT(edge.gradient.x, -0.2f * expected / grid.cellMetres());
     EXPECT_LT(std::abs(edge.gradient.y), 0.05f * -edge.gradient.x);
     // Empty space reads nothing; outside the grid too.
-    EXPECT_EQ(grid.sample({0.09f, 0.09f, 0.09f}).density, 0.0f);
-    EXPECT_EQ(grid.sample({5.0f, 0.0f, 0.0f}).density, 0.0f);
+    EXPECT_EQ(grid.sample({ 0.09f, 0.09f, 0.09f }).density, 0.0f);
+    EXPECT_EQ(grid.sample({ 5.0f, 0.0f, 0.0f }).density, 0.0f);
 }
 
 TEST(HairVolumeGrid, StaysWithinItsMemoryBoundForAHugeBox)
@@ -63,7 +63,7 @@ TEST(HairVolumeGrid, StaysWithinItsMemoryBoundForAHugeBox)
     HairVolumeGrid grid;
     ASSERT_TRUE(grid.setBounds(glm::vec3(-2.0f), glm::vec3(2.0f)));
     EXPECT_LE(grid.memoryBytes(), HairVolumeGrid::kMaxBytes);
-    EXPECT_GT(grid.cellMetres(), 0.05f);  // 4 m across cannot have 8 mm cells in 32 MiB
+    EXPECT_GT(grid.cellMetres(), 0.05f); // 4 m across cannot have 8 mm cells in 32 MiB
     EXPECT_FALSE(grid.setBounds(glm::vec3(0.0f), glm::vec3(NAN)));
     EXPECT_FALSE(grid.setBounds(glm::vec3(0.0f), glm::vec3(0.0f)));
     EXPECT_TRUE(grid.empty());
@@ -80,15 +80,17 @@ TEST(HairVolumeGrid, SameBitsWhicheverThreadsRunTheChunks)
             for (std::size_t chunk = begin; chunk < end; ++chunk)
                 for (int i = 0; i < 5000; ++i) {
                     const float t = static_cast<float>(i * HairVolumeGrid::kSplatChunks + chunk);
-                    grid.splat(static_cast<int>(chunk), {0.07f * std::sin(t * 0.37f), 0.07f * std::sin(t * 0.11f), 0.07f * std::cos(t * 0.23f)},
-                               0.1f + 0.01f * static_cast<float>(i % 7), {std::sin(t), std::cos(t), 0.5f});
+                    grid.splat(static_cast<int>(chunk),
+                        { 0.07f * std::sin(t * 0.37f), 0.07f * std::sin(t * 0.11f), 0.07f * std::cos(t * 0.23f) },
+                        0.1f + 0.01f * static_cast<float>(i % 7), { std::sin(t), std::cos(t), 0.5f });
                 }
         });
         grid.finish(&pool);
         std::vector<float> out;
         for (float x = -0.08f; x < 0.08f; x += 0.013f) {
-            const HairVolumeGrid::Sample s = grid.sample({x, 0.3f * x, -0.5f * x});
-            out.insert(out.end(), {s.density, s.move.x, s.move.y, s.move.z, s.gradient.x, s.gradient.y, s.gradient.z});
+            const HairVolumeGrid::Sample s = grid.sample({ x, 0.3f * x, -0.5f * x });
+            out.insert(
+                out.end(), { s.density, s.move.x, s.move.y, s.move.z, s.gradient.x, s.gradient.y, s.gradient.z });
         }
         return out;
     };
@@ -137,14 +139,14 @@ TEST(Volume, OnByDefaultAtItsNaturalVolume)
 
 TEST(Volume, DefaultGroomStandsOffTheScalpOnTop)
 {
-    float p90[2] = {0, 0};
+    float p90[2] = { 0, 0 };
     for (int on = 0; on < 2; ++on) {
         auto sim = makeSimulation(defaultStill(on ? kNaturalVolume : 0.0));
         run(*sim, 600);
         const std::vector<float> d = topDistances(*sim);
         p90[on] = percentile(d, 0.9);
         std::printf("volume %s: %zu drawn particles in the top quarter, from the scalp: median %.1f mm, p90 %.1f mm\n",
-                    on ? "default" : "0", d.size(), 1e3 * percentile(d, 0.5), 1e3 * p90[on]);
+            on ? "default" : "0", d.size(), 1e3 * percentile(d, 0.5), 1e3 * p90[on]);
         EXPECT_EQ(sim->solver().strandsReset(), 0u);
     }
     EXPECT_GE(p90[1], 0.015f);
@@ -153,7 +155,7 @@ TEST(Volume, DefaultGroomStandsOffTheScalpOnTop)
 
 TEST(Volume, WetHairTakesLessRoom)
 {
-    float p90[2] = {0, 0};
+    float p90[2] = { 0, 0 };
     for (int wet = 0; wet < 2; ++wet) {
         auto sim = makeSimulation(defaultStill(kNaturalVolume));
         if (wet) {
@@ -169,14 +171,14 @@ TEST(Volume, WetHairTakesLessRoom)
     EXPECT_LT(p90[1], 0.75f * p90[0]);
 }
 
-}  // namespace
+} // namespace
 
 namespace {
 
 TEST(Volume, SettledHairStaysStillAndFiniteAfterTenSeconds)
 {
     auto sim = makeSimulation(defaultStill(kNaturalVolume));
-    run(*sim, 600);  // 10 s at 1/60 s
+    run(*sim, 600); // 10 s at 1/60 s
     std::size_t moving = 0, total = 0;
     for (int step = 0; step < 10; ++step) {
         const std::vector<glm::vec3> before = simulatedTips(*sim);
@@ -199,7 +201,7 @@ struct SettleCase {
     int substeps, segments;
     bool curly;
 };
-class VolumeSettling : public testing::TestWithParam<SettleCase> {};
+class VolumeSettling : public testing::TestWithParam<SettleCase> { };
 TEST_P(VolumeSettling, FewerThanOnePercentOfTipsStillMoveAfterTenSeconds)
 {
     const SettleCase k = GetParam();
@@ -221,12 +223,12 @@ TEST_P(VolumeSettling, FewerThanOnePercentOfTipsStillMoveAfterTenSeconds)
         moving += glm::distance(before[i], after[i]) > 0.001f ? 1 : 0;
     const double share = static_cast<double>(moving) / static_cast<double>(before.size());
     std::printf("volume on, %s, %d substeps, %d segments: %.1f %% of tips still move > 1 mm a step after 10 s\n",
-                k.curly ? "curly" : "straight", k.substeps, k.segments, 100.0 * share);
+        k.curly ? "curly" : "straight", k.substeps, k.segments, 100.0 * share);
     EXPECT_LT(share, 0.01);
 }
 INSTANTIATE_TEST_SUITE_P(SubstepsSegmentsCurl, VolumeSettling,
-                         testing::Values(SettleCase{1, 8, false}, SettleCase{1, 40, false}, SettleCase{8, 40, false},
-                                         SettleCase{4, 15, false}, SettleCase{2, 40, true}));
+    testing::Values(SettleCase{ 1, 8, false }, SettleCase{ 1, 40, false }, SettleCase{ 8, 40, false },
+        SettleCase{ 4, 15, false }, SettleCase{ 2, 40, true }));
 
 TEST(Volume, NoNonFiniteOrResetAtTheExtremes)
 {
@@ -234,8 +236,8 @@ TEST(Volume, NoNonFiniteOrResetAtTheExtremes)
         double volume, friction, gravity, wind, timeStep;
         int substeps;
     };
-    for (const Case k : {Case{1.0, 1.0, 100.0, 100.0, 0.1, 1}, Case{1.0, 0.0, -100.0, 0.0, 0.1, 1},
-                         Case{1.0, 1.0, 9.81, 50.0, 1.0 / 60.0, 32}, Case{0.001, 0.5, 9.81, 0.0, 0.001, 1}}) {
+    for (const Case k : { Case{ 1.0, 1.0, 100.0, 100.0, 0.1, 1 }, Case{ 1.0, 0.0, -100.0, 0.0, 0.1, 1 },
+             Case{ 1.0, 1.0, 9.81, 50.0, 1.0 / 60.0, 32 }, Case{ 0.001, 0.5, 9.81, 0.0, 0.001, 1 } }) {
         ParameterValues v = testParameters();
         v.set(Param::Volume, k.volume);
         v.set(Param::HairFriction, k.friction);
@@ -251,7 +253,8 @@ TEST(Volume, NoNonFiniteOrResetAtTheExtremes)
         for (const glm::vec3& x : p)
             ASSERT_TRUE(std::isfinite(x.x + x.y + x.z)) << "volume " << k.volume << " gravity " << k.gravity;
         // A reset strand is one that went non-finite or flew off: none may.
-        EXPECT_EQ(sim->solver().strandsReset(), 0u) << "volume " << k.volume << " gravity " << k.gravity << " wind " << k.wind;
+        EXPECT_EQ(sim->solver().strandsReset(), 0u)
+            << "volume " << k.volume << " gravity " << k.gravity << " wind " << k.wind;
     }
 }
 
@@ -264,7 +267,7 @@ TEST(Volume, ABrokenStrandIsResetAndSpreadsNothingNonFinite)
     run(*sim, 20);
     sim->solver().moveParticle(3, 5, glm::vec3(NAN));
     sim->step();
-    EXPECT_EQ(sim->solver().strandsReset(), 1u);  // only the broken one
+    EXPECT_EQ(sim->solver().strandsReset(), 1u); // only the broken one
     run(*sim, 5);
     std::vector<glm::vec3> p;
     sim->copySimulated(p);
@@ -285,8 +288,8 @@ TEST(Volume, SameBitsWithOneAndThreeThreads)
         auto sim = makeSimulation(v, k == 0 ? 1 : 3);
         // A moving head: the grid follows it.
         for (int i = 0; i < 60; ++i) {
-            sim->solver().setHeadTransform(glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0), glm::vec4(0, 0, 1, 0),
-                                                     glm::vec4(0.002f * static_cast<float>(i), 0.0f, 0.0f, 1.0f)));
+            sim->solver().setHeadTransform(glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0),
+                glm::vec4(0, 0, 1, 0), glm::vec4(0.002f * static_cast<float>(i), 0.0f, 0.0f, 1.0f)));
             sim->step();
         }
         sim->copySimulated(p[k]);
@@ -300,7 +303,7 @@ TEST(Volume, SameBitsWithOneAndThreeThreads)
 // above it. With volume they stay apart where they cross; with volume 0 the top one falls through
 // onto the floor, into the other.
 struct CrossResult {
-    double shareApart = 0.0;  // of the top lock's particles over the bottom lock
+    double shareApart = 0.0; // of the top lock's particles over the bottom lock
     std::size_t over = 0;
 };
 CrossResult crossLocks(float volume)
@@ -333,7 +336,7 @@ CrossResult crossLocks(float volume)
     s.volume = volume;
     s.hairFriction = 0.2f;
     EXPECT_EQ(solver.setSettings(s), "");
-    solver.setCapsules({Capsule{{0, 0, 0}, {0, 0, 0}, kFloor}});
+    solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, kFloor } });
     // Each key stands for 12 drawn strands growing at 8 strands/cm², as in the default groom.
     const std::vector<float> drawn(2 * kStrands, 12.0f);
     EXPECT_EQ(solver.setStrandVolume(drawn, 2 * kStrands * 12 / 8e4f), "");
@@ -346,12 +349,12 @@ CrossResult crossLocks(float volume)
     std::size_t apart = 0;
     for (std::size_t i = half; i < p.size(); ++i) {
         if (std::abs(p[i].x) > 0.5f * kLength || std::abs(p[i].z) > 0.5f * kWidth)
-            continue;  // not over the bottom lock
+            continue; // not over the bottom lock
         float nearest = INFINITY;
         for (std::size_t k = 0; k < half; ++k) {
             if (k % kPoints == kPoints - 1)
                 continue;
-            const glm::vec3 a = p[k], b = p[k + 1];  // the bottom lock's segments
+            const glm::vec3 a = p[k], b = p[k + 1]; // the bottom lock's segments
             const float t = std::clamp(glm::dot(p[i] - a, b - a) / glm::dot(b - a, b - a), 0.0f, 1.0f);
             nearest = std::min(nearest, glm::distance(p[i], a + t * (b - a)));
         }
@@ -369,10 +372,10 @@ TEST(Volume, ALockLaidAcrossAnotherRestsOnIt)
     const CrossResult with = crossLocks(1.0f), without = crossLocks(0.0f);
     std::printf("top lock's particles over the bottom lock at least 2 mm from it: volume 1 %.1f %% of %zu, volume 0 "
                 "%.1f %% of %zu\n",
-                100.0 * with.shareApart, with.over, 100.0 * without.shareApart, without.over);
+        100.0 * with.shareApart, with.over, 100.0 * without.shareApart, without.over);
     ASSERT_GT(with.over, 20u);
     EXPECT_GE(with.shareApart, 0.95);
     EXPECT_LT(without.shareApart, 0.5);
 }
 
-}  // namespace
+} // namespace

@@ -306,6 +306,8 @@ io::Project Document::toProject() const
     p.regions = m_regions;
     p.soloRegion = m_soloId;
     p.style = *m_style;
+    p.motion = m_motion;
+    p.timeline = m_timeline;
     return p;
 }
 
@@ -323,12 +325,16 @@ void Document::loadProject(io::Project project)
     m_styleStroke.reset();
     m_styleBefore.reset();
     m_style = std::make_shared<const StyleEdits>(std::move(project.style));
+    m_motion = std::move(project.motion);
+    m_timeline = project.timeline;
     applyHead(std::make_shared<const HeadModel>(std::move(project.head)), std::move(project.regions));
     if (project.soloRegion != kNoSolo && indexOfRegion(project.soloRegion) >= 0)
         m_soloId = project.soloRegion;
     emit parametersReplaced();
     emit regionsChanged();
     emit styleChanged();
+    emit headMotionChanged();
+    emit timelineChanged();
     m_undoStack.setClean();
 }
 
@@ -339,6 +345,40 @@ void Document::reset()
     fresh.head = std::move(d.mesh);
     fresh.regions.push_back(firstRegion(std::move(d.growthWeights)));
     loadProject(std::move(fresh));
+}
+
+// --- Head motion and timeline --------------------------------------------------------------------
+
+QString Document::setHeadMotion(HeadMotion motion, const QString& text)
+{
+    if (const std::string error = motion.validate(); !error.empty())
+        return QString::fromStdString(error);
+    if (motion == m_motion)
+        return {};
+    m_undoStack.push(new SetHeadMotionCommand(this, m_motion, std::move(motion), text));
+    return {};
+}
+
+QString Document::setTimeline(const BakeRange& range, const QString& text)
+{
+    if (const std::string error = validateBakeRange(range); !error.empty())
+        return QString::fromStdString(error);
+    if (range == m_timeline)
+        return {};
+    m_undoStack.push(new SetTimelineCommand(this, m_timeline, range, text));
+    return {};
+}
+
+void Document::applyHeadMotion(const HeadMotion& motion)
+{
+    m_motion = motion;
+    emit headMotionChanged();
+}
+
+void Document::applyTimeline(const BakeRange& range)
+{
+    m_timeline = range;
+    emit timelineChanged();
 }
 
 // --- Salon edits ---------------------------------------------------------------------------------

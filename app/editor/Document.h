@@ -11,6 +11,8 @@
 #include "sim/geometry/HeadModel.h"
 #include "sim/geometry/TriangleMesh.h"
 #include "sim/groom/GrowthRegion.h"
+#include "sim/motion/HairBake.h"
+#include "sim/motion/HeadMotion.h"
 #include "sim/params/Parameters.h"
 #include "sim/style/StyleEdits.h"
 
@@ -104,6 +106,14 @@ public:
     // Adds a region of imported strands (head space, metres) as one undo step; it becomes current.
     int addImportedHair(std::shared_ptr<const HairCurves> strands, const QString& name);
 
+    // --- Head motion and timeline (sim/motion/) -------------------------------------------------
+    // The head's keyframes and procedural motion, and the timeline's frame range and fps. Saved in
+    // projects; each change is one undo step (`text` names it in the Edit menu).
+    const HeadMotion& headMotion() const { return m_motion; }
+    const BakeRange& timeline() const { return m_timeline; }
+    // Returns the refusal message for an invalid motion or range (nothing is pushed then).
+    QString setHeadMotion(HeadMotion motion, const QString& text);
+    QString setTimeline(const BakeRange& range, const QString& text);
     // --- Projects --------------------------------------------------------------------------------
     const QString& headSource() const { return m_headSource; }
     const io::HeadPlacement& headPlacement() const { return m_headPlacement; }
@@ -126,6 +136,8 @@ public:
     // Per strand identity, the style it gets (nullopt: no edit).
     using StyleChanges = std::map<std::uint64_t, std::optional<StrandStyle>>;
     void applyStyleChanges(const StyleChanges& changes);
+    void applyHeadMotion(const HeadMotion& motion);
+    void applyTimeline(const BakeRange& range);
     std::uint32_t nextRegionId() const;
 
 signals:
@@ -136,12 +148,16 @@ signals:
     void regionParameterChanged(int index, wisp::Param id);
     void regionWeightsChanged(std::uint32_t regionId);
     void currentRegionChanged(int index);
+    void headMotionChanged(); // keys or procedural motion changed (an edit, undo, a project)
+    void timelineChanged(); // frame range or fps changed
     void styleChanged(); // the salon edits changed
 
 private:
     HeadModelPtr m_head; // never null
     QString m_headSource;
     io::HeadPlacement m_headPlacement;
+    HeadMotion m_motion;
+    BakeRange m_timeline;
     ParameterValues m_parameters;
     std::vector<GrowthRegion> m_regions;
     std::uint32_t m_soloId = kNoSolo;

@@ -205,4 +205,40 @@ void ApplyLookCommand::redo()
     m_document->applyLook(m_parametersAfter, m_regionsAfter);
 }
 
+SetHeadMotionCommand::SetHeadMotionCommand(Document* document, HeadMotion before, HeadMotion after, const QString& text)
+    : m_document(document)
+    , m_before(std::move(before))
+    , m_after(std::move(after))
+{
+    setText(text);
+}
+
+void SetHeadMotionCommand::undo()
+{
+    m_document->applyHeadMotion(m_before);
+}
+
+void SetHeadMotionCommand::redo()
+{
+    m_document->applyHeadMotion(m_after);
+}
+
+SetTimelineCommand::SetTimelineCommand(Document* document, BakeRange before, BakeRange after, const QString& text)
+    : m_document(document)
+    , m_before(before)
+    , m_after(after)
+{
+    setText(text);
+}
+
+void SetTimelineCommand::undo()
+{
+    m_document->applyTimeline(m_before);
+}
+
+void SetTimelineCommand::redo()
+{
+    m_document->applyTimeline(m_after);
+}
+
 } // namespace wisp

@@ -6,6 +6,8 @@
 #include "sim/geometry/HeadModel.h"
 #include "sim/geometry/TriangleMesh.h"
 #include "sim/groom/GrowthRegion.h"
+#include "sim/motion/HairBake.h"
+#include "sim/motion/HeadMotion.h"
 #include "sim/params/Parameters.h"
 #include "sim/style/StyleEdits.h"
 
@@ -140,6 +142,30 @@ private:
     Document* m_document;
     ParameterValues m_parametersBefore, m_parametersAfter;
     std::vector<GrowthRegion> m_regionsBefore, m_regionsAfter;
+};
+
+// The head's motion (keys and procedural motion), before and after.
+class SetHeadMotionCommand : public QUndoCommand {
+public:
+    SetHeadMotionCommand(Document* document, HeadMotion before, HeadMotion after, const QString& text);
+    void undo() override;
+    void redo() override;
+
+private:
+    Document* m_document;
+    HeadMotion m_before, m_after;
+};
+
+// The timeline's frame range and fps, before and after.
+class SetTimelineCommand : public QUndoCommand {
+public:
+    SetTimelineCommand(Document* document, BakeRange before, BakeRange after, const QString& text);
+    void undo() override;
+    void redo() override;
+
+private:
+    Document* m_document;
+    BakeRange m_before, m_after;
 };
 
 } // namespace wisp

@@ -136,7 +136,17 @@ private:
     void updateBendShares(float substepSeconds);
     void updateGlobalShape(float substepSeconds);
     void updateVolumeBounds();
-    void volumePass(const StepConstants& c);
+    // The grid's pass (splat and finish) before a substep; its read, block by block, just before
+    // the block advances (the block is then in cache for both).
+    void volumePass(const StepConstants& c, int substepsUntilNext);
+    static int volumeRefreshSubsteps(float substepSeconds); // substeps between two grid passes
+    void volumeRead(Block& b, const StepConstants& c) const;
+    struct VolumeRead {
+        float target = 0.0f; // density the hair keeps, metres of hair per m³
+        float blend = 0.0f; // share of the difference from the hair's mean move lost this substep
+        float stiffness = 0.0f; // m²/s²
+        float pushDamping = 0.0f; // share of the motion along the push taken this substep
+    };
 
     std::unique_ptr<ThreadPool> m_pool;
     SolverSettings m_settings;
@@ -159,6 +169,7 @@ private:
     };
     std::vector<Slot> m_slotOfStrand;
     std::unique_ptr<HairVolumeGrid> m_volumeGrid; // made on the first step with volume on
+    VolumeRead m_volumeRead; // this substep's, set by volumePass
     glm::vec3 m_volumeLo{ 0.0f }, m_volumeHi{ 0.0f }; // head-space box every particle stays in
     float m_scalpArea = 0.0f; // m², given or estimated
     float m_hairPerScalpArea = 0.0f; // metres of drawn hair per m² of scalp

@@ -1424,32 +1424,42 @@ void Solver::step()
         m_pool->parallelFor(m_blocks.size(), 4, [&](std::size_t begin, std::size_t stop) {
             for (std::size_t i = begin; i < stop; ++i) {
                 Block& b = m_blocks[i];
-                if (volume)
+                auto run = [&](int from, int to) {
+                    if (c.transformed)
+                        globalShape ? advanceBlock<true, true>(b, c, from, to)
+                                    : advanceBlock<true, false>(b, c, from, to);
+                    else
+                        globalShape ? advanceBlock<false, true>(b, c, from, to)
+                                    : advanceBlock<false, false>(b, c, from, to);
+                };
+                if (!volume) {
+                    run(first, end);
+                    continue;
+                }
+                // The grid stays the same over [first, end): the block reads it before each of
+                // these substeps and runs them in one go, in cache.
+                for (int substep = first; substep < end; ++substep) {
                     volumeRead(b, c);
-                if (c.transformed)
-                    globalShape ? advanceBlock<true, true>(b, c, first, end)
-                                : advanceBlock<true, false>(b, c, first, end);
-                else
-                    globalShape ? advanceBlock<false, true>(b, c, first, end)
-                                : advanceBlock<false, false>(b, c, first, end);
+                    run(substep, substep + 1);
+                }
             }
         });
     };
     if (volume) {
-        // Hair-hair interaction needs every strand where it is at the start of each substep: the
-        // substeps run outside the blocks, each after the volume grid's pass (its read is the
-        // first thing each block does, in advance()).
+        // Hair-hair interaction needs every strand where it is when the grid is laid: the substeps
+        // run outside the blocks, in runs after each of the volume grid's passes (its read is the
+        // first thing each block does before each substep, in advance()).
         // The grid is laid again every kVolumeRefreshSeconds of substeps (every substep at the
         // default two substeps at 60 Hz; once a step for a heavy scene's many short substeps): in
         // that time hair moving at 0.5 m/s moves 4 mm, half a cell, so the field read at each
         // particle's own new position barely differs, while the pass is most of a substep's cost.
         // The push's stiffness is capped for the refresh interval, not the substep (volumePass).
         const int refreshEvery = volumeRefreshSubsteps(c.dt);
-        for (int substep = 0; substep < c.substeps; ++substep) {
-            c.substep = substep;
-            if (substep % refreshEvery == 0)
-                volumePass(c, std::min(refreshEvery, c.substeps - substep));
-            advance(substep, substep + 1);
+        for (int first = 0; first < c.substeps; first += refreshEvery) {
+            const int end = std::min(first + refreshEvery, c.substeps);
+            c.substep = first;
+            volumePass(c, end - first);
+            advance(first, end);
         }
     } else {
         advance(0, c.substeps); // each block runs all its substeps in one go, in cache

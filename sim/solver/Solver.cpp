@@ -1157,6 +1157,7 @@ void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
     HairVolumeGrid& grid = *m_volumeGrid;
     if (grid.empty())
         return;
+    ++m_volumePasses;
     // Few particles (the editor's keys): the calling thread does it all; waking the pool for each of
     // the pass's loops would cost more than they do.
     constexpr std::size_t kParallelVolumeParticles = 50'000;

@@ -95,6 +95,9 @@ public:
     float volumeTargetDensity() const;
     // The grid of the last step with volume on (null before one).
     const HairVolumeGrid* volumeGrid() const { return m_volumeGrid.get(); }
+    // Grid passes (splat and finish) since construction: one per substep, or fewer where substeps
+    // are shorter than the grid's refresh interval (Solver.cpp, kVolumeRefreshSeconds).
+    std::uint64_t volumePasses() const { return m_volumePasses; }
 
     // World-space positions in the layout of the rest curves given to setStrands.
     void copyPositions(std::vector<glm::vec3>& out) const;
@@ -177,6 +180,7 @@ private:
     std::size_t m_particleCount = 0;
     double m_time = 0.0;
     std::uint64_t m_strandsReset = 0;
+    std::uint64_t m_volumePasses = 0;
     glm::vec2 m_bendSharesFor{ -1.0f }; // (stiffness, substep) the rest rows' bend shares were computed for
     bool m_bendSharesStale = true;
     glm::vec2 m_globalShapeFor{ -1.0f }; // (global shape, substep) m_globalShapeRows were computed for

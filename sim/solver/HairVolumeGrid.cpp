@@ -171,6 +171,152 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
     });
 }
 
+namespace {
+// Eight floats, one AVX register: a pair of neighbouring nodes along x (splat), or one node (sample).
+using Float8 = float __attribute__((vector_size(8 * sizeof(float))));
+inline Float8 load8(const float* p)
+{
+    Float8 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+inline void store8(float* p, Float8 v)
+{
+    std::memcpy(p, &v, sizeof v);
+}
+} // namespace
+
+void HairVolumeGrid::cellsOf(const float* x, const float* y, const float* z, int count, CellRow& out) const
+{
+    // A whole row in a few vector instructions; a shorter one is padded with NaN (outside).
+    using Floats = float __attribute__((vector_size(kRowLanes * sizeof(float))));
+    using Ints = int __attribute__((vector_size(kRowLanes * sizeof(int))));
+    Floats px, py, pz;
+    if (count == kRowLanes) {
+        std::memcpy(&px, x, sizeof px);
+        std::memcpy(&py, y, sizeof py);
+        std::memcpy(&pz, z, sizeof pz);
+    } else {
+        px = py = pz = Floats{} + NAN;
+        for (int l = 0; l < count; ++l) {
+            px[l] = x[l];
+            py[l] = y[l];
+            pz[l] = z[l];
+        }
+    }
+    const float inverseCell = 1.0f / m_cell;
+    const Floats gx = (px - m_origin.x) * inverseCell, gy = (py - m_origin.y) * inverseCell,
+                 gz = (pz - m_origin.z) * inverseCell;
+    const Ints inside = gx >= 0.0f & gy >= 0.0f & gz >= 0.0f & gx < static_cast<float>(m_dims.x - 1)
+        & gy < static_cast<float>(m_dims.y - 1) & gz < static_cast<float>(m_dims.z - 1);
+    const Floats zero{};
+    const Ints ix = __builtin_convertvector(inside ? gx : zero, Ints),
+               iy = __builtin_convertvector(inside ? gy : zero, Ints),
+               iz = __builtin_convertvector(inside ? gz : zero, Ints);
+    const Floats fx = inside ? gx - __builtin_convertvector(ix, Floats) : zero,
+                 fy = inside ? gy - __builtin_convertvector(iy, Floats) : zero,
+                 fz = inside ? gz - __builtin_convertvector(iz, Floats) : zero;
+    const Ints node = inside ? ix + m_dims.x * (iy + m_dims.y * iz) : Ints{} - 1;
+    std::memcpy(out.ix, &ix, sizeof ix);
+    std::memcpy(out.iy, &iy, sizeof iy);
+    std::memcpy(out.iz, &iz, sizeof iz);
+    std::memcpy(out.fx, &fx, sizeof fx);
+    std::memcpy(out.fy, &fy, sizeof fy);
+    std::memcpy(out.fz, &fz, sizeof fz);
+    std::memcpy(out.node, &node, sizeof node);
+}
+
+void HairVolumeGrid::splatRow(int chunk, const float* x, const float* y, const float* z, const float* weight,
+    const float* moveX, const float* moveY, const float* moveZ, int count)
+{
+    CellRow cells;
+    cellsOf(x, y, z, count, cells);
+    float* const grid = &m_chunks[static_cast<std::size_t>(chunk) * m_nodes.size()].weight;
+    const std::ptrdiff_t strideY = 4 * static_cast<std::ptrdiff_t>(m_dims.x),
+                         strideZ = strideY * static_cast<std::ptrdiff_t>(m_dims.y);
+    std::uint8_t* const touched = m_touched.data() + static_cast<std::size_t>(chunk) * m_live.size();
+    const std::size_t brickY = static_cast<std::size_t>(m_bricks.x),
+                      brickZ = brickY * static_cast<std::size_t>(m_bricks.y);
+    // Side-by-side particles (a row's neighbouring strands) often share a cell: their adds are
+    // summed in registers and written once per run of one cell, so they do not wait on each other
+    // through memory. Always in lane order: the same bits every time.
+    int runNode = -1, ix = 0, iy = 0, iz = 0;
+    Float8 run[4] = {};
+    auto flush = [&] {
+        if (runNode < 0)
+            return;
+        // The bricks of the eight nodes: one, unless the cell's far corner is in the next brick.
+        const int bx = ix / kBrick, by = iy / kBrick, bz = iz / kBrick;
+        const int nx = (ix + 1) / kBrick - bx, ny = (iy + 1) / kBrick - by, nz = (iz + 1) / kBrick - bz;
+        std::uint8_t* brick = touched + brickIndex(bx, by, bz);
+        if ((nx | ny | nz) == 0)
+            *brick = 1;
+        else
+            for (int k = 0; k <= nz; ++k)
+                for (int j = 0; j <= ny; ++j)
+                    for (int i = 0; i <= nx; ++i)
+                        brick[i + j * brickY + k * brickZ] = 1;
+        float* const base = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
+        for (int dz = 0; dz < 2; ++dz)
+            for (int dy = 0; dy < 2; ++dy) {
+                float* const pair = base + dy * strideY + dz * strideZ;
+                store8(pair, load8(pair) + run[2 * dz + dy]);
+            }
+    };
+    for (int l = 0; l < count; ++l) {
+        const float w = weight[l];
+        if (cells.node[l] < 0 || !(w > 0.0f))
+            continue;
+        if (cells.node[l] != runNode) {
+            flush();
+            runNode = cells.node[l];
+            ix = cells.ix[l];
+            iy = cells.iy[l];
+            iz = cells.iz[l];
+            run[0] = run[1] = run[2] = run[3] = Float8{};
+        }
+        // (weight, weight x move) at the low and the high node along x, in one register.
+        const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
+        const Float8 value = Float8{ 1.0f, moveX[l], moveY[l], moveZ[l], 1.0f, moveX[l], moveY[l], moveZ[l] };
+        const Float8 wx = Float8{ 1.0f - fx, 1.0f - fx, 1.0f - fx, 1.0f - fx, fx, fx, fx, fx };
+        const float wz[2] = { w * (1.0f - fz), w * fz }, wy[2] = { 1.0f - fy, fy };
+        for (int dz = 0; dz < 2; ++dz)
+            for (int dy = 0; dy < 2; ++dy)
+                run[2 * dz + dy] += (wz[dz] * wy[dy]) * wx * value;
+    }
+    flush();
+}
+
+void HairVolumeGrid::sampleRow(const float* x, const float* y, const float* z, SampleRow& out, int count) const
+{
+    CellRow cells;
+    cellsOf(x, y, z, count, cells);
+    const std::ptrdiff_t strideY = m_dims.x, strideZ = strideY * m_dims.y;
+    for (int l = 0; l < count; ++l) {
+        Float8 sum{};
+        if (cells.node[l] >= 0) {
+            const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
+            const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
+            const Node* const base = m_nodes.data() + cells.node[l];
+            for (int dz = 0; dz < 2; ++dz)
+                for (int dy = 0; dy < 2; ++dy) {
+                    const Node* const row = base + dy * strideY + dz * strideZ;
+                    const float wyz = wz[dz] * wy[dy];
+                    sum += load8(&row[0].density) * (wyz * wx[0]);
+                    sum += load8(&row[1].density) * (wyz * wx[1]);
+                }
+        }
+        out.density[l] = sum[0];
+        out.gradX[l] = sum[1];
+        out.gradY[l] = sum[2];
+        out.gradZ[l] = sum[3];
+        out.momentumX[l] = sum[4];
+        out.momentumY[l] = sum[5];
+        out.momentumZ[l] = sum[6];
+        out.hair[l] = sum[7];
+    }
+}
+
 double HairVolumeGrid::totalWeight() const
 {
     double sum = 0.0;

@@ -56,6 +56,13 @@ public:
     // Adds `weight` and `weight * move` at head-space `p` to chunk `chunk` (0..kSplatChunks-1).
     // Points outside the grid add nothing.
     inline void splat(int chunk, const glm::vec3& p, float weight, const glm::vec3& move);
+    // The same for a row of kRowLanes particles (structure of arrays: head-space positions, weights,
+    // moves), one after the other in lane order; lanes with weight <= 0 add nothing. The grid
+    // coordinates of the row are taken in one vector pass, then each particle adds its eight nodes
+    // as four pairs of neighbours along x (one 32-byte add each).
+    static constexpr int kRowLanes = 16;
+    void splatRow(int chunk, const float* x, const float* y, const float* z, const float* weight, const float* moveX,
+        const float* moveY, const float* moveZ, int count = kRowLanes);
     // Sums the chunks in order and derives the density (weight / m³), the mean move and the
     // density gradient (central differences at nodes) that sample() reads.
     void finish(ThreadPool* pool, float solidDensity = 0.0f);
@@ -71,6 +78,19 @@ public:
     // outside the grid. Continuous in `p`: a particle crossing a cell feels no jump (a nearest-node
     // read made curls jitter, README "Hair volume").
     inline Sample sample(const glm::vec3& p) const;
+    // sample() for a row of kRowLanes head-space positions, in one vector pass for the coordinates;
+    // `momentum` is the hair's summed weight x move (divide by `hair` for the mean move).
+    struct SampleRow {
+        alignas(64) float density[kRowLanes];
+        alignas(64) float hair[kRowLanes];
+        alignas(64) float momentumX[kRowLanes];
+        alignas(64) float momentumY[kRowLanes];
+        alignas(64) float momentumZ[kRowLanes];
+        alignas(64) float gradX[kRowLanes];
+        alignas(64) float gradY[kRowLanes];
+        alignas(64) float gradZ[kRowLanes];
+    };
+    void sampleRow(const float* x, const float* y, const float* z, SampleRow& out, int count = kRowLanes) const;
     float cellMetres() const { return m_cell; }
     glm::ivec3 dims() const { return m_dims; }
     glm::vec3 origin() const { return m_origin; }
@@ -91,6 +111,18 @@ private:
         float moveX, moveY, moveZ; // the hair's summed weight x move (momentum; divided in sample())
         float weight; // the hair's summed weight
     };
+    // Grid coordinates of a row: per lane the index of the cell's low node (-1: outside the grid or
+    // not finite), the node's coordinates and the position within the cell (0..1 each way).
+    struct CellRow {
+        alignas(64) int node[kRowLanes];
+        alignas(64) int ix[kRowLanes];
+        alignas(64) int iy[kRowLanes];
+        alignas(64) int iz[kRowLanes];
+        alignas(64) float fx[kRowLanes];
+        alignas(64) float fy[kRowLanes];
+        alignas(64) float fz[kRowLanes];
+    };
+    void cellsOf(const float* x, const float* y, const float* z, int count, CellRow& out) const;
     // Hair and head at a node (clamped into the grid), for the central differences.
     float densityAt(int i, int j, int k) const
     {
@@ -133,76 +165,19 @@ private:
 
 inline void HairVolumeGrid::splat(int chunk, const glm::vec3& p, float weight, const glm::vec3& move)
 {
-    const glm::vec3 g = (p - m_origin) * (1.0f / m_cell);
-    if (!(g.x >= 0.0f && g.y >= 0.0f && g.z >= 0.0f && g.x < static_cast<float>(m_dims.x - 1)
-            && g.y < static_cast<float>(m_dims.y - 1) && g.z < static_cast<float>(m_dims.z - 1)))
-        return; // outside, or not finite
-    const int ix = static_cast<int>(g.x), iy = static_cast<int>(g.y), iz = static_cast<int>(g.z);
-    const float fx = g.x - static_cast<float>(ix), fy = g.y - static_cast<float>(iy), fz = g.z - static_cast<float>(iz);
-    Accumulator* a = m_chunks.data() + static_cast<std::size_t>(chunk) * m_nodes.size() + index(ix, iy, iz);
-    const std::size_t strideY = static_cast<std::size_t>(m_dims.x),
-                      strideZ = strideY * static_cast<std::size_t>(m_dims.y);
-    std::uint8_t* touched = m_touched.data() + static_cast<std::size_t>(chunk) * m_live.size();
-    // The bricks of the eight nodes: one, unless the cell's far corner is in the next brick.
-    const int bx = ix / kBrick, by = iy / kBrick, bz = iz / kBrick;
-    const int nx = (ix + 1) / kBrick - bx, ny = (iy + 1) / kBrick - by, nz = (iz + 1) / kBrick - bz;
-    std::uint8_t* brick = touched + brickIndex(bx, by, bz);
-    const std::size_t brickY = static_cast<std::size_t>(m_bricks.x),
-                      brickZ = brickY * static_cast<std::size_t>(m_bricks.y);
-    if ((nx | ny | nz) == 0)
-        *brick = 1;
-    else
-        for (int z = 0; z <= nz; ++z)
-            for (int y = 0; y <= ny; ++y)
-                for (int x = 0; x <= nx; ++x)
-                    brick[x + y * brickY + z * brickZ] = 1;
-    const float wz[2] = { weight * (1.0f - fz), weight * fz };
-    const float wy[2] = { 1.0f - fy, fy };
-    const float wx[2] = { 1.0f - fx, fx };
-    for (int dz = 0; dz < 2; ++dz)
-        for (int dy = 0; dy < 2; ++dy) {
-            Accumulator* row = a + dy * strideY + dz * strideZ;
-            const float wyz = wz[dz] * wy[dy];
-            for (int dx = 0; dx < 2; ++dx) {
-                const float w = wyz * wx[dx];
-                row[dx].weight += w;
-                row[dx].moveX += w * move.x;
-                row[dx].moveY += w * move.y;
-                row[dx].moveZ += w * move.z;
-            }
-        }
+    splatRow(chunk, &p.x, &p.y, &p.z, &weight, &move.x, &move.y, &move.z, 1);
 }
 
 inline HairVolumeGrid::Sample HairVolumeGrid::sample(const glm::vec3& p) const
 {
+    SampleRow row;
+    sampleRow(&p.x, &p.y, &p.z, row, 1);
     Sample s;
-    const glm::vec3 g = (p - m_origin) * (1.0f / m_cell);
-    if (!(g.x >= 0.0f && g.y >= 0.0f && g.z >= 0.0f && g.x < static_cast<float>(m_dims.x - 1)
-            && g.y < static_cast<float>(m_dims.y - 1) && g.z < static_cast<float>(m_dims.z - 1)))
-        return s; // outside, not finite, or no grid
-    const int ix = static_cast<int>(g.x), iy = static_cast<int>(g.y), iz = static_cast<int>(g.z);
-    const float fx = g.x - static_cast<float>(ix), fy = g.y - static_cast<float>(iy), fz = g.z - static_cast<float>(iz);
-    const Node* base = m_nodes.data() + index(ix, iy, iz);
-    const std::size_t strideY = static_cast<std::size_t>(m_dims.x),
-                      strideZ = strideY * static_cast<std::size_t>(m_dims.y);
-    const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
-    float sum[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
-    for (int dz = 0; dz < 2; ++dz)
-        for (int dy = 0; dy < 2; ++dy) {
-            const Node* row = base + dy * strideY + dz * strideZ;
-            const float wyz = wz[dz] * wy[dy];
-            for (int dx = 0; dx < 2; ++dx) {
-                const float w = wyz * wx[dx];
-                const float* n = &row[dx].density;
-                for (int f = 0; f < 8; ++f)
-                    sum[f] += w * n[f];
-            }
-        }
-    s.density = sum[0];
-    s.gradient = glm::vec3(sum[1], sum[2], sum[3]);
-    s.hair = sum[7];
-    if (sum[7] > 0.0f)
-        s.move = glm::vec3(sum[4], sum[5], sum[6]) * (1.0f / sum[7]);
+    s.density = row.density[0];
+    s.gradient = glm::vec3(row.gradX[0], row.gradY[0], row.gradZ[0]);
+    s.hair = row.hair[0];
+    if (s.hair > 0.0f)
+        s.move = glm::vec3(row.momentumX[0], row.momentumY[0], row.momentumZ[0]) * (1.0f / s.hair);
     return s;
 }
 

@@ -1128,6 +1128,9 @@ constexpr float kVolumeStableShare = 0.6f;
 // Damping of the motion along the push where hair is denser than its target, per second: the share
 // 1 - exp(-this dt) of it is taken each substep (the same at any substep count).
 constexpr float kVolumeDampingPerSecond = 30.0f;
+// The grid is laid again after at least this long of substeps (Solver::step): 1/120 s, the default
+// substep (two at 60 Hz), so the default scene lays it every substep.
+constexpr float kVolumeRefreshSeconds = 1.0f / 120.0f;
 // A particle that moved this far in one substep (or went non-finite) is left out of the grid.
 constexpr float kVolumeMaxMoveMetres = 0.5f;
 
@@ -1139,7 +1142,12 @@ constexpr float kVolumeMaxMoveMetres = 0.5f;
 // own volume: Petrovic et al.'s pressure term, here only above the target, so hair at or below
 // its volume feels nothing). Both change only the previous position (the velocity): the position
 // is as the last substep left it, so length and contact stay as they were.
-void Solver::volumePass(const StepConstants& c)
+int Solver::volumeRefreshSubsteps(float substepSeconds)
+{
+    return std::max(1, static_cast<int>(kVolumeRefreshSeconds / substepSeconds + 1e-3f));
+}
+
+void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
 {
     if (!m_volumeGrid) {
         m_volumeGrid = std::make_unique<HairVolumeGrid>();
@@ -1149,101 +1157,114 @@ void Solver::volumePass(const StepConstants& c)
     HairVolumeGrid& grid = *m_volumeGrid;
     if (grid.empty())
         return;
+    ++m_volumePasses;
     // Few particles (the editor's keys): the calling thread does it all; waking the pool for each of
-    // the pass's four loops would cost more than they do.
+    // the pass's loops would cost more than they do.
     constexpr std::size_t kParallelVolumeParticles = 50'000;
     ThreadPool* pool = m_particleCount >= kParallelVolumeParticles ? m_pool.get() : nullptr;
-    auto forRange
-        = [&](std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body) {
-              if (pool)
-                  pool->parallelFor(count, grain, body);
-              else if (count > 0)
-                  body(0, count);
-          };
     // Each chunk in use is cleared by the thread that splats it; finish() reads only those in use.
     grid.setChunks(pool ? HairVolumeGrid::kSplatChunks : 1);
-    const glm::mat3 toHead = glm::transpose(c.rotation);
-    auto headSpace = [&](const glm::vec3& world) { return c.transformed ? toHead * (world - c.translation) : world; };
     const std::size_t blockCount = m_blocks.size();
     const std::size_t kChunks = static_cast<std::size_t>(grid.chunks());
-    // A fixed split of the blocks into chunks, each summed in block order: the same bits on any
-    // thread count.
-    forRange(kChunks, 1, [&](std::size_t begin, std::size_t end) {
+    const glm::mat3 toHead = glm::transpose(c.rotation);
+    // A fixed split of the blocks into chunks, each summed in block order, row by row (a row's 16
+    // particles are neighbours on the scalp, so in the grid): the same bits on any thread count.
+    auto splatChunks = [&](std::size_t begin, std::size_t end) {
         for (std::size_t chunk = begin; chunk < end; ++chunk) {
             grid.clearChunk(static_cast<int>(chunk)); // the last pass's splats, by the thread that splats now
             for (std::size_t i = chunk * blockCount / kChunks; i < (chunk + 1) * blockCount / kChunks; ++i) {
                 const Block& b = m_blocks[i];
-                for (int l = 0; l < kLanes; ++l) { // strand by strand: its particles are neighbours in the grid
-                    const float w = b.volumeWeight[l];
-                    if (!(w > 0.0f))
-                        continue;
-                    for (std::uint32_t j = 0; j < b.points; ++j) {
-                        const ParticleRow& r = b.state[j];
-                        const glm::vec3 x(r.x[l], r.y[l], r.z[l]);
-                        const glm::vec3 move = x - glm::vec3(r.px[l], r.py[l], r.pz[l]);
-                        // A particle gone non-finite or flying off (its strand is put back at rest
-                        // at the end of the step) must not spread through the grid.
-                        if (!(std::abs(move.x) + std::abs(move.y) + std::abs(move.z) < kVolumeMaxMoveMetres))
-                            continue;
-                        grid.splat(static_cast<int>(chunk), headSpace(x), w, move);
-                    }
+                for (std::uint32_t j = 0; j < b.points; ++j) { // row by row: a row's strands lie side by side
+                    const ParticleRow& r = b.state[j];
+                    const V3 x{ r.x, r.y, r.z };
+                    const V3 move = x - V3{ r.px, r.py, r.pz };
+                    // A particle gone non-finite or flying off (its strand is put back at rest at
+                    // the end of the step) must not spread through the grid.
+                    const Lane weight = select(l1Length(move) < kVolumeMaxMoveMetres, b.volumeWeight, splat(0.0f));
+                    const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
+                    grid.splatRow(static_cast<int>(chunk), reinterpret_cast<const float*>(&head.x),
+                        reinterpret_cast<const float*>(&head.y), reinterpret_cast<const float*>(&head.z),
+                        reinterpret_cast<const float*>(&weight), reinterpret_cast<const float*>(&move.x),
+                        reinterpret_cast<const float*>(&move.y), reinterpret_cast<const float*>(&move.z));
                 }
             }
         }
-    });
-    const float target = volumeTargetDensity();
-    grid.finish(pool, target);
+    };
+    if (pool)
+        pool->parallelFor(kChunks, 1, splatChunks);
+    else
+        splatChunks(0, kChunks);
+    VolumeRead& v = m_volumeRead;
+    v.target = volumeTargetDensity();
+    grid.finish(pool, v.target);
 
     // The share of the difference from the hair's mean velocity lost this substep: hair_friction
     // is the share lost per 1/60 s, the same at any substep.
-    const float blend = 1.0f - std::pow(1.0f - m_settings.hairFriction, c.dt * 60.0f);
-    const float dt2 = c.dt * c.dt;
+    v.blend = 1.0f - std::pow(1.0f - m_settings.hairFriction, c.dt * 60.0f);
     // The push is a stiff spring taken explicitly: past about (cell / dt)² it overshoots and hair
     // bounces on hair (one substep at 60 Hz did, 22 % of tips moving after 10 s), so its stiffness
     // is capped there; at the default two substeps the cap is about 2 m²/s².
+    // (The grid is read for substepsUntilNext substeps: the spring's step is that long.)
     const float cell = grid.cellMetres();
-    const float stiffness = std::min(kVolumeStiffness, kVolumeStableShare * cell * cell / (c.dt * c.dt));
-    const float pushDamping = 1.0f - std::exp(-kVolumeDampingPerSecond * c.dt);
-    forRange(blockCount, 4, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-            Block& b = m_blocks[i];
-            for (int l = 0; l < kLanes; ++l) {
-                const float keep = target * b.volumeTargetScale[l];
-                const float inverseKeep = 1.0f / keep;
-                for (std::uint32_t j = 1; j < b.points; ++j) { // roots are pinned
-                    ParticleRow& r = b.state[j];
-                    const glm::vec3 x(r.x[l], r.y[l], r.z[l]);
-                    const glm::vec3 previous(r.px[l], r.py[l], r.pz[l]);
-                    const HairVolumeGrid::Sample here = grid.sample(headSpace(x));
-                    if (!(here.density > 0.0f))
-                        continue;
-                    glm::vec3 move = x - previous;
-                    if (here.hair > 0.0f)
-                        move += blend * (here.move - move);
-                    const float excess = here.density * inverseKeep - 1.0f;
-                    if (excess > 0.0f) {
-                        glm::vec3 push = (-stiffness * std::min(excess, 1.0f) * inverseKeep) * here.gradient;
-                        const float length = glm::length(push);
-                        if (length > kVolumeMaxAcceleration)
-                            push *= kVolumeMaxAcceleration / length;
-                        if (c.transformed)
-                            push = c.rotation * push;
-                        // Pressure alone makes hair bounce on the hair beneath it (a stiff spring
-                        // taken explicitly): the motion along the push is damped where it pushes.
-                        if (length > 0.0f) {
-                            const glm::vec3 along = push / length;
-                            move -= (pushDamping * glm::dot(move, along)) * along;
-                        }
-                        move += push * dt2;
-                    }
-                    const glm::vec3 now = x - move;
-                    r.px[l] = now.x;
-                    r.py[l] = now.y;
-                    r.pz[l] = now.z;
-                }
-            }
+    const float refreshSeconds = c.dt * static_cast<float>(substepsUntilNext);
+    v.stiffness = std::min(kVolumeStiffness, kVolumeStableShare * cell * cell / (refreshSeconds * refreshSeconds));
+    v.pushDamping = 1.0f - std::exp(-kVolumeDampingPerSecond * c.dt);
+}
+
+// The read of volumePass's grid for one block, all 16 lanes at once: each particle's velocity is
+// blended toward the hair's mean velocity there by the hair friction, and where the density is
+// above the target it is accelerated down the density gradient (see volumePass).
+void Solver::volumeRead(Block& b, const StepConstants& c) const
+{
+    const HairVolumeGrid& grid = *m_volumeGrid;
+    const VolumeRead& v = m_volumeRead;
+    const Lane keep = v.target * b.volumeTargetScale;
+    const Lane inverseKeep = splat(1.0f) / keep;
+    const glm::mat3 toHead = glm::transpose(c.rotation);
+    const float dt2 = c.dt * c.dt;
+    HairVolumeGrid::SampleRow here;
+    auto lane = [](const float* p) {
+        Lane l;
+        std::memcpy(&l, p, sizeof l);
+        return l;
+    };
+    for (std::uint32_t j = 1; j < b.points; ++j) { // roots are pinned
+        ParticleRow& r = b.state[j];
+        const V3 x{ r.x, r.y, r.z };
+        const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
+        grid.sampleRow(reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
+            reinterpret_cast<const float*>(&head.z), here);
+        const Lane density = lane(here.density);
+        const Mask inHair = density > 0.0f;
+        if (!anyOf(inHair))
+            continue;
+        V3 move = x - V3{ r.px, r.py, r.pz };
+        const Lane hair = lane(here.hair);
+        const Mask hasHair = hair > 0.0f;
+        const Lane inverseHair = select(hasHair, splat(1.0f) / hair, splat(0.0f));
+        const V3 mean = V3{ lane(here.momentumX), lane(here.momentumY), lane(here.momentumZ) } * inverseHair;
+        move = select(hasHair, move + (mean - move) * splat(v.blend), move);
+        const Lane excess = density * inverseKeep - 1.0f;
+        const Mask pushing = excess > 0.0f;
+        if (anyOf(pushing)) {
+            V3 push = V3{ lane(here.gradX), lane(here.gradY), lane(here.gradZ) }
+                * ((-v.stiffness) * lmin(excess, splat(1.0f)) * inverseKeep);
+            const Lane length = lsqrt(dot(push, push));
+            push = push * select(length > kVolumeMaxAcceleration, kVolumeMaxAcceleration / length, splat(1.0f));
+            if (c.transformed)
+                push = transform(c.rotation, push);
+            // Pressure alone makes hair bounce on the hair beneath it (a stiff spring taken
+            // explicitly): the motion along the push is damped where it pushes.
+            const Mask along = pushing & (length > 0.0f);
+            const V3 direction = select(along, V3{ push.x / length, push.y / length, push.z / length }, V3{});
+            const V3 damped = move - direction * (v.pushDamping * dot(move, direction));
+            move = select(pushing, damped + push * splat(dt2), move);
         }
-    });
+        const V3 now = select(inHair, x - move, V3{ r.px, r.py, r.pz });
+        r.px = now.x;
+        r.py = now.y;
+        r.pz = now.z;
+    }
 }
 
 std::string Solver::setSettings(const SolverSettings& settings)
@@ -1399,26 +1420,47 @@ void Solver::step()
 
     // Blocks are independent within a substep, so any split over threads gives the same bits.
     const bool globalShape = !m_globalShapeRows.empty();
+    const bool volume = s.volume > 0.0f && !m_blocks.empty();
     auto advance = [&](int first, int end) {
         m_pool->parallelFor(m_blocks.size(), 4, [&](std::size_t begin, std::size_t stop) {
             for (std::size_t i = begin; i < stop; ++i) {
                 Block& b = m_blocks[i];
-                if (c.transformed)
-                    globalShape ? advanceBlock<true, true>(b, c, first, end)
-                                : advanceBlock<true, false>(b, c, first, end);
-                else
-                    globalShape ? advanceBlock<false, true>(b, c, first, end)
-                                : advanceBlock<false, false>(b, c, first, end);
+                auto run = [&](int from, int to) {
+                    if (c.transformed)
+                        globalShape ? advanceBlock<true, true>(b, c, from, to)
+                                    : advanceBlock<true, false>(b, c, from, to);
+                    else
+                        globalShape ? advanceBlock<false, true>(b, c, from, to)
+                                    : advanceBlock<false, false>(b, c, from, to);
+                };
+                if (!volume) {
+                    run(first, end);
+                    continue;
+                }
+                // The grid stays the same over [first, end): the block reads it before each of
+                // these substeps and runs them in one go, in cache.
+                for (int substep = first; substep < end; ++substep) {
+                    volumeRead(b, c);
+                    run(substep, substep + 1);
+                }
             }
         });
     };
-    if (s.volume > 0.0f && !m_blocks.empty()) {
-        // Hair-hair interaction needs every strand where it is at the start of each substep: the
-        // substeps run outside the blocks, each after the volume grid's pass.
-        for (int substep = 0; substep < c.substeps; ++substep) {
-            c.substep = substep;
-            volumePass(c);
-            advance(substep, substep + 1);
+    if (volume) {
+        // Hair-hair interaction needs every strand where it is when the grid is laid: the substeps
+        // run outside the blocks, in runs after each of the volume grid's passes (its read is the
+        // first thing each block does before each substep, in advance()).
+        // The grid is laid again every kVolumeRefreshSeconds of substeps (every substep at the
+        // default two substeps at 60 Hz; once a step for a heavy scene's many short substeps): in
+        // that time hair moving at 0.5 m/s moves 4 mm, half a cell, so the field read at each
+        // particle's own new position barely differs, while the pass is most of a substep's cost.
+        // The push's stiffness is capped for the refresh interval, not the substep (volumePass).
+        const int refreshEvery = volumeRefreshSubsteps(c.dt);
+        for (int first = 0; first < c.substeps; first += refreshEvery) {
+            const int end = std::min(first + refreshEvery, c.substeps);
+            c.substep = first;
+            volumePass(c, end - first);
+            advance(first, end);
         }
     } else {
         advance(0, c.substeps); // each block runs all its substeps in one go, in cache

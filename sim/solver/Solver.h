@@ -95,6 +95,9 @@ public:
     float volumeTargetDensity() const;
     // The grid of the last step with volume on (null before one).
     const HairVolumeGrid* volumeGrid() const { return m_volumeGrid.get(); }
+    // Grid passes (splat and finish) since construction: one per substep, or fewer where substeps
+    // are shorter than the grid's refresh interval (Solver.cpp, kVolumeRefreshSeconds).
+    std::uint64_t volumePasses() const { return m_volumePasses; }
 
     // World-space positions in the layout of the rest curves given to setStrands.
     void copyPositions(std::vector<glm::vec3>& out) const;
@@ -136,7 +139,17 @@ private:
     void updateBendShares(float substepSeconds);
     void updateGlobalShape(float substepSeconds);
     void updateVolumeBounds();
-    void volumePass(const StepConstants& c);
+    // The grid's pass (splat and finish) before a substep; its read, block by block, just before
+    // the block advances (the block is then in cache for both).
+    void volumePass(const StepConstants& c, int substepsUntilNext);
+    static int volumeRefreshSubsteps(float substepSeconds); // substeps between two grid passes
+    void volumeRead(Block& b, const StepConstants& c) const;
+    struct VolumeRead {
+        float target = 0.0f; // density the hair keeps, metres of hair per m³
+        float blend = 0.0f; // share of the difference from the hair's mean move lost this substep
+        float stiffness = 0.0f; // m²/s²
+        float pushDamping = 0.0f; // share of the motion along the push taken this substep
+    };
 
     std::unique_ptr<ThreadPool> m_pool;
     SolverSettings m_settings;
@@ -159,6 +172,7 @@ private:
     };
     std::vector<Slot> m_slotOfStrand;
     std::unique_ptr<HairVolumeGrid> m_volumeGrid; // made on the first step with volume on
+    VolumeRead m_volumeRead; // this substep's, set by volumePass
     glm::vec3 m_volumeLo{ 0.0f }, m_volumeHi{ 0.0f }; // head-space box every particle stays in
     float m_scalpArea = 0.0f; // m², given or estimated
     float m_hairPerScalpArea = 0.0f; // metres of drawn hair per m² of scalp
@@ -166,6 +180,7 @@ private:
     std::size_t m_particleCount = 0;
     double m_time = 0.0;
     std::uint64_t m_strandsReset = 0;
+    std::uint64_t m_volumePasses = 0;
     glm::vec2 m_bendSharesFor{ -1.0f }; // (stiffness, substep) the rest rows' bend shares were computed for
     bool m_bendSharesStale = true;
     glm::vec2 m_globalShapeFor{ -1.0f }; // (global shape, substep) m_globalShapeRows were computed for

@@ -63,6 +63,7 @@ BakeOutcome runBake(const BakeInput& in, BakeOptions options)
         baked->look.groomShape = groomShapeOf(sim);
         baked->look.wetness.clear(); // the bake keeps positions only; wetness is not per frame
         baked->cache = std::move(result.cache);
+        baked->head = sim.headModel();
         out.baked = std::move(baked);
     } catch (const std::exception& e) {
         out.error = std::string("bake: ") + e.what(); // sim/ does not throw, but memory can run out

@@ -13,6 +13,7 @@
 // Thread: the object lives on the GUI thread and every public function runs there; the worker
 // posts its progress and result back as queued calls.
 
+#include "sim/geometry/HeadModel.h"
 #include "sim/motion/HairBake.h"
 #include "sim/solver/Frame.h"
 
@@ -33,6 +34,7 @@ class Document;
 struct BakedScene {
     BakeCache cache;
     Frame look; // strands empty; everything else as the bake's last frame had it
+    HeadModelPtr head; // the head it was baked on (head space), for exports
 };
 using BakedScenePtr = std::shared_ptr<const BakedScene>;
 

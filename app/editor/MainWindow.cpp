@@ -2,6 +2,7 @@
 
 #include "sim/geometry/Body.h"
 
+#include "app/editor/BakeController.h"
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
 #include "app/editor/FileMenu.h"
@@ -307,6 +308,18 @@ void MainWindow::createDocks()
 
     QDockWidget* timeline
         = addPanelDock(tr("Timeline"), QStringLiteral("timelineDock"), m_timeline, Qt::BottomDockWidgetArea);
+    // File ▸ Export Bake, after Export Hair (which writes the one frame shown).
+    QAction* exportBake = new QAction(tr("Export &Bake…"), this);
+    exportBake->setToolTip(tr("Write the timeline's bake as .usda or a .hair sequence"));
+    connect(exportBake, &QAction::triggered, m_timeline, &TimelineDock::chooseExport);
+    connect(m_timeline->bake(), &BakeController::finished, this, [exportBake] { exportBake->setEnabled(true); });
+    exportBake->setEnabled(false);
+    const QList<QAction*> fileActions = m_fileMenu->menu()->actions();
+    for (qsizetype i = 0; i < fileActions.size(); ++i)
+        if (fileActions[i]->text() == tr("&Export Hair…")) {
+            m_fileMenu->menu()->insertAction(fileActions.value(i + 1), exportBake); // null: at the end
+            break;
+        }
     connect(m_timeline, &TimelineDock::message, this,
         [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     // A bake and the live simulation would share the cores: the live one pauses (Play resumes it).

@@ -1,9 +1,12 @@
 #include "app/editor/TimelineDock.h"
 
+#include "app/editor/BakeExport.h"
 #include "app/editor/Document.h"
 #include "sim/params/Parameters.h"
 
+#include <QDir>
 #include <QDoubleSpinBox>
+#include <QFileDialog>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QProgressBar>
@@ -73,6 +76,11 @@ TimelineDock::TimelineDock(Document* document, QWidget* parent)
     m_cancelButton->setObjectName(QStringLiteral("timelineCancel"));
     m_cancelButton->setToolTip(tr("Stop the bake within one step; the previous cache, if any, stays"));
     connect(m_cancelButton, &QPushButton::clicked, m_bake, &BakeController::cancel);
+    m_exportButton = new QPushButton(tr("&Export…"));
+    m_exportButton->setObjectName(QStringLiteral("timelineExport"));
+    m_exportButton->setToolTip(tr("Write the bake as USD text (.usda, one time sample per frame) or as a "
+                                  ".hair sequence (hair.####.hair, one file per frame)"));
+    connect(m_exportButton, &QPushButton::clicked, this, &TimelineDock::chooseExport);
     m_status = new QLabel;
     m_status->setObjectName(QStringLiteral("timelineStatus"));
     m_status->setWordWrap(true);
@@ -91,6 +99,7 @@ TimelineDock::TimelineDock(Document* document, QWidget* parent)
     bakeRow->addWidget(m_bakeButton);
     bakeRow->addWidget(m_progress);
     bakeRow->addWidget(m_cancelButton);
+    bakeRow->addWidget(m_exportButton);
     bakeRow->addWidget(m_status, 1);
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(rangeRow);
@@ -214,6 +223,32 @@ void TimelineDock::startBake()
     updateControls();
 }
 
+void TimelineDock::chooseExport()
+{
+    if (!m_bake->baked())
+        return;
+    const QString path = QFileDialog::getSaveFileName(this, tr("Export Bake"), QStringLiteral("hair.usda"),
+        tr("USD text (*.usda);;cyHair sequence, # is the frame number (*.hair)"));
+    if (!path.isEmpty())
+        exportBake(path);
+}
+
+QString TimelineDock::exportBake(const QString& path)
+{
+    if (!m_bake->baked())
+        return tr("there is no bake to export");
+    int files = 0;
+    const QString error = wisp::exportBake(*m_bake->baked(), path, &files);
+    if (!error.isEmpty())
+        emit message(tr("Cannot export the bake: %1").arg(error));
+    else
+        emit message(tr("Exported %1 frames%2 to %3")
+                         .arg(m_bake->baked()->cache.frames.size())
+                         .arg(m_stale ? tr(" (stale)") : QString())
+                         .arg(QDir::toNativeSeparators(path)));
+    return error;
+}
+
 void TimelineDock::markStale(const QString& reason)
 {
     if (m_bake->isRunning()) {
@@ -283,6 +318,7 @@ void TimelineDock::updateControls()
     m_progress->setVisible(running);
     m_slider->setEnabled(cached);
     m_playButton->setEnabled(cached);
+    m_exportButton->setEnabled(cached && !running);
     updateStatus();
 }
 

@@ -55,11 +55,17 @@ public:
     QPushButton* cancelButton() const { return m_cancelButton; }
     QProgressBar* progressBar() const { return m_progress; }
     QLabel* statusLabel() const { return m_status; }
+    QPushButton* exportButton() const { return m_exportButton; }
+
+    // Writes the last bake (BakeExport.h): .usda, or a .hair sequence with # in the name. Returns
+    // the error (also sent as message()); empty on success.
+    QString exportBake(const QString& path);
 
 public slots:
     void startBake();
     void leaveCache(); // back to the live simulation (nothing happens when no cache is shown)
     void setPlayingCache(bool playing);
+    void chooseExport(); // asks where (a file dialog), then exportBake
 
 signals:
     void bakeStarted(); // the window pauses the live simulation: both would share the cores
@@ -86,6 +92,7 @@ private:
     QLabel* m_frameLabel = nullptr;
     QPushButton* m_bakeButton = nullptr;
     QPushButton* m_cancelButton = nullptr;
+    QPushButton* m_exportButton = nullptr;
     QProgressBar* m_progress = nullptr;
     QLabel* m_status = nullptr;
     QTimer* m_playTimer = nullptr;

@@ -11,9 +11,12 @@
 #include "app/editor/ProjectController.h"
 #include "app/editor/SimulationHost.h"
 #include "app/editor/TimelineDock.h"
+#include "io/HairFiles.h"
 #include "widgets/Viewport.h"
 
 #include <QDoubleSpinBox>
+#include <QFile>
+#include <QFileInfo>
 #include <QLabel>
 #include <QProgressBar>
 #include <QPushButton>
@@ -238,4 +241,38 @@ TEST_F(TimelineTest, SaveAndReopenKeepTheRange)
     EXPECT_EQ(dock()->firstFrameBox()->value(), 3);
     EXPECT_EQ(dock()->lastFrameBox()->value(), 12);
     EXPECT_DOUBLE_EQ(dock()->fpsBox()->value(), 30.0);
+}
+
+TEST_F(TimelineTest, TheBakeExportsAsAHairSequenceOfTheBakedFramesAndAsUsda)
+{
+    ASSERT_TRUE(bakeFrames(2, 4));
+    QTemporaryDir dir;
+    ASSERT_TRUE(dir.isValid());
+    // Without # a .hair sequence has no place for the frame number: refused, nothing written.
+    const QString noPattern = dir.filePath(QStringLiteral("hair.hair"));
+    EXPECT_TRUE(dock()->exportBake(noPattern).contains(QStringLiteral("needs # in the file name")));
+    EXPECT_FALSE(QFileInfo::exists(noPattern));
+
+    ASSERT_EQ(dock()->exportBake(dir.filePath(QStringLiteral("hair.####.hair"))), QString());
+    const BakeCache& cache = bake()->baked()->cache;
+    for (int frame = 2; frame <= 4; ++frame) {
+        const QString path = dir.filePath(QStringLiteral("hair.%1.hair").arg(frame, 4, 10, QLatin1Char('0')));
+        const io::Result<io::HairReadResult> read = io::readHair(path.toStdString());
+        ASSERT_TRUE(read) << read.error().toString();
+        EXPECT_EQ(read.value().strands.offsets, cache.offsets);
+        EXPECT_TRUE(read.value().strands.positions == cache.find(frame)->positions) << "frame " << frame;
+    }
+    EXPECT_FALSE(QFileInfo::exists(dir.filePath(QStringLiteral("hair.0001.hair")))); // not in the range
+
+    const QString usda = dir.filePath(QStringLiteral("bake.usda"));
+    ASSERT_EQ(dock()->exportBake(usda), QString());
+    QFile file(usda);
+    ASSERT_TRUE(file.open(QIODevice::ReadOnly));
+    const QByteArray text = file.readAll();
+    EXPECT_TRUE(text.contains("timeCodesPerSecond = 24"));
+    EXPECT_TRUE(text.contains("startTimeCode = 2\n") && text.contains("endTimeCode = 4\n"));
+    EXPECT_TRUE(
+        text.contains("            2: [") && text.contains("            4: [") && !text.contains("            1: ["))
+        << "points sampled at frames 2..4";
+    EXPECT_EQ(dock()->exportBake(dir.filePath(QStringLiteral("bake.abc"))).contains(QStringLiteral(".usda")), true);
 }

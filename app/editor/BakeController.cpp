@@ -9,6 +9,7 @@
 #include <QMetaObject>
 
 #include <algorithm>
+#include <chrono>
 #include <exception>
 #include <string>
 #include <utility>
@@ -36,6 +37,14 @@ struct BakeOutcome {
 // Thread: the bake's worker. Grooms a simulation of its own and bakes it.
 BakeOutcome runBake(const BakeInput& in, BakeOptions options)
 {
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point start = Clock::now();
+    Clock::time_point afterFrameOne = start;
+    options.progress = [&afterFrameOne, report = std::move(options.progress)](int done, int total) {
+        if (done == 1)
+            afterFrameOne = Clock::now();
+        report(done, total);
+    };
     BakeOutcome out;
     try {
         // One core stays with the GUI, as the live simulation leaves it (SimulationHost).
@@ -64,6 +73,11 @@ BakeOutcome runBake(const BakeInput& in, BakeOptions options)
         baked->look.wetness.clear(); // the bake keeps positions only; wetness is not per frame
         baked->cache = std::move(result.cache);
         baked->head = sim.headModel();
+        const Clock::time_point end = Clock::now();
+        baked->drapeMilliseconds = std::chrono::duration<double, std::milli>(afterFrameOne - start).count();
+        if (options.range.lastFrame > 1)
+            baked->millisecondsPerFrame = std::chrono::duration<double, std::milli>(end - afterFrameOne).count()
+                / (options.range.lastFrame - 1);
         out.baked = std::move(baked);
     } catch (const std::exception& e) {
         out.error = std::string("bake: ") + e.what(); // sim/ does not throw, but memory can run out

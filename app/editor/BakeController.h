@@ -34,6 +34,10 @@ class Document;
 struct BakedScene {
     BakeCache cache;
     Frame look; // strands empty; everything else as the bake's last frame had it
+    // Wall clock, for the dock's status and the README (never for decisions): the groom and drape
+    // up to frame 1, then each later frame (its solver steps and its drawn frame).
+    double drapeMilliseconds = 0.0;
+    double millisecondsPerFrame = 0.0;
     HeadModelPtr head; // the head it was baked on (head space), for exports
 };
 using BakedScenePtr = std::shared_ptr<const BakedScene>;

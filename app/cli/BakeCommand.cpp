@@ -7,6 +7,7 @@
 #include "app/cli/Commands.h"
 #include "app/cli/OutputCheck.h"
 
+#include "io/FramePattern.h"
 #include "io/HairFiles.h"
 #include "io/ProjectFile.h"
 #include "io/UsdaWriter.h"
@@ -53,20 +54,6 @@ std::pair<int, int> parseFrames(const std::string& text)
     if (std::sscanf(text.c_str(), "%d:%d%c", &a, &b, &tail) != 2)
         throw CliError{ kBadInput, "--frames: '" + text + "' is not A:B (e.g. 1:48)" };
     return { a, b };
-}
-
-// The file name of `frame` in a pattern whose last run of '#' is the frame number, zero-padded.
-std::string framePath(const std::string& pattern, int frame)
-{
-    const std::size_t last = pattern.find_last_of('#');
-    std::size_t first = last;
-    while (first > 0 && pattern[first - 1] == '#')
-        --first;
-    std::string number = std::to_string(frame);
-    const std::size_t width = last - first + 1;
-    if (number.size() < width)
-        number.insert(0, width - number.size(), '0');
-    return pattern.substr(0, first) + number + pattern.substr(last + 1);
 }
 
 std::string extensionOf(const std::string& path)
@@ -213,7 +200,7 @@ int runBake(int argc, char** argv)
             HairCurves curves;
             curves.offsets = layout.offsets;
             curves.positions = frame.positions;
-            const std::string path = framePath(*out, frame.frame);
+            const std::string path = io::framePath(*out, frame.frame);
             if (const io::Result<void> written = io::writeHair(path, curves); !written)
                 return written.error().toString();
             ++written;

@@ -2,6 +2,7 @@
 
 #include "sim/geometry/Body.h"
 
+#include "app/editor/BakeController.h"
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
 #include "app/editor/FileMenu.h"
@@ -13,6 +14,7 @@
 #include "app/editor/SimulationHost.h"
 #include "app/editor/StylePanel.h"
 #include "app/editor/StyleTool.h"
+#include "app/editor/TimelineDock.h"
 #include "app/editor/UndoShortcuts.h"
 #include "app/editor/WispPanel.h"
 #include "io/MeshReader.h"
@@ -184,6 +186,7 @@ void MainWindow::createActions()
     connect(m_leaveToolAction, &QAction::triggered, this, [this] {
         m_paintTool->setActive(false);
         m_styleTool->setBrush(std::nullopt);
+        m_timeline->leaveCache(); // and the baked cache: back to the live simulation
     });
     m_overlayAction = m_viewMenu->addAction(tr("Show Growth &Weights"));
     m_overlayAction->setCheckable(true);
@@ -198,7 +201,11 @@ void MainWindow::createActions()
     m_play->setCheckable(true);
     m_play->setShortcut(QKeySequence(Qt::Key_Space));
     m_play->setShortcutContext(Qt::WindowShortcut);
-    connect(m_play, &QAction::triggered, this, [this](bool on) { on ? m_simulation->play() : m_simulation->pause(); });
+    connect(m_play, &QAction::triggered, this, [this](bool on) {
+        if (on)
+            m_timeline->leaveCache(); // Play is the live simulation's: the cache gives the viewport back
+        on ? m_simulation->play() : m_simulation->pause();
+    });
     m_step = sim->addAction(tr("&Step"), m_simulation, &SimulationHost::stepOnce);
     m_step->setShortcut(QKeySequence(Qt::Key_Period));
     m_step->setToolTip(tr("Advance one time step while paused (.)"));
@@ -262,6 +269,7 @@ void MainWindow::createDocks()
     m_wispPanel = new WispPanel(m_document);
     m_brushPanel = new BrushPanel(m_paintTool);
     m_presetBrowser = new PresetBrowser(m_document);
+    m_timeline = new TimelineDock(m_document);
     QDockWidget* forces
         = addPanelDock(tr("Forces"), QStringLiteral("forcesDock"), m_forcePanel, Qt::RightDockWidgetArea);
     QDockWidget* groom = addPanelDock(tr("Groom"), QStringLiteral("groomDock"), m_groomPanel, Qt::RightDockWidgetArea);
@@ -297,6 +305,34 @@ void MainWindow::createDocks()
     });
     connect(m_brushPanel, &BrushPanel::showOverlayToggled, m_overlayAction, &QAction::setChecked);
     connect(m_overlayAction, &QAction::toggled, m_brushPanel->overlayBox(), &QCheckBox::setChecked);
+
+    QDockWidget* timeline
+        = addPanelDock(tr("Timeline"), QStringLiteral("timelineDock"), m_timeline, Qt::BottomDockWidgetArea);
+    // File ▸ Export Bake, after Export Hair (which writes the one frame shown).
+    QAction* exportBake = new QAction(tr("Export &Bake…"), this);
+    exportBake->setToolTip(tr("Write the timeline's bake as .usda or a .hair sequence"));
+    connect(exportBake, &QAction::triggered, m_timeline, &TimelineDock::chooseExport);
+    connect(m_timeline->bake(), &BakeController::finished, this, [exportBake] { exportBake->setEnabled(true); });
+    exportBake->setEnabled(false);
+    const QList<QAction*> fileActions = m_fileMenu->menu()->actions();
+    for (qsizetype i = 0; i < fileActions.size(); ++i)
+        if (fileActions[i]->text() == tr("&Export Hair…")) {
+            m_fileMenu->menu()->insertAction(fileActions.value(i + 1), exportBake); // null: at the end
+            break;
+        }
+    connect(m_timeline, &TimelineDock::message, this,
+        [this](const QString& text) { statusBar()->showMessage(text, 8000); });
+    // A bake and the live simulation would share the cores: the live one pauses (Play resumes it).
+    connect(m_timeline, &TimelineDock::bakeStarted, m_simulation, &SimulationHost::pause);
+    // The cache shown: exactly its frame, with the live simulation paused under it.
+    connect(m_timeline, &TimelineDock::cacheFrameShown, this, [this](const FramePtr& frame) {
+        m_simulation->pause();
+        m_viewport->setFrame(frame);
+    });
+    connect(m_timeline, &TimelineDock::cacheLeft, this, [this] {
+        if (FramePtr live = m_simulation->latestFrame())
+            m_viewport->setFrame(std::move(live));
+    });
 
     m_history = new QUndoView(m_document->undoStack());
     m_history->setEmptyLabel(tr("<opened>"));
@@ -373,7 +409,11 @@ void MainWindow::showGrowthOverlay()
 void MainWindow::connectSimulation()
 {
     connect(
-        m_simulation, &SimulationHost::frameReady, this, [this] { m_viewport->setFrame(m_simulation->latestFrame()); },
+        m_simulation, &SimulationHost::frameReady, this,
+        [this] {
+            if (!m_timeline->showingCache()) // the cache's frame stays until the artist leaves it
+                m_viewport->setFrame(m_simulation->latestFrame());
+        },
         Qt::QueuedConnection);
     connect(m_simulation, &SimulationHost::playingChanged, this, &MainWindow::updatePlayAction, Qt::QueuedConnection);
     connect(

@@ -27,6 +27,7 @@ class WispPanel;
 class SimulationHost;
 class StylePanel;
 class StyleTool;
+class TimelineDock;
 class Viewport;
 
 class MainWindow : public QMainWindow {
@@ -56,6 +57,7 @@ public:
     BrushPanel* brushPanel() const { return m_brushPanel; }
     PresetBrowser* presetBrowser() const { return m_presetBrowser; }
     QMenu* displayDensityMenu() const { return m_densityMenu; }
+    TimelineDock* timelineDock() const { return m_timeline; }
 
     FileMenu* fileMenu() const { return m_fileMenu; }
 
@@ -89,6 +91,7 @@ private:
     WispPanel* m_wispPanel = nullptr;
     BrushPanel* m_brushPanel = nullptr;
     PresetBrowser* m_presetBrowser = nullptr;
+    TimelineDock* m_timeline = nullptr;
     QAction* m_paintAction = nullptr;
     QAction* m_overlayAction = nullptr;
     QAction* m_leaveToolAction = nullptr;

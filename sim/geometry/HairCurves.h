@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace wisp {
@@ -40,6 +41,29 @@ struct HairCurves {
     {
         offsets.assign(1, 0);
         positions.clear();
+    }
+};
+
+// The same curves tagged with their space, so head-space curves cannot be stored where world-space
+// ones belong (Blender names the space on every variable, `_wo`/`_cu`; here the type carries it).
+// Both read as HairCurves anywhere (a function that works in any space takes HairCurves); going
+// from plain or other-space curves to a tagged one is explicit, so it shows where it happens.
+//
+// World space: the head placed in the scene and moving with its motion (what the solver steps and
+// the viewport draws).
+struct WorldCurves : HairCurves {
+    WorldCurves() = default;
+    explicit WorldCurves(HairCurves curves)
+        : HairCurves(std::move(curves))
+    {
+    }
+};
+// Head space: fixed to the head at rest, +Y up, metres (the groom, rest shapes, imported strands).
+struct HeadCurves : HairCurves {
+    HeadCurves() = default;
+    explicit HeadCurves(HairCurves curves)
+        : HairCurves(std::move(curves))
+    {
     }
 };
 

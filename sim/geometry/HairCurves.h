@@ -57,6 +57,9 @@ struct WorldCurves : HairCurves {
         : HairCurves(std::move(curves))
     {
     }
+    // The curves whatever their space, where one variable may hold either (a choice between the
+    // rest pose and the moving frame); saying so is the point.
+    const HairCurves& anySpace() const { return *this; }
 };
 // Head space: fixed to the head at rest, +Y up, metres (the groom, rest shapes, imported strands).
 struct HeadCurves : HairCurves {
@@ -65,6 +68,7 @@ struct HeadCurves : HairCurves {
         : HairCurves(std::move(curves))
     {
     }
+    const HairCurves& anySpace() const { return *this; }
 };
 
 // Polyline length of one strand, metres.

@@ -3,73 +3,50 @@
 // skipped, with a warning for what could have been meant as hair.
 
 #include "io/HairFilesInternal.h"
+#include "io/mesh/Tokenizer.h"
 
-#include <charconv>
 #include <cmath>
 #include <string_view>
 
 namespace wisp::io::hair_detail {
-
-namespace {
-
-std::string_view nextToken(std::string_view& line)
-{
-    std::size_t start = line.find_first_not_of(" \t\r");
-    if (start == std::string_view::npos) {
-        line = {};
-        return {};
-    }
-    std::size_t end = line.find_first_of(" \t\r", start);
-    if (end == std::string_view::npos)
-        end = line.size();
-    const std::string_view token = line.substr(start, end - start);
-    line.remove_prefix(end);
-    return token;
-}
-
-} // namespace
 
 Result<HairReadResult> readObjPolylines(const std::string& path)
 {
     Result<std::string> file = readRegularFile(path, kHairFileRules);
     if (!file)
         return file.error();
-    const std::string& text = file.value();
     std::vector<glm::vec3> vertices;
     HairReadResult result;
     std::vector<std::vector<std::int64_t>> lines; // raw indices, resolved once all vertices are known
     std::vector<std::size_t> lineNumbers;
     std::size_t faces = 0, points = 0, shortLines = 0;
-    std::size_t lineNumber = 0;
-    for (std::size_t at = 0; at < text.size();) {
-        std::size_t end = text.find('\n', at);
-        if (end == std::string::npos)
-            end = text.size();
-        std::string_view line(text.data() + at, end - at);
-        at = end + 1;
-        ++lineNumber;
-        const std::string where = "line " + std::to_string(lineNumber);
-        const std::string_view keyword = nextToken(line);
+    // The text mesh readers' tokenizer (io/mesh/Tokenizer.h): the same lines, tokens and numbers.
+    mesh::LineWalker walker(file.value());
+    std::vector<std::string_view> tokens;
+    for (std::string_view line; walker.next(line);) {
+        mesh::splitTokens(line, tokens);
+        if (tokens.empty())
+            continue;
+        const std::string where = "line " + std::to_string(walker.lineNumber());
+        const std::string_view keyword = tokens[0];
         if (keyword == "v") {
             glm::vec3 p;
-            for (int c = 0; c < 3; ++c) {
-                const std::string_view token = nextToken(line);
-                float value = 0.0f;
-                const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-                if (token.empty() || ec != std::errc() || ptr != token.data() + token.size())
+            for (std::size_t c = 0; c < 3; ++c) {
+                const std::string_view token = c + 1 < tokens.size() ? tokens[c + 1] : std::string_view{};
+                double value = 0.0;
+                if (!mesh::parseDouble(token, value))
                     return IoError{ path, where, "a vertex needs 3 numbers; '" + std::string(token) + "' is not one" };
-                if (!std::isfinite(value))
+                p[static_cast<glm::length_t>(c)] = static_cast<float>(value);
+                if (!std::isfinite(p[static_cast<glm::length_t>(c)]))
                     return IoError{ path, where, "a vertex coordinate is not a finite number" };
-                p[c] = value;
             }
             vertices.push_back(p);
         } else if (keyword == "l") {
             std::vector<std::int64_t> indices;
-            for (std::string_view token = nextToken(line); !token.empty(); token = nextToken(line)) {
-                token = token.substr(0, token.find('/')); // "v/vt": the vertex
+            for (std::size_t t = 1; t < tokens.size(); ++t) {
+                const std::string_view token = tokens[t].substr(0, tokens[t].find('/')); // "v/vt": the vertex
                 std::int64_t index = 0;
-                const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), index);
-                if (token.empty() || ec != std::errc() || ptr != token.data() + token.size() || index == 0)
+                if (!mesh::parseInteger(token, index) || index == 0)
                     return IoError{ path, where, "'" + std::string(token) + "' is not a vertex number" };
                 // A negative index counts back from the vertices read so far (the OBJ spec).
                 if (index < 0)
@@ -81,7 +58,7 @@ Result<HairReadResult> readObjPolylines(const std::string& path)
                 continue;
             }
             lines.push_back(std::move(indices));
-            lineNumbers.push_back(lineNumber);
+            lineNumbers.push_back(walker.lineNumber());
         } else if (keyword == "f") {
             ++faces;
         } else if (keyword == "p") {

@@ -36,6 +36,18 @@ void appendPoint(std::string& out, const glm::vec3& p)
     out += ')';
 }
 
+// `[item, item, ...]`: appendItem(i) writes item i of `count`. Every USD array here is one.
+template <class AppendItem> void appendArray(std::string& out, std::size_t count, AppendItem appendItem)
+{
+    out += '[';
+    for (std::size_t i = 0; i < count; ++i) {
+        if (i)
+            out += ", ";
+        appendItem(i);
+    }
+    out += ']';
+}
+
 bool finite(const glm::vec3& p)
 {
     return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
@@ -55,6 +67,33 @@ void appendMatrix(std::string& out, const glm::mat4& m)
         out += ')';
     }
     out += ')';
+}
+
+// `<declaration> = value`, or `<declaration>.timeSamples = { time: value, ... }` for an animation:
+// appendValue(frame) writes the value of one frame.
+template <class AppendValue>
+void appendSampled(
+    std::string& out, const char* indent, const char* declaration, const UsdaScene& scene, AppendValue appendValue)
+{
+    out += indent;
+    out += declaration;
+    if (!scene.animated) {
+        out += " = ";
+        appendValue(scene.frames.front());
+        out += '\n';
+        return;
+    }
+    out += ".timeSamples = {\n";
+    for (const UsdaFrame& frame : scene.frames) {
+        out += indent;
+        out += "    ";
+        appendNumber(out, frame.timeCode);
+        out += ": ";
+        appendValue(frame);
+        out += ",\n";
+    }
+    out += indent;
+    out += "}\n";
 }
 
 } // namespace
@@ -120,14 +159,15 @@ std::string usdaText(const UsdaScene& scene, std::string* error)
             return refuse("the head cannot be exported: " + problem);
     }
 
-    // Curves of two points or more (a linear BasisCurves curve needs two).
-    std::vector<std::uint32_t> kept;
-    for (std::size_t s = 0; s + 1 < scene.offsets.size(); ++s)
-        if (scene.offsets[s + 1] - scene.offsets[s] >= 2)
-            kept.push_back(static_cast<std::uint32_t>(s));
-    std::size_t keptPoints = 0;
-    for (std::uint32_t s : kept)
-        keptPoints += scene.offsets[s + 1] - scene.offsets[s];
+    // Curves of two points or more (a linear BasisCurves curve needs two), and their points.
+    std::vector<std::uint32_t> kept, keptPointIndices;
+    for (std::uint32_t s = 0; s + 1 < scene.offsets.size(); ++s)
+        if (scene.offsets[s + 1] - scene.offsets[s] >= 2) {
+            kept.push_back(s);
+            for (std::uint32_t i = scene.offsets[s]; i < scene.offsets[s + 1]; ++i)
+                keptPointIndices.push_back(i);
+        }
+    const std::size_t keptPoints = keptPointIndices.size();
 
     std::string out;
     out.reserve(64 + scene.frames.size() * keptPoints * 36);
@@ -150,90 +190,35 @@ std::string usdaText(const UsdaScene& scene, std::string* error)
 
     // The hair.
     out += "    def BasisCurves \"hair\"\n    {\n        uniform token type = \"linear\"\n"
-           "        uniform token wrap = \"nonperiodic\"\n        int[] curveVertexCounts = [";
-    for (std::size_t k = 0; k < kept.size(); ++k) {
-        if (k)
-            out += ", ";
-        out += std::to_string(scene.offsets[kept[k] + 1] - scene.offsets[kept[k]]);
-    }
-    out += "]\n";
-    auto appendPoints = [&](std::span<const glm::vec3> positions) {
-        out += '[';
-        bool first = true;
-        for (std::uint32_t s : kept)
-            for (std::uint32_t i = scene.offsets[s]; i < scene.offsets[s + 1]; ++i) {
-                if (!first)
-                    out += ", ";
-                first = false;
-                appendPoint(out, positions[i]);
-            }
-        out += ']';
-    };
-    if (scene.animated) {
-        out += "        point3f[] points.timeSamples = {\n";
-        for (const UsdaFrame& frame : scene.frames) {
-            out += "            ";
-            appendNumber(out, frame.timeCode);
-            out += ": ";
-            appendPoints(frame.positions);
-            out += ",\n";
-        }
-        out += "        }\n";
-    } else {
-        out += "        point3f[] points = ";
-        appendPoints(scene.frames.front().positions);
-        out += "\n";
-    }
-    out += "        float[] widths = [";
-    {
-        bool first = true;
-        for (std::uint32_t s : kept)
-            for (std::uint32_t i = scene.offsets[s]; i < scene.offsets[s + 1]; ++i) {
-                if (!first)
-                    out += ", ";
-                first = false;
-                appendNumber(out, scene.widthsMetres[i]);
-            }
-    }
-    out += "] (\n            interpolation = \"vertex\"\n        )\n    }\n";
+           "        uniform token wrap = \"nonperiodic\"\n        int[] curveVertexCounts = ";
+    appendArray(out, kept.size(),
+        [&](std::size_t k) { out += std::to_string(scene.offsets[kept[k] + 1] - scene.offsets[kept[k]]); });
+    out += "\n";
+    appendSampled(out, "        ", "point3f[] points", scene, [&](const UsdaFrame& frame) {
+        appendArray(out, keptPoints, [&](std::size_t i) { appendPoint(out, frame.positions[keptPointIndices[i]]); });
+    });
+    out += "        float[] widths = ";
+    appendArray(out, keptPoints, [&](std::size_t i) { appendNumber(out, scene.widthsMetres[keptPointIndices[i]]); });
+    out += " (\n            interpolation = \"vertex\"\n        )\n    }\n";
 
     // The head: its mesh in head space under an Xform that moves it.
     if (scene.head) {
+        const TriangleMesh& head = *scene.head;
         out += "\n    def Xform \"head\"\n    {\n";
-        if (scene.animated) {
-            out += "        matrix4d xformOp:transform.timeSamples = {\n";
-            for (const UsdaFrame& frame : scene.frames) {
-                out += "            ";
-                appendNumber(out, frame.timeCode);
-                out += ": ";
-                appendMatrix(out, frame.headToWorld);
-                out += ",\n";
-            }
-            out += "        }\n";
-        } else {
-            out += "        matrix4d xformOp:transform = ";
-            appendMatrix(out, scene.frames.front().headToWorld);
-            out += "\n";
-        }
+        appendSampled(out, "        ", "matrix4d xformOp:transform", scene,
+            [&](const UsdaFrame& frame) { appendMatrix(out, frame.headToWorld); });
         out += "        uniform token[] xformOpOrder = [\"xformOp:transform\"]\n\n"
                "        def Mesh \"mesh\"\n        {\n            uniform token subdivisionScheme = \"none\"\n"
-               "            int[] faceVertexCounts = [";
-        for (std::size_t t = 0; t < scene.head->triangles.size(); ++t)
-            out += t ? ", 3" : "3";
-        out += "]\n            int[] faceVertexIndices = [";
-        for (std::size_t t = 0; t < scene.head->triangles.size(); ++t) {
-            const glm::uvec3& tri = scene.head->triangles[t];
-            if (t)
-                out += ", ";
+               "            int[] faceVertexCounts = ";
+        appendArray(out, head.triangles.size(), [&](std::size_t) { out += '3'; });
+        out += "\n            int[] faceVertexIndices = ";
+        appendArray(out, head.triangles.size(), [&](std::size_t t) {
+            const glm::uvec3& tri = head.triangles[t];
             out += std::to_string(tri.x) + ", " + std::to_string(tri.y) + ", " + std::to_string(tri.z);
-        }
-        out += "]\n            point3f[] points = [";
-        for (std::size_t v = 0; v < scene.head->positions.size(); ++v) {
-            if (v)
-                out += ", ";
-            appendPoint(out, scene.head->positions[v]);
-        }
-        out += "]\n        }\n    }\n";
+        });
+        out += "\n            point3f[] points = ";
+        appendArray(out, head.positions.size(), [&](std::size_t v) { appendPoint(out, head.positions[v]); });
+        out += "\n        }\n    }\n";
     }
     out += "}\n";
     return out;

@@ -27,8 +27,7 @@ namespace {
 
 std::vector<OptionSpec> bakeOptions()
 {
-    std::vector<OptionSpec> options = {
-        { "help", "", "show this help" },
+    return optionsWithParameters({
         { "frames", "A:B", "the frames to write, 1 or more (frame 1 is 0 s; default: the project's timeline)" },
         { "fps", "N", "frames per second (default: the project's, else 24)" },
         { "motion", "KIND", "turn, nod, shake, walk or none: the procedural motion, replacing the project's" },
@@ -40,10 +39,7 @@ std::vector<OptionSpec> bakeOptions()
         { "out", "FILE",
             "FILE.usda (USD text, every frame a time sample; one frame: a still), or PATTERN.hair "
             "with # for the frame number (hair.####.hair: hair.0001.hair, ...)" },
-    };
-    const std::vector<OptionSpec> parameters = parameterOptions();
-    options.insert(options.end(), parameters.begin(), parameters.end());
-    return options;
+    });
 }
 
 // "A:B" -> {A, B}; throws CliError.

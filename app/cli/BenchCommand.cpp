@@ -210,7 +210,7 @@ BenchResult brushWorkload(const RunOptions& o)
         o,
         [&] {
             settings.mode = (dab / static_cast<int>(path.size())) % 2 == 0 ? BrushMode::Add : BrushMode::Erase;
-            brush.dab(path[static_cast<std::size_t>(dab) % path.size()], settings, regions[0].weights);
+            brush.dab(path[static_cast<std::size_t>(dab) % path.size()], settings, regions[0].weights.forWrite());
             ++dab;
             if (std::string error = sim.regroom(regions, kNoSolo, v); !error.empty())
                 throw CliError{ kBadInput, "brush-dab: " + error };

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstdlib>
+#include <iterator>
 #include <sstream>
 
 namespace wisp::cli {
@@ -105,6 +106,15 @@ std::vector<OptionSpec> parameterOptions()
         help << ", default " << p.defaultValue << "]";
         options.push_back({ std::string(p.key), p.kind == ParamKind::Toggle ? "0|1" : "NUMBER", help.str() });
     }
+    return options;
+}
+
+std::vector<OptionSpec> optionsWithParameters(std::vector<OptionSpec> own)
+{
+    std::vector<OptionSpec> options{ { "help", "", "show this help" } };
+    options.insert(options.end(), std::make_move_iterator(own.begin()), std::make_move_iterator(own.end()));
+    const std::vector<OptionSpec> parameters = parameterOptions();
+    options.insert(options.end(), parameters.begin(), parameters.end());
     return options;
 }
 

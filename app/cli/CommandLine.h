@@ -49,6 +49,8 @@ private:
 
 // Option specs for every registry parameter (--gravity, --wind_speed, ...), help text from the registry.
 std::vector<OptionSpec> parameterOptions();
+// A simulating command's table: --help, its own options in order, then every registry parameter.
+std::vector<OptionSpec> optionsWithParameters(std::vector<OptionSpec> own);
 
 // Formats a usage block: "  --name VALUE   help".
 std::string describeOptions(const std::vector<OptionSpec>& options);

@@ -31,8 +31,7 @@ namespace {
 
 std::vector<OptionSpec> simulateOptions()
 {
-    std::vector<OptionSpec> options = {
-        { "help", "", "show this help" },
+    return optionsWithParameters({
         { "head", "FILE", "head mesh (OBJ, PLY, OFF, STL, glTF, GLB); default: the built-in head and its growth map" },
         { "scale", "FACTOR",
             "the head's metres per file unit (default: millimetres, centimetres or metres, guessed "
@@ -58,10 +57,7 @@ std::vector<OptionSpec> simulateOptions()
         { "rest", "", "write the rest pose (the groom) instead of the last simulated frame" },
         { "keys-only", "", "write only the simulated strands (key hairs), not every drawn strand" },
         { "timing", "", "print every step's time" },
-    };
-    const std::vector<OptionSpec> parameters = parameterOptions();
-    options.insert(options.end(), parameters.begin(), parameters.end());
-    return options;
+    });
 }
 
 } // namespace

@@ -193,7 +193,7 @@ std::vector<float>& Document::strokeWeights()
     static std::vector<float> none;
     if (m_strokeRegion < 0)
         return none;
-    return m_regions[static_cast<std::size_t>(m_strokeRegion)].weights;
+    return m_regions[static_cast<std::size_t>(m_strokeRegion)].weights.forWrite();
 }
 
 void Document::strokeUpdated()
@@ -217,8 +217,7 @@ void Document::endStroke(const QString& text)
         }
     const std::uint32_t id = r.id;
     m_strokeRegion = -1;
-    m_strokeBefore.clear();
-    m_strokeBefore.shrink_to_fit();
+    m_strokeBefore = {};
     if (!vertices.empty())
         m_undoStack.push(
             new PaintStrokeCommand(this, id, std::move(vertices), std::move(before), std::move(after), text));
@@ -507,7 +506,7 @@ void Document::applyRegionWeights(
     const int index = indexOfRegion(regionId);
     if (index < 0)
         return;
-    std::vector<float>& weights = m_regions[static_cast<std::size_t>(index)].weights;
+    std::vector<float>& weights = m_regions[static_cast<std::size_t>(index)].weights.forWrite();
     for (std::size_t i = 0; i < vertices.size(); ++i)
         if (vertices[i] < weights.size())
             weights[vertices[i]] = values[i];

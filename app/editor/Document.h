@@ -163,7 +163,7 @@ private:
     std::uint32_t m_soloId = kNoSolo;
     int m_current = -1;
     int m_strokeRegion = -1;
-    std::vector<float> m_strokeBefore;
+    RegionWeights m_strokeBefore; // shares the weights until the stroke first writes
     StyleEditsPtr m_style = std::make_shared<const StyleEdits>();
     std::optional<StyleEdits> m_styleStroke; // the edits being changed by a styling stroke
     StyleEditsPtr m_styleBefore; // and as they were when it began

@@ -64,7 +64,8 @@ private:
 };
 
 // Any change of the region list itself (add, remove, rename, reorder, show, hide, solo, colour):
-// the whole list before and after. Regions are small next to the head (one float per vertex).
+// the whole list before and after. The lists share their painted weights copy-on-write with the
+// document (sim/groom/RegionWeights.h), so a step holds only the region records, not the weights.
 class SetRegionsCommand : public QUndoCommand {
 public:
     SetRegionsCommand(Document* document, std::vector<GrowthRegion> before, std::uint32_t soloBefore,
@@ -130,7 +131,8 @@ private:
     Origin m_oldOrigin, m_newOrigin;
 };
 
-// A preset applied: every global parameter and every region's look, before and after.
+// A preset applied: every global parameter and every region's look, before and after (the
+// regions' weights shared, as in SetRegionsCommand).
 class ApplyLookCommand : public QUndoCommand {
 public:
     ApplyLookCommand(Document* document, ParameterValues parametersBefore, std::vector<GrowthRegion> regionsBefore,

@@ -18,7 +18,8 @@ namespace wisp {
 
 HairCurves strandsForExport(const Frame& frame, const HairExportChoice& choice)
 {
-    const HairCurves& source = choice.restPose && frame.groomShape ? frame.groomShape->rest : frame.strands;
+    const HairCurves& source
+        = choice.restPose && frame.groomShape ? frame.groomShape->rest.anySpace() : frame.strands.anySpace();
     if (!choice.keysOnly)
         return source;
     HairCurves keys;

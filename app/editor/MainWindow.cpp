@@ -401,7 +401,7 @@ void MainWindow::showGrowthTint()
 void MainWindow::showGrowthOverlay()
 {
     const int current = m_document->currentRegion();
-    m_viewport->setGrowthOverlay(current >= 0 ? m_document->region(current).weights : std::vector<float>{});
+    m_viewport->setGrowthOverlay(current >= 0 ? m_document->region(current).weights.toVector() : std::vector<float>{});
     m_viewport->setScalpCoverage(
         scalpCoverage(m_document->regions(), m_document->soloRegion(), m_document->head().positions.size()));
 }

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace wisp {
@@ -41,6 +42,33 @@ struct HairCurves {
         offsets.assign(1, 0);
         positions.clear();
     }
+};
+
+// The same curves tagged with their space, so head-space curves cannot be stored where world-space
+// ones belong (Blender names the space on every variable, `_wo`/`_cu`; here the type carries it).
+// Both read as HairCurves anywhere (a function that works in any space takes HairCurves); going
+// from plain or other-space curves to a tagged one is explicit, so it shows where it happens.
+//
+// World space: the head placed in the scene and moving with its motion (what the solver steps and
+// the viewport draws).
+struct WorldCurves : HairCurves {
+    WorldCurves() = default;
+    explicit WorldCurves(HairCurves curves)
+        : HairCurves(std::move(curves))
+    {
+    }
+    // The curves whatever their space, where one variable may hold either (a choice between the
+    // rest pose and the moving frame); saying so is the point.
+    const HairCurves& anySpace() const { return *this; }
+};
+// Head space: fixed to the head at rest, +Y up, metres (the groom, rest shapes, imported strands).
+struct HeadCurves : HairCurves {
+    HeadCurves() = default;
+    explicit HeadCurves(HairCurves curves)
+        : HairCurves(std::move(curves))
+    {
+    }
+    const HairCurves& anySpace() const { return *this; }
 };
 
 // Polyline length of one strand, metres.

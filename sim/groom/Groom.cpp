@@ -1,4 +1,6 @@
 #include "sim/groom/Groom.h"
+#include "sim/groom/PoreLayout.h"
+#include "sim/groom/WispMembers.h"
 
 #include "sim/geometry/ShortestArc.h"
 
@@ -22,137 +24,12 @@
 namespace wisp {
 namespace {
 
-// Keys of the independent random streams, so that e.g. lengths never correlate with positions.
-enum Stream : std::uint64_t { CandidateCount = 1, CandidatePoint, Priority, Keep, LengthJitter, CurlPhase };
-
-// A hashed 3D grid for blue-noise thinning and nearest-site queries.
-class PointGrid {
-public:
-    explicit PointGrid(float cellSize)
-        : m_inverseCell(1.0f / cellSize)
-    {
-    }
-
-    void insert(const glm::vec3& p, std::uint32_t id) { m_cells[keyOf(cellOf(p))].push_back(id); }
-
-    template <typename Visit> void forNeighbours(const glm::vec3& p, Visit&& visit) const
-    {
-        const glm::ivec3 c = cellOf(p);
-        for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const auto it = m_cells.find(keyOf(c + glm::ivec3(dx, dy, dz)));
-                    if (it == m_cells.end())
-                        continue;
-                    for (std::uint32_t id : it->second)
-                        visit(id);
-                }
-    }
-
-private:
-    glm::ivec3 cellOf(const glm::vec3& p) const { return glm::ivec3(glm::floor(p * m_inverseCell)); }
-    static std::uint64_t keyOf(const glm::ivec3& c)
-    {
-        return (static_cast<std::uint64_t>(c.x + (1 << 20)) << 42) | (static_cast<std::uint64_t>(c.y + (1 << 20)) << 21)
-            | static_cast<std::uint64_t>(c.z + (1 << 20));
-    }
-    float m_inverseCell;
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> m_cells;
-};
-
-struct Pore {
-    SurfacePoint surface;
-    glm::vec3 position;
-    float priority;
-};
-
-// Greedy Poisson-disk thinning in priority order: a point survives when no surviving point lies
-// within `radius`. The result is a maximal blue-noise subset; deterministic because the order is.
-std::vector<std::uint32_t> thinToBlueNoise(
-    const std::vector<Pore>& pores, std::span<const std::uint32_t> order, float radius)
-{
-    PointGrid grid(radius);
-    std::vector<std::uint32_t> kept;
-    const float radius2 = radius * radius;
-    for (std::uint32_t id : order) {
-        bool blocked = false;
-        grid.forNeighbours(pores[id].position, [&](std::uint32_t other) {
-            const glm::vec3 d = pores[other].position - pores[id].position;
-            blocked = blocked || glm::dot(d, d) < radius2;
-        });
-        if (!blocked) {
-            grid.insert(pores[id].position, id);
-            kept.push_back(id);
-        }
-    }
-    return kept;
-}
-
-// Greedy thinning reaches about this many points per r² (measured on the default head; random
-// sequential adsorption saturates near 0.547 of the hexagonal packing 2/sqrt(3)/r²).
-constexpr float kThinnedPointsPerRadiusSquared = 0.52f;
-
-// The weight-independent pore set for a density: candidates per triangle from counter-based
-// randomness keyed by the triangle, thinned to blue noise. Changing the growth weights never
-// changes this set; the weights only decide which pores grow a strand.
-struct PoreSetStats {
-    std::size_t candidates = 0;
-    double wantedCandidates = 0.0; // before the cap
-    bool capped = false;
-};
-
-std::vector<Pore> poreSet(const TriangleMesh& head, float densityPerM2, std::uint32_t seed, std::size_t maxCandidates,
-    float* radiusOut, PoreSetStats* stats)
-{
-    constexpr float kOversample = 4.0f;
-    // Candidates scale with the whole mesh's area, painted or not: bound them (and with them the
-    // sort and the thinning) by maxCandidates (kMaxPoreCandidates). Past it every triangle gets proportionally
-    // fewer, so the layout stays even but sparser than asked; the caller warns.
-    double wanted = 0.0;
-    for (std::uint32_t t = 0; t < head.triangles.size(); ++t)
-        wanted += static_cast<double>(triangleArea(head, t)) * densityPerM2 * kOversample;
-    const bool capped = !(wanted <= static_cast<double>(maxCandidates));
-    // Each triangle rounds its count up by a random fraction: aim a little low so the total stays
-    // under the cap.
-    const double aim = static_cast<double>(maxCandidates) - static_cast<double>(head.triangles.size());
-    const float share = capped ? static_cast<float>(std::max(aim, 0.0) / wanted) : 1.0f;
-    if (!(share > 0.0f)) { // a cap below one candidate a triangle: no pores at all
-        *stats = { 0, wanted, true };
-        *radiusOut = std::sqrt(kThinnedPointsPerRadiusSquared / densityPerM2);
-        return {};
-    }
-    std::vector<Pore> candidates;
-    candidates.reserve(
-        static_cast<std::size_t>(std::min(wanted, static_cast<double>(maxCandidates))) + head.triangles.size());
-    for (std::uint32_t t = 0; t < head.triangles.size(); ++t) {
-        const float expected = triangleArea(head, t) * densityPerM2 * kOversample * share;
-        const auto count = static_cast<std::uint32_t>(expected + randomUnit(seed, CandidateCount, t));
-        for (std::uint32_t i = 0; i < count; ++i) {
-            float b1 = randomUnit(seed, CandidatePoint, t, 2 * i);
-            float b2 = randomUnit(seed, CandidatePoint, t, 2 * i + 1);
-            if (b1 + b2 > 1.0f) { // fold the square onto the triangle: uniform by area
-                b1 = 1.0f - b1;
-                b2 = 1.0f - b2;
-            }
-            const SurfacePoint sp{ t, { b1, b2 } };
-            candidates.push_back({ sp, pointOn(head, sp), randomUnit(seed, Priority, t, i) });
-        }
-    }
-    *stats = { candidates.size(), wanted, capped };
-    std::vector<std::uint32_t> order(candidates.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(),
-        [&](std::uint32_t a, std::uint32_t b) { return candidates[a].priority < candidates[b].priority; });
-    const float radius = std::sqrt(kThinnedPointsPerRadiusSquared / (densityPerM2 * share));
-    std::vector<std::uint32_t> kept = thinToBlueNoise(candidates, order, radius);
-    std::sort(kept.begin(), kept.end()); // stable ids in triangle order
-    std::vector<Pore> pores;
-    pores.reserve(kept.size());
-    for (std::uint32_t id : kept)
-        pores.push_back(candidates[id]);
-    *radiusOut = radius;
-    return pores;
-}
+using groom_detail::buildWispMembers;
+using groom_detail::makePoreLayout;
+using groom_detail::membersOfWisps;
+using groom_detail::Pore;
+using groom_detail::PoreLayout;
+using enum groom_detail::Stream;
 
 // Pushes p out of the collider to `offset` above the skin (Lee et al. 3.4: nodes inside the head move out).
 glm::vec3 pushOut(const SignedDistanceField* collider, glm::vec3 p, float offset)
@@ -256,15 +133,6 @@ void buildKeyRest(const glm::vec3& root, const glm::vec3& normal, float partX, f
     }
 }
 
-// Lee et al.: members start to clump at clump-rate along the strand and reach clump-degree at the tip.
-float clumpAt(float u, float clumpDegree, float clumpRate)
-{
-    if (u <= clumpRate || clumpRate >= 1.0f)
-        return 0.0f;
-    const float x = (u - clumpRate) / (1.0f - clumpRate);
-    return clumpDegree * x * x * (3.0f - 2.0f * x); // smoothstep: no kink where clumping starts
-}
-
 // The normal of the head at a surface point, interpolated from vertex normals.
 glm::vec3 normalAt(const TriangleMesh& head, const std::vector<glm::vec3>& normals, const SurfacePoint& sp)
 {
@@ -273,20 +141,6 @@ glm::vec3 normalAt(const TriangleMesh& head, const std::vector<glm::vec3>& norma
     const glm::vec3 n = b0 * normals[tri.x] + sp.barycentric.x * normals[tri.y] + sp.barycentric.y * normals[tri.z];
     return glm::length(n) > 1e-6f ? glm::normalize(n) : glm::vec3(0, 1, 0);
 }
-
-// The strands of each wisp, in strand order.
-std::vector<std::vector<std::uint32_t>> membersOfWisps(const Groom& groom)
-{
-    std::vector<std::vector<std::uint32_t>> members(groom.wispCount());
-    for (std::uint32_t i = 0; i < groom.strandCount(); ++i)
-        members[groom.wispOf[i]].push_back(i);
-    return members;
-}
-
-using MemberFix = std::function<void(std::uint32_t strand, std::span<glm::vec3> points)>;
-void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::uint32_t> members,
-    std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out, float wetClump = 0.0f,
-    const MemberFix& keepShape = {});
 
 // Everything of a groom the layout of its pores cannot tell: what the head looks like there and
 // the rest shapes. Rest shapes of wisps equal to one of `previous` (same region, site, members and
@@ -407,48 +261,6 @@ std::size_t buildRest(Groom& groom, const RestContext& context, const Groom* pre
         buildWispMembers(groom, w, members[w], key, glm::mat3(1.0f), groom.rest);
     }
     return reused;
-}
-
-// What of a region's groom does not depend on its painted weights: the pores, the wisp sites (a
-// coarser blue-noise subset, so a wisp's neighbourhood does not shift when an artist paints
-// elsewhere) and each pore's nearest site.
-struct PoreLayout {
-    PoreSetStats stats;
-    std::vector<Pore> pores;
-    std::vector<std::uint32_t> sites; // pore index of each site
-    std::vector<std::uint32_t> siteOfPore; // nearest site of each pore
-};
-
-PoreLayout makePoreLayout(const TriangleMesh& head, const GroomSettings& settings, std::size_t maxCandidates)
-{
-    PoreLayout layout;
-    float radius = 0.0f;
-    layout.pores = poreSet(head, settings.densityPerCm2 * 1e4f, settings.seed, maxCandidates, &radius, &layout.stats);
-    const std::vector<Pore>& pores = layout.pores;
-    std::vector<std::uint32_t> order(pores.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(),
-        [&](std::uint32_t a, std::uint32_t b) { return pores[a].priority < pores[b].priority; });
-    const float wispRadius = radius * std::sqrt(static_cast<float>(settings.wispSize));
-    layout.sites = thinToBlueNoise(pores, order, wispRadius);
-    PointGrid siteGrid(wispRadius);
-    for (std::uint32_t i = 0; i < layout.sites.size(); ++i)
-        siteGrid.insert(pores[layout.sites[i]].position, i);
-    layout.siteOfPore.resize(pores.size());
-    for (std::uint32_t id = 0; id < pores.size(); ++id) {
-        std::uint32_t nearest = 0;
-        float best = INFINITY;
-        siteGrid.forNeighbours(pores[id].position, [&](std::uint32_t site) {
-            const glm::vec3 d = pores[layout.sites[site]].position - pores[id].position;
-            const float d2 = glm::dot(d, d);
-            if (d2 < best || (d2 == best && site < nearest)) {
-                best = d2;
-                nearest = site;
-            }
-        });
-        layout.siteOfPore[id] = nearest;
-    }
-    return layout;
 }
 
 // One region's strands and wisps, appended to `groom`: a pore grows a strand when its painted
@@ -851,225 +663,5 @@ GroomResult buildGridGroom(const TriangleMesh& head, const MeshBvh& bvh, int wid
     buildRest(groom, { head, normals, boundsOf(head).center().x, collider }, nullptr);
     return result;
 }
-
-std::vector<glm::vec3> resampleByArcLength(std::span<const glm::vec3> strand, std::size_t points)
-{
-    if (strand.size() < 2 || points < 2)
-        return {};
-    std::vector<float> along(strand.size(), 0.0f);
-    for (std::size_t j = 1; j < strand.size(); ++j)
-        along[j] = along[j - 1] + glm::distance(strand[j], strand[j - 1]);
-    const float total = along.back();
-    if (!(total > 1e-7f) || !std::isfinite(total))
-        return {};
-    std::vector<glm::vec3> out(points);
-    std::size_t segment = 1;
-    for (std::size_t i = 0; i < points; ++i) {
-        const float target = total * static_cast<float>(i) / static_cast<float>(points - 1);
-        while (segment + 1 < strand.size() && along[segment] < target)
-            ++segment;
-        const float span = along[segment] - along[segment - 1];
-        const float t = span > 0.0f ? std::clamp((target - along[segment - 1]) / span, 0.0f, 1.0f) : 0.0f;
-        out[i] = glm::mix(strand[segment - 1], strand[segment], t);
-    }
-    out.front() = strand.front();
-    out.back() = strand.back();
-    return out;
-}
-
-HairCurves keyRestCurves(const Groom& groom)
-{
-    HairCurves keys;
-    keys.offsets.reserve(groom.wispCount() + 1);
-    for (std::uint32_t k : groom.keyStrand) {
-        const std::span<const glm::vec3> src = groom.rest.strand(k);
-        const std::size_t index = keys.addStrand(static_cast<std::uint32_t>(src.size()));
-        std::copy(src.begin(), src.end(), keys.strandForWrite(index).begin());
-    }
-    return keys;
-}
-
-void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, const glm::mat3& headRotation,
-    HairCurves& out, std::span<const float> wetClumpOfWisp, const MemberContact* contact)
-{
-    const std::size_t points = static_cast<std::size_t>(groom.settings.segments) + 1;
-    const std::vector<std::vector<std::uint32_t>> members = membersOfWisps(groom);
-    MemberFix fix;
-    if (contact)
-        fix = [&](std::uint32_t strand, std::span<glm::vec3> p) {
-            keepMemberShape(groom.rest.strand(strand), *contact, p);
-        };
-    for (std::size_t w = 0; w < groom.wispCount(); ++w)
-        buildWispMembers(groom, w, members[w], keyPositions.subspan(w * points, points), headRotation, out,
-            w < wetClumpOfWisp.size() ? wetClumpOfWisp[w] : 0.0f, fix);
-}
-
-namespace {
-
-// Point p, `depth` inside a surface of outward unit normal n, turned about `parent` onto the
-// surface's tangent plane keeping its distance `length` from the parent (as the solver's contact
-// does); with `push`, whatever the turn cannot reach is pushed out along n, less `slack`.
-glm::vec3 turnedOut(
-    const glm::vec3& parent, const glm::vec3& p, const glm::vec3& n, float depth, float length, bool push, float slack)
-{
-    const glm::vec3 u = (p - parent) / glm::max(glm::distance(p, parent), 1e-9f);
-    const float along = glm::dot(n, u);
-    const float reach = std::min(depth / length + along, 1.0f);
-    glm::vec3 side = u - n * along;
-    const float sl = glm::length(side);
-    side = sl > 1e-9f ? side / sl : glm::vec3(0.0f);
-    const glm::vec3 turned = parent + (n * reach + side * std::sqrt(std::max(1.0f - reach * reach, 0.0f))) * length;
-    return turned + n * (push ? std::max(depth - slack - glm::dot(turned - p, n), 0.0f) : 0.0f);
-}
-
-} // namespace
-
-void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& contact, std::span<glm::vec3> points)
-{
-    constexpr int kMemberContactPasses = 4;
-    constexpr int kArcBisections = 6;
-    // Signed distance above the kept offset (negative: too close or inside) and the outward unit
-    // normal, both in frame space.
-    auto clearanceAt = [&](const glm::vec3& p) {
-        const glm::vec3 local = glm::transpose(contact.headRotation) * (p - contact.headTranslation);
-        return contact.head->distance(local) - contact.offsetMetres;
-    };
-    auto normalAt = [&](const glm::vec3& p) {
-        const glm::vec3 local = glm::transpose(contact.headRotation) * (p - contact.headTranslation);
-        const glm::vec3 n = contact.headRotation * contact.head->gradient(local);
-        const float nl = glm::length(n);
-        return nl > 1e-9f ? n / nl : glm::vec3(0, 1, 0);
-    };
-    // Follow the leader along the member's own guide (Müller et al. 2012): each point at its rest
-    // length from the one before, toward where the key put it; then out of the head and the body,
-    // turned about the point before so the length holds.
-    for (std::size_t j = 1; j < points.size() && j < rest.size(); ++j) {
-        const float length = glm::distance(rest[j], rest[j - 1]);
-        const float slack = length < 2.0f * contact.offsetMetres ? contact.offsetMetres : 0.0f;
-        const glm::vec3 parent = points[j - 1];
-        const glm::vec3 d = points[j] - parent;
-        const float dl = glm::length(d);
-        glm::vec3 p = parent + (dl > 1e-9f ? d / dl : glm::normalize(rest[j] - rest[j - 1])) * length;
-        if (contact.head) {
-            // Newton on the sphere of radius `length` about the parent: turn onto the tangent plane,
-            // look again from there (a nose, an ear is not its tangent plane), a few times.
-            float clearance = clearanceAt(p);
-            for (int pass = 0; clearance < 0.0f && pass < kMemberContactPasses; ++pass) {
-                p = turnedOut(parent, p, normalAt(p), -clearance, length, false, 0.0f);
-                clearance = clearanceAt(p);
-            }
-            // Where that does not converge (a crevice between an ear and the skull, where the
-            // normal flips from wall to wall), turn along the great circle from where the point
-            // is toward the parent's own outward normal, and take the first clear point on that
-            // arc (bisection): the length still holds. Only a point that no turn gets out of the
-            // skin itself (its parent is too deep) is pushed out and the segment gives way.
-            if (clearance < -slack) {
-                const glm::vec3 from = (p - parent) / length;
-                const glm::vec3 to = normalAt(parent);
-                auto onArc = [&](float t) {
-                    const glm::vec3 v = glm::mix(from, to, t);
-                    const float vl = glm::length(v);
-                    return parent + (vl > 1e-6f ? v / vl : to) * length;
-                };
-                const glm::vec3 end = onArc(1.0f);
-                const float endClearance = clearanceAt(end);
-                if (endClearance >= -slack) {
-                    float lo = 0.0f, hi = 1.0f;
-                    for (int b = 0; b < kArcBisections; ++b) {
-                        const float mid = 0.5f * (lo + hi);
-                        (clearanceAt(onArc(mid)) >= -slack ? hi : lo) = mid;
-                    }
-                    p = onArc(hi);
-                } else {
-                    if (endClearance > clearance) {
-                        p = end;
-                        clearance = endClearance;
-                    }
-                    if (clearance < -contact.offsetMetres)
-                        p += normalAt(p) * (-contact.offsetMetres - clearance);
-                }
-            }
-        }
-        // The body's capsules are exact: one look each.
-        for (const Capsule& capsule : contact.body) {
-            const glm::vec3 ab = capsule.b - capsule.a;
-            const float ab2 = glm::dot(ab, ab);
-            const float t = ab2 > 0.0f ? std::clamp(glm::dot(p - capsule.a, ab) / ab2, 0.0f, 1.0f) : 0.0f;
-            const glm::vec3 away = p - (capsule.a + ab * t);
-            const float distance = glm::length(away);
-            const float depth = capsule.radiusMetres + contact.offsetMetres - distance;
-            if (depth > 0.0f && distance > 1e-9f)
-                p = turnedOut(parent, p, away / distance, depth, length, true, slack);
-        }
-        points[j] = p;
-    }
-}
-
-namespace {
-
-// Writes wisp w's key (from `key`) and its members into `out` (Lee et al.: members follow their key
-// hair, clumping toward it by clump-degree from clump-rate on).
-void buildWispMembers(const Groom& groom, std::size_t w, std::span<const std::uint32_t> members,
-    std::span<const glm::vec3> key, const glm::mat3& headRotation, HairCurves& out, float wetClump,
-    const MemberFix& keepShape)
-{
-    const GroomSettings& s = groom.settingsOfWisp(w);
-    // Wet hair clumps: the clump degree moves toward 1 and clumping starts nearer the root.
-    const float clumpDegree = s.clumpDegree + (1.0f - s.clumpDegree) * wetClump;
-    const float clumpRate = s.clumpRate * (1.0f - wetClump);
-    const std::size_t points = key.size();
-    const std::uint32_t k = groom.keyStrand[w];
-    std::span<glm::vec3> keyOut = out.strandForWrite(k);
-    if (keyOut.data() != key.data())
-        std::copy(key.begin(), key.end(), keyOut.begin());
-    if (members.size() < 2)
-        return;
-    // Parallel transport along the key: a member's root offset turns with the key's tangent, so
-    // members stay beside their key wherever the key bends. Offsets are measured between rest roots
-    // in head space.
-    thread_local std::vector<glm::mat3> transport;
-    thread_local std::vector<glm::vec3> tangent;
-    transport.resize(points);
-    tangent.resize(points);
-    for (std::size_t j = 0; j < points; ++j) {
-        const std::size_t a = j == 0 ? 0 : j - 1;
-        const std::size_t b = std::min(j + 1, points - 1);
-        const glm::vec3 d = key[b] - key[a];
-        const float len = glm::length(d);
-        tangent[j] = len > 1e-9f ? d / len : (j > 0 ? tangent[j - 1] : glm::vec3(0, 1, 0));
-        transport[j] = j == 0 ? headRotation : shortestArcMatrix(tangent[j - 1], tangent[j]) * transport[j - 1];
-    }
-    const float keyLength = groom.lengths[k];
-    const glm::vec3 keyRoot = groom.rootPositions[k];
-    for (std::uint32_t m : members) {
-        if (m == k)
-            continue;
-        const glm::vec3 rootOffset = groom.rootPositions[m] - keyRoot;
-        std::span<glm::vec3> dst = out.strandForWrite(m);
-        const float scale = groom.lengths[m] / keyLength;
-        for (std::size_t j = 0; j < points; ++j) {
-            const float u = static_cast<float>(j) / static_cast<float>(points - 1);
-            const float f = u * scale * static_cast<float>(points - 1);
-            glm::vec3 onKey;
-            glm::mat3 frame;
-            if (f >= static_cast<float>(points - 1)) { // longer than its key: continue along the tip
-                const float beyond
-                    = (f - static_cast<float>(points - 1)) * glm::distance(key[points - 1], key[points - 2]);
-                onKey = key[points - 1] + beyond * tangent[points - 1];
-                frame = transport[points - 1];
-            } else {
-                const auto j0 = static_cast<std::size_t>(f);
-                const float t = f - static_cast<float>(j0);
-                onKey = glm::mix(key[j0], key[j0 + 1], t);
-                frame = t < 0.5f ? transport[j0] : transport[j0 + 1];
-            }
-            dst[j] = onKey + (1.0f - clumpAt(u, clumpDegree, clumpRate)) * (frame * rootOffset);
-        }
-        if (keepShape)
-            keepShape(m, dst);
-    }
-}
-
-} // namespace
 
 } // namespace wisp

@@ -80,7 +80,7 @@ struct Groom {
     std::vector<std::uint32_t> wispOf;
     std::vector<std::uint16_t> regionOfStrand; // index into the per-region vectors below
     std::vector<std::uint64_t> styleHash; // restShapeHash of the strand's salon edit (0: none)
-    HairCurves rest; // rest shape of every strand, head space (members built from their key hair)
+    HeadCurves rest; // rest shape of every strand, head space (members built from their key hair)
     // Per wisp:
     std::vector<std::uint32_t> keyStrand; // the strand that is the wisp's key hair
     std::vector<std::uint32_t> siteOfWisp; // the wisp's site in its region's layout (identity for reuse)
@@ -197,6 +197,6 @@ void buildMembers(const Groom& groom, std::span<const glm::vec3> keyPositions, c
 void keepMemberShape(std::span<const glm::vec3> rest, const MemberContact& contact, std::span<glm::vec3> points);
 
 // The key strands' rest shapes, wisp after wisp (the layout buildMembers reads).
-HairCurves keyRestCurves(const Groom& groom);
+HeadCurves keyRestCurves(const Groom& groom);
 
 } // namespace wisp

@@ -7,6 +7,7 @@
 // entries of `values` are ignored. Colour is the hair's colour, sRGB 0..1, root to tip.
 
 #include "sim/geometry/HairCurves.h"
+#include "sim/groom/RegionWeights.h"
 #include "sim/params/Parameters.h"
 
 #include <glm/vec3.hpp>
@@ -22,7 +23,9 @@ namespace wisp {
 struct GrowthRegion {
     std::uint32_t id = 0; // stable identity: seeds the region's roots, survives renames and reordering
     std::string name;
-    std::vector<float> weights; // one per head vertex, 0..1 (the painted growth map)
+    // One per head vertex, 0..1 (the painted growth map); shared copy-on-write, so copying a
+    // region (an undo snapshot) does not copy its weights.
+    RegionWeights weights;
     ParameterValues values; // Wisp-group parameters of this region
     glm::vec3 rootColour{ 0.16f, 0.10f, 0.06f };
     glm::vec3 tipColour{ 0.45f, 0.30f, 0.17f };

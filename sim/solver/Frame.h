@@ -24,7 +24,7 @@ struct StrandLook {
 // strand (head space) and which strands are the simulated key hairs, for exports of the rest pose
 // or of the keys only, and what the styling brushes need to name strands (StyleEdits.h).
 struct GroomShape {
-    HairCurves rest;
+    HeadCurves rest; // every drawn strand's rest shape, head space
     std::vector<std::uint32_t> keyStrands; // the simulated strands, ascending
     std::vector<std::uint64_t> identities; // per drawn strand: Groom::strandIdentity
     std::vector<std::uint32_t> wispOf; // per drawn strand
@@ -37,7 +37,7 @@ struct Frame {
     std::uint64_t step = 0; // steps taken since the groom was (re)built or reset
     std::uint64_t groomVersion = 0; // changes when the strands' count or layout changes
     double simulatedSeconds = 0.0;
-    HairCurves strands; // every drawn strand, world space, metres; members rebuilt from keys
+    WorldCurves strands; // every drawn strand, world space, metres; members rebuilt from keys
     std::vector<StrandLook> looks; // one per growing region
     std::vector<std::uint16_t> lookOfStrand; // per drawn strand, index into looks; empty: the viewport's colours
     std::size_t simulatedStrands = 0;

@@ -124,7 +124,7 @@ TEST_F(PaintingTest, AStrokeAddsRootsOnlyNearItAndItsMirrorAndUndoRedoAreExact)
     ASSERT_TRUE(window->paintTool()->settings().mirrorX) << "symmetry is on by default";
 
     const std::set<Root> before = rootsOf(frame());
-    const std::vector<float> weightsBefore = window->document()->region(0).weights;
+    const RegionWeights weightsBefore = window->document()->region(0).weights;
     const std::vector<glm::vec3> line{ cheek(-0.015f), cheek(0.0f), cheek(0.015f) };
     stroke(line);
     ASSERT_EQ(window->document()->undoStack()->count(), 1) << "one stroke, one undo step";

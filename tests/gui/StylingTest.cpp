@@ -49,7 +49,7 @@ using Strands = std::map<std::uint64_t, std::vector<glm::vec3>>;
 Strands byIdentity(const FramePtr& frame, bool rest = false)
 {
     Strands out;
-    const HairCurves& curves = rest ? frame->groomShape->rest : frame->strands;
+    const HairCurves& curves = rest ? frame->groomShape->rest.anySpace() : frame->strands.anySpace();
     for (std::size_t i = 0; i < curves.strandCount(); ++i) {
         const auto s = curves.strand(i);
         out[frame->groomShape->identities[i]] = { s.begin(), s.end() };

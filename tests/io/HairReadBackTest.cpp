@@ -86,6 +86,14 @@ TEST(HairReadBack, BrokenFilesNameTheFileThePlaceAndTheProblem)
     EXPECT_EQ(error("a.obj", "v 0 0 0\nv 0 1 0\nl 1 3\n"), obj + ": line 3: vertex 3 does not exist (the file has 2)");
     EXPECT_EQ(error("a.obj", "v 0 0 0\nv 0 x 0\nl 1 2\n"), obj + ": line 2: a vertex needs 3 numbers; 'x' is not one");
     EXPECT_EQ(error("a.obj", "v 0 0 0\nv 0 1 0\nl 1 two\n"), obj + ": line 3: 'two' is not a vertex number");
+    // Read by the mesh readers' tokenizer: a number too large for a float is named as such, and
+    // CRLF line endings, tabs and a leading '+' read as in an OBJ mesh.
+    EXPECT_EQ(
+        error("a.obj", "v 0 0 0\nv 0 1e40 0\nl 1 2\n"), obj + ": line 2: a vertex coordinate is not a finite number");
+    writeText(dir / "c.obj", "# hair\r\nv\t0 0 0\r\nv +0.5 1 0\r\n\r\nl 1 2\r\n");
+    const Result<HairReadResult> crlf = readHair((dir / "c.obj").string());
+    ASSERT_TRUE(crlf);
+    EXPECT_EQ(crlf.value().strands.positions[1], glm::vec3(0.5f, 1, 0));
     EXPECT_EQ(error("a.obj", "v 0 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n"),
         obj + ": no strands: an OBJ polyline is an 'l' line of two vertices or more");
     // Negative indices count back from the last vertex (the OBJ spec).

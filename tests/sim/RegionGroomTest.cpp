@@ -147,7 +147,7 @@ TEST(RegionGroom, ADabAddsRootsOnlyNearItAndReusesEveryOtherWisp)
     brush.falloff = 0.0f;
     brush.mirrorX = false;
     ScalpBrush scalp(head);
-    ASSERT_FALSE(scalp.dab(cheek, brush, regions[0].weights).empty());
+    ASSERT_FALSE(scalp.dab(cheek, brush, regions[0].weights.forWrite()).empty());
     ASSERT_EQ(sim.regroom(regions, kNoSolo, testParameters()), "");
     const Groom& after = sim.groom();
     EXPECT_GT(after.strandCount(), before.strandCount());
@@ -241,10 +241,10 @@ TEST(RegionGroom, BadRegionsAreRefusedByName)
     ASSERT_EQ(sim.setup(defaultHead().mesh, regions, kNoSolo, testParameters()), "");
     const std::size_t strands = sim.groom().strandCount();
     std::vector<GrowthRegion> bad = regions;
-    bad[0].weights[12] = NAN;
+    bad[0].weights.forWrite()[12] = NAN;
     EXPECT_EQ(sim.regroom(bad, kNoSolo, testParameters()), "region 'Fringe': weight 12 is not a finite number");
     bad = regions;
-    bad[0].weights.pop_back();
+    bad[0].weights.forWrite().pop_back();
     EXPECT_NE(sim.regroom(bad, kNoSolo, testParameters()).find("region 'Fringe'"), std::string::npos);
     bad = regions;
     bad[0].tipColour.y = 2.0f;

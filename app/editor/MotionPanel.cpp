@@ -33,16 +33,17 @@ bool inMetres(MotionKind kind)
 
 QString keyText(const HeadKey& key)
 {
+    // Short enough for the dock: the time, the turn as X Y Z angles (degrees) and the move (cm).
     const glm::vec3 degrees = glm::degrees(glm::eulerAngles(key.pose.rotation));
-    const glm::vec3& t = key.pose.translationMetres;
-    return QStringLiteral("%1 s   turn %2° %3° %4°   move %5 %6 %7 m")
+    const glm::vec3 cm = key.pose.translationMetres * 100.0f;
+    return QStringLiteral("%1 s  turn %2° %3° %4°  move %5 %6 %7 cm")
         .arg(key.timeSeconds, 0, 'f', 3)
-        .arg(degrees.x, 0, 'f', 1)
-        .arg(degrees.y, 0, 'f', 1)
-        .arg(degrees.z, 0, 'f', 1)
-        .arg(t.x, 0, 'f', 3)
-        .arg(t.y, 0, 'f', 3)
-        .arg(t.z, 0, 'f', 3);
+        .arg(degrees.x, 0, 'f', 0)
+        .arg(degrees.y, 0, 'f', 0)
+        .arg(degrees.z, 0, 'f', 0)
+        .arg(cm.x, 0, 'f', 1)
+        .arg(cm.y, 0, 'f', 1)
+        .arg(cm.z, 0, 'f', 1);
 }
 
 } // namespace

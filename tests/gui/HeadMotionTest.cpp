@@ -16,6 +16,7 @@
 #include <QAction>
 #include <QComboBox>
 #include <QDir>
+#include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QGuiApplication>
 #include <QListWidget>
@@ -159,18 +160,21 @@ TEST_F(HeadMotionTest, CtrlAltDragTurnsTheHeadTipsLagThenFollowUndoAndResetPutIt
     EXPECT_NEAR(headYaw, turned, 0.5);
     EXPECT_LT(largestHeadStep, 0.34 * turned) << "the head eases in over several steps";
     const double tipsWhenTurned = tipYawDegrees(*frame, *rest, pivot);
-    EXPECT_LT(tipsWhenTurned, 0.5 * turned) << "the tips lag behind the head";
+    // Measured: 26 of 60 degrees. The margin allows for fewer substeps (the pacer sheds them on a
+    // busy machine while playing), which makes the hair a little softer.
+    EXPECT_LT(tipsWhenTurned, 0.6 * turned) << "the tips lag behind the head";
     // The roots turned with the head at once.
     EXPECT_NEAR(glm::distance(frame->strands.strand(0).front(),
                     glm::vec3(frame->headToWorld * glm::vec4(rest->strands.strand(0).front(), 1.0f))),
         0.0f, 1e-3f);
 
     double tipsLater = tipsWhenTurned;
-    for (int i = 0; i < 240 && tipsLater < 0.75 * turned; ++i)
+    int laterSteps = 0;
+    for (; laterSteps < 240 && tipsLater < 0.75 * turned; ++laterSteps)
         tipsLater = tipYawDegrees(*step(), *rest, pivot);
     EXPECT_GT(tipsLater, 0.75 * turned) << "the tips follow the head round";
     std::cout << "[ figures  ] head " << turned << " deg; tips " << tipsWhenTurned << " deg after " << easeSteps
-              << " steps, " << tipsLater << " deg later\n";
+              << " steps, " << tipsLater << " deg " << laterSteps << " steps later\n";
 
     // Undo (Ctrl+Z) takes the key away; the head eases back to rest.
     QTest::keyClick(window.get(), Qt::Key_Z, Qt::ControlModifier);
@@ -265,6 +269,12 @@ TEST_F(HeadMotionTest, MotionPanelKeysAndProceduralMotionSurviveSaveAndReopen)
     EXPECT_EQ(panel->kindBox()->currentText(), QStringLiteral("shake"));
     EXPECT_DOUBLE_EQ(panel->amplitudeBox()->value(), 7.0);
     EXPECT_EQ(panel->keyList()->count(), 2);
+    // The README's picture of the panel (WISP_SCREENSHOT_DIR set: written there).
+    if (auto* dock = window->findChild<QDockWidget*>(QStringLiteral("motionDock")))
+        dock->raise();
+    panel->keyList()->setCurrentRow(0);
+    if (const QByteArray shots = qgetenv("WISP_SCREENSHOT_DIR"); !shots.isEmpty())
+        panel->grab().save(QString::fromLocal8Bit(shots) + QStringLiteral("/motion-panel.png"));
     // The reopened motion drives the simulation: stepping turns the head by the shake.
     bool headMoved = false;
     for (int i = 0; i < 60 && !headMoved; ++i)

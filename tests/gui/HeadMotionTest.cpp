@@ -324,3 +324,28 @@ TEST_F(HeadMotionTest, RefusedEditsSayWhyAndChangeNothing)
 }
 
 } // namespace wisp::test
+
+namespace wisp::test {
+
+TEST_F(HeadMotionTest, APresetKeepsTheProceduralMotionAndAppliesItWithTheLookAsOneUndoStep)
+{
+    HeadMotion shaking;
+    shaking.setKey(0.0, HeadPose{ glm::vec3(0.0f, 0.01f, 0.0f), {} });
+    shaking.setProcedural(ProceduralMotion{ MotionKind::Shake, 12.0, 2.0, 0.0 });
+    ASSERT_TRUE(doc()->setHeadMotion(shaking, QStringLiteral("Shake")).isEmpty());
+    const io::Preset preset = doc()->toPreset(QStringLiteral("Shaking"));
+    EXPECT_EQ(preset.motion, shaking.procedural());
+
+    HeadMotion keysOnly = shaking;
+    keysOnly.setProcedural(ProceduralMotion{});
+    ASSERT_TRUE(doc()->setHeadMotion(keysOnly, QStringLiteral("Still")).isEmpty());
+    const int undoSteps = doc()->undoStack()->count();
+    doc()->applyPreset(preset);
+    EXPECT_EQ(doc()->undoStack()->count(), undoSteps + 1);
+    EXPECT_TRUE(doc()->headMotion() == shaking) << "the procedural motion is back, the key kept";
+    EXPECT_EQ(window->motionPanel()->kindBox()->currentText(), QStringLiteral("shake"));
+    doc()->undoStack()->undo();
+    EXPECT_TRUE(doc()->headMotion() == keysOnly);
+}
+
+} // namespace wisp::test

@@ -1,5 +1,7 @@
 #include "io/PresetFile.h"
+
 #include "io/JsonErrors.h"
+#include "io/MotionJson.h"
 #include "io/RegularFile.h"
 
 #include "io/AtomicFile.h"
@@ -406,9 +408,16 @@ Preset readPresetJson(const json& root, const std::string& nameForMessages, Warn
             preset.regions.push_back(readRegionLook((*it)[i], i, warnings));
     }
 
+    if (const auto it = root.find("motion"); it != root.end()) {
+        const HeadMotion motion = readMotion(*it, "motion", warnings);
+        if (!motion.keys().empty())
+            warnings.add("motion.keys", "a preset keeps a procedural motion only; keys ignored");
+        preset.motion = motion.procedural();
+    }
+
     for (const auto& [key, value] : root.items()) {
         static const std::set<std::string> known
-            = { "format", "version", "name", "description", "parameters", "regions" };
+            = { "format", "version", "name", "description", "parameters", "regions", "motion" };
         if (!known.contains(key) || (key == "regions" && version == 1))
             warnings.add(childPath("", key), "unknown key, ignored");
     }
@@ -470,6 +479,11 @@ std::string presetToJson(const Preset& preset)
         regions.push_back(std::move(region));
     }
     root["regions"] = std::move(regions);
+    if (preset.motion.kind != MotionKind::None) {
+        HeadMotion motion;
+        motion.setProcedural(preset.motion);
+        root["motion"] = motionToJson(motion);
+    }
     return dumpPretty(root);
 }
 

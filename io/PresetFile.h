@@ -31,6 +31,7 @@
 
 #include "io/IoError.h"
 #include "io/ReadFailure.h"
+#include "sim/motion/HeadMotion.h"
 #include "sim/params/Parameters.h"
 
 #include <glm/vec3.hpp>
@@ -65,6 +66,10 @@ struct Preset {
     std::string description;
     ParameterValues parameters; // only the Groom, Forces and Solver entries; Wisp entries stay at defaults
     std::vector<RegionLook> regions;
+    // The head's procedural motion ("motion": { "procedural": … }, as in projects, io/MotionJson.h);
+    // kind None: the preset leaves the head's motion alone. Keys are a shot's, not a look's: a
+    // preset keeps none.
+    ProceduralMotion motion;
 
     bool operator==(const Preset&) const = default;
 };

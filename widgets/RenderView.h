@@ -34,4 +34,13 @@ struct RenderView {
     ShadowLookup shadow;
 };
 
+// `view` for a mesh placed by `modelToWorld` (a rigid transform, so normals turn with the view):
+// the moving head is drawn by folding its transform into the view.
+inline RenderView withModel(RenderView view, const glm::mat4& modelToWorld)
+{
+    view.view = view.view * modelToWorld;
+    view.viewProjection = view.viewProjection * modelToWorld;
+    return view;
+}
+
 } // namespace wisp

@@ -200,6 +200,11 @@ void Viewport::setFrame(FramePtr frame)
     if (m_frame && m_frame->wind != m_wind) {
         m_wind = m_frame->wind; // shown beside the axis gizmo (updateOverlays)
     }
+    if (m_frame && m_frame->headToWorld != m_headToWorld) {
+        m_headToWorld = m_frame->headToWorld; // the head is drawn where the solver has it
+        ++m_backdropRevision;
+        m_shadowMap.invalidate();
+    }
     scheduleFrame();
 }
 
@@ -812,8 +817,8 @@ void Viewport::drawBackdrop(const RenderView& view)
     gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     if (!transparent)
         m_background.draw(kBackgroundTop, kBackgroundBottom);
-    m_head.draw(view, m_showGrowthOverlay);
-    m_body.draw(view);
+    m_head.draw(withModel(view, m_headToWorld), m_showGrowthOverlay);
+    m_body.draw(withModel(view, m_headToWorld)); // the solver collides with the body in head space too
     if (m_showGrid && !transparent)
         m_guides.drawGrid(view); // translucent and writing no depth: the hair is drawn over it
 }

@@ -294,6 +294,7 @@ private:
     int m_samples = 0;
     BackgroundRenderer m_background;
     HeadRenderer m_head;
+    glm::mat4 m_headToWorld{ 1.0f }; // the newest frame's: the head moves with the simulation
     HeadRenderer m_body; // the body's capsules as one mesh
     std::vector<Capsule> m_bodyCapsules;
     HairRenderer m_hair;

@@ -262,8 +262,18 @@ void Document::applyPreset(const io::Preset& preset)
     for (const ParameterInfo& p : allParameters())
         if (p.group != ParamGroup::Wisp)
             parameters.set(p.id, preset.parameters.get(p.id));
-    m_undoStack.push(new ApplyLookCommand(this, m_parameters, m_regions, parameters, std::move(after),
-        tr("Apply preset %1").arg(QString::fromStdString(preset.name))));
+    const QString text = tr("Apply preset %1").arg(QString::fromStdString(preset.name));
+    HeadMotion motion = m_motion; // the preset's procedural motion, if it has one; keys stay
+    motion.setProcedural(preset.motion);
+    const bool withMotion
+        = preset.motion.kind != MotionKind::None && motion.validate().empty() && !(motion == m_motion);
+    if (withMotion)
+        m_undoStack.beginMacro(text); // one undo step for the look and the motion
+    m_undoStack.push(new ApplyLookCommand(this, m_parameters, m_regions, parameters, std::move(after), text));
+    if (withMotion) {
+        setHeadMotion(std::move(motion), text);
+        m_undoStack.endMacro();
+    }
 }
 
 io::Preset Document::toPreset(const QString& name) const
@@ -271,6 +281,7 @@ io::Preset Document::toPreset(const QString& name) const
     io::Preset preset;
     preset.name = name.toStdString();
     preset.parameters = m_parameters;
+    preset.motion = m_motion.procedural(); // none: the preset leaves the head's motion alone
     for (const GrowthRegion& r : m_regions)
         preset.regions.push_back({ r.name, r.values, r.rootColour, r.tipColour });
     return preset;

@@ -6,6 +6,8 @@
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
 #include "app/editor/FileMenu.h"
+#include "app/editor/HeadMoveTool.h"
+#include "app/editor/MotionPanel.h"
 #include "app/editor/PaintTool.h"
 #include "app/editor/PresetBrowser.h"
 #include "app/editor/ProjectController.h"
@@ -78,14 +80,15 @@ MainWindow::MainWindow(QWidget* parent)
     m_paintTool = new PaintTool(m_document, m_viewport, this);
     m_styleTool = new StyleTool(m_document, m_viewport, m_simulation, m_paintTool, this);
     m_stylePanel = new StylePanel(m_styleTool);
+    m_headTool = new HeadMoveTool(m_document, m_viewport, m_simulation, this);
 
     createActions();
     createDocks();
     connectSimulation();
     restoreSettings();
-    statusBar()->showMessage(
-        tr("Space plays or pauses · Alt+drag or middle-drag orbits · Shift+middle-drag pans · "
-           "wheel zooms · F frames the head · B paints where hair grows · C X G P W S D style the hair"));
+    statusBar()->showMessage(tr("Space plays or pauses · Alt+drag or middle-drag orbits · Shift+middle-drag pans · "
+                                "wheel zooms · Ctrl+Alt+drag turns the head · F frames the head · B paints where hair "
+                                "grows · C X G P W S D style the hair"));
     showGrowthOverlay();
     m_simulation->setScene(
         m_document->headModel(), m_document->regions(), m_document->soloRegion(), m_document->parameters());
@@ -211,6 +214,13 @@ void MainWindow::createActions()
     m_step->setToolTip(tr("Advance one time step while paused (.)"));
     m_reset = sim->addAction(tr("&Reset to Rest"), m_simulation, &SimulationHost::resetToRest);
     m_reset->setShortcut(QKeySequence(tr("Ctrl+R")));
+    sim->addSeparator();
+    m_resetHead = sim->addAction(tr("Reset &Head Motion"), this, [this] {
+        if (!(m_document->headMotion() == HeadMotion{}))
+            m_document->setHeadMotion(HeadMotion{}, tr("Reset Head Motion"));
+    });
+    m_resetHead->setShortcut(QKeySequence(tr("Ctrl+Shift+H")));
+    m_resetHead->setToolTip(tr("The head back at rest: no keys, no procedural motion (Ctrl+Shift+H)"));
     updatePlayAction(false);
 
     QMenu* help = menuBar()->addMenu(tr("&Help"));
@@ -270,6 +280,7 @@ void MainWindow::createDocks()
     m_brushPanel = new BrushPanel(m_paintTool);
     m_presetBrowser = new PresetBrowser(m_document);
     m_timeline = new TimelineDock(m_document);
+    m_motionPanel = new MotionPanel(m_document, m_headTool);
     QDockWidget* forces
         = addPanelDock(tr("Forces"), QStringLiteral("forcesDock"), m_forcePanel, Qt::RightDockWidgetArea);
     QDockWidget* groom = addPanelDock(tr("Groom"), QStringLiteral("groomDock"), m_groomPanel, Qt::RightDockWidgetArea);
@@ -284,6 +295,12 @@ void MainWindow::createDocks()
     QDockWidget* presets
         = addPanelDock(tr("Presets"), QStringLiteral("presetsDock"), m_presetBrowser, Qt::RightDockWidgetArea);
     tabifyDockWidget(groom, presets);
+    QDockWidget* motion
+        = addPanelDock(tr("Motion"), QStringLiteral("motionDock"), m_motionPanel, Qt::RightDockWidgetArea);
+    tabifyDockWidget(presets, motion);
+    const auto showFor8s = [this](const QString& text) { statusBar()->showMessage(text, 8000); };
+    connect(m_motionPanel, &MotionPanel::message, this, showFor8s);
+    connect(m_headTool, &HeadMoveTool::message, this, showFor8s);
     forces->raise();
     connect(m_presetBrowser, &PresetBrowser::message, this,
         [this](const QString& text) { statusBar()->showMessage(text, 8000); });
@@ -419,6 +436,10 @@ void MainWindow::connectSimulation()
     connect(
         m_simulation, &SimulationHost::errorOccurred, this,
         [this](const QString& message) { statusBar()->showMessage(message, 8000); }, Qt::QueuedConnection);
+    // The head follows the document's motion (an edit, undo, a project); a drag sends its own live.
+    connect(m_document, &Document::headMotionChanged, this,
+        [this] { m_simulation->setHeadMotion(m_document->headMotion()); });
+    m_simulation->setHeadMotion(m_document->headMotion());
 }
 
 void MainWindow::updatePlayAction(bool playing)

@@ -18,6 +18,8 @@ namespace wisp {
 class BrushPanel;
 class Document;
 class FileMenu;
+class HeadMoveTool;
+class MotionPanel;
 class PaintTool;
 class ParameterPanel;
 class PresetBrowser;
@@ -44,6 +46,9 @@ public:
     QAction* playAction() const { return m_play; }
     QAction* stepAction() const { return m_step; }
     QAction* resetAction() const { return m_reset; }
+    QAction* resetHeadAction() const { return m_resetHead; } // Ctrl+Shift+H
+    HeadMoveTool* headTool() const { return m_headTool; }
+    MotionPanel* motionPanel() const { return m_motionPanel; }
     QAction* paintAction() const { return m_paintAction; }
     QAction* overlayAction() const { return m_overlayAction; }
     QAction* leaveToolAction() const { return m_leaveToolAction; } // Esc
@@ -100,6 +105,9 @@ private:
     QAction* m_play = nullptr;
     QAction* m_step = nullptr;
     QAction* m_reset = nullptr;
+    QAction* m_resetHead = nullptr;
+    HeadMoveTool* m_headTool = nullptr;
+    MotionPanel* m_motionPanel = nullptr;
     QMenu* m_viewMenu = nullptr;
     QMenu* m_densityMenu = nullptr; // View ▸ Display Density
     QMenu* m_editMenu = nullptr;

@@ -11,6 +11,9 @@
 
 #include <QMetaObject>
 
+#include <glm/common.hpp>
+#include <glm/gtc/quaternion.hpp>
+
 #include <algorithm>
 #include <cassert>
 #include <chrono>
@@ -78,6 +81,8 @@ public:
                 if (m_sim)
                     m_sim->setDryers(m_dryers);
             }
+            if (taken.motion)
+                adoptMotion(std::move(*taken.motion));
             if (taken.scene && !stopRequested())
                 adoptScene(std::move(*taken.scene));
             if (taken.regions && !stopRequested())
@@ -132,6 +137,7 @@ private:
         taken.dryers.reset();
         taken.held.reset();
         taken.wettings.clear();
+        taken.motion.reset();
         // Read before taking the lock: an injected clock may be slow to answer (a test holds it), and
         // the GUI thread's requests must never wait for it.
         const bool injectedStepDue = m_host.m_clock && m_playing && m_sim && now() >= m_pacer.dueSeconds();
@@ -139,7 +145,8 @@ private:
         Inbox& inbox = m_host.m_inbox;
         const auto ready = [&] {
             return inbox.stopping || inbox.scene || inbox.parameters || inbox.regions || !inbox.actions.empty()
-                || inbox.style || inbox.dryers || inbox.held || !inbox.wettings.empty() || inbox.playing != m_playing;
+                || inbox.style || inbox.dryers || inbox.held || !inbox.wettings.empty() || inbox.motion
+                || inbox.playing != m_playing;
         };
         if (m_playing && m_sim && m_host.m_clock) {
             // An injected clock moves on its own terms: look again soon, unless a step is due now.
@@ -162,6 +169,7 @@ private:
         taken.dryers = std::exchange(inbox.dryers, std::nullopt);
         taken.held = std::exchange(inbox.held, std::nullopt);
         taken.wettings.swap(inbox.wettings);
+        taken.motion = std::exchange(inbox.motion, std::nullopt);
         taken.playing = inbox.playing;
         return true;
     }
@@ -196,6 +204,8 @@ private:
         m_regions = std::move(scene.regions);
         m_step = 0;
         m_simulatedSeconds = 0.0;
+        m_pivotHead = pivotOf(m_sim->head());
+        placeHeadAtStart();
         groomed(scene.values, true);
     }
 
@@ -309,6 +319,8 @@ private:
         if (!m_sim)
             return;
         const double start = now();
+        // The head's pose at the end of this step; the solver moves the roots there over its substeps.
+        moveHeadTo(m_simulatedSeconds + m_sim->solver().settings().timeStepSeconds);
         m_sim->step();
         applyHeld();
         const double solverSeconds = now() - start;
@@ -337,6 +349,8 @@ private:
     {
         if (!m_sim)
             return;
+        m_simulatedSeconds = 0.0;
+        placeHeadAtStart();
         m_sim->drapeAtRest(
             HairSimulation::kDrapeMaxSteps, kDrapeStillMetres, [this] { return stopRequested(); },
             m_values.getInt(Param::Substeps)); // as asked, not as the pacer runs now
@@ -356,8 +370,51 @@ private:
         frame->simulatedSeconds = m_simulatedSeconds;
         fillFrame(*m_sim, m_values, *frame);
         frame->groomShape = m_groomShape;
+        frame->headToWorld = m_sim->solver().headTransform();
+        frame->headTranslationMetres = m_headPose.translationMetres;
+        frame->headRotation = m_headPose.rotation;
         frame->fallingBehind = m_pacer.substeps() < m_pacer.requestedSubsteps();
         return frame;
+    }
+
+    // Thread: simulation. A new head motion: the head eases from where it is now to the new motion
+    // over the next steps (paused, at the next step: the roots move only when the solver steps, so
+    // moving the head alone would tear it from its hair).
+    void adoptMotion(HeadMotion motion)
+    {
+        m_motion = std::move(motion);
+        m_easeFrom = m_headPose;
+        m_easeStartSeconds = m_simulatedSeconds;
+    }
+
+    // Thread: simulation. The head's pose at simulated time `t`: the motion's, eased in from the
+    // pose the head had when the motion last changed.
+    HeadPose headPoseAt(double t) const
+    {
+        const HeadPose target = m_motion.poseAt(t);
+        const double s = std::clamp((t - m_easeStartSeconds) / kHeadEaseSeconds, 0.0, 1.0);
+        if (s >= 1.0)
+            return target;
+        const float eased = static_cast<float>(s * s * (3.0 - 2.0 * s)); // smoothstep: C1 at both ends
+        HeadPose pose;
+        pose.translationMetres = glm::mix(m_easeFrom.translationMetres, target.translationMetres, eased);
+        pose.rotation = glm::normalize(glm::slerp(m_easeFrom.rotation, target.rotation, eased));
+        return pose;
+    }
+
+    // Thread: simulation. Gives the solver the head at simulated time `t`.
+    void moveHeadTo(double t)
+    {
+        m_headPose = headPoseAt(t);
+        m_sim->solver().setHeadTransform(headToWorld(m_headPose, m_pivotHead));
+    }
+
+    // Thread: simulation. The head where the motion starts (t = 0), with nothing to ease: a new
+    // scene and a reset place the hair there at rest (the drape reads the head transform).
+    void placeHeadAtStart()
+    {
+        m_easeStartSeconds = -kHeadEaseSeconds;
+        moveHeadTo(0.0);
     }
 
     // Thread: any. `values` with the solver's substeps replaced by what the machine affords now.
@@ -383,6 +440,11 @@ private:
     std::uint64_t m_step = 0;
     std::uint64_t m_groomVersion = 0;
     double m_simulatedSeconds = 0.0; // since the groom or the last reset
+    HeadMotion m_motion; // the document's, as last sent
+    glm::vec3 m_pivotHead{ 0.0f }; // where m_sim's head turns (pivotOf)
+    HeadPose m_headPose; // what the solver has now
+    HeadPose m_easeFrom; // the pose when the motion last changed
+    double m_easeStartSeconds = -kHeadEaseSeconds; // simulated time of that change
 };
 
 SimulationHost::SimulationHost(QObject* parent)
@@ -572,6 +634,16 @@ void SimulationHost::wetStrands(std::vector<std::uint64_t> keyIdentities, float 
     {
         std::lock_guard lock(m_mutex);
         m_inbox.wettings.push_back({ std::move(keyIdentities), wetness });
+    }
+    m_wake.notify_one();
+}
+
+void SimulationHost::setHeadMotion(HeadMotion motion)
+{
+    std::optional<HeadMotion> superseded;
+    {
+        std::lock_guard lock(m_mutex);
+        superseded = std::exchange(m_inbox.motion, std::move(motion));
     }
     m_wake.notify_one();
 }

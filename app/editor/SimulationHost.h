@@ -23,6 +23,7 @@
 #include "sim/geometry/HeadModel.h"
 #include "sim/geometry/TriangleMesh.h"
 #include "sim/groom/GrowthRegion.h"
+#include "sim/motion/HeadMotion.h"
 #include "sim/params/Parameters.h"
 #include "sim/solver/Frame.h"
 #include "sim/style/HairDryer.h"
@@ -82,6 +83,16 @@ public:
     // (the previous frame stays visible meanwhile). A groom refused once is not retried until its
     // groom parameters change again.
     void setParameters(const ParameterValues& values);
+    // --- The head's motion (HeadMotion.h) ----------------------------------------------------------
+    // Thread: GUI; returns at once. From the next step the solver's head follows `motion` at the
+    // simulated time (the clock starts at 0 with each scene and each reset, and runs while playing
+    // or stepping; keys play once and then hold, procedural motions repeat). A new motion does not
+    // teleport the head: it eases from where the head is to the new motion's pose over
+    // kHeadEaseSeconds of simulated time (smoothstep, so the roots' velocity stays continuous and
+    // no impulse flings the hair). Only the newest matters.
+    void setHeadMotion(HeadMotion motion);
+    static constexpr double kHeadEaseSeconds = 0.15;
+
     // --- Styling on live hair (StyleEdits.h) -------------------------------------------------------
     // Thread: GUI; returns at once. The artist's salon edits: the running hair is regroomed with
     // them (combed strands get a solved rest shape, so this can take a little longer), and every
@@ -173,6 +184,7 @@ private:
         std::optional<std::vector<HairDryer>> dryers; // set: a change (to dryers or to none)
         std::optional<std::vector<HeldStrand>> held;
         std::vector<Wetting> wettings;
+        std::optional<HeadMotion> motion;
         bool playing = false;
         bool stopping = false;
     };

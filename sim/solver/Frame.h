@@ -5,6 +5,8 @@
 
 #include "sim/geometry/HairCurves.h"
 
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -46,6 +48,11 @@ struct Frame {
     double timeScale = 1.0; // simulated seconds per wall-clock second (below 1: slow motion)
     bool fallingBehind = false; // the solver could not keep real time
     glm::vec3 wind{ 0.0f }; // m/s, world space (for the viewport's arrow)
+    // Head space to world space as the solver had it for this frame (the viewport draws the head
+    // with it), and the head's pose about its pivot (the editor's head drag starts from it).
+    glm::mat4 headToWorld{ 1.0f };
+    glm::vec3 headTranslationMetres{ 0.0f };
+    glm::quat headRotation{ 1.0f, 0.0f, 0.0f, 0.0f };
     std::vector<float> wetness; // per drawn strand, 0..1; empty when all the hair is dry
     std::shared_ptr<const GroomShape> groomShape;
 };

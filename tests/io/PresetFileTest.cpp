@@ -178,6 +178,33 @@ TEST_F(PresetFileTest, WriteThenReadGivesTheSamePreset)
     EXPECT_EQ(std::distance(fs::directory_iterator(m_dir), fs::directory_iterator()), 1);
 }
 
+TEST_F(PresetFileTest, AProceduralHeadMotionIsKeptAndOnlyWhenThereIsOne)
+{
+    Preset preset = unusualPreset();
+    EXPECT_EQ(presetToJson(preset).find("\"motion\""), std::string::npos) << "no motion: no key";
+    preset.motion = ProceduralMotion{ MotionKind::Nod, 12.5, 0.6, 0.0 };
+    const std::string path = (m_dir / "nodding.json").string();
+    ASSERT_TRUE(writePreset(path, preset));
+    const Result<PresetReadResult> result = readPreset(path);
+    ASSERT_TRUE(result) << result.error().toString();
+    EXPECT_TRUE(result.value().warnings.empty());
+    EXPECT_EQ(result.value().preset.motion, preset.motion);
+
+    // Keys in a preset are a shot's, not a look's: ignored with a warning; a bad amplitude is refused
+    // with its place.
+    nlohmann::json json = nlohmann::json::parse(presetToJson(preset));
+    json["motion"]["keys"] = nlohmann::json::array({ { { "time", 0.0 } } });
+    const Result<PresetReadResult> withKeys = parsePreset(json.dump(), "keys.json");
+    ASSERT_TRUE(withKeys) << withKeys.error().toString();
+    ASSERT_EQ(withKeys.value().warnings.size(), 1u);
+    EXPECT_NE(withKeys.value().warnings[0].find("motion.keys"), std::string::npos) << withKeys.value().warnings[0];
+    json["motion"]["procedural"]["amplitude"] = 400;
+    const Result<PresetReadResult> wild = parsePreset(json.dump(), "wild.json");
+    ASSERT_FALSE(wild);
+    EXPECT_NE(wild.error().toString().find("motion.procedural"), std::string::npos) << wild.error().toString();
+    EXPECT_NE(wild.error().toString().find("wild.json"), std::string::npos);
+}
+
 TEST_F(PresetFileTest, WrittenJsonIsVersion2InRegistryOrderWithReadableNumbers)
 {
     Preset preset;

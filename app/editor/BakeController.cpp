@@ -167,6 +167,7 @@ FramePtr BakeController::frameAt(int frame) const
     auto out = std::make_shared<Frame>(m_baked->look);
     out->strands.offsets = m_baked->cache.offsets;
     out->strands.positions = baked->positions;
+    out->headToWorld = baked->headToWorld; // the viewport draws the head where the bake had it
     out->step = static_cast<std::uint64_t>(frame - 1) * static_cast<std::uint64_t>(m_baked->cache.stepsPerFrame);
     out->simulatedSeconds = m_baked->cache.range.secondsOf(frame);
     return out;

@@ -79,6 +79,8 @@ protected:
         ASSERT_TRUE(drawn);
         EXPECT_EQ(drawn->strands.offsets, bake()->baked()->cache.offsets);
         EXPECT_TRUE(drawn->strands.positions == baked->positions) << "frame " << frame << " is not as baked";
+        // The head is drawn where the bake had it (a shake turns it), not at rest.
+        EXPECT_TRUE(drawn->headToWorld == baked->headToWorld) << "frame " << frame << ": head not as baked";
     }
 
     std::unique_ptr<MainWindow> window;

@@ -142,7 +142,7 @@ BakeResult bakeMotion(
             for (int k = 0; k < cache.stepsPerFrame; ++k) {
                 if (options.cancelled && options.cancelled()) {
                     result.cancelled = true;
-                    sim.solver().setSettings(settings);
+                    (void)sim.solver().setSettings(settings); // the solver's own, valid a moment ago
                     return result;
                 }
                 ++step;
@@ -159,7 +159,7 @@ BakeResult bakeMotion(
         if (options.progress)
             options.progress(frame, range.lastFrame);
     }
-    sim.solver().setSettings(settings);
+    (void)sim.solver().setSettings(settings); // the solver's own, valid a moment ago
     return result;
 }
 

@@ -1203,6 +1203,30 @@ PaintRun paintFrames(Viewport& viewport, const std::vector<FramePtr>& frames, in
     return run;
 }
 
+// A few paints with the passes timed (PassTimes), the mean of each; timing is off again after.
+// Untimed, every pass reads zero; timed, the hair (every strand, drawn in every paint) takes time.
+PassTimes timedPasses(Viewport& viewport, const std::vector<FramePtr>& frames)
+{
+    EXPECT_EQ(viewport.lastPassTimes().totalMs(), 0.0);
+    viewport.setPassTiming(true);
+    PassTimes sum;
+    constexpr int kTimed = 3;
+    for (int i = 0; i < kTimed; ++i) {
+        viewport.setFrame(frames[static_cast<std::size_t>(i) % frames.size()]);
+        viewport.repaint();
+        const PassTimes& t = viewport.lastPassTimes();
+        EXPECT_GT(t.hairMs, 0.0);
+        EXPECT_GT(t.presentMs, 0.0);
+        sum.uploadMs += t.uploadMs / kTimed;
+        sum.shadowMs += t.shadowMs / kTimed;
+        sum.backdropMs += t.backdropMs / kTimed;
+        sum.hairMs += t.hairMs / kTimed;
+        sum.presentMs += t.presentMs / kTimed;
+    }
+    viewport.setPassTiming(false);
+    return sum;
+}
+
 // The editor's default scene is ~4,600 strands of 16 points, new every frame. Prints the rates
 // (llvmpipe in CI) and checks counts: paints keep coming, every strand is drawn without level of
 // detail, and the level of detail never draws more than that.
@@ -1220,6 +1244,8 @@ TEST_F(ViewportTest, DrawRateWithTheDefaultSceneSize)
     ASSERT_GE(full.paints, kPaints);
     EXPECT_EQ(full.meanDrawnFraction(), 1.0);
     EXPECT_EQ(viewport->lastDrawnFraction(), 1.0f);
+    const PassTimes passes = timedPasses(*viewport, frames);
+    std::printf("[ viewport ] every strand, per pass: %s\n", qPrintable(passes.describe()));
 
     viewport->setLevelOfDetail(true);
     const PaintRun adaptive = paintFrames(*viewport, frames, kPaints);
@@ -1564,6 +1590,7 @@ TEST_F(ViewportTest, DrawRateBetweenDocksInTheEditorsWindowSize)
     grab(); // the first paint builds the layout
     const PaintRun run = paintFrames(*viewport, frames, 12);
     const double rate = run.perSecond();
+    std::printf("[ viewport ] between docks, per pass: %s\n", qPrintable(timedPasses(*viewport, frames).describe()));
     std::printf("[ viewport ] 4600 strands x 16 points, %dx%d between docks of a %dx%d window, %s: level of detail "
                 "%.1f fps (%.0f%% strands, %.1f ms GL)\n",
         viewport->width(), viewport->height(), window.width(), window.height(),

@@ -59,10 +59,14 @@ bool HairRenderer::initialize(GlFunctions* gl)
         return false;
     // Optional: without them, ribbons take the one-pass path.
     QString twoPassError;
-    m_sampleProgram
-        = loadTransformFeedbackProgram(gl, QStringLiteral("hair_samples"), { "t_clip", "t_colour", "t_side" }, &twoPassError);
+    m_sampleProgram = loadTransformFeedbackProgram(
+        gl, QStringLiteral("hair_samples"), { "t_clip", "t_colour", "t_side" }, &twoPassError);
     m_ribbonProgram = loadShaderProgram(QStringLiteral("hair_ribbon"), QStringLiteral("hair"), &twoPassError);
-    if (!m_sampleProgram || !m_ribbonProgram) {
+    // WISP_ONE_PASS_RIBBONS: the one-pass path, to compare with (ViewportTest.RibbonsInTwoPasses...).
+    if (qEnvironmentVariableIsSet("WISP_ONE_PASS_RIBBONS")) {
+        m_sampleProgram.reset();
+        m_ribbonProgram.reset();
+    } else if (!m_sampleProgram || !m_ribbonProgram) {
         qWarning("HairRenderer: ribbons in one pass: %s", qPrintable(twoPassError));
         m_sampleProgram.reset();
         m_ribbonProgram.reset();
@@ -384,8 +388,8 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     checkGlErrors(gl, "HairRenderer::draw");
 }
 
-void HairRenderer::setStrandUniforms(QOpenGLShaderProgram& program, const RenderView& view, const HairStyle& style,
-    float widthScale, bool lines) const
+void HairRenderer::setStrandUniforms(
+    QOpenGLShaderProgram& program, const RenderView& view, const HairStyle& style, float widthScale, bool lines) const
 {
     GlFunctions* gl = m_gl;
     program.bind();
@@ -431,8 +435,8 @@ bool HairRenderer::drawRibbonsFromSamples(std::size_t samples, GLsizei indexCoun
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
     gl->glEnable(GL_RASTERIZER_DISCARD);
-    gl->glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, m_sampleBuffer, 0,
-        static_cast<GLsizeiptr>(samples * kSampleBytes));
+    gl->glBindBufferRange(
+        GL_TRANSFORM_FEEDBACK_BUFFER, 0, m_sampleBuffer, 0, static_cast<GLsizeiptr>(samples * kSampleBytes));
     gl->glBindVertexArray(m_sampleVao);
     gl->glBeginTransformFeedback(GL_POINTS);
     gl->glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(samples));

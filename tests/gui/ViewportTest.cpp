@@ -1290,6 +1290,52 @@ FramePtr defaultSceneFrame()
     return frame;
 }
 
+// Ribbons at full detail are drawn in two passes (each spline sample evaluated and shaded once,
+// captured by transform feedback, then both edges drawn from it; HairRenderer): the image is the
+// one-pass image (WISP_ONE_PASS_RIBBONS), a close-up of the crown where the strands are ribbons
+// several pixels wide.
+TEST_F(ViewportTest, RibbonsInTwoPassesDrawWhatOnePassDraws)
+{
+    const FramePtr scene = defaultSceneFrame();
+    Viewport::ImageOptions options;
+    const glm::vec3 top{ head.center().x, head.max.y, head.center().z };
+    options.frameBounds = Aabb{ top - glm::vec3(0.03f), top + glm::vec3(0.03f) };
+    const QSize size(320, 320);
+    viewport->setLevelOfDetail(false);
+    viewport->setFrame(scene);
+    const QImage twoPasses = viewport->renderImage(size, options).convertToFormat(QImage::Format_RGB32);
+
+    qputenv("WISP_ONE_PASS_RIBBONS", "1"); // read when a viewport's GL starts
+    Viewport reference;
+    reference.resize(640, 480);
+    reference.setHead(defaultHead().mesh);
+    reference.setHairColours(QColor(40, 235, 40), QColor(40, 235, 40));
+    reference.show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(&reference));
+    reference.setLevelOfDetail(false);
+    reference.setFrame(scene);
+    const QImage onePass = reference.renderImage(size, options).convertToFormat(QImage::Format_RGB32);
+    qunsetenv("WISP_ONE_PASS_RIBBONS");
+    ASSERT_EQ(twoPasses.size(), size);
+    ASSERT_EQ(onePass.size(), size);
+
+    int hair = 0; // the fixture's green hair, so the comparison is not of two empty images
+    int differing = 0; // any channel more than 3 levels apart
+    for (int y = 0; y < size.height(); ++y)
+        for (int x = 0; x < size.width(); ++x) {
+            const QColor a = twoPasses.pixelColor(x, y);
+            const QColor b = onePass.pixelColor(x, y);
+            hair += a.green() > a.red() + 40 ? 1 : 0;
+            const int d = std::max(
+                { std::abs(a.red() - b.red()), std::abs(a.green() - b.green()), std::abs(a.blue() - b.blue()) });
+            differing += d > 3 ? 1 : 0;
+        }
+    std::printf(
+        "[ viewport ] close-up ribbons: %d hair pixels, %d differ between two passes and one\n", hair, differing);
+    EXPECT_GT(hair, size.width() * size.height() / 10);
+    EXPECT_LE(differing, size.width() * size.height() / 500);
+}
+
 double luminance(QColor c)
 {
     return 0.2126 * c.redF() + 0.7152 * c.greenF() + 0.0722 * c.blueF();

@@ -59,6 +59,27 @@ std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(
     return program;
 }
 
+std::unique_ptr<QOpenGLShaderProgram> loadTransformFeedbackProgram(
+    GlFunctions* gl, const QString& vertexName, const std::vector<const char*>& varyings, QString* error)
+{
+    auto program = std::make_unique<QOpenGLShaderProgram>();
+    const QByteArray vertex = shaderSource(QStringLiteral(":/shaders/") + vertexName + QStringLiteral(".vert"));
+    if (vertex.isEmpty() || !program->addShaderFromSourceCode(QOpenGLShader::Vertex, vertex)) {
+        if (error)
+            *error = vertexName + QStringLiteral(": ") + program->log();
+        return nullptr;
+    }
+    // Before linking: the varyings are part of the link.
+    gl->glTransformFeedbackVaryings(
+        program->programId(), static_cast<GLsizei>(varyings.size()), varyings.data(), GL_INTERLEAVED_ATTRIBS);
+    if (!program->link()) {
+        if (error)
+            *error = vertexName + QStringLiteral(": ") + program->log();
+        return nullptr;
+    }
+    return program;
+}
+
 void setUniform(QOpenGLShaderProgram& program, const char* name, const glm::mat4& value)
 {
     // QMatrix4x4's float constructor reads row-major; GLM stores columns.

@@ -13,6 +13,7 @@
 #include <QString>
 
 #include <memory>
+#include <vector>
 
 class QOpenGLShaderProgram;
 
@@ -25,6 +26,10 @@ std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(const QString& name, QSt
 // The same with :/shaders/VERTEX.vert and :/shaders/FRAGMENT.frag (passes that share a vertex shader).
 std::unique_ptr<QOpenGLShaderProgram> loadShaderProgram(
     const QString& vertexName, const QString& fragmentName, QString* error);
+// A vertex shader alone (":/shaders/<vertexName>.vert") whose outputs `varyings` are captured,
+// interleaved, by transform feedback (drawn with GL_RASTERIZER_DISCARD).
+std::unique_ptr<QOpenGLShaderProgram> loadTransformFeedbackProgram(
+    GlFunctions* gl, const QString& vertexName, const std::vector<const char*>& varyings, QString* error);
 
 // Uniforms from GLM values (column-major, as GL wants them). A name the program does not use (the
 // compiler dropped it) is ignored, as GL ignores location -1.

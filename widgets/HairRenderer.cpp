@@ -57,6 +57,20 @@ bool HairRenderer::initialize(GlFunctions* gl)
     m_program = loadShaderProgram(QStringLiteral("hair"), &m_error);
     if (!m_program)
         return false;
+    // Optional: without them, ribbons take the one-pass path.
+    QString twoPassError;
+    m_sampleProgram = loadTransformFeedbackProgram(
+        gl, QStringLiteral("hair_samples"), { "t_clip", "t_colour", "t_side" }, &twoPassError);
+    m_ribbonProgram = loadShaderProgram(QStringLiteral("hair_ribbon"), QStringLiteral("hair"), &twoPassError);
+    // WISP_ONE_PASS_RIBBONS: the one-pass path, to compare with (ViewportTest.RibbonsInTwoPasses...).
+    if (qEnvironmentVariableIsSet("WISP_ONE_PASS_RIBBONS")) {
+        m_sampleProgram.reset();
+        m_ribbonProgram.reset();
+    } else if (!m_sampleProgram || !m_ribbonProgram) {
+        qWarning("HairRenderer: ribbons in one pass: %s", qPrintable(twoPassError));
+        m_sampleProgram.reset();
+        m_ribbonProgram.reset();
+    }
     gl->glGenVertexArrays(1, &m_vao);
     gl->glGenBuffers(1, &m_layoutBuffer);
     gl->glGenBuffers(1, &m_indexBuffer);
@@ -71,13 +85,30 @@ bool HairRenderer::initialize(GlFunctions* gl)
     gl->glEnableVertexAttribArray(0);
     gl->glVertexAttribIPointer(0, 2, GL_UNSIGNED_INT, sizeof(glm::uvec2), nullptr);
     gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer); // recorded in the VAO
+    // Sample k of the first pass is layout vertex 2k (its left edge): a stride of two vertices.
+    gl->glGenVertexArrays(1, &m_sampleVao);
+    gl->glBindVertexArray(m_sampleVao);
+    gl->glEnableVertexAttribArray(0);
+    gl->glVertexAttribIPointer(0, 2, GL_UNSIGNED_INT, 2 * sizeof(glm::uvec2), nullptr);
+    gl->glGenBuffers(1, &m_sampleBuffer);
+    gl->glGenTextures(1, &m_sampleTexture);
+    m_sampleCapacity = 0;
     gl->glBindVertexArray(0);
     gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
 
-    m_program->bind();
-    m_program->setUniformValue("u_points", 0);
-    m_program->setUniformValue("u_looks", 1);
-    m_program->release();
+    for (QOpenGLShaderProgram* program : { m_program.get(), m_sampleProgram.get() }) {
+        if (!program)
+            continue;
+        program->bind();
+        program->setUniformValue("u_points", 0);
+        program->setUniformValue("u_looks", 1);
+        program->release();
+    }
+    if (m_ribbonProgram) {
+        m_ribbonProgram->bind();
+        m_ribbonProgram->setUniformValue("u_samples", 0);
+        m_ribbonProgram->release();
+    }
     // Everything that came before this context (a reparented widget gets a new one) is gone.
     m_looks.clear();
     uploadLooks(); // storage even without looks: the shader's sampler must refer to something
@@ -92,6 +123,13 @@ void HairRenderer::release()
 {
     if (!m_gl)
         return;
+    m_gl->glDeleteTextures(1, &m_sampleTexture);
+    m_gl->glDeleteBuffers(1, &m_sampleBuffer);
+    m_gl->glDeleteVertexArrays(1, &m_sampleVao);
+    m_sampleTexture = m_sampleBuffer = m_sampleVao = 0;
+    m_sampleCapacity = 0;
+    m_sampleProgram.reset();
+    m_ribbonProgram.reset();
     m_gl->glDeleteTextures(1, &m_lookTexture);
     m_gl->glDeleteBuffers(1, &m_lookBuffer);
     m_gl->glDeleteTextures(1, &m_pointTexture);
@@ -307,7 +345,53 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     gl->glEnable(GL_BLEND);
     gl->glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
 
-    QOpenGLShaderProgram& program = *m_program;
+    // The first step's ribbons (the strands' full detail) in two passes, each sample evaluated
+    // once; coarser steps skip samples the first pass would evaluate anyway, and lines have one
+    // vertex per sample already.
+    const std::size_t byteOffset = m_indexOffsets[lines ? 0 : 1][stepIndex];
+    const auto indexCount = static_cast<GLsizei>(list.prefix[drawn]);
+    // Ribbon strips hold two indices per sample and a restart per strand, in vertex order.
+    const std::size_t samples = (m_layout.ribbons[0].prefix[drawn] - drawn) / 2;
+    bool drawnInTwoPasses = false;
+    if (!lines && stepIndex == 0 && m_sampleProgram) {
+        setStrandUniforms(*m_sampleProgram, view, style, widthScale, lines);
+        drawnInTwoPasses = drawRibbonsFromSamples(samples, indexCount, byteOffset);
+    }
+    if (!drawnInTwoPasses) {
+        QOpenGLShaderProgram& program = *m_program;
+        setStrandUniforms(program, view, style, widthScale, lines);
+        gl->glActiveTexture(GL_TEXTURE1);
+        gl->glBindTexture(GL_TEXTURE_BUFFER, m_lookTexture);
+        gl->glActiveTexture(GL_TEXTURE0);
+        gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
+        gl->glBindVertexArray(m_vao);
+        gl->glEnable(GL_PRIMITIVE_RESTART);
+        gl->glPrimitiveRestartIndex(HairStripLayout::kRestart);
+        gl->glDrawElements(lines ? GL_LINE_STRIP : GL_TRIANGLE_STRIP, indexCount, GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(byteOffset));
+        gl->glDisable(GL_PRIMITIVE_RESTART);
+        gl->glBindVertexArray(0);
+        gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+        gl->glActiveTexture(GL_TEXTURE1);
+        gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+        gl->glActiveTexture(GL_TEXTURE0);
+        unbindShadowLookup(gl);
+        program.release();
+    }
+
+    gl->glDisable(GL_BLEND);
+    m_lastDrawnStrands = drawn;
+    m_lastDrewLines = lines;
+    m_lastDrewTwoPasses = drawnInTwoPasses;
+    m_lastSamplesPerSegment
+        = static_cast<int>(HairStripLayout::kSamplesPerSegment / HairStripLayout::kSampleSteps[stepIndex]);
+    checkGlErrors(gl, "HairRenderer::draw");
+}
+
+void HairRenderer::setStrandUniforms(
+    QOpenGLShaderProgram& program, const RenderView& view, const HairStyle& style, float widthScale, bool lines) const
+{
+    GlFunctions* gl = m_gl;
     program.bind();
     setUniform(program, "u_view", view.view);
     setUniform(program, "u_projection", view.projection);
@@ -325,32 +409,59 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     setUniform(program, "u_headCentreView", view.headCentreView);
     setUniform(program, "u_tipFade", std::clamp(style.tipFade, 0.0f, 1.0f));
     bindShadowLookup(gl, program, view.shadow);
+}
 
+bool HairRenderer::drawRibbonsFromSamples(std::size_t samples, GLsizei indexCount, std::size_t byteOffset)
+{
+    GlFunctions* gl = m_gl;
+    if (samples == 0 || 3 * samples > static_cast<std::size_t>(m_maxTexels)) {
+        unbindShadowLookup(gl);
+        m_sampleProgram->release();
+        return false;
+    }
+    constexpr std::size_t kSampleBytes = 3 * sizeof(glm::vec4);
+    if (samples > m_sampleCapacity) {
+        gl->glBindBuffer(GL_TEXTURE_BUFFER, m_sampleBuffer);
+        gl->glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(samples * kSampleBytes), nullptr, GL_STREAM_COPY);
+        m_sampleCapacity = samples;
+        gl->glBindTexture(GL_TEXTURE_BUFFER, m_sampleTexture);
+        gl->glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, m_sampleBuffer);
+        gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+        gl->glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    }
+    // Pass 1 (m_sampleProgram is bound with its uniforms): every sample once, nothing rasterised.
     gl->glActiveTexture(GL_TEXTURE1);
     gl->glBindTexture(GL_TEXTURE_BUFFER, m_lookTexture);
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
-    gl->glBindVertexArray(m_vao);
-    gl->glEnable(GL_PRIMITIVE_RESTART);
-    gl->glPrimitiveRestartIndex(HairStripLayout::kRestart);
-    const std::size_t byteOffset = m_indexOffsets[lines ? 0 : 1][stepIndex];
-    gl->glDrawElements(lines ? GL_LINE_STRIP : GL_TRIANGLE_STRIP, static_cast<GLsizei>(list.prefix[drawn]),
-        GL_UNSIGNED_INT, reinterpret_cast<const void*>(byteOffset));
-    gl->glDisable(GL_PRIMITIVE_RESTART);
-    gl->glBindVertexArray(0);
+    gl->glEnable(GL_RASTERIZER_DISCARD);
+    gl->glBindBufferRange(
+        GL_TRANSFORM_FEEDBACK_BUFFER, 0, m_sampleBuffer, 0, static_cast<GLsizeiptr>(samples * kSampleBytes));
+    gl->glBindVertexArray(m_sampleVao);
+    gl->glBeginTransformFeedback(GL_POINTS);
+    gl->glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(samples));
+    gl->glEndTransformFeedback();
+    gl->glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    gl->glDisable(GL_RASTERIZER_DISCARD);
     gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
     gl->glActiveTexture(GL_TEXTURE1);
     gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
     gl->glActiveTexture(GL_TEXTURE0);
     unbindShadowLookup(gl);
-    program.release();
+    m_sampleProgram->release();
 
-    gl->glDisable(GL_BLEND);
-    m_lastDrawnStrands = drawn;
-    m_lastDrewLines = lines;
-    m_lastSamplesPerSegment
-        = static_cast<int>(HairStripLayout::kSamplesPerSegment / HairStripLayout::kSampleSteps[stepIndex]);
-    checkGlErrors(gl, "HairRenderer::draw");
+    // Pass 2: both edges of every sample, from the captured samples (unit 0).
+    m_ribbonProgram->bind();
+    gl->glBindTexture(GL_TEXTURE_BUFFER, m_sampleTexture);
+    gl->glBindVertexArray(m_vao); // its element buffer: the same ribbon strips
+    gl->glEnable(GL_PRIMITIVE_RESTART);
+    gl->glPrimitiveRestartIndex(HairStripLayout::kRestart);
+    gl->glDrawElements(GL_TRIANGLE_STRIP, indexCount, GL_UNSIGNED_INT, reinterpret_cast<const void*>(byteOffset));
+    gl->glDisable(GL_PRIMITIVE_RESTART);
+    gl->glBindVertexArray(0);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    m_ribbonProgram->release();
+    return true;
 }
 
 void HairRenderer::drawPoints(QOpenGLShaderProgram&)

@@ -90,14 +90,30 @@ public:
     std::size_t skippedStrands() const { return m_skippedStrands; } // had non-finite points
     std::size_t lastDrawnStrands() const { return m_lastDrawnStrands; }
     bool lastDrewLines() const { return m_lastDrewLines; }
+    bool lastDrewTwoPasses() const { return m_lastDrewTwoPasses; } // ribbons from captured samples
     int lastSamplesPerSegment() const { return m_lastSamplesPerSegment; }
 
 private:
     void rebuildLayout(std::span<const std::uint32_t> offsets);
     void uploadLooks();
+    // The uniforms hair_strand.glsl reads, on a bound program.
+    void setStrandUniforms(QOpenGLShaderProgram& program, const RenderView& view, const HairStyle& style,
+        float widthScale, bool lines) const;
+    // Ribbons in two passes: the first `samples` samples evaluated once each into m_sampleBuffer,
+    // then both edges read from it. False (nothing drawn) when the passes are unavailable.
+    bool drawRibbonsFromSamples(std::size_t samples, GLsizei indexCount, std::size_t byteOffset);
 
     GlFunctions* m_gl = nullptr;
     std::unique_ptr<QOpenGLShaderProgram> m_program;
+    // Two-pass ribbons (hair_samples.vert captured by transform feedback, then hair_ribbon.vert):
+    // a ribbon's two edges share one evaluation of the spline and the shading, half the vertex work
+    // of the one-pass hair.vert, which a software rasteriser does on a single thread.
+    std::unique_ptr<QOpenGLShaderProgram> m_sampleProgram;
+    std::unique_ptr<QOpenGLShaderProgram> m_ribbonProgram;
+    GLuint m_sampleVao = 0; // the layout's left-edge vertices only (stride two vertices)
+    GLuint m_sampleBuffer = 0; // three vec4 per sample, read through m_sampleTexture
+    GLuint m_sampleTexture = 0;
+    std::size_t m_sampleCapacity = 0; // samples m_sampleBuffer can hold
     GLuint m_vao = 0;
     GLuint m_layoutBuffer = 0; // HairStripLayout::vertices
     GLuint m_indexBuffer = 0; // every index list of m_layout, one after another (element buffer of m_vao)
@@ -118,6 +134,7 @@ private:
     std::size_t m_skippedStrands = 0;
     std::size_t m_lastDrawnStrands = 0;
     bool m_lastDrewLines = false;
+    bool m_lastDrewTwoPasses = false;
     int m_lastSamplesPerSegment = 0;
     QString m_error;
 };

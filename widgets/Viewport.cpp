@@ -102,6 +102,7 @@ Viewport::Viewport(QWidget* parent)
     : QWidget(parent)
     , m_headBounds(kFallbackHeadBounds)
     , m_requestedSamples(viewportSamples())
+    , m_passTiming(qEnvironmentVariableIsSet("WISP_PASS_TIMES"))
 {
     initialiseWidgetResources();
     setFocusPolicy(Qt::StrongFocus); // F must reach us after a click in the view
@@ -506,6 +507,7 @@ void Viewport::presentFrame()
         return;
     m_canvas.bindWindow();
     m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size());
+    m_passTimes.presentMs += m_passClock.lap();
     m_canvas.swap(m_window);
 }
 
@@ -864,10 +866,14 @@ void Viewport::paintGL(bool framebuffersRemade)
     GlFunctions* gl = m_gl;
     QElapsedTimer paintClock;
     paintClock.start();
+    m_passTimes = PassTimes{};
+    m_passClock.start(gl, m_passTiming);
     uploadFrameIfChanged();
+    m_passTimes.uploadMs = m_passClock.lap();
 
     if (m_shadowMap.valid() || m_shadowsEnabled)
         updateShadows();
+    m_passTimes.shadowMs = m_passClock.lap();
     m_samples = m_canvas.samples() > 1 ? m_canvas.samples() : 0;
     const RenderView view = renderView();
 
@@ -891,6 +897,7 @@ void Viewport::paintGL(bool framebuffersRemade)
         m_canvas.copyBackdropCacheToFrame();
     m_canvas.bindFrame();
     gl->glViewport(0, 0, static_cast<GLsizei>(view.viewportPixels.x), static_cast<GLsizei>(view.viewportPixels.y));
+    m_passTimes.backdropMs = m_passClock.lap();
 
     const bool refining = m_refining;
     m_refining = false;
@@ -910,6 +917,7 @@ void Viewport::paintGL(bool framebuffersRemade)
     // pipeline, and there the detail never needs to drop.
     if (m_softwareGl)
         gl->glFinish();
+    m_passTimes.hairMs = m_passClock.lap();
     m_lastPaintMs = static_cast<double>(paintClock.nsecsElapsed()) * 1e-6;
     const std::size_t strands = m_hair.strandCount();
     m_lastFraction = strands > 0 ? static_cast<float>(m_hair.lastDrawnStrands()) / static_cast<float>(strands) : 1.0f;

@@ -37,6 +37,7 @@
 #include "widgets/HairShadowMap.h"
 #include "widgets/HeadRenderer.h"
 #include "widgets/OrbitCamera.h"
+#include "widgets/PassTimes.h"
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
@@ -169,6 +170,10 @@ public:
     void setDisplayDensity(float density);
     float displayDensity() const { return m_displayDensity; }
     double lastPaintMilliseconds() const { return m_lastPaintMs; } // GL work of the last paint
+    // Per pass, for the last paint (all zero unless timing is on; see PassTimes.h). The
+    // WISP_PASS_TIMES environment variable turns it on from the start.
+    void setPassTiming(bool on) { m_passTiming = on; }
+    const PassTimes& lastPassTimes() const { return m_passTimes; }
     bool softwareRenderer() const { return m_softwareGl; }
 
     // The heads-up line as it is drawn (composed from the current frame and frame rate).
@@ -323,6 +328,9 @@ private:
     float m_lastFraction = 1.0f;
     bool m_lastPreview = false;
     double m_lastPaintMs = 0.0;
+    bool m_passTiming = false;
+    PassTimes m_passTimes;
+    PassClock m_passClock;
     bool m_softwareGl = false; // Mesa llvmpipe and friends: paints are timed with glFinish
 
     QElapsedTimer m_frameClock; // time between paints

@@ -214,13 +214,20 @@ TEST_F(DisplayDensityTest, PausedOrbitRateAtFourTimesTheDensity)
             viewport->repaint();
         }
         const double seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
-        EXPECT_EQ(viewport->paintCount(), before + kPaints);
+        viewport->setPassTiming(true); // one more paint, timed pass by pass
+        viewport->camera().orbit(6.0f, 0.0f);
+        viewport->repaint();
+        viewport->setPassTiming(false);
+        const PassTimes passes = viewport->lastPassTimes();
+        EXPECT_GT(passes.hairMs, 0.0);
+        EXPECT_EQ(viewport->paintCount(), before + kPaints + 1);
         EXPECT_EQ(viewport->lastDrawnStrands(),
             static_cast<std::size_t>(std::lround(density * static_cast<float>(settled->frame->strands.strandCount()))));
         std::printf("[ density ] %.0fx: %zu strands drawn, %dx%d, %s, orbiting paused: %.1f fps (%.1f ms GL)\n",
             density, viewport->lastDrawnStrands(), viewport->width(), viewport->height(),
             viewport->softwareRenderer() ? "software GL" : "hardware GL", kPaints / seconds,
             viewport->lastPaintMilliseconds());
+        std::printf("[ density ] %.0fx per pass: %s\n", density, qPrintable(passes.describe()));
     }
 }
 

@@ -1203,6 +1203,30 @@ PaintRun paintFrames(Viewport& viewport, const std::vector<FramePtr>& frames, in
     return run;
 }
 
+// A few paints with the passes timed (PassTimes), the mean of each; timing is off again after.
+// Untimed, every pass reads zero; timed, the hair (every strand, drawn in every paint) takes time.
+PassTimes timedPasses(Viewport& viewport, const std::vector<FramePtr>& frames)
+{
+    EXPECT_EQ(viewport.lastPassTimes().totalMs(), 0.0);
+    viewport.setPassTiming(true);
+    PassTimes sum;
+    constexpr int kTimed = 3;
+    for (int i = 0; i < kTimed; ++i) {
+        viewport.setFrame(frames[static_cast<std::size_t>(i) % frames.size()]);
+        viewport.repaint();
+        const PassTimes& t = viewport.lastPassTimes();
+        EXPECT_GT(t.hairMs, 0.0);
+        EXPECT_GT(t.presentMs, 0.0);
+        sum.uploadMs += t.uploadMs / kTimed;
+        sum.shadowMs += t.shadowMs / kTimed;
+        sum.backdropMs += t.backdropMs / kTimed;
+        sum.hairMs += t.hairMs / kTimed;
+        sum.presentMs += t.presentMs / kTimed;
+    }
+    viewport.setPassTiming(false);
+    return sum;
+}
+
 // The editor's default scene is ~4,600 strands of 16 points, new every frame. Prints the rates
 // (llvmpipe in CI) and checks counts: paints keep coming, every strand is drawn without level of
 // detail, and the level of detail never draws more than that.
@@ -1220,6 +1244,8 @@ TEST_F(ViewportTest, DrawRateWithTheDefaultSceneSize)
     ASSERT_GE(full.paints, kPaints);
     EXPECT_EQ(full.meanDrawnFraction(), 1.0);
     EXPECT_EQ(viewport->lastDrawnFraction(), 1.0f);
+    const PassTimes passes = timedPasses(*viewport, frames);
+    std::printf("[ viewport ] every strand, per pass: %s\n", qPrintable(passes.describe()));
 
     viewport->setLevelOfDetail(true);
     const PaintRun adaptive = paintFrames(*viewport, frames, kPaints);
@@ -1262,6 +1288,52 @@ FramePtr defaultSceneFrame()
         return FramePtr(out);
     }();
     return frame;
+}
+
+// Ribbons at full detail are drawn in two passes (each spline sample evaluated and shaded once,
+// captured by transform feedback, then both edges drawn from it; HairRenderer): the image is the
+// one-pass image (WISP_ONE_PASS_RIBBONS), a close-up of the crown where the strands are ribbons
+// several pixels wide.
+TEST_F(ViewportTest, RibbonsInTwoPassesDrawWhatOnePassDraws)
+{
+    const FramePtr scene = defaultSceneFrame();
+    Viewport::ImageOptions options;
+    const glm::vec3 top{ head.center().x, head.max.y, head.center().z };
+    options.frameBounds = Aabb{ top - glm::vec3(0.03f), top + glm::vec3(0.03f) };
+    const QSize size(320, 320);
+    viewport->setLevelOfDetail(false);
+    viewport->setFrame(scene);
+    const QImage twoPasses = viewport->renderImage(size, options).convertToFormat(QImage::Format_RGB32);
+
+    qputenv("WISP_ONE_PASS_RIBBONS", "1"); // read when a viewport's GL starts
+    Viewport reference;
+    reference.resize(640, 480);
+    reference.setHead(defaultHead().mesh);
+    reference.setHairColours(QColor(40, 235, 40), QColor(40, 235, 40));
+    reference.show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(&reference));
+    reference.setLevelOfDetail(false);
+    reference.setFrame(scene);
+    const QImage onePass = reference.renderImage(size, options).convertToFormat(QImage::Format_RGB32);
+    qunsetenv("WISP_ONE_PASS_RIBBONS");
+    ASSERT_EQ(twoPasses.size(), size);
+    ASSERT_EQ(onePass.size(), size);
+
+    int hair = 0; // the fixture's green hair, so the comparison is not of two empty images
+    int differing = 0; // any channel more than 3 levels apart
+    for (int y = 0; y < size.height(); ++y)
+        for (int x = 0; x < size.width(); ++x) {
+            const QColor a = twoPasses.pixelColor(x, y);
+            const QColor b = onePass.pixelColor(x, y);
+            hair += a.green() > a.red() + 40 ? 1 : 0;
+            const int d = std::max(
+                { std::abs(a.red() - b.red()), std::abs(a.green() - b.green()), std::abs(a.blue() - b.blue()) });
+            differing += d > 3 ? 1 : 0;
+        }
+    std::printf(
+        "[ viewport ] close-up ribbons: %d hair pixels, %d differ between two passes and one\n", hair, differing);
+    EXPECT_GT(hair, size.width() * size.height() / 10);
+    EXPECT_LE(differing, size.width() * size.height() / 500);
 }
 
 double luminance(QColor c)
@@ -1564,6 +1636,7 @@ TEST_F(ViewportTest, DrawRateBetweenDocksInTheEditorsWindowSize)
     grab(); // the first paint builds the layout
     const PaintRun run = paintFrames(*viewport, frames, 12);
     const double rate = run.perSecond();
+    std::printf("[ viewport ] between docks, per pass: %s\n", qPrintable(timedPasses(*viewport, frames).describe()));
     std::printf("[ viewport ] 4600 strands x 16 points, %dx%d between docks of a %dx%d window, %s: level of detail "
                 "%.1f fps (%.0f%% strands, %.1f ms GL)\n",
         viewport->width(), viewport->height(), window.width(), window.height(),

@@ -118,6 +118,7 @@ QString BakeController::start(const Document& document)
     options.memoryBoundBytes = m_memoryBoundBytes;
     options.cancelled = [this] { return m_cancel.load(); };
     options.progress = [this](int done, int total) {
+        m_workerFrames = done;
         QMetaObject::invokeMethod(
             this,
             [this, done, total] {
@@ -129,6 +130,8 @@ QString BakeController::start(const Document& document)
     m_cancel = false;
     m_finished = false;
     m_framesDone = 0;
+    m_workerFrames = 0;
+    m_workerFramesAtCancel = 0;
     m_thread = std::thread([this, in = std::move(in), options = std::move(options)] {
         nameThisThread("wisp-bake");
         BakeOutcome outcome = runBake(in, options);
@@ -154,6 +157,7 @@ QString BakeController::start(const Document& document)
 
 void BakeController::cancel()
 {
+    m_workerFramesAtCancel = m_workerFrames.load();
     m_cancel = true;
 }
 

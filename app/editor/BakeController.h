@@ -65,6 +65,9 @@ public:
     std::size_t memoryBoundBytes() const { return m_memoryBoundBytes; }
     // Simulated frames of the running (or last) bake, pre-roll included, as progress() said.
     int framesDone() const { return m_framesDone; }
+    // Frames the worker finished after cancel() was called (read once the bake has ended): how
+    // promptly Cancel stops it, counted on the worker's side, not by progress reports in flight.
+    int framesFinishedAfterCancel() const { return m_workerFrames.load() - m_workerFramesAtCancel.load(); }
 
 signals:
     void progress(int framesDone, int framesTotal);
@@ -79,6 +82,8 @@ private:
     std::atomic<bool> m_cancel{ false };
     bool m_finished = true; // the worker has posted its end (GUI thread's view)
     int m_framesDone = 0;
+    std::atomic<int> m_workerFrames{ 0 }; // written by the worker as each frame ends
+    std::atomic<int> m_workerFramesAtCancel{ 0 };
     std::size_t m_memoryBoundBytes = kDefaultBakeMemoryBytes;
     BakedScenePtr m_baked;
 };

@@ -14,6 +14,7 @@
 #include "widgets/ViewportWindow.h"
 
 #include <QAction>
+#include <QApplication>
 #include <QComboBox>
 #include <QDir>
 #include <QDockWidget>
@@ -101,14 +102,18 @@ protected:
     {
         if (window->playAction()->isChecked())
             window->playAction()->trigger();
-        ASSERT_TRUE(waitUntil([&] { return !host()->isPlaying(); }));
+        // The window hears of the pause by a queued signal: Step is enabled once it has.
+        ASSERT_TRUE(waitUntil([&] { return !host()->isPlaying() && window->stepAction()->isEnabled(); }));
     }
     // One Step (the '.' key), and its frame.
     FramePtr step()
     {
         const std::uint64_t before = host()->publishedFrames();
         QTest::keyClick(window.get(), Qt::Key_Period);
-        EXPECT_TRUE(waitForFramesSince(*host(), before, 1));
+        EXPECT_TRUE(waitForFramesSince(*host(), before, 1))
+            << "Step gave no frame: published " << host()->publishedFrames() << ", playing " << host()->isPlaying()
+            << ", focus "
+            << (QApplication::focusWidget() ? QApplication::focusWidget()->metaObject()->className() : "none");
         return host()->latestFrame();
     }
     // A Ctrl+Alt (+ extra) drag across the viewport's native window, in `moves` mouse moves.
@@ -263,6 +268,7 @@ TEST_F(HeadMotionTest, MotionPanelKeysAndProceduralMotionSurviveSaveAndReopen)
     ASSERT_TRUE(window->fileMenu()->projects()->newProject());
     EXPECT_TRUE(doc()->headMotion() == HeadMotion{});
     EXPECT_EQ(panel->keyList()->count(), 0);
+    QSignalSpy reopened(host(), &SimulationHost::sceneReady);
     ASSERT_TRUE(window->fileMenu()->projects()->open(path))
         << window->fileMenu()->projects()->lastError().toStdString();
     EXPECT_TRUE(doc()->headMotion() == saved);
@@ -275,7 +281,11 @@ TEST_F(HeadMotionTest, MotionPanelKeysAndProceduralMotionSurviveSaveAndReopen)
     panel->keyList()->setCurrentRow(0);
     if (const QByteArray shots = qgetenv("WISP_SCREENSHOT_DIR"); !shots.isEmpty())
         panel->grab().save(QString::fromLocal8Bit(shots) + QStringLiteral("/motion-panel.png"));
-    // The reopened motion drives the simulation: stepping turns the head by the shake.
+    // The reopened motion drives the simulation: stepping turns the head by the shake. (Steps
+    // are taken once the reopened scene is groomed and draped; before, Step has nothing to step.)
+    ASSERT_TRUE(waitUntil([&] { return reopened.count() >= 1; }, 3 * kWaitMs));
+    // '.' is Step only where no text box takes it as a decimal point: focus back on the view.
+    window->viewport()->setFocus();
     bool headMoved = false;
     for (int i = 0; i < 60 && !headMoved; ++i)
         headMoved = step()->headRotation != glm::quat(1.0f, 0.0f, 0.0f, 0.0f);

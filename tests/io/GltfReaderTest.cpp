@@ -4,6 +4,7 @@
 using namespace wisp;
 using namespace wisp::io;
 using namespace wisp::test::gltf;
+using wisp::test::signedVolume;
 using wisp::test::assetPath;
 using wisp::test::slurp;
 

@@ -34,17 +34,6 @@ using namespace wisp::io;
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-// The enclosed volume, positive when triangles wind counter-clockwise seen from outside.
-inline double signedVolume(const TriangleMesh& mesh)
-{
-    double v = 0.0;
-    for (const glm::uvec3& t : mesh.triangles) {
-        const glm::dvec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
-        v += glm::dot(a, glm::cross(b, c)) / 6.0;
-    }
-    return v;
-}
-
 inline void expectNear(const glm::vec3& actual, const glm::vec3& expected, float tolerance, const std::string& what)
 {
     EXPECT_NEAR(actual.x, expected.x, tolerance) << what;

@@ -1,8 +1,12 @@
 #pragma once
 // What the io tests share: the path of a file in ../shared/assets (real files made by other
-// people; absent: a skip, or a failure under CI, see tests/SharedAssets.h) and reading a whole file.
+// people; absent: a skip, or a failure under CI, see tests/SharedAssets.h), reading a whole file and
+// a mesh's signed volume.
 
 #include "../SharedAssets.h"
+#include "sim/geometry/TriangleMesh.h"
+
+#include <glm/geometric.hpp>
 
 #include <gtest/gtest.h>
 
@@ -34,6 +38,17 @@ inline std::filesystem::path freshTestFolder(const std::string& prefix)
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
+}
+
+// The enclosed volume, positive when triangles wind counter-clockwise seen from outside.
+inline double signedVolume(const TriangleMesh& mesh)
+{
+    double v = 0.0;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::dvec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
+        v += glm::dot(a, glm::cross(b, c)) / 6.0;
+    }
+    return v;
 }
 
 } // namespace wisp::test

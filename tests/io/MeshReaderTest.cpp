@@ -4,6 +4,7 @@
 using namespace wisp;
 using namespace wisp::io;
 using namespace wisp::test::mesh;
+using wisp::test::signedVolume;
 
 // ---- real heads ---------------------------------------------------------------------------------
 

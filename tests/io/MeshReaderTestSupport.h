@@ -38,18 +38,6 @@ inline glm::vec3 rawPlyVertex(const std::string& bytes, std::size_t stride, std:
     return { xyz[0], xyz[1], xyz[2] };
 }
 
-// Six times the enclosed volume's sign-carrying sum: positive when triangles wind
-// counter-clockwise seen from outside.
-inline double signedVolume(const TriangleMesh& mesh)
-{
-    double v = 0.0;
-    for (const glm::uvec3& t : mesh.triangles) {
-        const glm::dvec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
-        v += glm::dot(a, glm::cross(b, c)) / 6.0;
-    }
-    return v;
-}
-
 // ---- generated files ------------------------------------------------------------------------------
 
 // Unit cube as six quads, counter-clockwise seen from outside.

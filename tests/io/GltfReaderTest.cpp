@@ -4,8 +4,8 @@
 using namespace wisp;
 using namespace wisp::io;
 using namespace wisp::test::gltf;
-using wisp::test::signedVolume;
 using wisp::test::assetPath;
+using wisp::test::signedVolume;
 using wisp::test::slurp;
 
 // ---- hand-made files: each rule on its own ----------------------------------------------------

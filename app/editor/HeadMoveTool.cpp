@@ -13,13 +13,6 @@
 
 namespace wisp {
 
-HeadPose keyedPoseAt(const HeadMotion& motion, double timeSeconds)
-{
-    HeadMotion keysOnly = motion;
-    keysOnly.setProcedural(ProceduralMotion{});
-    return keysOnly.poseAt(timeSeconds);
-}
-
 double keySecondsFor(const HeadMotion& motion, double timeSeconds, double fps)
 {
     return motion.keys().empty() ? 0.0 : std::round(timeSeconds * fps) / fps;
@@ -68,7 +61,7 @@ bool HeadMoveTool::eventFilter(QObject* watched, QEvent* event)
         drag.start = drag.last = e->position();
         drag.motion = m_document->headMotion();
         drag.keySeconds = keySecondsFor(drag.motion, currentSeconds(), m_document->timeline().fps);
-        drag.startPose = drag.pose = keyedPoseAt(drag.motion, drag.keySeconds);
+        drag.startPose = drag.pose = drag.motion.keyedPoseAt(drag.keySeconds);
         m_drag = drag;
         return true;
     }

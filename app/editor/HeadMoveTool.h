@@ -31,8 +31,6 @@ class Viewport;
 // write keys this way.
 double keySecondsFor(const HeadMotion& motion, double timeSeconds, double fps);
 HeadMotion keyedMotion(HeadMotion motion, double timeSeconds, double fps, const HeadPose& pose);
-// Where the keys alone put the head at `timeSeconds` (the procedural motion left out).
-HeadPose keyedPoseAt(const HeadMotion& motion, double timeSeconds);
 
 class HeadMoveTool : public QObject {
     Q_OBJECT

@@ -189,7 +189,7 @@ void MotionPanel::setKey()
     HeadMotion motion = m_document->headMotion();
     const double t = m_headTool->currentSeconds();
     const double fps = m_document->timeline().fps;
-    motion.setKey(std::round(t * fps) / fps, keyedPoseAt(motion, t));
+    motion.setKey(std::round(t * fps) / fps, motion.keyedPoseAt(t));
     apply(motion, tr("Set Head Key"));
 }
 

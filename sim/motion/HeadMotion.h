@@ -115,13 +115,14 @@ public:
         return headToWorld(poseAt(timeSeconds), pivotHead);
     }
 
+    // The keys' pose alone at `timeSeconds` (no procedural motion on top): what a new key keeps.
+    HeadPose keyedPoseAt(double timeSeconds) const;
+
     bool operator==(const HeadMotion&) const = default;
 
     static constexpr double kSameTimeSeconds = 1e-6;
 
 private:
-    HeadPose keyedPoseAt(double timeSeconds) const;
-
     std::vector<HeadKey> m_keys;
     ProceduralMotion m_procedural;
 };

@@ -6,6 +6,7 @@
 #include "widgets/ViewportOverlay.h"
 #include "widgets/ViewportWindow.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -25,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 // The shaders are compiled into the static wisp_widgets library, whose resource initialiser the
 // linker drops unless something refers to it; Q_INIT_RESOURCE must be called outside a namespace.
@@ -67,6 +69,20 @@ bool finiteBounds(const Aabb& b)
         if (!std::isfinite(b.min[i]) || !std::isfinite(b.max[i]) || b.min[i] > b.max[i])
             return false;
     return true;
+}
+
+// The box around `b` placed by the rigid `modelToWorld` (its eight corners'): where a moved head is.
+Aabb placedBounds(const Aabb& b, const glm::mat4& modelToWorld)
+{
+    Aabb out{ glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest()) };
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p{ corner & 1 ? b.max.x : b.min.x, corner & 2 ? b.max.y : b.min.y,
+            corner & 4 ? b.max.z : b.min.z };
+        const glm::vec3 placed = glm::vec3(modelToWorld * glm::vec4(p, 1.0f));
+        out.min = glm::min(out.min, placed);
+        out.max = glm::max(out.max, placed);
+    }
+    return out;
 }
 
 // The context's and the window's: the window only receives finished frames, so it needs neither
@@ -689,7 +705,7 @@ RenderView Viewport::renderView() const
     // The cranium's centre, not the box's (which the neck pulls down): hair wraps around it.
     const glm::vec3 cranium{ m_headBounds.center().x, m_headBounds.max.y - 0.3f * m_headBounds.size().y,
         m_headBounds.center().z };
-    view.headCentreView = glm::vec3(view.view * glm::vec4(cranium, 1.0f));
+    view.headCentreView = glm::vec3(view.view * m_headToWorld * glm::vec4(cranium, 1.0f));
     view.headRadiusMetres = 0.5f * std::max(m_headBounds.size().x, m_headBounds.size().z);
     view.samples = m_samples;
     return view;
@@ -730,8 +746,9 @@ void Viewport::updateShadows()
     m_shadowPaint = m_paintCount;
     m_hairMoved = false;
     m_shadowLight = light;
-    // Everything that can cast or take a shadow: the hair and the head (with a little margin).
-    Aabb box = m_headBounds;
+    // Everything that can cast or take a shadow: the hair and the head where the frame has it (with
+    // a little margin).
+    Aabb box = placedBounds(m_headBounds, m_headToWorld);
     const Aabb& hair = m_hair.bounds();
     box.min = glm::min(box.min, hair.min);
     box.max = glm::max(box.max, hair.max);
@@ -742,7 +759,7 @@ void Viewport::updateShadows()
     const float texelMetres = 2.0f * radius / static_cast<float>(HairShadowMap::kPixels);
     const float opacity = std::clamp(kStrandShadowOpacity * drawnStyle().rootWidthMetres() / texelMetres, 0.02f, 1.0f);
     const std::uint64_t before = m_shadowMap.passCount();
-    m_shadowMap.render(m_hair, m_head, m_body, light, box.center(), radius, opacity);
+    m_shadowMap.render(m_hair, m_head, m_body, m_headToWorld, light, box.center(), radius, opacity);
     if (m_shadowMap.passCount() != before)
         ++m_backdropRevision; // the head shows the new shadow (none drawn: no GL for it, nothing new)
 }

@@ -234,7 +234,7 @@ int runBake(int argc, char** argv)
               << result.cache.stepsPerFrame << " steps of " << result.cache.stepSeconds * 1000.0
               << " ms a frame, motion " << motionName(motion.procedural().kind) << ", " << motion.keys().size()
               << " keys): " << result.cache.offsets.size() - 1 << " strands, " << points << " points, "
-              << bytesPerBakedFrame(points) << " bytes a cached frame; drape " << drapeMs << " ms, then " << frameMs
+              << result.cache.bytesPerFrame() << " bytes a cached frame; drape " << drapeMs << " ms, then " << frameMs
               << " ms a frame; wrote " << (usd ? *out : std::to_string(written) + " files " + *out) << "\n";
     return kSuccess;
 }

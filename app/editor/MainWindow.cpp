@@ -300,6 +300,10 @@ void MainWindow::createDocks()
     tabifyDockWidget(presets, motion);
     const auto showFor8s = [this](const QString& text) { statusBar()->showMessage(text, 8000); };
     connect(m_motionPanel, &MotionPanel::message, this, showFor8s);
+    // One current time, as in Blender: the timeline's frame is where keys go, and a selected key
+    // takes the timeline to it.
+    m_headTool->setTimelineSeconds([this] { return m_timeline->frameSeconds(); });
+    connect(m_motionPanel, &MotionPanel::keySelected, m_timeline, &TimelineDock::goToSeconds);
     connect(m_headTool, &HeadMoveTool::message, this, showFor8s);
     forces->raise();
     connect(m_presetBrowser, &PresetBrowser::message, this,

@@ -2,6 +2,7 @@
 
 #include "app/editor/Document.h"
 #include "app/editor/HeadMoveTool.h"
+#include "sim/motion/FrameTime.h"
 #include "sim/motion/HeadMotion.h"
 
 #include <QComboBox>
@@ -115,6 +116,7 @@ MotionPanel::MotionPanel(Document* document, HeadMoveTool* headTool, QWidget* pa
         if (row >= 0 && row < static_cast<int>(keys.size())) {
             const QSignalBlocker block(m_keyTime);
             m_keyTime->setValue(keys[static_cast<std::size_t>(row)].timeSeconds);
+            emit keySelected(keys[static_cast<std::size_t>(row)].timeSeconds);
         }
     });
     connect(m_document, &Document::headMotionChanged, this, &MotionPanel::showMotion);
@@ -189,7 +191,7 @@ void MotionPanel::setKey()
     HeadMotion motion = m_document->headMotion();
     const double t = m_headTool->currentSeconds();
     const double fps = m_document->timeline().fps;
-    motion.setKey(std::round(t * fps) / fps, motion.keyedPoseAt(t));
+    motion.setKey(snappedToFrame(t, fps), motion.keyedPoseAt(t));
     apply(motion, tr("Set Head Key"));
 }
 
@@ -219,6 +221,7 @@ void MotionPanel::keyTimeEdited()
         return;
     apply(motion, tr("Move Head Key"));
     m_keys->setCurrentRow(static_cast<int>(newIndex));
+    emit keySelected(motion.keys()[newIndex].timeSeconds); // the timeline follows the moved key
 }
 
 } // namespace wisp

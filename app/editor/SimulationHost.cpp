@@ -8,6 +8,7 @@
 #include "sim/solver/HairSimulation.h"
 #include "sim/solver/SolverSettings.h"
 #include "sim/util/ThreadName.h"
+#include "sim/util/ThreadPool.h"
 
 #include <QMetaObject>
 
@@ -28,12 +29,6 @@ namespace wisp {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// Thread: any. One core stays with the GUI so that drawing and input never queue behind the solver.
-int solverThreadsFor(unsigned cores)
-{
-    return std::max(1, static_cast<int>(cores) - 1);
-}
 
 // Thread: any. True when `a` and `b` build the same groom: the same Groom-group parameters and the
 // same choice of simulated strands. Everything else is a force or solver setting the running
@@ -454,7 +449,7 @@ SimulationHost::SimulationHost(QObject* parent)
 
 SimulationHost::SimulationHost(SecondsClock clock, QObject* parent)
     : QObject(parent)
-    , m_solverThreads(solverThreadsFor(std::thread::hardware_concurrency()))
+    , m_solverThreads(solverThreadsBesideGui())
     , m_clock(std::move(clock))
 {
     m_thread = std::thread([this] {

@@ -19,7 +19,7 @@ struct SolverSettings {
     float dampingPerSecond = 0.0f; // v *= exp(-damping dt)
     float stiffness = 0.0f; // 0..1: bending rigidity, see bending::rigidity (BendingModel.h)
     // 0..1: share of the way to the rest pose per 1/60 s at the root, fading along the strand (see
-    // Solver.cpp, pullTowardGlobalShape); 0 is off and costs nothing.
+    // SolverBlockKernel.cpp, pullTowardGlobalShape); 0 is off and costs nothing.
     float globalShape = 0.0f;
     float friction = 0.0f; // Coulomb coefficient μ (kinetic; static 1.25 μ)
     float hairOffsetMetres = 0.0f; // kept between hair and skin

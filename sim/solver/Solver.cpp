@@ -508,7 +508,7 @@ void Solver::step()
     StepConstants c;
     const SolverSettings& s = m_settings;
     c.substeps = s.substeps;
-    c.dt = s.timeStepSeconds / static_cast<float>(s.substeps);
+    c.dt = substepSeconds(s);
     c.keep = std::exp(-s.dampingPerSecond * c.dt);
     updateBendShares(c.dt);
     updateGlobalShape(c.dt);

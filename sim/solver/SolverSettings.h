@@ -32,6 +32,13 @@ struct SolverSettings {
     float velocityCorrection = 0.95f;
 };
 
+// The solver's substep, seconds: a step runs `substeps` of them (Solver::step). The rest-shape
+// solve runs them one at a time (RestShapeSolve.cpp), so both take it from here.
+inline float substepSeconds(const SolverSettings& settings)
+{
+    return settings.timeStepSeconds / static_cast<float>(settings.substeps > 1 ? settings.substeps : 1);
+}
+
 // Wind velocity from speed and angles (see the wind_azimuth and wind_elevation help texts).
 glm::vec3 windVelocity(float speed, float azimuthDegrees, float elevationDegrees);
 

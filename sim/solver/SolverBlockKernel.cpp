@@ -223,11 +223,10 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         const V3 checked = position;
         Lane clearance = p.clearance - l1Length(position - before);
         if (c.field && (Transformed || anyOf(clearance < splat(0.0f)))) {
-            // The head's distance and normal at a world-space position (after `last`, taken nearby,
-            // where one is given).
-            auto sampleHead = [&](const V3& at, const SdfSample* last = nullptr) {
-                const V3 head = Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at;
-                SdfSample sample = last ? resampleField(*c.field, head, *last) : sampleField(*c.field, head);
+            // The head's distance and normal at a world-space position.
+            auto sampleHead = [&](const V3& at) {
+                SdfSample sample = sampleField(
+                    *c.field, Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at);
                 if (Transformed)
                     sample.normal = transform(c.rotation, sample.normal);
                 return sample;
@@ -244,10 +243,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 // far along the arc below for that little would shake stiff hair lying on the head.
                 const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
                 const Lane turnTolerance = splat(kTurnToleranceShareOfOffset * c.offset + kTurnToleranceMetres);
-                SdfSample last = sample;
                 for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
-                    const SdfSample next = sampleHead(position, &last);
-                    last = next;
+                    const SdfSample next = sampleHead(position);
                     const Lane nextDepth = splat(c.offset) - next.distance;
                     const Mask stillInside = nextDepth > turnTolerance;
                     const Mask stuck = stillInside & (nextDepth > slack);

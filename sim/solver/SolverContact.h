@@ -14,47 +14,21 @@ namespace {
 
 struct SdfSample {
     Lane distance;
-    V3 normal; // (in the caller's space: sampleHead turns it into world space)
-    // The nearest nodes the sample extends, head space: where a lane's nearest node is unchanged a
-    // second look needs no table read (resampleField).
-    Mask index;
-    Lane nodeDistance;
-    V3 nodeNormal;
-    V3 nodePosition;
+    V3 normal;
 };
 
-// The first-order extension of the field from its nearest node, d(p) = d_n + n . (p - x_n).
-[[gnu::always_inline]] inline Lane extendFromNode(const SdfSample& s, const V3& p)
-{
-    return s.nodeDistance + dot(s.nodeNormal, p - s.nodePosition);
-}
-
-struct NearestNode {
-    Mask ix, iy, iz, index;
-};
-
-// The node nearest p (head space), clamped into the grid; outside it the first-order extension
-// keeps growing.
-[[gnu::always_inline]] inline NearestNode nearestNode(const Solver::CollisionField& field, const V3& p)
+[[gnu::always_inline]] inline SdfSample sampleField(const Solver::CollisionField& field, const V3& p)
 {
     const float inv = 1.0f / field.cellSize;
+    // Nearest node, clamped into the grid; outside it the first-order extension keeps growing.
     auto nearest = [&](Lane v, float origin, int count) {
         const Lane g = (v - origin) * inv + 0.5f;
         return __builtin_convertvector(lmin(lmax(g, splat(0.0f)), splat(static_cast<float>(count) - 0.5f)), Mask);
     };
-    NearestNode node;
-    node.ix = nearest(p.x, field.origin.x, field.dims.x);
-    node.iy = nearest(p.y, field.origin.y, field.dims.y);
-    node.iz = nearest(p.z, field.origin.z, field.dims.z);
-    node.index = node.ix + node.iy * field.dims.x + node.iz * (field.dims.x * field.dims.y);
-    return node;
-}
-
-// The head's distance and outward normal at p (head space), from the nearest node.
-[[gnu::always_inline]] inline SdfSample sampleField(const Solver::CollisionField& field, const V3& p)
-{
-    const NearestNode node = nearestNode(field, p);
-    const Mask ix = node.ix, iy = node.iy, iz = node.iz, index = node.index;
+    const Mask ix = nearest(p.x, field.origin.x, field.dims.x);
+    const Mask iy = nearest(p.y, field.origin.y, field.dims.y);
+    const Mask iz = nearest(p.z, field.origin.z, field.dims.z);
+    const Mask index = ix + iy * field.dims.x + iz * (field.dims.x * field.dims.y);
     SdfSample s;
     Lane d;
 #if defined(__AVX512F__)
@@ -105,25 +79,7 @@ struct NearestNode {
     const V3 nodePosition{ __builtin_convertvector(ix, Lane) * field.cellSize + field.origin.x,
         __builtin_convertvector(iy, Lane) * field.cellSize + field.origin.y,
         __builtin_convertvector(iz, Lane) * field.cellSize + field.origin.z };
-    s.index = index;
-    s.nodeDistance = d;
-    s.nodeNormal = s.normal;
-    s.nodePosition = nodePosition;
-    s.distance = extendFromNode(s, p);
-    return s;
-}
-
-// sampleField at p (head space) after `last` was taken nearby (a contact's turn moves a particle
-// far less than a cell): where no lane's nearest node changed, the same numbers without reading
-// the table again.
-[[gnu::always_inline]] inline SdfSample resampleField(
-    const Solver::CollisionField& field, const V3& p, const SdfSample& last)
-{
-    if (anyOf(nearestNode(field, p).index != last.index))
-        return sampleField(field, p);
-    SdfSample s = last;
-    s.normal = s.nodeNormal;
-    s.distance = extendFromNode(s, p);
+    s.distance = d + dot(s.normal, p - nodePosition);
     return s;
 }
 

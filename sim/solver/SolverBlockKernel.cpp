@@ -1,6 +1,7 @@
 #include "sim/solver/SolverBlockKernel.h"
 
 #include "sim/geometry/ShortestArc.h"
+#include "sim/solver/SolverConstraints.h"
 #include "sim/solver/SolverContact.h"
 #include "sim/solver/SolverLanes.h"
 
@@ -34,23 +35,6 @@ constexpr std::uint32_t kGustStride = 4;
 // The largest factor by which a bend reaction is raised to make up for the damping and drag of
 // the velocity that carries it (advanceBlock): defaults at one substep need 1.03.
 constexpr float kMaxKickGain = 1.1f;
-
-// Global shape matching (Han & Harada 2012, "Real-time hair simulation with efficient hair style
-// preservation", sec. 3.2, as AMD TressFX's global shape constraints): after the bending and before
-// length and contact, particle j moves g.share of the way toward its rest position as the head
-// carries it now (the root as it is this substep, the head's rotation). Only the position moves, as
-// TressFX does: a projection x += s (t - x) each substep leaves an oscillation about t a factor
-// sqrt(1 - s) per substep, so it adds no energy. The share is set per particle by
-// Solver::updateGlobalShape: full at the root, fading along the strand, the same per second at any
-// substep count.
-template <bool Transformed>
-V3 pullTowardGlobalShape(
-    const V3& bent, const GlobalShapeRow& g, const V3& root, const V3& rootHead, const glm::mat3& rotation)
-{
-    const V3 restHead{ g.x, g.y, g.z };
-    const V3 target = Transformed ? root + transform(rotation, restHead - rootHead) : restHead;
-    return bent + (target - bent) * g.share;
-}
 
 } // namespace
 
@@ -212,9 +196,9 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         ParticleRow& p = row[i];
         V3 previous = before;
         const Lane length = rest[i].length;
-        const Lane scale = length * lrsqrt(lmax(dot(reach, reach), splat(1e-24f)));
-        V3 position = parent + reach * scale;
-        const V3 correction = reach * (scale - 1.0f); // position - bent
+        const LengthCorrection ftl = followTheLeader(parent, reach, length);
+        V3 position = ftl.position;
+        const V3 correction = ftl.correction;
         bool looked = false; // whether contact may have moved it (else `checked` is final)
 
         // The field lookup is most of a step's cost (memory latency), so it is skipped while the
@@ -390,18 +374,10 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             const V3 predicted = predict(x, V3{ p.px, p.py, p.pz }, parentBefore, gustHere);
             parentBefore = x;
 
-            // Spring toward the target and damper on the particle's motion relative to its parent:
-            //   Δx_j = (parent + turned L - predicted) child - ((predicted - x) - (parent - parentStart)) damping,
-            // and the bent position less the parent's, written so that only `turned` and `parent`
-            // wait on the chain:
-            //   bent - parent = [predicted (1 - child) - (predicted - x) damping - parentStart damping]
-            //                   + parent (damping + child - 1) + turned (L child).
-            const Lane child = r.bendChild, damping = r.bendDamping;
-            const V3 besideChain = predicted * (1.0f - child) - (predicted - x) * damping - parentStart * damping;
-            V3 reach = besideChain + parent * (damping + child - 1.0f) + turned * (r.length * child);
-            // The parent's equal and opposite momentum, as a velocity (DFTL's way): Δx_j m_j / m_{j-1},
-            // made up for the damping and drag that the next substep applies to it (kickGain).
-            const V3 kick = (parent + reach - predicted) * (r.bendParentRatio * kickGain);
+            // The bend toward the target, and its reaction on the parent (SolverConstraints.h).
+            V3 reach
+                = bendTowardTarget(predicted, x, parentStart, parent, turned, r.length, r.bendChild, r.bendDamping);
+            const V3 kick = bendReaction(parent, reach, predicted, r.bendParentRatio, kickGain);
             if constexpr (GlobalShape)
                 reach = pullTowardGlobalShape<Transformed>(parent + reach, globalShape[j], root, rootHead, c.rotation)
                     - parent;

@@ -1442,6 +1442,23 @@ TEST_F(ViewportTest, OrbitingAPausedSceneReusesTheShadowsAndMovingHairRendersThe
     EXPECT_EQ(viewport->shadowPassCount(), following + 1);
 }
 
+// While the hair moves (frames streaming in, not grabbed), the shadow maps are rendered every third
+// paint: the key light is fixed to the head, and each render costs a software rasteriser about a
+// fifth of a simulating paint. Every other paint rendered them before.
+TEST_F(ViewportTest, WhileTheHairMovesItsShadowsAreRenderedEveryThirdPaint)
+{
+    viewport->setFrame(scalpFrame(head, 600, 16, 0.0f));
+    grab();
+    const std::uint64_t passes = viewport->shadowPassCount();
+    const std::uint64_t paints = viewport->paintCount();
+    for (int k = 1; k <= 9; ++k) {
+        viewport->setFrame(scalpFrame(head, 600, 16, static_cast<float>(k)));
+        viewport->repaint();
+    }
+    ASSERT_EQ(viewport->paintCount(), paints + 9);
+    EXPECT_EQ(viewport->shadowPassCount(), passes + 3);
+}
+
 // --- The native window --------------------------------------------------------------------------------
 
 TEST_F(ViewportTest, InputToItsNativeWindowReachesTheWidgetAndItsEventFilters)

@@ -13,14 +13,16 @@ namespace wisp {
 float typicalTurnRadians(const HairCurves& strands, std::size_t maxStrands)
 {
     const std::size_t count = strands.strandCount();
-    if (count == 0 || maxStrands == 0 || strands.offsets.back() > strands.positions.size())
+    if (count == 0 || maxStrands == 0)
         return 0.0f;
     std::vector<float> turns;
     const std::size_t stride = std::max<std::size_t>(1, count / maxStrands);
     for (std::size_t s = 0; s < count; s += stride) {
         const std::uint32_t begin = strands.offsets[s];
         const std::uint32_t end = strands.offsets[s + 1];
-        for (std::uint32_t i = begin; end >= begin + 3 && i + 2 < end; ++i) {
+        if (end < begin + 3 || end > strands.positions.size()) // too short, or offsets nobody should trust
+            continue;
+        for (std::uint32_t i = begin; i + 2 < end; ++i) {
             const glm::vec3 a = strands.positions[i + 1] - strands.positions[i];
             const glm::vec3 b = strands.positions[i + 2] - strands.positions[i + 1];
             const float lengths = glm::length(a) * glm::length(b);

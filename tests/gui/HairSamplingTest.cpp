@@ -52,6 +52,9 @@ TEST(HairSamplingTest, TheTypicalTurnIsTheNinetiethPercentileOfTheJoints)
     broken.positions[5] = broken.positions[6];
     addArc(broken, 4, 0.2f);
     EXPECT_NEAR(typicalTurnRadians(broken), 0.2f, 1e-3f);
+    // Offsets past the points or going backwards: those strands are skipped, nothing read.
+    broken.offsets = { 0, 4, 100, 8, 12 };
+    EXPECT_NEAR(typicalTurnRadians(broken), 0.2f, 1e-3f);
 }
 
 TEST(HairSamplingTest, SamplesASegmentKeepChordsWithinHalfAPixelOfTheCurve)

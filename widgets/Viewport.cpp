@@ -41,8 +41,10 @@ namespace {
 // How much of the key light a strand crossing a shadow-map texel takes, per unit of its width over
 // the texel's: above 1, since a drawn strand stands for a lock whose hairs also scatter light away.
 constexpr float kStrandShadowOpacity = 1.5f;
-// While the hair moves, its shadows are rendered again every this many paints.
-constexpr std::uint64_t kShadowPaintInterval = 2;
+// While the hair moves, its shadows are rendered again every this many paints: the key light is
+// fixed to the head, so between two renders only the hair's own motion, a frame or two of it, is
+// missing from them; each render costs a software rasteriser about a fifth of a simulating paint.
+constexpr std::uint64_t kShadowPaintInterval = 3;
 
 // A plausible adult head with neck, for framing before any head is set (metres).
 constexpr Aabb kFallbackHeadBounds{ { -0.09f, -0.23f, -0.11f }, { 0.09f, 0.14f, 0.12f } };
@@ -734,7 +736,7 @@ void Viewport::updateShadows()
     const glm::vec3 light = keyLightWorld();
     if (m_shadowMap.valid() && !m_hairMoved && light == m_shadowLight)
         return;
-    // While the hair moves, every other paint: a shadow a frame late does not show, and the passes
+    // While the hair moves, every third paint: a shadow two frames late does not show, and the passes
     // (and the head drawn again under the new shadow) cost a software rasteriser much of a frame.
     // The paint after the last skipped one catches up, so a still scene's shadows are its own.
     // Grabbed frames (tests, rendered images) always have their own.
@@ -818,7 +820,7 @@ void Viewport::updateBrushRings(const RenderView& view)
     m_guides.setBrushRings(buildBrushRings(cursor, band, mirrorBand));
 }
 
-void Viewport::drawBackdrop(const RenderView& view)
+void Viewport::drawBackdrop(const RenderView& view, bool gradientInResolve)
 {
     GlFunctions* gl = m_gl;
     const bool transparent = m_image && m_image->transparent;
@@ -828,13 +830,13 @@ void Viewport::drawBackdrop(const RenderView& view)
     gl->glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl->glDepthMask(GL_TRUE);
     gl->glDepthFunc(GL_LESS);
-    if (transparent)
+    if (transparent || gradientInResolve)
         gl->glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     else
         gl->glClearColor(kBackgroundBottom.x, kBackgroundBottom.y, kBackgroundBottom.z, 1.0f);
     gl->glClearDepth(1.0);
     gl->glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (!transparent)
+    if (!transparent && !gradientInResolve)
         m_background.draw(kBackgroundTop, kBackgroundBottom);
     m_head.draw(withModel(view, m_headToWorld), m_showGrowthOverlay);
     m_body.draw(withModel(view, m_headToWorld)); // the solver collides with the body in head space too
@@ -853,15 +855,22 @@ void Viewport::drawResolvedBackdrop(const RenderView& view, bool intoCache)
         else
             m_canvas.bindFrame();
     };
+    // The gradient goes under the head in the resolve, a colour a pixel, rather than four samples
+    // a pixel here (on llvmpipe a full-screen multisampled pass is a good part of the backdrop).
+    const bool transparent = m_image && m_image->transparent;
+    const bool gradientInResolve = multisampled && !transparent;
     if (multisampled)
         m_canvas.bindBackdrop();
     else
         bindTarget();
-    drawBackdrop(view);
+    drawBackdrop(view, gradientInResolve);
     if (multisampled) {
         bindTarget();
-        m_compositor.resolveWithDepth(
-            m_canvas.backdropColourTexture(), m_canvas.backdropDepthTexture(), m_canvas.samples(), m_canvas.size());
+        std::optional<FrameCompositor::Gradient> gradient;
+        if (gradientInResolve)
+            gradient = FrameCompositor::Gradient{ kBackgroundTop, kBackgroundBottom };
+        m_compositor.resolveWithDepth(m_canvas.backdropColourTexture(), m_canvas.backdropDepthTexture(),
+            m_canvas.samples(), m_canvas.size(), gradient);
     }
 }
 

@@ -1203,11 +1203,15 @@ PaintRun paintFrames(Viewport& viewport, const std::vector<FramePtr>& frames, in
     return run;
 }
 
-// A few paints with the passes timed (PassTimes), the mean of each; timing is off again after.
+// A few paints with the passes timed (PassTimes), the mean of each; timing is off again after
+// (unless WISP_PASS_TIMES asked for it from the start: then it was on before, and the untimed
+// reading below does not apply; it failed the rate tests when run with it set).
 // Untimed, every pass reads zero; timed, the hair (every strand, drawn in every paint) takes time.
 PassTimes timedPasses(Viewport& viewport, const std::vector<FramePtr>& frames)
 {
-    EXPECT_EQ(viewport.lastPassTimes().totalMs(), 0.0);
+    const bool timedFromTheStart = qEnvironmentVariableIsSet("WISP_PASS_TIMES");
+    if (!timedFromTheStart)
+        EXPECT_EQ(viewport.lastPassTimes().totalMs(), 0.0);
     viewport.setPassTiming(true);
     PassTimes sum;
     constexpr int kTimed = 3;
@@ -1223,7 +1227,7 @@ PassTimes timedPasses(Viewport& viewport, const std::vector<FramePtr>& frames)
         sum.hairMs += t.hairMs / kTimed;
         sum.presentMs += t.presentMs / kTimed;
     }
-    viewport.setPassTiming(false);
+    viewport.setPassTiming(timedFromTheStart);
     return sum;
 }
 
@@ -1440,6 +1444,23 @@ TEST_F(ViewportTest, OrbitingAPausedSceneReusesTheShadowsAndMovingHairRendersThe
     viewport->setFrame(scalpFrame(head, 600, 16, 2.0f));
     grab();
     EXPECT_EQ(viewport->shadowPassCount(), following + 1);
+}
+
+// While the hair moves (frames streaming in, not grabbed), the shadow maps are rendered every third
+// paint: the key light is fixed to the head, and each render costs a software rasteriser about a
+// fifth of a simulating paint. Every other paint rendered them before.
+TEST_F(ViewportTest, WhileTheHairMovesItsShadowsAreRenderedEveryThirdPaint)
+{
+    viewport->setFrame(scalpFrame(head, 600, 16, 0.0f));
+    grab();
+    const std::uint64_t passes = viewport->shadowPassCount();
+    const std::uint64_t paints = viewport->paintCount();
+    for (int k = 1; k <= 9; ++k) {
+        viewport->setFrame(scalpFrame(head, 600, 16, static_cast<float>(k)));
+        viewport->repaint();
+    }
+    ASSERT_EQ(viewport->paintCount(), paints + 9);
+    EXPECT_EQ(viewport->shadowPassCount(), passes + 3);
 }
 
 // --- The native window --------------------------------------------------------------------------------

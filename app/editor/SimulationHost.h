@@ -156,6 +156,9 @@ private:
     class Loop;
     friend class Loop;
 
+    // Thread: simulation. Runs the Loop (SimulationHostLoop.cpp) until the host stops.
+    void runLoop();
+
     struct Regions {
         std::vector<GrowthRegion> regions;
         std::uint32_t soloId = kNoSolo;

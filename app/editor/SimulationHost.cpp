@@ -230,6 +230,11 @@ std::uint64_t SimulationHost::publishedFrames() const
     return m_published.load();
 }
 
+std::uint64_t SimulationHost::loopWakeups() const
+{
+    return m_loopWakeups.load();
+}
+
 int SimulationHost::effectiveSubsteps() const
 {
     return m_effectiveSubsteps.load();

@@ -152,6 +152,7 @@ private:
         } else {
             m_host.m_wake.wait(lock, ready);
         }
+        m_host.m_loopWakeups.fetch_add(1, std::memory_order_relaxed);
         if (inbox.stopping)
             return false;
         taken.scene = std::exchange(inbox.scene, std::nullopt);

@@ -77,11 +77,18 @@ TEST_F(SimulationHostTest, PausedHostUsesNoProcessorTime)
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 10));
     host->pause();
-    QTest::qWait(50);
-    const double cpuBefore = processCpuSeconds();
+    // Taken with or after the pause: its rest frame (step 0; every frame played had a later step) is
+    // the last the simulation thread publishes before it goes back to sleep with nothing to do.
+    host->resetToRest();
+    ASSERT_TRUE(waitUntil([&] { return host->latestFrame()->step == 0; }, kSceneWaitMs));
+    const std::uint64_t wakeups = host->loopWakeups();
+    const std::uint64_t published = host->publishedFrames();
     QTest::qWait(500);
-    // Waiting on a condition variable, not spinning: a spinning thread would burn the whole 0.5 s.
-    EXPECT_LT(processCpuSeconds() - cpuBefore, 0.1);
+    // Waiting on a condition variable, counted: no wakeup at all while nothing is asked (a thread
+    // that spun or polled would wake hundreds of times in this half second), and no frame.
+    EXPECT_EQ(host->loopWakeups(), wakeups);
+    EXPECT_EQ(host->publishedFrames(), published);
+    EXPECT_GT(wakeups, 10u) << "the loop's wakeups are counted while it plays";
 }
 
 TEST_F(SimulationHostTest, ResetToRestReturnsToTheGroomsRestFrame)

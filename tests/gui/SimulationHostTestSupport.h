@@ -20,7 +20,6 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
-#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -145,11 +144,6 @@ struct ReleaseOnExit {
 
 // Generous bounds for waits that only catch a hang (the sanitizer build is ~10x slower).
 inline constexpr int kSceneWaitMs = 120000 * WISP_SLOW_BUILD_FACTOR;
-
-inline double processCpuSeconds()
-{
-    return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
-}
 
 class SimulationHostTest : public ::testing::Test {
 protected:

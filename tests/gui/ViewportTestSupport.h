@@ -360,5 +360,6 @@ inline void saveScreenshot(const QImage& image, const char* name)
     const QByteArray directory = qgetenv("WISP_SCREENSHOT_DIR");
     if (!directory.isEmpty())
         image.save(QString::fromLocal8Bit(directory) + QLatin1Char('/') + QLatin1String(name));
+}
 
 } // namespace wisp::test

@@ -99,13 +99,6 @@ constexpr float kStaticOverKineticFriction = 1.25f;
 // nose or an ear is not its tangent plane); one more look takes what is still stuck along the arc
 // toward its parent's normal, and pushes only what no turn gets out.
 constexpr int kHeadContactPasses = 3;
-// A lane that a turn left inside the offset by less than this share of it (still that close to
-// clear of the skin) is done. The turn's own rounding leaves about half the turned lanes a few
-// nanometres inside; turning those again cost a lookup and a resolve on nearly every contact (97 %
-// of them on groom-1m) and replaced their friction with the almost frictionless one of a
-// nanometre-deep contact.
-constexpr float kTurnToleranceShareOfOffset = 0.05f;
-constexpr float kTurnToleranceMetres = 1e-7f; // (for an offset of 0)
 // Steps of the bisection along the arc from a stuck particle toward its parent's outward normal
 // (the first clear point to within 1/64 of the arc).
 constexpr int kArcBisections = 6;

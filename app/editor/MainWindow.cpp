@@ -327,8 +327,7 @@ void MainWindow::createDocks()
     connect(m_brushPanel, &BrushPanel::showOverlayToggled, m_overlayAction, &QAction::setChecked);
     connect(m_overlayAction, &QAction::toggled, m_brushPanel->overlayBox(), &QCheckBox::setChecked);
 
-    QDockWidget* timeline
-        = addPanelDock(tr("Timeline"), QStringLiteral("timelineDock"), m_timeline, Qt::BottomDockWidgetArea);
+    addPanelDock(tr("Timeline"), QStringLiteral("timelineDock"), m_timeline, Qt::BottomDockWidgetArea);
     // File ▸ Export Bake, after Export Hair (which writes the one frame shown).
     QAction* exportBake = new QAction(tr("Export &Bake…"), this);
     exportBake->setToolTip(tr("Write the timeline's bake as .usda or a .hair sequence"));

@@ -117,6 +117,16 @@ TEST_F(HeadKeysTimelineTest, SetKeyKeysAtTheScrubbedFrameAndSelectingOrMovingAKe
     doc()->undoStack()->redo();
     EXPECT_EQ(keyTimes(), (std::vector<double>{ 0.0, 1.0, 47.0 / 24.0 }));
 
+    // A typed time lands on the nearest frame: the box shows milliseconds, so typing back the
+    // 0.458 it shows for frame 12 puts the key on frame 12 exactly (11/24 s), not 0.3 ms off it.
+    ASSERT_EQ(keys->currentRow(), 1);
+    time->setFocus();
+    QTest::keyClick(time, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(time, QStringLiteral("0.458"));
+    QTest::keyClick(time, Qt::Key_Return);
+    EXPECT_EQ(keyTimes(), (std::vector<double>{ 0.0, 11.0 / 24.0, 47.0 / 24.0 }));
+    EXPECT_EQ(dock()->currentFrame(), 12);
+
     // Esc goes back to live: Set Key keys at the live simulation's time again (on a frame).
     window->viewport()->setFocus();
     QTest::keyClick(window->viewport(), Qt::Key_Escape);

@@ -223,3 +223,29 @@ TEST(Cli, BenchGivesNoFloorToTheBrushAndCombWorkloads)
     EXPECT_EQ(r.output.find("\"name\": \"floor\""), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("\"ratio_to_floor\": 0.00"), std::string::npos) << r.output;
 }
+
+TEST(Cli, ACpuWithoutTheBuildsInstructionsIsToldSoInsteadOfCrashing)
+{
+    // The refusal, as on a CPU without SSE2 (every build needs it; the test hook pretends).
+    ::setenv("WISP_TEST_CPU_LACKS", "sse2", 1);
+    const CliRun r = cli("--help");
+    ::unsetenv("WISP_TEST_CPU_LACKS");
+    EXPECT_EQ(r.status, 3) << r.output;
+    EXPECT_NE(
+        r.output.find("this build was compiled for instructions this CPU does not have: sse2."), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("-DWISP_NATIVE=OFF"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("usage:"), std::string::npos) << "it ran on: " << r.output;
+    // The widest instruction set the build was compiled for, lacking alone, is named alone.
+    const std::string widest = std::string(wisp::compiledSimdTarget()) == "AVX-512" ? "avx512f"
+        : std::string(wisp::compiledSimdTarget()) == "AVX2"                         ? "avx2"
+                                                                                    : "sse2";
+    ::setenv("WISP_TEST_CPU_LACKS", widest.c_str(), 1);
+    const CliRun wide = cli("--help");
+    ::unsetenv("WISP_TEST_CPU_LACKS");
+    EXPECT_EQ(wide.status, 3) << wide.output;
+    EXPECT_NE(wide.output.find("does not have: " + widest + "."), std::string::npos) << wide.output;
+    // And nothing is refused on the machine that built it.
+    const CliRun here = cli("--help");
+    EXPECT_EQ(here.status, 0) << here.output;
+}

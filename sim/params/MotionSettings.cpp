@@ -11,14 +11,13 @@ namespace wisp {
 namespace {
 
 constexpr std::array<MotionSettingInfo, 5> kMotionSettings{ {
-    { MotionSetting::TurnAmplitude, "amplitude", "degrees", 0.0, 90.0,
+    { MotionSetting::TurnAmplitude, "degrees", 0.0, 90.0,
         "How far the head turns each way (turn, shake) or tilts (nod), degrees" },
-    { MotionSetting::WalkAmplitude, "amplitude", "m", 0.0, 0.2,
+    { MotionSetting::WalkAmplitude, "m", 0.0, 0.2,
         "How far the head bobs up when walking, metres (it sways half that)" },
-    { MotionSetting::Frequency, "frequency", "Hz", 0.01, 10.0, "Cycles per second (strides, for walk)" },
-    { MotionSetting::Time, "time", "s", -1.0e6, 1.0e6, "A key's time, or when a motion starts, seconds" },
-    { MotionSetting::Translation, "translation", "m", -100.0, 100.0,
-        "How far a key moves the head, each axis, metres" },
+    { MotionSetting::Frequency, "Hz", 0.01, 10.0, "Cycles per second (strides, for walk)" },
+    { MotionSetting::Time, "s", -1.0e6, 1.0e6, "A key's time, or when a motion starts, seconds" },
+    { MotionSetting::Translation, "m", -100.0, 100.0, "How far a key moves the head, each axis, metres" },
 } };
 
 constexpr bool motionSettingsAreInOrder()

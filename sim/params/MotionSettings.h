@@ -15,7 +15,6 @@ namespace wisp {
 enum class MotionSetting { TurnAmplitude, WalkAmplitude, Frequency, Time, Translation };
 struct MotionSettingInfo {
     MotionSetting id;
-    std::string_view key; // the field in project and preset files ("amplitude")
     std::string_view unit; // "degrees", "m", "Hz", "s"
     double minimum;
     double maximum;

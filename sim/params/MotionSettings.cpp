@@ -1,5 +1,6 @@
 #include "sim/params/MotionSettings.h"
 
+#include "sim/params/TableOrder.h"
 #include "sim/util/NumberText.h"
 
 #include <array>
@@ -20,14 +21,8 @@ constexpr std::array<MotionSettingInfo, 5> kMotionSettings{ {
     { MotionSetting::Translation, "m", -100.0, 100.0, "How far a key moves the head, each axis, metres" },
 } };
 
-constexpr bool motionSettingsAreInOrder()
-{
-    for (std::size_t i = 0; i < kMotionSettings.size(); ++i)
-        if (static_cast<std::size_t>(kMotionSettings[i].id) != i)
-            return false;
-    return true;
-}
-static_assert(motionSettingsAreInOrder(), "kMotionSettings must list the settings in the order of MotionSetting");
+static_assert(
+    rowsAreInEnumOrder(kMotionSettings), "kMotionSettings must list the settings in the order of MotionSetting");
 
 } // namespace
 

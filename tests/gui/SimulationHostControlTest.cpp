@@ -178,10 +178,7 @@ TEST_F(SimulationHostTest, DestroyingWhilePlayingJoinsTheThread)
 {
     host.reset();
     const long before = threadCount();
-    host = std::make_unique<SimulationHost>();
-    ASSERT_TRUE(startScene(lightValues()));
-    host->play();
-    ASSERT_TRUE(waitForFrames(*host, 10));
+    ASSERT_TRUE(playNewHost(10));
     EXPECT_GT(threadCount(), before);
     // Destruction does not wait for work in flight: it returns (guarded) and the thread is gone.
     runWithHangGuard("destroying a playing SimulationHost", [&] { host.reset(); });
@@ -192,10 +189,7 @@ TEST_F(SimulationHostTest, DestroyingMidRegroomDropsQueuedWorkAndJoins)
 {
     host.reset();
     const long before = threadCount();
-    host = std::make_unique<SimulationHost>();
-    ASSERT_TRUE(startScene(lightValues()));
-    host->play();
-    ASSERT_TRUE(waitForFrames(*host, 5));
+    ASSERT_TRUE(playNewHost(5));
     QSignalSpy ready(host.get(), &SimulationHost::sceneReady);
     host->setScene(defaultHead().mesh, defaultHead().growthWeights, ParameterValues{}); // the default groom
     QTest::qWait(20); // let the simulation thread start grooming

@@ -170,6 +170,20 @@ protected:
         return ::testing::AssertionSuccess();
     }
 
+    // A new host (the fixture's own let go first) playing the light scene, `frames` frames in: what
+    // the destroy tests take apart. Its own thread is running by then.
+    ::testing::AssertionResult playNewHost(std::uint64_t frames)
+    {
+        host.reset();
+        host = std::make_unique<SimulationHost>();
+        if (::testing::AssertionResult started = startScene(lightValues()); !started)
+            return started;
+        host->play();
+        if (!waitForFrames(*host, frames))
+            return ::testing::AssertionFailure() << "fewer than " << frames << " frames while playing";
+        return ::testing::AssertionSuccess();
+    }
+
     // Lets the hair move for `frames` published frames, then averages the ends over a few more
     // (turbulence is off, but a settling strand still sways a little).
     Ends settledEnds(int frames = 90)

@@ -116,6 +116,9 @@ public:
     std::size_t strandCount() const { return m_strandCount; }
     std::size_t particleCount() const { return m_particleCount; }
     int threadCount() const;
+    // The pool the steps run on, for other work between steps on the thread that steps (the head's
+    // SDF bake, HairSimulation::prepareHead): one pool for the whole simulation.
+    ThreadPool& threadPool() { return *m_pool; }
     double simulatedSeconds() const { return m_time; }
     // Strands that went non-finite or stretched past any plausible length and were put back at rest.
     std::uint64_t strandsReset() const { return m_strandsReset; }

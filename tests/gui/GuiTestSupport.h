@@ -24,6 +24,10 @@ namespace wisp::test {
 // Default waits: generous for a Release build on a busy two-core machine, and longer still in the
 // sanitizer build, which runs several times slower (WISP_SLOW_BUILD_FACTOR, tests/CMakeLists.txt).
 constexpr int kWaitMs = 10000 * WISP_SLOW_BUILD_FACTOR;
+// Generous bounds for waits that only catch a hang, such as a whole groom and drape (the sanitizer
+// build is ~10x slower, and on a loaded two-core machine the editor's first groom and drape there
+// took over kWaitMs).
+inline constexpr int kSceneWaitMs = 120000 * WISP_SLOW_BUILD_FACTOR;
 
 // Polls `done` while the event loop runs, up to timeoutMs; its last answer.
 inline bool waitUntil(const std::function<bool()>& done, int timeoutMs = kWaitMs)
@@ -41,6 +45,12 @@ inline bool waitForFramesSince(
     const SimulationHost& host, std::uint64_t since, std::uint64_t count, int timeoutMs = kWaitMs)
 {
     return waitUntil([&] { return host.publishedFrames() >= since + count; }, timeoutMs);
+}
+
+// Waits for a new window's host to publish its first frame: the first groom and drape have run.
+inline bool waitForFirstFrame(const SimulationHost& host)
+{
+    return waitUntil([&] { return host.latestFrame() != nullptr; }, kSceneWaitMs);
 }
 
 // Waits for `count` more frames of a playing host.

@@ -62,7 +62,7 @@ protected:
         doc->undoStack()->clear();
         // Paused: strands that are carried over keep exactly their state, so frames compare exactly.
         window->simulation()->pause();
-        ASSERT_TRUE(wisp::test::waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
+        ASSERT_TRUE(wisp::test::waitForFirstFrame(*window->simulation()));
         settle();
         bvh = std::make_unique<MeshBvh>(doc->head());
     }

@@ -97,7 +97,7 @@ protected:
         doc->editParameter(Param::Turbulence, 0.0, false);
         doc->undoStack()->clear();
         window->simulation()->pause();
-        ASSERT_TRUE(wisp::test::waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
+        ASSERT_TRUE(wisp::test::waitForFirstFrame(*window->simulation()));
         settle();
         runSteps(240); // hanging, at rest
         box = boundsOf(doc->head());

@@ -33,6 +33,10 @@ namespace wisp::test {
 // Default waits: generous for a Release build on a busy two-core machine, and longer still in the
 // sanitizer build, which runs several times slower (WISP_SLOW_BUILD_FACTOR, tests/CMakeLists.txt).
 constexpr int kWaitMs = 10000 * WISP_SLOW_BUILD_FACTOR;
+// Generous bounds for waits that only catch a hang, such as a whole groom and drape (the sanitizer
+// build is ~10x slower, and on a loaded two-core machine the editor's first groom and drape there
+// took over kWaitMs).
+inline constexpr int kSceneWaitMs = 120000 * WISP_SLOW_BUILD_FACTOR;
 
 // How long a call that must return (closing the editor, destroying the simulation host) may block
 // before it counts as hung: far above anything a healthy one takes however loaded the machine.
@@ -81,6 +85,12 @@ inline bool waitForFramesSince(
     const SimulationHost& host, std::uint64_t since, std::uint64_t count, int timeoutMs = kWaitMs)
 {
     return waitUntil([&] { return host.publishedFrames() >= since + count; }, timeoutMs);
+}
+
+// Waits for a new window's host to publish its first frame: the first groom and drape have run.
+inline bool waitForFirstFrame(const SimulationHost& host)
+{
+    return waitUntil([&] { return host.latestFrame() != nullptr; }, kSceneWaitMs);
 }
 
 // Waits for `count` more frames of a playing host.
@@ -135,7 +145,7 @@ inline std::unique_ptr<MainWindow> openLightPausedEditor(
     doc->undoStack()->clear();
     // Paused: strands that are carried over keep exactly their state, so frames compare exactly.
     window->simulation()->pause();
-    EXPECT_TRUE(waitUntil([&] { return window->simulation()->latestFrame() != nullptr; })) << "no first frame";
+    EXPECT_TRUE(waitForFirstFrame(*window->simulation())) << "no first frame within " << kSceneWaitMs << " ms";
     waitUntilRegroomsStop(*window->simulation(), quietMs);
     return window;
 }

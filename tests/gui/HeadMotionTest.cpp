@@ -86,7 +86,7 @@ protected:
         QDir(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation)).removeRecursively();
         window = openEditor();
         window->fileMenu()->setInteractive(false);
-        ASSERT_TRUE(waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
+        ASSERT_TRUE(waitForFirstFrame(*window->simulation()));
         pause();
         native = nativeWindowOf(*window->viewport());
         ASSERT_NE(native, nullptr);

@@ -142,9 +142,6 @@ struct ReleaseOnExit {
     ~ReleaseOnExit() { clock.release(); }
 };
 
-// Generous bounds for waits that only catch a hang (the sanitizer build is ~10x slower).
-inline constexpr int kSceneWaitMs = 120000 * WISP_SLOW_BUILD_FACTOR;
-
 class SimulationHostTest : public ::testing::Test {
 protected:
     void SetUp() override { host = std::make_unique<SimulationHost>(); }

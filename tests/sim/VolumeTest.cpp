@@ -30,13 +30,13 @@ TEST(HairVolumeGrid, SplatConservesWeightAndSamplesWhatWasSplatted)
     HairVolumeGrid grid;
     ASSERT_TRUE(grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f)));
     EXPECT_FLOAT_EQ(grid.cellMetres(), HairVolumeGrid::kFinestCellMetres); // a small box gets the finest cells
-    grid.clear(&pool);
+    grid.setWeightBound(0.5 * 51 * 51 * 51);
     // A uniform block of hair moving at (1, 2, 3) mm per substep, one particle per 2 mm.
     int count = 0;
     for (float x = -0.05f; x < 0.05f; x += 0.002f)
         for (float y = -0.05f; y < 0.05f; y += 0.002f)
             for (float z = -0.05f; z < 0.05f; z += 0.002f) {
-                grid.splat(count % HairVolumeGrid::kSplatChunks, { x, y, z }, 0.5f, { 0.001f, 0.002f, 0.003f });
+                grid.splat(0, { x, y, z }, 0.5f, { 0.001f, 0.002f, 0.003f });
                 ++count;
             }
     grid.finish(&pool);
@@ -69,21 +69,25 @@ TEST(HairVolumeGrid, StaysWithinItsMemoryBoundForAHugeBox)
     EXPECT_TRUE(grid.empty());
 }
 
-TEST(HairVolumeGrid, SameBitsWhicheverThreadsRunTheChunks)
+// Each thread splats into a slot of its own in fixed point: the same bits whichever thread splats
+// which particle, in whatever order (the pool hands out ranges as threads come free).
+TEST(HairVolumeGrid, SameBitsWhicheverThreadsSplatWhichParticles)
 {
     auto run = [](int threads) {
         ThreadPool pool(threads);
         HairVolumeGrid grid;
-        grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f));
-        grid.clear(&pool);
-        pool.parallelFor(HairVolumeGrid::kSplatChunks, 1, [&](std::size_t begin, std::size_t end) {
-            for (std::size_t chunk = begin; chunk < end; ++chunk)
-                for (int i = 0; i < 5000; ++i) {
-                    const float t = static_cast<float>(i * HairVolumeGrid::kSplatChunks + chunk);
-                    grid.splat(static_cast<int>(chunk),
-                        { 0.07f * std::sin(t * 0.37f), 0.07f * std::sin(t * 0.11f), 0.07f * std::cos(t * 0.23f) },
-                        0.1f + 0.01f * static_cast<float>(i % 7), { std::sin(t), std::cos(t), 0.5f });
-                }
+        grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f), threads);
+        EXPECT_EQ(grid.slots(), threads);
+        grid.setWeightBound(0.2 * 40'000);
+        pool.parallelFor(40'000, 7, [&](std::size_t begin, std::size_t end) {
+            const int slot = grid.claimSlot();
+            for (std::size_t i = begin; i < end; ++i) {
+                const float t = static_cast<float>(i);
+                grid.splat(slot,
+                    { 0.07f * std::sin(t * 0.37f), 0.07f * std::sin(t * 0.11f), 0.07f * std::cos(t * 0.23f) },
+                    0.1f + 0.01f * static_cast<float>(i % 7), { 0.01f * std::sin(t), 0.01f * std::cos(t), 0.005f });
+            }
+            grid.releaseSlot(slot);
         });
         grid.finish(&pool);
         std::vector<float> out;
@@ -97,6 +101,40 @@ TEST(HairVolumeGrid, SameBitsWhicheverThreadsRunTheChunks)
     const std::vector<float> one = run(1), three = run(3);
     ASSERT_EQ(one.size(), three.size());
     EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(float)), 0);
+    EXPECT_GT(*std::max_element(one.begin(), one.end()), 1000.0f); // it read real hair
+}
+
+// A row sampled every fourth lane (the level of detail of a dense groom): lanes 0, 4, 8, 12 and 15
+// read what sample() reads there, the lanes between the linear blend of the two around them.
+TEST(HairVolumeGrid, AStridedRowBlendsTheSamplesAroundEachLane)
+{
+    HairVolumeGrid grid;
+    ASSERT_TRUE(grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f)));
+    grid.setWeightBound(2000.0);
+    for (int i = 0; i < 2000; ++i) {
+        const float t = static_cast<float>(i);
+        grid.splat(0, { 0.03f * std::sin(t * 0.37f), 0.03f * std::sin(t * 0.11f), 0.03f * std::cos(t * 0.23f) }, 1.0f,
+            { 0.001f, 0.0f, 0.0f });
+    }
+    grid.finish(nullptr);
+    alignas(64) float x[16], y[16], z[16];
+    for (int l = 0; l < 16; ++l) {
+        x[l] = -0.03f + 0.004f * static_cast<float>(l);
+        y[l] = 0.002f * static_cast<float>(l % 5);
+        z[l] = 0.01f;
+    }
+    HairVolumeGrid::SampleRow row;
+    grid.sampleRow(x, y, z, row, 16, 4);
+    auto at = [&](int l) { return grid.sample({ x[l], y[l], z[l] }); };
+    for (int l : { 0, 4, 8, 12, 15 }) {
+        EXPECT_FLOAT_EQ(row.density[l], at(l).density) << "lane " << l;
+        EXPECT_FLOAT_EQ(row.gradX[l], at(l).gradient.x) << "lane " << l;
+    }
+    EXPECT_GT(row.density[8], 1e5f); // inside the hair
+    EXPECT_FLOAT_EQ(row.density[5], 0.75f * at(4).density + 0.25f * at(8).density);
+    EXPECT_FLOAT_EQ(row.gradY[10], 0.5f * at(8).gradient.y + 0.5f * at(12).gradient.y);
+    EXPECT_FLOAT_EQ(row.density[13], (2.0f * at(12).density + at(15).density) / 3.0f);
+    EXPECT_NE(row.density[5], at(5).density); // not sampled there
 }
 
 // --- Volume on the head --------------------------------------------------------------------------
@@ -405,6 +443,69 @@ TEST(Volume, ALockLaidAcrossAnotherRestsOnIt)
     ASSERT_GE(with.over, 16u);
     EXPECT_GE(with.shareApart, 0.95);
     EXPECT_LT(without.shareApart, 0.5);
+}
+
+} // namespace
+
+namespace {
+
+// A dense patch (strands 0.5 mm apart, rows of 16 side by side): the grid splats and samples every
+// few strands (Solver::volumeSplat's level of detail), keeps the same bits on any thread count with
+// the splat done at the end of each block's substeps, and spreads the hair as much as without the
+// level of detail.
+HairCurves densePatch()
+{
+    HairCurves rest;
+    for (int row = 0; row < 16; ++row)
+        for (int lane = 0; lane < 16; ++lane) {
+            auto p = rest.strandForWrite(rest.addStrand(10));
+            for (int j = 0; j < 10; ++j)
+                p[static_cast<std::size_t>(j)] = glm::vec3(0.0005f * static_cast<float>(lane),
+                    -0.012f * static_cast<float>(j), 0.0005f * static_cast<float>(row));
+        }
+    return rest;
+}
+
+std::vector<glm::vec3> settledPatch(float volume, int threads, int* stride = nullptr)
+{
+    Solver solver(threads);
+    EXPECT_EQ(solver.setStrands(densePatch()), "");
+    SolverSettings s;
+    s.substeps = 2;
+    s.dampingPerSecond = 2.0f;
+    s.volume = volume;
+    s.hairFriction = 0.3f;
+    EXPECT_EQ(solver.setSettings(s), "");
+    for (int i = 0; i < 60; ++i)
+        solver.step();
+    if (stride)
+        *stride = solver.volumeStrideOfStrand(0);
+    std::vector<glm::vec3> p;
+    solver.copyPositions(p);
+    return p;
+}
+
+TEST(Volume, ADensePatchSplatsEveryFewStrandsWithTheSameBitsOnAnyThreads)
+{
+    int stride = 0;
+    const std::vector<glm::vec3> one = settledPatch(1.0f, 1, &stride), three = settledPatch(1.0f, 3);
+    EXPECT_GE(stride, 4); // 0.5 mm apart in 8 mm cells
+    ASSERT_EQ(one.size(), three.size());
+    EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(glm::vec3)), 0);
+    // The tips spread apart where at volume 0 they hang in a 7.5 mm square.
+    auto tipSpread = [](const std::vector<glm::vec3>& p) {
+        float lo = INFINITY, hi = -INFINITY;
+        for (std::size_t i = 9; i < p.size(); i += 10) {
+            EXPECT_TRUE(std::isfinite(p[i].x));
+            lo = std::min(lo, p[i].x);
+            hi = std::max(hi, p[i].x);
+        }
+        return hi - lo;
+    };
+    // Measured: 8.9 mm (8.8 mm with every strand splatting and sampled, stride 1).
+    const float still = tipSpread(settledPatch(0.0f, 1)), spread = tipSpread(one);
+    EXPECT_NEAR(still, 0.0075f, 0.0005f);
+    EXPECT_GT(spread, 1.1f * still);
 }
 
 } // namespace

@@ -1,5 +1,5 @@
 #pragma once
-// The solver's bending as numbers: one definition that the solver (Solver.cpp) and the inverse
+// The solver's bending as numbers: one definition that the solver (SolverBlockKernel.cpp) and the inverse
 // statics of combed hair (RestShapeSolve.cpp) both read.
 //
 // Model. Each segment j (particles j-1 and j) has a bending target in its parent segment's frame,

@@ -104,7 +104,7 @@ public:
     };
     //
     // `stride` (a power of two, full rows only) is the level of detail of a dense groom, where a row's
-    // sixteen strands lie side by side much closer than a cell (Solver::updateVolumeStrides): the
+    // sixteen strands lie side by side much closer than a cell (Solver::volumeSplat): the
     // grid is sampled at lanes 0, stride, 2 stride, ... and 15, and the lanes between take the linear
     // blend of the two samples around them, as member hairs follow their keys. The blend is fixed
     // per lane, not chosen by position, so it is as continuous in time as the samples.

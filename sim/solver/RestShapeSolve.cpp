@@ -49,7 +49,7 @@ void fixedPointRest(const HairCurves& targets, std::span<const float> stiffnessS
 {
     const std::size_t count = targets.strandCount();
     SolverSettings one = settings;
-    one.timeStepSeconds = settings.timeStepSeconds / static_cast<float>(std::max(settings.substeps, 1));
+    one.timeStepSeconds = substepSeconds(settings); // one substep of the live solver per step
     one.substeps = 1;
     one.wind = glm::vec3(0.0f);
     one.turbulence = 0.0f;

@@ -33,7 +33,7 @@ namespace wisp {
 class HairVolumeGrid;
 class SignedDistanceField;
 class ThreadPool;
-struct StepConstants; // one step's settings as the kernels read them (Solver.cpp)
+struct StepConstants; // one step's settings as the kernels read them (SolverRows.h)
 
 // A collider for neck and shoulders, head space; a sphere when a == b.
 struct Capsule {
@@ -125,12 +125,12 @@ public:
     // Bytes the solver holds for its particles (state, rest shape, lanes), for the memory budget.
     std::size_t memoryBytes() const;
 
-    struct CollisionField; // the head's distances and normals, laid out for lookups (Solver.cpp)
+    struct CollisionField; // the head's distances and normals, laid out for lookups (SolverRows.h)
     struct ParticleRow;
     struct RestRow;
     struct ShapeRow;
-    struct Block; // 16 strands of equal particle count, interleaved (defined in Solver.cpp)
-    struct GlobalShapeRow; // a particle's rest position and its global shape share (Solver.cpp)
+    struct Block; // 16 strands of equal particle count, interleaved (defined in SolverRows.h)
+    struct GlobalShapeRow; // a particle's rest position and its global shape share (SolverRows.h)
 
     // The target density (the density hair keeps, metres of hair per m³) is hairPerScalpArea /
     // (volume x this). Not a layer one could measure on the head: hair hangs over far more than

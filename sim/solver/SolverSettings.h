@@ -19,7 +19,7 @@ struct SolverSettings {
     float dampingPerSecond = 0.0f; // v *= exp(-damping dt)
     float stiffness = 0.0f; // 0..1: bending rigidity, see bending::rigidity (BendingModel.h)
     // 0..1: share of the way to the rest pose per 1/60 s at the root, fading along the strand (see
-    // Solver.cpp, pullTowardGlobalShape); 0 is off and costs nothing.
+    // SolverBlockKernel.cpp, pullTowardGlobalShape); 0 is off and costs nothing.
     float globalShape = 0.0f;
     float friction = 0.0f; // Coulomb coefficient μ (kinetic; static 1.25 μ)
     float hairOffsetMetres = 0.0f; // kept between hair and skin
@@ -31,6 +31,13 @@ struct SolverSettings {
     // tests (tests/sim/SettlingTest.cpp): 0.95 settles every case, 0.9 and 1 leave some moving.
     float velocityCorrection = 0.95f;
 };
+
+// The solver's substep, seconds: a step runs `substeps` of them (Solver::step). The rest-shape
+// solve runs them one at a time (RestShapeSolve.cpp), so both take it from here.
+inline float substepSeconds(const SolverSettings& settings)
+{
+    return settings.timeStepSeconds / static_cast<float>(settings.substeps > 1 ? settings.substeps : 1);
+}
 
 // Wind velocity from speed and angles (see the wind_azimuth and wind_elevation help texts).
 glm::vec3 windVelocity(float speed, float azimuthDegrees, float elevationDegrees);

@@ -1,0 +1,438 @@
+#include "sim/solver/SolverBlockKernel.h"
+
+#include "sim/geometry/ShortestArc.h"
+#include "sim/solver/SolverConstraints.h"
+#include "sim/solver/SolverContact.h"
+#include "sim/solver/SolverLanes.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace wisp {
+
+using namespace lanes;
+
+namespace {
+
+// Gusts: a few travelling sine waves in space and time per axis, evaluated at the strand's root;
+// smooth, cheap, deterministic, and different across the head. Amplitude about 1.
+// t: the time in seconds modulo 1000 (gustTime).
+V3 gust(const V3& p, float t)
+{
+    return { 0.6f * lsin(13.0f * p.x + 7.0f * p.z + 2.3f * t)
+            + 0.4f * lsin(-9.0f * p.y + 11.0f * p.z + 3.7f * t + 1.0f),
+        0.6f * lsin(11.0f * p.y - 8.0f * p.x + 1.9f * t + 2.0f) + 0.4f * lsin(14.0f * p.z + 5.3f * t + 4.0f),
+        0.6f * lsin(12.0f * p.z + 6.0f * p.y + 2.9f * t + 3.0f) + 0.4f * lsin(-10.0f * p.x + 4.1f * t + 5.0f) };
+}
+
+// Gusts are sampled at every this many particles along a strand and interpolated between (their
+// shortest wavelength is 2π / 14 ≈ 0.45 m; a 28 cm strand of 15 segments samples every 7.5 cm).
+constexpr std::uint32_t kGustStride = 4;
+// The largest factor by which a bend reaction is raised to make up for the damping and drag of
+// the velocity that carries it (advanceBlock): defaults at one substep need 1.03.
+constexpr float kMaxKickGain = 1.1f;
+
+} // namespace
+
+void storeRestFrames(Solver::Block& block, int lane)
+{
+    RestRow* rest = block.rest.data();
+    const ShapeRow* shape = block.shape.data();
+    auto dir = [&](std::uint32_t j) { return glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]); };
+    glm::vec3 d = dir(1);
+    glm::vec3 e = anyPerpendicular(d);
+    rest[0].lx[lane] = e.x;
+    rest[0].ly[lane] = e.y;
+    rest[0].lz[lane] = e.z;
+    for (std::uint32_t j = 1; j < block.points; ++j) {
+        const glm::vec3 r = dir(j);
+        const glm::vec3 b = glm::cross(d, e);
+        rest[j].lx[lane] = glm::dot(r, d);
+        rest[j].ly[lane] = glm::dot(r, e);
+        rest[j].lz[lane] = glm::dot(r, b);
+        // Transport (d, e) onto r: the shortest rotation taking d to r.
+        e = rotateShortestArc(d, r, e);
+        e = glm::normalize(e - r * glm::dot(e, r));
+        d = r;
+    }
+}
+
+void placeLaneAtRest(Solver::Block& block, int lane, const glm::mat3& rotation, const glm::vec3& translation)
+{
+    const RestRow* rest = block.rest.data();
+    const ShapeRow* shape = block.shape.data();
+    ParticleRow* row = block.state.data();
+    glm::vec3 p = rotation * glm::vec3(shape[0].x[lane], shape[0].y[lane], shape[0].z[lane]) + translation;
+    for (std::uint32_t j = 0; j < block.points; ++j) {
+        if (j > 0)
+            p += rotation * glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]) * rest[j].length[lane];
+        row[j].x[lane] = row[j].px[lane] = p.x;
+        row[j].y[lane] = row[j].py[lane] = p.y;
+        row[j].z[lane] = row[j].pz[lane] = p.z;
+        row[j].clearance[lane] = -1.0f;
+    }
+}
+
+namespace {
+
+// Asks for row j of the block that follows this one in memory (blocks are laid out one after
+// another and a thread runs a contiguous range of them): its first touches would otherwise stall
+// the next block's serial chain on memory. A prefetch past the arrays' end is harmless.
+inline void prefetchRows(const Solver::Block& block, std::uint32_t j)
+{
+    const auto ahead = [&](const auto* rows) {
+        const char* at = reinterpret_cast<const char*>(rows) + (block.points + j) * sizeof(*rows);
+        for (std::size_t byte = 0; byte < sizeof(*rows); byte += 64)
+            __builtin_prefetch(at + byte);
+    };
+    ahead(block.state.data());
+    ahead(block.rest.data());
+}
+
+// Substeps [firstSubstep, endSubstep) of the step; the last call of a step (endSubstep ==
+// c.substeps) also puts back strands that went non-finite or flew away.
+template <bool Transformed, bool GlobalShape>
+void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep)
+{
+    const std::uint32_t n = block.points;
+    ParticleRow* row = block.state.data();
+    const RestRow* rest = block.rest.data();
+    const GlobalShapeRow* globalShape = block.globalShape.data(); // null while it is off
+
+    // Roots in world space at the start and the end of this step; substeps interpolate between them.
+    const V3 rootHead{ block.shape[0].x, block.shape[0].y, block.shape[0].z };
+    const V3 rootEnd = Transformed ? transform(c.rotation, rootHead) + splat(c.translation) : rootHead;
+    const V3 rootStart
+        = Transformed ? transform(c.previousRotation, rootHead) + splat(c.previousTranslation) : rootHead;
+
+    // Wind (eq. 1 and 2 of the force-driven hair paper) with gusts sampled at each particle, so
+    // they vary along a strand (turbulence is ours).
+    const V3 baseWind = splat(c.wind) + V3{ block.windX, block.windY, block.windZ };
+    const float windSpeed = glm::length(c.wind);
+    const bool gusty = c.turbulence > 0.0f && windSpeed > 0.0f;
+    const Lane gustAmplitude = splat(c.turbulence * windSpeed);
+    const float gustTime = static_cast<float>(std::fmod(c.time, 1000.0));
+
+    const V3 gravityStep = splat(c.gravity * (c.dt * c.dt));
+    const Lane dt = splat(c.dt), keep = splat(c.keep);
+    const Lane drag = splat(c.drag) * block.dragScale;
+    const Lane velocityCorrection = splat(c.velocityCorrection);
+    // The bend's reaction on the parent (below) carries force up the strand through the parent's
+    // Verlet velocity, which the next substep's predict damps (keep) and drags (1 / (1 + k dt)) as
+    // if it were motion. Of the force that holds a resting lock up that takes a share which grows
+    // with the substep, so a combed lock rested lower at fewer substeps than at more (issue 11: its
+    // rest shape is solved at one substep count and the editor's pacer may run another). The
+    // reaction is divided by that share here; capped, so strong drag or damping at a long substep
+    // (where the share is no small correction) never amplifies it much.
+    const Lane kickGain = lmin((splat(1.0f) + drag * dt) * splat(1.0f / c.keep), splat(kMaxKickGain));
+    const ContactFriction mu{ splat(c.friction), splat(c.friction * kStaticOverKineticFriction) };
+
+    // The capsules any particle of this block can reach this step: none farther from its root than
+    // its strand is long (with a margin for what contact may have stretched), so a capsule beyond
+    // that from every root is left out for the whole step, as the head is by its clearance bound.
+    std::array<const Capsule*, 16> capsules{};
+    std::size_t capsuleCount = 0;
+    const bool filterCapsules = c.capsulesWorld.size() <= capsules.size();
+    for (const Capsule& capsule : c.capsulesWorld) {
+        if (!filterCapsules)
+            break;
+        const V3 a = splat(capsule.a);
+        const glm::vec3 abv = capsule.b - capsule.a;
+        const float ab2 = glm::dot(abv, abv);
+        const V3 ab = splat(abv);
+        const Lane u
+            = ab2 > 0.0f ? lmin(lmax(dot(rootEnd - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f)) : splat(0.0f);
+        const V3 away = rootEnd - (a + ab * u);
+        const Lane reach = block.strandLength * 1.25f + (capsule.radiusMetres + c.offset + 0.02f);
+        if (anyOf(dot(away, away) < reach * reach))
+            capsules[capsuleCount++] = &capsule;
+    }
+    auto capsuleAt
+        = [&](std::size_t k) -> const Capsule& { return filterCapsules ? *capsules[k] : c.capsulesWorld[k]; };
+    const std::size_t capsulesToCheck = filterCapsules ? capsuleCount : c.capsulesWorld.size();
+
+    // Verlet (eq. 3) with drag toward the wind taken implicitly: v' = (keep v + k dt w) / (1 + k dt)
+    // + g dt, which only ever moves v toward w, so any drag at any step is stable, and leaves
+    // gravity whole (hair at rest feels all its weight, whatever the drag and the step). k is the
+    // drag scaled by eq. 1's s = |w x t| / (|w||t|): wind across the strand pushes, along it not.
+    auto predict = [&](const V3& x, const V3& previous, const V3& parentBefore, const V3& gustHere) {
+        V3 wind = baseWind;
+        if (gusty)
+            wind = wind + gustHere * gustAmplitude;
+        const Lane windSpeed2 = dot(wind, wind);
+        const Mask calm = windSpeed2 < splat(1e-12f);
+        const V3 tangent = x - parentBefore;
+        const Lane wt = dot(wind, tangent);
+        const Lane invTangent = lrsqrt(lmax(dot(tangent, tangent), splat(1e-20f)));
+        const Lane across2
+            = splat(1.0f) - (wt * wt) * (invTangent * invTangent) * lrcp(select(calm, splat(1.0f), windSpeed2));
+        const Lane across2Safe = lmax(across2, splat(1e-20f));
+        const Lane across = select(calm, splat(1.0f), across2Safe * lrsqrt(across2Safe));
+        const Lane kdt = drag * across * dt;
+        const V3 move = (x - previous) * keep + wind * (kdt * dt);
+        return x + move * lrcp(splat(1.0f) + kdt) + gravityStep;
+    };
+
+    // Length, then contact, for particle i whose bent position is `bent` and whose parent is final
+    // at `parent`: follow the leader (Müller et al. 2012) puts it at rest length from its parent,
+    // then the head field and the capsules push it out (keeping that length where they can), and
+    // the DFTL velocity correction (eq. 9: v_{i-1} -= s d_i / dt, in Verlet form the parent's
+    // previous position moves by s d_i) damps what the length projection added. `reach` is the
+    // bent position less the parent's, `before` the particle's position at the start of the
+    // substep, `kick` the bend's reaction on the parent (added to its previous position with the
+    // DFTL correction, one write). Returns its final position.
+    auto finish = [&](std::uint32_t i, const V3& before, const V3& reach, const V3& parent, const V3& kick,
+                      Lane inverseLength) {
+        ParticleRow& p = row[i];
+        V3 previous = before;
+        const Lane length = rest[i].length;
+        const LengthCorrection ftl = followTheLeader(parent, reach, length);
+        V3 position = ftl.position;
+        const V3 correction = ftl.correction;
+        bool looked = false; // whether contact may have moved it (else `checked` is final)
+
+        // The field lookup is most of a step's cost (memory latency), so it is skipped while the
+        // clearance bound says no lane can touch: the bound shrinks by each move's L1 length,
+        // which is never less than its true length.
+        const V3 checked = position;
+        Lane clearance = p.clearance - l1Length(position - before);
+        if (c.field && (Transformed || anyOf(clearance < splat(0.0f)))) {
+            // The head's distance and normal at a world-space position.
+            auto sampleHead = [&](const V3& at) {
+                SdfSample sample = sampleField(
+                    *c.field, Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at);
+                if (Transformed)
+                    sample.normal = transform(c.rotation, sample.normal);
+                return sample;
+            };
+            const SdfSample sample = sampleHead(position);
+            const Lane depth = splat(c.offset) - sample.distance;
+            const Mask inside = depth > splat(0.0f);
+            if (anyOf(inside)) {
+                // A curved surface is not its tangent plane: turn onto the plane, look again from
+                // there, and only then push what the segment cannot reach.
+                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position,
+                    previous, false, splat(c.offset));
+                // What is left within half the offset (still clear of the skin) stays: turning it
+                // far along the arc below for that little would shake stiff hair lying on the head.
+                const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
+                for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
+                    const SdfSample next = sampleHead(position);
+                    const Lane nextDepth = splat(c.offset) - next.distance;
+                    const Mask stillInside = nextDepth > splat(0.0f);
+                    const Mask stuck = stillInside & (nextDepth > slack);
+                    if (!anyOf(pass < kHeadContactPasses ? stillInside : stuck))
+                        break;
+                    if (pass < kHeadContactPasses) {
+                        resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before,
+                            position, previous, false, splat(c.offset));
+                        // Turning converges fast on a smooth surface: look once more only where a
+                        // lane was still a quarter of the offset deep before this last turn (in a
+                        // crevice the last turn may put it deeper on the other wall).
+                        if (pass + 1 == kHeadContactPasses && !anyOf(stillInside & (nextDepth > slack * 0.5f)))
+                            break;
+                        continue;
+                    }
+                    // Turning did not converge (a crevice by an ear, where the normal flips from
+                    // wall to wall): turn along the arc toward the parent's outward normal and take
+                    // its first clear point, keeping the length. Only lanes that no turn gets out
+                    // (the parent itself too deep) are pushed, and their length gives way.
+                    const V3 from = (position - parent) * inverseLength;
+                    const V3 to = sampleHead(parent).normal;
+                    auto onArc = [&](Lane t) {
+                        const V3 v = from + (to - from) * t;
+                        return parent + v * (length * lrsqrt(lmax(dot(v, v), splat(1e-12f))));
+                    };
+                    const Mask arcClears = stuck & (splat(c.offset) - sampleHead(onArc(splat(1.0f))).distance <= slack);
+                    if (anyOf(arcClears)) {
+                        Lane lo = splat(0.0f), hi = splat(1.0f);
+                        for (int b = 0; b < kArcBisections; ++b) {
+                            const Lane mid = (lo + hi) * 0.5f;
+                            const Mask clear = splat(c.offset) - sampleHead(onArc(mid)).distance <= slack;
+                            hi = select(clear, mid, hi);
+                            lo = select(clear, lo, mid);
+                        }
+                        position = select(arcClears, onArc(hi), position);
+                        applyFriction(arcClears, nextDepth, next.normal, mu, before, position, previous);
+                    }
+                    resolveContact(stuck & ~arcClears, nextDepth, next.normal, mu, parent, length, inverseLength,
+                        before, position, previous, true, splat(c.offset));
+                }
+            }
+            // A moving head moves the field under the particles: no bound survives that.
+            clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));
+            looked = true;
+        }
+        for (std::size_t k = 0; k < capsulesToCheck; ++k) {
+            const Capsule& capsule = capsuleAt(k);
+            const V3 a = splat(capsule.a);
+            const glm::vec3 abv = capsule.b - capsule.a;
+            const float ab2 = glm::dot(abv, abv);
+            const V3 ab = splat(abv);
+            const Lane u
+                = ab2 > 0.0f ? lmin(lmax(dot(position - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f)) : splat(0.0f);
+            const V3 away = position - (a + ab * u);
+            const Lane dist = lsqrt(dot(away, away));
+            const Lane depth = splat(capsule.radiusMetres + c.offset) - dist;
+            const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
+            if (anyOf(inside)) {
+                const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
+                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous,
+                    true, splat(c.offset));
+                looked = true;
+            }
+        }
+        if (i > 1) {
+            ParticleRow& q = row[i - 1];
+            q.px += kick.x + velocityCorrection * correction.x;
+            q.py += kick.y + velocityCorrection * correction.y;
+            q.pz += kick.z + velocityCorrection * correction.z;
+        }
+        // (Where nothing looked, position is `checked` and the bound stands as it is.)
+        p.clearance = looked ? clearance - l1Length(position - checked) : clearance;
+        p.x = position.x;
+        p.y = position.y;
+        p.z = position.z;
+        p.px = previous.x;
+        p.py = previous.y;
+        p.pz = previous.z;
+        return position;
+    };
+
+    for (int s = firstSubstep; s < endSubstep; ++s) {
+        const Lane t = splat(static_cast<float>(s + 1) / static_cast<float>(c.substeps));
+        const V3 root = rootStart + (rootEnd - rootStart) * t;
+        V3 parentBefore{ row[0].x, row[0].y, row[0].z };
+        row[0].px = row[0].x;
+        row[0].py = row[0].y;
+        row[0].pz = row[0].z;
+        row[0].x = root.x;
+        row[0].y = root.y;
+        row[0].z = root.z;
+
+        // One pass, root to tip, as follow-the-leader: each particle is predicted, bent toward
+        // its target in its parent's frame, then gets its length and contact; the parent, already
+        // placed, takes the bend's equal and opposite momentum as a velocity (BendingModel.h).
+        // The frames are carried down the strand as it is now by parallel transport (the
+        // shortest rotation from each segment's direction to the next, a Bishop frame), starting
+        // from the follicle's frame, which turns with the head. The rest shape is stored in the
+        // same frames of the rest strand, so turning a piece of strand rigidly turns its targets
+        // with it: only bending costs.
+        //
+        // The strand is a serial chain (each particle waits for its parent's final position), so
+        // the work is arranged to keep that chain short: everything that does not depend on the
+        // parent's final position (the prediction, the bend's other terms, the next target's part
+        // across the parent's direction) is computed beside it.
+        V3 parent = root; // final position of particle j-1
+        V3 parentStart = parentBefore; // particle j-1 at the start of the substep
+        V3 gustFrom{}, gustTo{}; // gusts at the samples either side of particle j
+        Lane gustSpan = splat(1.0f);
+        V3 frameD{ block.shape[1].x, block.shape[1].y,
+            block.shape[1].z }; // the follicle's frame: the root segment's rest
+        V3 frameE{ rest[0].lx, rest[0].ly, rest[0].lz }; // direction and a normal to it
+        if (Transformed) {
+            frameD = transform(c.rotation, frameD);
+            frameE = transform(c.rotation, frameE);
+        }
+        V3 frameB = cross(frameD, frameE);
+        // The target direction of segment j: its rest direction's coordinates in the parent's rest
+        // frame, laid on the parent's frame now.
+        V3 turned = frameD * rest[1].lx + frameE * rest[1].ly + frameB * rest[1].lz;
+        for (std::uint32_t j = 1; j < n; ++j) {
+            ParticleRow& p = row[j];
+            const RestRow& r = rest[j];
+            if (s
+                == firstSubstep) // the next block's rows (the next in memory, which this thread most likely runs next)
+                prefetchRows(block, j);
+            const V3 x{ p.x, p.y, p.z };
+            // Gusts are smooth over tens of centimetres: sampled at every kGustStride-th particle
+            // (where the particles were at the start of the substep) and interpolated between.
+            V3 gustHere{};
+            if (gusty) {
+                const std::uint32_t k = (j - 1) % kGustStride;
+                if (k == 0) {
+                    const std::uint32_t ahead = std::min(j + kGustStride, n - 1);
+                    gustFrom = j == 1 ? gust(x, gustTime) : gustTo;
+                    gustTo = ahead == j ? gustFrom : gust(V3{ row[ahead].x, row[ahead].y, row[ahead].z }, gustTime);
+                    gustSpan = splat(1.0f / static_cast<float>(std::max<std::uint32_t>(ahead - j, 1)));
+                }
+                gustHere = gustFrom + (gustTo - gustFrom) * (splat(static_cast<float>(k)) * gustSpan);
+            }
+            const V3 predicted = predict(x, V3{ p.px, p.py, p.pz }, parentBefore, gustHere);
+            parentBefore = x;
+
+            // The bend toward the target, and its reaction on the parent (SolverConstraints.h).
+            V3 reach
+                = bendTowardTarget(predicted, x, parentStart, parent, turned, r.length, r.bendChild, r.bendDamping);
+            const V3 kick = bendReaction(parent, reach, predicted, r.bendParentRatio, kickGain);
+            if constexpr (GlobalShape)
+                reach = pullTowardGlobalShape<Transformed>(parent + reach, globalShape[j], root, rootHead, c.rotation)
+                    - parent;
+            parentStart = x;
+            const Lane inverseLength = 1.0f / r.length;
+            const V3 position = finish(j, x, reach, parent, kick, inverseLength);
+            if (j + 1 < n) {
+                // Transport the frame onto this segment's direction d now: the shortest rotation
+                // from D to d takes a vector v across D to v - (d.v) / (1 + D.d) (D + d), which
+                // keeps it unit and across d; E, B and the next target's part across D, w, are
+                // such vectors. So the next target d lx + w - (d.w) / (1 + D.d) (D + d) waits only
+                // for d, not for the new frame. (The reciprocal estimate is one Newton step from
+                // exact; no renormalisation on the chain.)
+                const RestRow& next = rest[j + 1];
+                const V3 w = frameE * next.ly + frameB * next.lz;
+                const V3 d = (position - parent) * inverseLength;
+                const Lane inverse = lrcp(lmax(splat(1.0f) + dot(frameD, d), splat(1e-2f)));
+                const V3 sum = frameD + d;
+                turned = d * next.lx + w - sum * (dot(d, w) * inverse);
+                frameE = frameE - sum * (dot(d, frameE) * inverse);
+                frameB = frameB - sum * (dot(d, frameB) * inverse);
+                frameD = d;
+            }
+            parent = position;
+        }
+    }
+
+    if (endSubstep != c.substeps)
+        return;
+    // A strand that went non-finite or flew away is put back at rest. Strands interact only through
+    // the volume grid, which reads a non-finite particle as outside it, so it does not spread.
+    Lane farthest = splat(0.0f);
+    Mask finite = Mask{} == 0;
+    for (std::uint32_t j = 0; j < n; ++j) {
+        const V3 x{ row[j].x, row[j].y, row[j].z };
+        const V3 pv{ row[j].px, row[j].py, row[j].pz };
+        const V3 d = x - rootEnd;
+        farthest = lmax(farthest, dot(d, d));
+        const V3 m = x - pv;
+        finite &= dot(m, m) < splat(1e12f); // false for NaN
+    }
+    const Lane limit = block.strandLength * 1.5f + 0.05f;
+    const Mask bad = ~((farthest < limit * limit) & finite);
+    if (anyOf(bad)) {
+        for (int l = 0; l < kLanes; ++l) {
+            if (!bad[l])
+                continue;
+            placeLaneAtRest(block, l, c.rotation, c.translation);
+            if (block.strand[l] >= 0)
+                __atomic_fetch_add(c.resetCounter, 1, __ATOMIC_RELAXED);
+        }
+    }
+}
+
+} // namespace
+
+void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, bool globalShape)
+{
+    if (c.transformed)
+        globalShape ? advanceBlockAs<true, true>(block, c, firstSubstep, endSubstep)
+                    : advanceBlockAs<true, false>(block, c, firstSubstep, endSubstep);
+    else
+        globalShape ? advanceBlockAs<false, true>(block, c, firstSubstep, endSubstep)
+                    : advanceBlockAs<false, false>(block, c, firstSubstep, endSubstep);
+}
+
+} // namespace wisp

@@ -1,0 +1,77 @@
+#pragma once
+// The strand's own constraints as pure functions of the lanes, each with its formula and paper
+// (after PositionBasedDynamics' solve_*Constraint): the bend toward the rest shape in the parent's
+// frame (XPBD, BendingModel.h), its equal and opposite reaction on the parent, the optional global
+// shape, and length by follow-the-leader. Contact and friction are in SolverContact.h. Called by
+// the block kernel (SolverBlockKernel.cpp), whose serial root-to-tip chain they are written for;
+// the rest-shape solve (RestShapeSolve.cpp) runs them through the solver and reads the bend's
+// shares from BendingModel.h. Internal to sim/solver.
+
+#include "sim/solver/SolverLanes.h"
+#include "sim/solver/SolverRows.h"
+
+#include <glm/mat3x3.hpp>
+
+namespace wisp::lanes {
+
+// (Internal linkage, as the rest of the kernel's lane code: see SolverContact.h.)
+namespace {
+
+// The bend of particle j toward its target t_j = parent + L τ (τ: the rest direction laid on the
+// parent's frame now), as a spring with a damper on the motion relative to the parent, taken
+// implicitly on the child (XPBD, Macklin, Müller & Chentanez 2016, eq. 18; BendingModel.h):
+//   Δx_j = (parent + τ L - predicted) child - ((predicted - x) - (parent - parentStart)) damping.
+// Returns bent - parent. Written so that only τ and `parent` wait on the strand's serial chain:
+//   bent - parent = [predicted (1 - child) - (predicted - x) damping - parentStart damping]
+//                   + parent (damping + child - 1) + τ (L child).
+[[gnu::always_inline]] inline V3 bendTowardTarget(const V3& predicted, const V3& x, const V3& parentStart,
+    const V3& parent, const V3& tau, Lane length, Lane child, Lane damping)
+{
+    const V3 besideChain = predicted * (1.0f - child) - (predicted - x) * damping - parentStart * damping;
+    return besideChain + parent * (damping + child - 1.0f) + tau * (length * child);
+}
+
+// The parent's equal and opposite momentum for a bend that moved the child from `predicted` to
+// parent + reach, as a velocity (DFTL's way): Δx_j m_j / m_{j-1}, raised by `gain` to make up for
+// the damping and drag the next substep applies to it. Returned as the move of the parent's
+// previous position.
+[[gnu::always_inline]] inline V3 bendReaction(
+    const V3& parent, const V3& reach, const V3& predicted, Lane parentRatio, Lane gain)
+{
+    return (parent + reach - predicted) * (parentRatio * gain);
+}
+
+// Global shape matching (Han & Harada 2012, "Real-time hair simulation with efficient hair style
+// preservation", sec. 3.2, as AMD TressFX's global shape constraints): after the bending and before
+// length and contact, particle j moves g.share of the way toward its rest position as the head
+// carries it now (the root as it is this substep, the head's rotation). Only the position moves, as
+// TressFX does: a projection x += s (t - x) each substep leaves an oscillation about t a factor
+// sqrt(1 - s) per substep, so it adds no energy. The share is set per particle by
+// Solver::updateGlobalShape: full at the root, fading along the strand, the same per second at any
+// substep count.
+template <bool Transformed>
+[[gnu::always_inline]] inline V3 pullTowardGlobalShape(
+    const V3& bent, const GlobalShapeRow& g, const V3& root, const V3& rootHead, const glm::mat3& rotation)
+{
+    const V3 restHead{ g.x, g.y, g.z };
+    const V3 target = Transformed ? root + transform(rotation, restHead - rootHead) : restHead;
+    return bent + (target - bent) * g.share;
+}
+
+struct LengthCorrection {
+    V3 position; // at rest length from the parent
+    V3 correction; // position less the unconstrained position, for the DFTL velocity correction
+};
+
+// Follow the leader (Müller, Kim & Chentanez 2012, "Fast Simulation of Inextensible Hair and
+// Fur", sec. 4): the particle at parent + reach is put back at rest length from its parent,
+// final, along the same direction.
+[[gnu::always_inline]] inline LengthCorrection followTheLeader(const V3& parent, const V3& reach, Lane length)
+{
+    const Lane scale = length * lrsqrt(lmax(dot(reach, reach), splat(1e-24f)));
+    return { parent + reach * scale, reach * (scale - 1.0f) };
+}
+
+} // namespace
+
+} // namespace wisp::lanes

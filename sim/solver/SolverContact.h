@@ -1,0 +1,160 @@
+#pragma once
+// Contact with the head and the body and its friction, as pure functions of the lanes (after
+// PositionBasedDynamics' solve_*Constraint): the head's distance and normal at a point, the
+// push-out that keeps a segment's length, and Coulomb friction. Called by the block kernel
+// (SolverBlockKernel.cpp). Internal to sim/solver.
+
+#include "sim/solver/SolverLanes.h"
+#include "sim/solver/SolverRows.h"
+
+namespace wisp::lanes {
+
+// (Internal linkage, as when this lived in one file: each kernel file inlines these as it sees fit.)
+namespace {
+
+struct SdfSample {
+    Lane distance;
+    V3 normal;
+};
+
+[[gnu::always_inline]] inline SdfSample sampleField(const Solver::CollisionField& field, const V3& p)
+{
+    const float inv = 1.0f / field.cellSize;
+    // Nearest node, clamped into the grid; outside it the first-order extension keeps growing.
+    auto nearest = [&](Lane v, float origin, int count) {
+        const Lane g = (v - origin) * inv + 0.5f;
+        return __builtin_convertvector(lmin(lmax(g, splat(0.0f)), splat(static_cast<float>(count) - 0.5f)), Mask);
+    };
+    const Mask ix = nearest(p.x, field.origin.x, field.dims.x);
+    const Mask iy = nearest(p.y, field.origin.y, field.dims.y);
+    const Mask iz = nearest(p.z, field.origin.z, field.dims.z);
+    const Mask index = ix + iy * field.dims.x + iz * (field.dims.x * field.dims.y);
+    SdfSample s;
+    Lane d;
+#if defined(__AVX512F__)
+    // The 16 nodes' (distance, normal) as four 4x4 transposes: register k of (a, b, c, e) holds
+    // nodes 4k, 4k+1, 4k+2, 4k+3 in its 128-bit block k, so the unpacks and shuffles leave lane
+    // m of each result with node m (a few shuffles instead of moving 64 floats one by one). (The
+    // zero-masked unpacks: the plain ones start from an undefined register GCC 12 warns about.)
+    auto load = [&](int l) { return _mm_loadu_ps(&field.nodes[static_cast<std::size_t>(index[l])].x); };
+    auto gather4 = [&](int first) {
+        __m512 r = _mm512_castps128_ps512(load(first));
+        r = _mm512_insertf32x4(r, load(first + 4), 1);
+        r = _mm512_insertf32x4(r, load(first + 8), 2);
+        return _mm512_insertf32x4(r, load(first + 12), 3);
+    };
+    const __m512 a = gather4(0), b = gather4(1), cc = gather4(2), e = gather4(3);
+    const __m512 ab0 = _mm512_maskz_unpacklo_ps(0xFFFF, a, b), ab1 = _mm512_maskz_unpackhi_ps(0xFFFF, a, b);
+    const __m512 ce0 = _mm512_maskz_unpacklo_ps(0xFFFF, cc, e), ce1 = _mm512_maskz_unpackhi_ps(0xFFFF, cc, e);
+    d = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab0, ce0, 0x44));
+    s.normal.x = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab0, ce0, 0xEE));
+    s.normal.y = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab1, ce1, 0x44));
+    s.normal.z = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab1, ce1, 0xEE));
+#elif defined(__AVX__)
+    // The same transposes, eight nodes to a pair of 128-bit blocks per register.
+    auto load = [&](int l) { return _mm_loadu_ps(&field.nodes[static_cast<std::size_t>(index[l])].x); };
+    for (int half = 0; half < kLanes; half += 8) {
+        auto gather2 = [&](int first) {
+            return _mm256_insertf128_ps(_mm256_castps128_ps256(load(half + first)), load(half + first + 4), 1);
+        };
+        const __m256 a = gather2(0), b = gather2(1), cc = gather2(2), e = gather2(3);
+        const __m256 ab0 = _mm256_unpacklo_ps(a, b), ab1 = _mm256_unpackhi_ps(a, b);
+        const __m256 ce0 = _mm256_unpacklo_ps(cc, e), ce1 = _mm256_unpackhi_ps(cc, e);
+        const __m256 parts[4] = { _mm256_shuffle_ps(ab0, ce0, 0x44), _mm256_shuffle_ps(ab0, ce0, 0xEE),
+            _mm256_shuffle_ps(ab1, ce1, 0x44), _mm256_shuffle_ps(ab1, ce1, 0xEE) };
+        std::memcpy(reinterpret_cast<float*>(&d) + half, &parts[0], sizeof parts[0]);
+        std::memcpy(reinterpret_cast<float*>(&s.normal.x) + half, &parts[1], sizeof parts[1]);
+        std::memcpy(reinterpret_cast<float*>(&s.normal.y) + half, &parts[2], sizeof parts[2]);
+        std::memcpy(reinterpret_cast<float*>(&s.normal.z) + half, &parts[3], sizeof parts[3]);
+    }
+#else
+    for (int l = 0; l < kLanes; ++l) {
+        const glm::vec4 node = field.nodes[static_cast<std::size_t>(index[l])];
+        d[l] = node.x;
+        s.normal.x[l] = node.y;
+        s.normal.y[l] = node.z;
+        s.normal.z[l] = node.w;
+    }
+#endif
+    const V3 nodePosition{ __builtin_convertvector(ix, Lane) * field.cellSize + field.origin.x,
+        __builtin_convertvector(iy, Lane) * field.cellSize + field.origin.y,
+        __builtin_convertvector(iz, Lane) * field.cellSize + field.origin.z };
+    s.distance = d + dot(s.normal, p - nodePosition);
+    return s;
+}
+
+// Contact, as the last word of a substep: the penetrating lanes are turned about their (final)
+// parent onto the collider's tangent plane, so they leave it and keep their segment's length;
+// where no point at that length from the parent is outside (the parent itself is too deep), the
+// particle is pushed out along the normal and the length gives way. Then Coulomb friction
+// (velocity level, through the previous position): the contact's normal correction δ = depth
+// bounds the tangential slip it can stop, static while the slip is under μs δ, else the slip is
+// shortened by μk δ (Macklin et al. 2014, "Unified Particle Physics", eq. 24-25). Its effect per
+// second is μ × normal force / mass at any substep count. The normal part of the velocity is
+// kept only outward.
+// Static friction of hair on skin is a little above its kinetic friction (measured hair-on-hair
+// and hair-on-skin coefficients differ by about this much).
+constexpr float kStaticOverKineticFriction = 1.25f;
+// Looks at the head per contact: turns onto the tangent plane, then looks again from there (a
+// nose or an ear is not its tangent plane); one more look takes what is still stuck along the arc
+// toward its parent's normal, and pushes only what no turn gets out.
+constexpr int kHeadContactPasses = 3;
+// Steps of the bisection along the arc from a stuck particle toward its parent's outward normal
+// (the first clear point to within 1/64 of the arc).
+constexpr int kArcBisections = 6;
+
+// (resolveContact and applyFriction stay out of line: inlined, the compiler fuses multiplies and
+// adds across the call differently, and the step's results would change in the last bits.)
+struct ContactFriction {
+    Lane kinetic; // μk
+    Lane statik; // μs
+};
+
+// Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below).
+[[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
+    const V3& oldPosition, const V3& position, V3& previous);
+
+[[gnu::noinline]] void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
+    const V3& parent, Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous,
+    bool pushWhatIsLeft, Lane band)
+{
+    const V3 u0 = (position - parent) * inverseLength;
+    const Lane along = dot(normal, u0);
+    const Lane needed = depth * inverseLength + along; // n . u the particle needs to be on the plane
+    const V3 tangent = u0 - normal * along;
+    const Lane tangent2 = dot(tangent, tangent);
+    // Turned as far as the sphere allows (straight out along the normal when even that is not
+    // enough); whatever depth is left is pushed out, and only that much length gives way.
+    const Lane reach = lmin(needed, splat(1.0f));
+    const V3 unitTangent
+        = tangent * select(tangent2 > splat(1e-12f), lrsqrt(lmax(tangent2, splat(1e-12f))), splat(0.0f));
+    const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
+    const Lane sine = sine2 * lrsqrt(lmax(sine2, splat(1e-20f)));
+    const V3 turned = parent + (normal * reach + unitTangent * sine) * length;
+    // A segment shorter than twice the hair offset only has to clear the surface itself, not the
+    // offset kept above it: starting on the skin it cannot reach out of the offset, and stretching
+    // it to would break its length for no contact.
+    const Lane slack = select(length < band * 2.0f, band, splat(0.0f)); // only for segments that short
+    const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
+    position = select(inside, turned + normal * left, position);
+    applyFriction(inside, depth, normal, mu, oldPosition, position, previous);
+}
+
+[[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
+    const V3& oldPosition, const V3& position, V3& previous)
+{
+    const V3 move = position - oldPosition;
+    const Lane normalPart = dot(move, normal);
+    const V3 sliding = move - normal * normalPart;
+    const Lane slide2 = dot(sliding, sliding);
+    const Lane invSlide = lrsqrt(lmax(slide2, splat(1e-24f)));
+    const Lane slide = slide2 * invSlide;
+    const Mask sticks = slide <= mu.statik * depth;
+    const Lane keptShare = select(sticks, splat(0.0f), lmax(splat(1.0f) - mu.kinetic * depth * invSlide, splat(0.0f)));
+    const V3 kept = sliding * keptShare + normal * lmax(normalPart, splat(0.0f));
+    previous = select(inside, position - kept, previous);
+}
+
+} // namespace
+
+} // namespace wisp::lanes

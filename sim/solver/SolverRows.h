@@ -1,0 +1,125 @@
+#pragma once
+// The solver's memory as its kernels read it: a block of 16 strands of equal particle count, its
+// rows of particles interleaved lane by lane (Solver.h), one step's settings, and the head's
+// distance field laid out for lookups. Internal to sim/solver (Solver*.cpp).
+
+#include "sim/geometry/SignedDistanceField.h"
+#include "sim/solver/Solver.h"
+#include "sim/solver/SolverLanes.h"
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace wisp {
+
+// Particle j of the block's 8 strands: position and previous position (Verlet keeps no velocity).
+struct Solver::ParticleRow {
+    Lane x, y, z;
+    Lane px, py, pz;
+    // A lower bound on (distance to the head - hair offset) at x: while it stays positive the head
+    // cannot be touched and its lookup is skipped. Negative means unknown.
+    Lane clearance;
+};
+// Rest shape, head space, as a step reads it: row j > 0 holds the segment from particle j-1 to j
+// (row 0 the follicle's frame). The rest directions themselves (ShapeRow) are kept apart: a step
+// reads only the first two rows of them, and every byte a step streams costs time on a large groom.
+struct Solver::RestRow {
+    Lane length; // (its reciprocal is divided out beside the chain: four fewer bytes to stream)
+    // Bending (BendingModel.h): the shares of this segment's bend error t_j - x_j added to
+    // particle j, taken from its parent j-1 and added to j-2, for this substep (they sum to zero
+    // momentum).
+    Lane bendChild; // share of the bend error moved onto particle j this substep
+    Lane bendDamping; // share of its move relative to its parent taken away this substep
+    Lane bendParentRatio; // m_j / m_{j-1}
+    // Row j > 0: the rest direction in the parent segment's rest frame (direction, normal,
+    // binormal; see advanceBlock). Row 0: the follicle frame's normal, head space.
+    Lane lx, ly, lz;
+};
+// Row 0: the root position. Row j > 0: unit direction from particle j-1 to j. Head space.
+struct Solver::ShapeRow {
+    Lane x, y, z;
+};
+
+// Global shape (pullTowardGlobalShape), only while it is on: particle j's rest position (head
+// space) and the share of the way to it this particle moves per substep.
+struct Solver::GlobalShapeRow {
+    Lane x, y, z;
+    Lane share;
+};
+
+using ParticleRow = Solver::ParticleRow;
+using RestRow = Solver::RestRow;
+using ShapeRow = Solver::ShapeRow;
+using GlobalShapeRow = Solver::GlobalShapeRow;
+
+struct Solver::Block {
+    std::uint32_t points = 0;
+    std::array<std::int64_t, kLanes> strand{}; // index into the caller's curves, -1 for padding
+    Lane strandLength{}; // rest arc length per lane, metres
+    Lane stiffnessScale{}; // per lane: multiplies the settings' stiffness
+    Lane dragScale{}; // per lane: multiplies the drag toward the wind (wet hair)
+    Lane windX{}, windY{}, windZ{}; // per lane: wind of its own, m/s world (a hair dryer)
+    Lane volumeWeight{}; // per lane: metres of drawn hair one particle stands for (0: padding)
+    Lane volumeTargetScale{}; // per lane: multiplies the density the hair keeps (wet hair)
+    // The grid's level of detail at the block's last splat (Solver::volumeSplat): every
+    // volumeStride-th lane splats the weight of the lanes it stands for and is sampled.
+    int volumeStride = 1;
+    // Views into the solver's two row arrays: every block's rows follow the previous block's, so
+    // a thread streams through memory in one sequential run that the prefetcher can follow.
+    std::span<ParticleRow> state;
+    std::span<RestRow> rest;
+    std::span<ShapeRow> shape;
+    std::span<const GlobalShapeRow> globalShape; // empty while the global shape is off
+};
+
+struct StepConstants {
+    float dt = 0.0f; // substep, seconds
+    float keep = 1.0f; // exp(-damping dt): share of velocity kept
+    float friction = 0;
+    float offset = 0;
+    float velocityCorrection = 0;
+    float drag = 0;
+    float turbulence = 0;
+    int substeps = 1;
+    int substep = 0; // the volume pass's substep (Solver::volumePass)
+    double time = 0;
+    glm::vec3 gravity{ 0.0f };
+    glm::vec3 wind{ 0.0f };
+    glm::mat3 rotation{ 1.0f }; // head to world
+    glm::vec3 translation{ 0.0f };
+    glm::mat3 previousRotation{ 1.0f };
+    glm::vec3 previousTranslation{ 0.0f };
+    bool transformed = false; // head is not at the identity: SDF lookups need head space
+    const Solver::CollisionField* field = nullptr;
+    std::vector<Capsule> capsulesWorld;
+    std::uint64_t* resetCounter = nullptr;
+};
+
+// The head as the solver reads it: for every node of the baked signed-distance grid, the distance
+// and the unit outward normal there (SignedDistanceField::samplesWithNormals, built once per head
+// and shared by every solver colliding with it: a comb release's rest solve and regroom no longer
+// rebuild it, which was most of their cost). A lookup takes the nearest node and
+// extends it to first order, d(p) = d_n + n . (p - x_n): one 16-byte load per particle instead of
+// the eight scattered loads of trilinear interpolation, which dominated the step. The error is
+// about h^2 / (2 R) for a surface of curvature radius R (0.03 mm for a 2.5 mm grid on a head).
+struct Solver::CollisionField {
+    const glm::vec4* nodes = nullptr; // (distance, normal) per node, metres: the field's own table
+    glm::ivec3 dims{ 0 };
+    glm::vec3 origin{ 0.0f };
+    float cellSize = 0.0f;
+
+    explicit CollisionField(const SignedDistanceField& sdf)
+        : nodes(sdf.samplesWithNormals().data())
+        , dims(sdf.dims())
+        , origin(sdf.origin())
+        , cellSize(sdf.cellSize())
+    {
+    }
+};
+
+} // namespace wisp

@@ -25,9 +25,12 @@ void forRange(
 }
 } // namespace
 
-bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi, int slots, std::size_t maxNodes)
+bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi, int slots, std::size_t maxNodes, Kernel kernel)
 {
     m_slots = std::clamp(slots, 1, kMaxSlots);
+    m_kernel = kernel;
+    m_sums.clear();
+    m_smoothed.clear();
     m_nodes.clear();
     m_hairDensity.clear();
     m_solid.clear();
@@ -41,7 +44,7 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi, int slo
         || !(size.y > 0.0f) || !(size.z > 0.0f) || !(glm::length(size) < 1e3f))
         return false;
     // The finest cell whose nodes (one more than the cells each way) fit the memory bound.
-    maxNodes = std::clamp<std::size_t>(maxNodes, 64, kMaxNodes);
+    maxNodes = std::clamp<std::size_t>(maxNodes, 64, kernel == Kernel::Trilinear ? kMaxNodes : kMaxSmoothedNodes);
     float cell = std::max(kFinestCellMetres, std::cbrt(size.x * size.y * size.z / static_cast<float>(maxNodes)));
     glm::ivec3 dims;
     for (;;) {
@@ -59,6 +62,10 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi, int slo
     m_hairDensity.assign(count, 0.0f);
     m_solid.assign(count, 0.0f);
     m_accumulators.assign(count * static_cast<std::size_t>(m_slots), Accumulator{});
+    if (kernel == Kernel::NearestSmoothed) {
+        m_sums.assign(count, Sums{});
+        m_smoothed.assign(count, Sums{});
+    }
     m_bricks = (dims + kBrick - 1) / kBrick;
     const std::size_t bricks = static_cast<std::size_t>(m_bricks.x) * m_bricks.y * m_bricks.z;
     m_live.assign(bricks, 0);
@@ -102,7 +109,7 @@ std::size_t HairVolumeGrid::memoryBytes() const
 {
     return m_nodes.capacity() * sizeof(Node) + (m_hairDensity.capacity() + m_solid.capacity()) * sizeof(float)
         + m_accumulators.capacity() * sizeof(Accumulator) + m_touched.capacity() + m_live.capacity()
-        + m_liveList.capacity() * sizeof(std::uint32_t);
+        + m_liveList.capacity() * sizeof(std::uint32_t) + (m_sums.capacity() + m_smoothed.capacity()) * sizeof(Sums);
 }
 
 void HairVolumeGrid::setSolid(const std::function<float(const glm::vec3&)>& signedDistance)
@@ -158,6 +165,24 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
         if (any)
             now.push_back(static_cast<std::uint32_t>(b));
     }
+    if (m_kernel == Kernel::NearestSmoothed) {
+        // The smoothing spreads a node's sums one node each way: into the bricks beside.
+        std::vector<std::uint8_t> near(bricks, 0);
+        for (const std::uint32_t b : now) {
+            const int bx = static_cast<int>(b % static_cast<std::uint32_t>(m_bricks.x));
+            const int by = static_cast<int>(
+                (b / static_cast<std::uint32_t>(m_bricks.x)) % static_cast<std::uint32_t>(m_bricks.y));
+            const int bz = static_cast<int>(b / (static_cast<std::uint32_t>(m_bricks.x) * m_bricks.y));
+            for (int k = std::max(bz - 1, 0); k <= std::min(bz + 1, m_bricks.z - 1); ++k)
+                for (int j = std::max(by - 1, 0); j <= std::min(by + 1, m_bricks.y - 1); ++j)
+                    for (int i = std::max(bx - 1, 0); i <= std::min(bx + 1, m_bricks.x - 1); ++i)
+                        near[brickIndex(i, j, k)] = 1;
+        }
+        now.clear();
+        for (std::size_t b = 0; b < bricks; ++b)
+            if (near[b])
+                now.push_back(static_cast<std::uint32_t>(b));
+    }
     for (const std::uint32_t b : m_liveList)
         m_live[b] = 0;
     for (const std::uint32_t b : now)
@@ -167,6 +192,8 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
             forNodesOf(b, [&](int, int, int, std::size_t n) {
                 m_nodes[n] = Node{};
                 m_hairDensity[n] = 0.0f;
+                if (!m_sums.empty())
+                    m_sums[n] = m_smoothed[n] = Sums{};
             });
     m_liveList = std::move(now);
     m_solidDensity = solidDensity;
@@ -187,14 +214,35 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
                     sum.moveZ += a.moveZ;
                     a = Accumulator{};
                 }
+                const Sums sums{ static_cast<float>(sum.weight * perWeight), static_cast<float>(sum.moveX * perMove),
+                    static_cast<float>(sum.moveY * perMove), static_cast<float>(sum.moveZ * perMove) };
+                if (m_kernel == Kernel::NearestSmoothed) {
+                    m_sums[n] = sums;
+                    return;
+                }
                 Node& node = m_nodes[n];
-                node.weight = static_cast<float>(sum.weight * perWeight);
-                node.moveX = static_cast<float>(sum.moveX * perMove);
-                node.moveY = static_cast<float>(sum.moveY * perMove);
-                node.moveZ = static_cast<float>(sum.moveZ * perMove);
+                node.weight = sums.weight;
+                node.moveX = sums.moveX;
+                node.moveY = sums.moveY;
+                node.moveZ = sums.moveZ;
                 m_hairDensity[n] = node.weight * perVolume;
             });
     });
+    if (m_kernel == Kernel::NearestSmoothed) {
+        smooth(pool); // into m_smoothed
+        forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t l = begin; l < end; ++l)
+                forNodesOf(m_liveList[l], [&](int, int, int, std::size_t n) {
+                    const Sums& sums = m_smoothed[n];
+                    Node& node = m_nodes[n];
+                    node.weight = sums.weight;
+                    node.moveX = sums.moveX;
+                    node.moveY = sums.moveY;
+                    node.moveZ = sums.moveZ;
+                    m_hairDensity[n] = node.weight * perVolume;
+                });
+        });
+    }
     const float inv2h = 0.5f / m_cell;
     forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
         for (std::size_t l = begin; l < end; ++l)
@@ -206,6 +254,32 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
                 node.gradZ = (densityAt(i, j, k + 1) - densityAt(i, j, k - 1)) * inv2h;
             });
     });
+}
+
+void HairVolumeGrid::smooth(ThreadPool* pool)
+{
+    // [1 2 1]/4 along x, then y, then z (m_sums -> m_smoothed -> m_sums -> m_smoothed). At the grid's
+    // faces the missing neighbour is the node itself, so the smoothing keeps the total weight. Nodes
+    // outside the live bricks hold zeros (finish() empties them), and no sum reaches them.
+    const std::ptrdiff_t step[3] = { 1, m_dims.x, static_cast<std::ptrdiff_t>(m_dims.x) * m_dims.y };
+    for (int axis = 0; axis < 3; ++axis) {
+        const std::vector<Sums>& from = axis == 1 ? m_smoothed : m_sums;
+        std::vector<Sums>& to = axis == 1 ? m_sums : m_smoothed;
+        const int size = m_dims[axis];
+        forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t l = begin; l < end; ++l)
+                forNodesOf(m_liveList[l], [&](int i, int j, int k, std::size_t n) {
+                    const int at = axis == 0 ? i : axis == 1 ? j : k;
+                    const Sums& here = from[n];
+                    const Sums& before = at > 0 ? from[n - static_cast<std::size_t>(step[axis])] : here;
+                    const Sums& after = at + 1 < size ? from[n + static_cast<std::size_t>(step[axis])] : here;
+                    to[n] = Sums{ 0.25f * (before.weight + after.weight) + 0.5f * here.weight,
+                        0.25f * (before.moveX + after.moveX) + 0.5f * here.moveX,
+                        0.25f * (before.moveY + after.moveY) + 0.5f * here.moveY,
+                        0.25f * (before.moveZ + after.moveZ) + 0.5f * here.moveZ };
+                });
+        });
+    }
 }
 
 namespace {
@@ -251,6 +325,11 @@ void HairVolumeGrid::cellsOf(const float* x, const float* y, const float* z, int
                  fy = inside ? gy - __builtin_convertvector(iy, Floats) : zero,
                  fz = inside ? gz - __builtin_convertvector(iz, Floats) : zero;
     const Ints node = inside ? ix + m_dims.x * (iy + m_dims.y * iz) : Ints{} - 1;
+    const Ints one = Ints{} + 1;
+    const Ints nearest = inside
+        ? node + ((fx >= 0.5f) & one) + m_dims.x * (((fy >= 0.5f) & one) + m_dims.y * ((fz >= 0.5f) & one))
+        : Ints{} - 1;
+    std::memcpy(out.nearest, &nearest, sizeof nearest);
     std::memcpy(out.ix, &ix, sizeof ix);
     std::memcpy(out.iy, &iy, sizeof iy);
     std::memcpy(out.iz, &iz, sizeof iz);
@@ -306,6 +385,10 @@ void HairVolumeGrid::splatRow(int slot, const float* x, const float* y, const fl
                 std::memcpy(pair, &sum, sizeof sum);
             }
     };
+    if (m_kernel == Kernel::NearestSmoothed) {
+        splatNearest(grid, touched, cells, weight, moveX, moveY, moveZ, count, stride);
+        return;
+    }
     for (int l = 0; l < count; l += stride) {
         const float w = weight[l];
         if (cells.node[l] < 0 || !(w > 0.0f))
@@ -329,6 +412,46 @@ void HairVolumeGrid::splatRow(int slot, const float* x, const float* y, const fl
         for (int dz = 0; dz < 2; ++dz)
             for (int dy = 0; dy < 2; ++dy)
                 run[2 * dz + dy] += (wz[dz] * wy[dy]) * wx * value;
+    }
+    flush();
+}
+
+void HairVolumeGrid::splatNearest(std::int64_t* grid, std::uint8_t* touched, const CellRow& cells, const float* weight,
+    const float* moveX, const float* moveY, const float* moveZ, int count, int stride)
+{
+    using Float4 = float __attribute__((vector_size(4 * sizeof(float))));
+    using Fixed4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
+    const Float4 units{ m_weightUnits, m_moveUnits, m_moveUnits, m_moveUnits };
+    // As the trilinear splat: a run of particles at one node is summed in registers, in lane order.
+    int runNode = -1;
+    Float4 run{};
+    auto flush = [&] {
+        if (runNode < 0)
+            return;
+        const Float4 value = run * units;
+        Fixed4 sum;
+        std::int64_t* const at = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
+        std::memcpy(&sum, at, sizeof sum);
+        sum += __builtin_convertvector(value + (value < 0.0f ? Float4{} - 0.5f : Float4{} + 0.5f), Fixed4);
+        std::memcpy(at, &sum, sizeof sum);
+    };
+    for (int l = 0; l < count; l += stride) {
+        const float w = weight[l];
+        if (cells.node[l] < 0 || !(w > 0.0f))
+            continue;
+        const int node = cells.nearest[l];
+        if (node != runNode) {
+            flush();
+            runNode = node;
+            run = Float4{};
+            const int dx = cells.fx[l] >= 0.5f, dy = cells.fy[l] >= 0.5f, dz = cells.fz[l] >= 0.5f;
+            touched[brickIndex((cells.ix[l] + dx) / kBrick, (cells.iy[l] + dy) / kBrick, (cells.iz[l] + dz) / kBrick)]
+                = 1;
+        }
+        const float mx = std::clamp(moveX[l], -kMaxMoveMetres, kMaxMoveMetres),
+                    my = std::clamp(moveY[l], -kMaxMoveMetres, kMaxMoveMetres),
+                    mz = std::clamp(moveZ[l], -kMaxMoveMetres, kMaxMoveMetres);
+        run += w * Float4{ 1.0f, mx, my, mz };
     }
     flush();
 }
@@ -365,7 +488,10 @@ void HairVolumeGrid::sampleRow(
     stride = count == kRowLanes ? std::clamp(stride, 1, kRowLanes) : 1;
     for (int l = 0; l < count; l = l + stride < count || l == count - 1 ? l + stride : count - 1) {
         Float8 sum{};
-        if (cells.node[l] >= 0) {
+        if (m_kernel == Kernel::NearestSmoothed) {
+            if (cells.nearest[l] >= 0)
+                sum = load8(&m_nodes[static_cast<std::size_t>(cells.nearest[l])].density);
+        } else if (cells.node[l] >= 0) {
             const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
             const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
             const Node* const base = m_nodes.data() + cells.node[l];

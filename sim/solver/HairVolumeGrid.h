@@ -35,12 +35,26 @@ public:
     static constexpr std::size_t kMaxBytes = std::size_t{ 32 } << 20; // 32 MiB
     static constexpr float kFinestCellMetres = 0.008f;
 
+    // How a particle meets the nodes.
+    enum class Kernel {
+        // It splats into and reads the eight nodes around it, trilinear (cloud-in-cell): the field
+        // is continuous in its position, what a groom with a few particles in a cell needs.
+        Trilinear,
+        // It splats into and reads its nearest node, one node instead of eight; the sums are smoothed
+        // by [1 2 1]/4 along each axis before the density is taken (about the cloud-in-cell's spread).
+        // For a dense groom (dozens of particles in a cell): one particle crossing between two nodes
+        // moves a small share of either's hair, and a particle's read changes by the difference of
+        // two smoothed neighbours.
+        NearestSmoothed,
+    };
     // Lays nodes over [lo, hi] (head space, metres), as fine as the memory bound allows (at most
     // `maxNodes`, at most kMaxNodes), with
     // `slots` (1..kMaxSlots) splat slots: the threads that splat at once. The cell does not depend
     // on `slots` (the same bits on any thread count). False (and an empty grid) when the box is not
     // finite or empty.
-    bool setBounds(const glm::vec3& lo, const glm::vec3& hi, int slots = 1, std::size_t maxNodes = kMaxNodes);
+    bool setBounds(const glm::vec3& lo, const glm::vec3& hi, int slots = 1, std::size_t maxNodes = kMaxNodes,
+        Kernel kernel = Kernel::Trilinear);
+    Kernel kernel() const { return m_kernel; }
     bool empty() const { return m_nodes.empty(); }
 
     // The head as a solid in the grid (Petrovic et al. treat the body as solid too): each node's
@@ -121,6 +135,10 @@ public:
     // kMaxBytes with kMaxSlots slots.
     static constexpr std::size_t kBytesPerNode = 10 * sizeof(float), kBytesPerNodeSlot = 4 * sizeof(std::int64_t);
     static constexpr std::size_t kMaxNodes = kMaxBytes / (kBytesPerNode + kMaxSlots * kBytesPerNodeSlot);
+    // Kernel::NearestSmoothed's two arrays for the smoothing passes, and its node bound.
+    static constexpr std::size_t kBytesPerSmoothedNode = 2 * 4 * sizeof(float);
+    static constexpr std::size_t kMaxSmoothedNodes
+        = kMaxBytes / (kBytesPerNode + kBytesPerSmoothedNode + kMaxSlots * kBytesPerNodeSlot);
 
 private:
     // A node's splats in a slot, fixed point (m_weightUnits and m_moveUnits): a pair of nodes
@@ -139,6 +157,7 @@ private:
     // not finite), the node's coordinates and the position within the cell (0..1 each way).
     struct CellRow {
         alignas(64) int node[kRowLanes];
+        alignas(64) int nearest[kRowLanes]; // the index of the nearest node (-1: outside)
         alignas(64) int ix[kRowLanes];
         alignas(64) int iy[kRowLanes];
         alignas(64) int iz[kRowLanes];
@@ -147,6 +166,9 @@ private:
         alignas(64) float fz[kRowLanes];
     };
     void cellsOf(const float* x, const float* y, const float* z, int count, CellRow& out) const;
+    // splatRow for Kernel::NearestSmoothed: into slot grid `grid`, marking `touched` bricks.
+    void splatNearest(std::int64_t* grid, std::uint8_t* touched, const CellRow& cells, const float* weight,
+        const float* moveX, const float* moveY, const float* moveZ, int count, int stride);
     // Hair and head at a node (clamped into the grid), for the central differences.
     float densityAt(int i, int j, int k) const
     {
@@ -162,6 +184,14 @@ private:
             * (static_cast<std::size_t>(j) + static_cast<std::size_t>(m_dims.y) * k);
     }
 
+    // Kernel::NearestSmoothed: the sums along one axis, smoothed; each pass reads one, writes the other.
+    void smooth(ThreadPool* pool);
+    Kernel m_kernel = Kernel::Trilinear;
+    struct Sums {
+        float weight, moveX, moveY, moveZ;
+    };
+    std::vector<Sums> m_sums, m_smoothed; // per node (Kernel::NearestSmoothed only)
+
     glm::ivec3 m_dims{ 0 };
     glm::vec3 m_origin{ 0.0f };
     float m_cell = 0.0f;
@@ -175,7 +205,8 @@ private:
     std::vector<float> m_solid; // per node: 0..1 inside the head
     // Bricks of kBrick³ nodes: only those a splat touched are cleared, summed and differenced, so a
     // pass costs what the hair occupies, not the whole grid (the editor's 7,600 particles would
-    // otherwise pay for 200,000 nodes in eight chunks).
+    // otherwise pay for 200,000 nodes in eight chunks). Kernel::NearestSmoothed also the bricks
+    // beside them, where the smoothing spreads the sums.
     static constexpr int kBrick = 4;
     std::size_t brickIndex(int bx, int by, int bz) const
     {

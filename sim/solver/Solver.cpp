@@ -265,14 +265,19 @@ int Solver::volumeRefreshSubsteps(float substepSeconds)
 // than a cell (groom-1m: 1-3 mm apart in 2 cm cells), the grid cannot tell them apart: only every
 // stride-th strand splats, with the weight of those it stands for, and is sampled; the strands
 // between blend the samples around them (HairVolumeGrid::sampleRow), as members follow their key.
-// The stride is the largest power of two whose sampled strands are within kVolumeLodCellShare of a
-// cell of each other everywhere along them, where they are now (Solver::volumeSplat); 1 for a
-// block with padding, and in practice for the editor's keys (5-10 mm apart in 8-15 mm cells).
+// The stride is chosen per row (the particles at one distance from the roots): the largest power of
+// two whose sampled strands are within kVolumeLodCellShare of a cell of each other there, where they
+// are now (Solver::volumeSplat), so the roots and lengths that lie together are thinned even where
+// the tips flutter apart; 1 for a block with padding, and in practice for the editor's keys (5-10 mm
+// apart in 8-15 mm cells).
 constexpr float kVolumeLodCellShare = 0.5f;
 // The grid's nodes (HairVolumeGrid::setBounds) for a scene of `particles`: all the memory bound
 // allows up to kVolumeFullGridParticles, and fewer in proportion beyond (a quarter at a million,
 // cells 1.6 times as wide): the splat and the read wait on cache misses in a grid much larger than
-// the cache, and a dense groom has hair enough in every cell of the coarser grid.
+// the cache, and a dense groom has hair enough in every cell of the coarser grid. Beyond it, too,
+// each particle meets only its nearest node (HairVolumeGrid::Kernel::NearestSmoothed): a cell
+// holds dozens of particles (groom-1m: about 35 a node), so one crossing between nodes barely
+// changes either, and the splat and the read cost a node, not eight.
 constexpr std::size_t kVolumeFullGridParticles = 250'000;
 std::size_t volumeGridNodes(std::size_t particles)
 {
@@ -284,7 +289,10 @@ std::size_t volumeGridNodes(std::size_t particles)
 
 int Solver::volumeStrideOfStrand(std::size_t strand) const
 {
-    return strand < m_slotOfStrand.size() ? m_blocks[m_slotOfStrand[strand].block].volumeStride : 0;
+    if (strand >= m_slotOfStrand.size())
+        return 0;
+    const std::vector<std::uint8_t>& strides = m_blocks[m_slotOfStrand[strand].block].volumeStrides;
+    return strides.empty() ? 1 : *std::min_element(strides.begin(), strides.end());
 }
 
 void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
@@ -292,7 +300,11 @@ void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
     if (!m_volumeGrid) {
         m_volumeGrid = std::make_unique<HairVolumeGrid>();
         m_volumeUnitsStale = true;
-        if (m_volumeGrid->setBounds(m_volumeLo, m_volumeHi, threadCount(), volumeGridNodes(m_particleCount)) && m_sdf)
+        const HairVolumeGrid::Kernel kernel = m_particleCount > kVolumeFullGridParticles
+            ? HairVolumeGrid::Kernel::NearestSmoothed
+            : HairVolumeGrid::Kernel::Trilinear;
+        if (m_volumeGrid->setBounds(m_volumeLo, m_volumeHi, threadCount(), volumeGridNodes(m_particleCount), kernel)
+            && m_sdf)
             m_volumeGrid->setSolid([&](const glm::vec3& p) { return m_sdf->distance(p); });
     }
     HairVolumeGrid& grid = *m_volumeGrid;
@@ -352,45 +364,46 @@ void Solver::volumeSplat(Block& b, const StepConstants& c, int slot)
 {
     HairVolumeGrid& grid = *m_volumeGrid;
     const glm::mat3 toHead = glm::transpose(c.rotation);
-    // The level of detail (kVolumeLodCellShare): how far apart neighbouring lanes are now.
+    // The level of detail (kVolumeLodCellShare), row by row: how far apart neighbouring lanes are now.
     bool full = true;
     for (int l = 0; l < kLanes; ++l)
         full = full && b.strand[l] >= 0;
-    int stride = 1;
-    if (full) {
-        using LaneIndex = int __attribute__((vector_size(kLanes * sizeof(int))));
-        const LaneIndex next{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 15 };
-        Lane farthest2{};
-        for (std::uint32_t j = 1; j < b.points; ++j) {
-            const ParticleRow& r = b.state[j];
-            const Lane dx = __builtin_shuffle(r.x, next) - r.x, dy = __builtin_shuffle(r.y, next) - r.y,
-                       dz = __builtin_shuffle(r.z, next) - r.z;
-            farthest2 = lmax(farthest2, dx * dx + dy * dy + dz * dz);
-        }
-        float spacing2 = 0.0f;
+    // At each group's first lane, the weight of its lanes, for strides 1, 2, 4, 8 and 16.
+    Lane groupWeight[5];
+    for (int s = 0, stride = 1; s < 5; ++s, stride *= 2) {
+        groupWeight[s] = splat(0.0f);
         for (int l = 0; l < kLanes; ++l)
-            spacing2 = std::max(spacing2, farthest2[l]); // NaN (a broken strand) leaves it, stride 1 below
-        const float reach = kVolumeLodCellShare * grid.cellMetres();
-        while (stride < kLanes && 4.0f * static_cast<float>(stride * stride) * spacing2 <= reach * reach
-            && std::isfinite(spacing2))
-            stride *= 2;
+            groupWeight[s][l - l % stride] += b.volumeWeight[l];
     }
-    b.volumeStride = stride;
-    Lane groupWeight = splat(0.0f); // at each group's first lane, the weight of its lanes
-    for (int l = 0; l < kLanes; ++l)
-        groupWeight[l - l % stride] += b.volumeWeight[l];
+    using LaneIndex = int __attribute__((vector_size(kLanes * sizeof(int))));
+    const LaneIndex next{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 15 };
+    const float reach = kVolumeLodCellShare * grid.cellMetres();
+    b.volumeStrides.resize(b.points);
     for (std::uint32_t j = 0; j < b.points; ++j) {
         const ParticleRow& r = b.state[j];
         const V3 x{ r.x, r.y, r.z };
+        int level = 0; // log2 of the stride
+        if (full) {
+            const Lane dx = __builtin_shuffle(r.x, next) - r.x, dy = __builtin_shuffle(r.y, next) - r.y,
+                       dz = __builtin_shuffle(r.z, next) - r.z;
+            const Lane distance2 = dx * dx + dy * dy + dz * dz;
+            float spacing2 = 0.0f;
+            for (int l = 0; l < kLanes; ++l)
+                spacing2 = std::max(spacing2, distance2[l]); // NaN (a broken strand) leaves it, stride 1 below
+            while (level < 4 && std::isfinite(spacing2)
+                && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)
+                ++level;
+        }
+        b.volumeStrides[j] = static_cast<std::uint8_t>(1 << level);
         const V3 move = x - V3{ r.px, r.py, r.pz };
         // A particle gone non-finite or flying off (its strand is put back at rest at the end of
         // the step) must not spread through the grid.
-        const Lane weight = select(l1Length(move) < kVolumeMaxMoveMetres, groupWeight, splat(0.0f));
+        const Lane weight = select(l1Length(move) < kVolumeMaxMoveMetres, groupWeight[level], splat(0.0f));
         const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
         grid.splatRow(slot, reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
             reinterpret_cast<const float*>(&head.z), reinterpret_cast<const float*>(&weight),
             reinterpret_cast<const float*>(&move.x), reinterpret_cast<const float*>(&move.y),
-            reinterpret_cast<const float*>(&move.z), HairVolumeGrid::kRowLanes, b.volumeStride);
+            reinterpret_cast<const float*>(&move.z), HairVolumeGrid::kRowLanes, 1 << level);
     }
 }
 
@@ -416,7 +429,8 @@ void Solver::volumeRead(Block& b, const StepConstants& c) const
         const V3 x{ r.x, r.y, r.z };
         const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
         grid.sampleRow(reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
-            reinterpret_cast<const float*>(&head.z), here, HairVolumeGrid::kRowLanes, b.volumeStride);
+            reinterpret_cast<const float*>(&head.z), here, HairVolumeGrid::kRowLanes,
+            j < b.volumeStrides.size() ? b.volumeStrides[j] : 1);
         const Lane density = lane(here.density);
         const Mask inHair = density > 0.0f;
         if (!anyOf(inHair))

@@ -98,8 +98,8 @@ public:
     // Grid passes (splat and finish) since construction: one per substep, or fewer where substeps
     // are shorter than the grid's refresh interval (Solver.cpp, kVolumeRefreshSeconds).
     std::uint64_t volumePasses() const { return m_volumePasses; }
-    // The grid's level of detail at the strand's block (Solver::volumeSplat): 1 where every strand
-    // splats, k where every k-th one does; for tests.
+    // The grid's level of detail at the strand's block (Solver::volumeSplat), its finest row: 1 where
+    // every strand splats, k where every k-th one does; for tests.
     int volumeStrideOfStrand(std::size_t strand) const;
 
     // World-space positions in the layout of the rest curves given to setStrands.

@@ -202,6 +202,14 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
     // sample() reads, which takes the neighbours' sums.
     const float perVolume = 1.0f / (m_cell * m_cell * m_cell);
     const double perWeight = 1.0 / static_cast<double>(m_weightUnits), perMove = 1.0 / static_cast<double>(m_moveUnits);
+    auto store = [&](std::size_t n, const Sums& sums) { // what sample() reads of the hair at node n
+        Node& node = m_nodes[n];
+        node.weight = sums.weight;
+        node.moveX = sums.moveX;
+        node.moveY = sums.moveY;
+        node.moveZ = sums.moveZ;
+        m_hairDensity[n] = node.weight * perVolume;
+    };
     forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
         for (std::size_t l = begin; l < end; ++l)
             forNodesOf(m_liveList[l], [&](int, int, int, std::size_t n) {
@@ -216,31 +224,17 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
                 }
                 const Sums sums{ static_cast<float>(sum.weight * perWeight), static_cast<float>(sum.moveX * perMove),
                     static_cast<float>(sum.moveY * perMove), static_cast<float>(sum.moveZ * perMove) };
-                if (m_kernel == Kernel::NearestSmoothed) {
+                if (m_kernel == Kernel::NearestSmoothed)
                     m_sums[n] = sums;
-                    return;
-                }
-                Node& node = m_nodes[n];
-                node.weight = sums.weight;
-                node.moveX = sums.moveX;
-                node.moveY = sums.moveY;
-                node.moveZ = sums.moveZ;
-                m_hairDensity[n] = node.weight * perVolume;
+                else
+                    store(n, sums);
             });
     });
     if (m_kernel == Kernel::NearestSmoothed) {
         smooth(pool); // into m_smoothed
         forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
             for (std::size_t l = begin; l < end; ++l)
-                forNodesOf(m_liveList[l], [&](int, int, int, std::size_t n) {
-                    const Sums& sums = m_smoothed[n];
-                    Node& node = m_nodes[n];
-                    node.weight = sums.weight;
-                    node.moveX = sums.moveX;
-                    node.moveY = sums.moveY;
-                    node.moveZ = sums.moveZ;
-                    m_hairDensity[n] = node.weight * perVolume;
-                });
+                forNodesOf(m_liveList[l], [&](int, int, int, std::size_t n) { store(n, m_smoothed[n]); });
         });
     }
     const float inv2h = 0.5f / m_cell;

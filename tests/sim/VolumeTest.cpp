@@ -494,42 +494,70 @@ TEST(Volume, ALockLaidAcrossAnotherRestsOnIt)
 
 namespace {
 
-// A dense patch (strands 0.5 mm apart, rows of 16 side by side): the grid splats and samples every
-// few strands (Solver::volumeSplat's level of detail), keeps the same bits on any thread count with
-// the splat done at the end of each block's substeps, and spreads the hair as much as without the
-// level of detail.
-HairCurves densePatch()
+// A square patch of side x side strands of `points` particles, `spacing` apart, hanging along -Y.
+HairCurves densePatch(int side = 16, int points = 10, float spacing = 0.0005f, float segment = 0.012f)
 {
     HairCurves rest;
-    for (int row = 0; row < 16; ++row)
-        for (int lane = 0; lane < 16; ++lane) {
-            auto p = rest.strandForWrite(rest.addStrand(10));
-            for (int j = 0; j < 10; ++j)
-                p[static_cast<std::size_t>(j)] = glm::vec3(0.0005f * static_cast<float>(lane),
-                    -0.012f * static_cast<float>(j), 0.0005f * static_cast<float>(row));
+    for (int row = 0; row < side; ++row)
+        for (int lane = 0; lane < side; ++lane) {
+            auto p = rest.strandForWrite(rest.addStrand(static_cast<std::size_t>(points)));
+            for (int j = 0; j < points; ++j)
+                p[static_cast<std::size_t>(j)] = glm::vec3(spacing * static_cast<float>(lane),
+                    -segment * static_cast<float>(j), spacing * static_cast<float>(row));
         }
     return rest;
 }
 
-std::vector<glm::vec3> settledPatch(float volume, int threads, int* stride = nullptr)
+struct PatchRun {
+    std::vector<glm::vec3> positions;
+    int stride = 0; // Solver::volumeStrideOfStrand(0) at the end
+    HairVolumeGrid::Kernel kernel = HairVolumeGrid::Kernel::Trilinear;
+};
+
+PatchRun runPatch(const HairCurves& rest, float volume, int threads, int substeps, int steps)
 {
     Solver solver(threads);
-    EXPECT_EQ(solver.setStrands(densePatch()), "");
+    EXPECT_EQ(solver.setStrands(rest), "");
     SolverSettings s;
-    s.substeps = 2;
+    s.substeps = substeps;
     s.dampingPerSecond = 2.0f;
     s.volume = volume;
     s.hairFriction = 0.3f;
     EXPECT_EQ(solver.setSettings(s), "");
-    for (int i = 0; i < 60; ++i)
+    for (int i = 0; i < steps; ++i)
         solver.step();
-    if (stride)
-        *stride = solver.volumeStrideOfStrand(0);
-    std::vector<glm::vec3> p;
-    solver.copyPositions(p);
-    return p;
+    PatchRun run;
+    run.stride = solver.volumeStrideOfStrand(0);
+    if (solver.volumeGrid())
+        run.kernel = solver.volumeGrid()->kernel();
+    solver.copyPositions(run.positions);
+    return run;
 }
 
+std::vector<glm::vec3> settledPatch(float volume, int threads, int* stride = nullptr)
+{
+    PatchRun run = runPatch(densePatch(), volume, threads, 2, 60);
+    if (stride)
+        *stride = run.stride;
+    return std::move(run.positions);
+}
+
+// How far apart the tips (every `points`-th particle) lie along x; each finite.
+float tipSpanX(const std::vector<glm::vec3>& p, std::size_t points)
+{
+    float lo = INFINITY, hi = -INFINITY;
+    for (std::size_t i = points - 1; i < p.size(); i += points) {
+        EXPECT_TRUE(std::isfinite(p[i].x + p[i].y + p[i].z));
+        lo = std::min(lo, p[i].x);
+        hi = std::max(hi, p[i].x);
+    }
+    return hi - lo;
+}
+
+// A dense patch (strands 0.5 mm apart, rows of 16 side by side): the grid splats and samples every
+// few strands (Solver::volumeSplat's level of detail), keeps the same bits on any thread count with
+// the splat done at the end of each block's substeps, and spreads the hair as much as without the
+// level of detail.
 TEST(Volume, ADensePatchSplatsEveryFewStrandsWithTheSameBitsOnAnyThreads)
 {
     int stride = 0;
@@ -538,17 +566,8 @@ TEST(Volume, ADensePatchSplatsEveryFewStrandsWithTheSameBitsOnAnyThreads)
     ASSERT_EQ(one.size(), three.size());
     EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(glm::vec3)), 0);
     // The tips spread apart where at volume 0 they hang in a 7.5 mm square.
-    auto tipSpread = [](const std::vector<glm::vec3>& p) {
-        float lo = INFINITY, hi = -INFINITY;
-        for (std::size_t i = 9; i < p.size(); i += 10) {
-            EXPECT_TRUE(std::isfinite(p[i].x));
-            lo = std::min(lo, p[i].x);
-            hi = std::max(hi, p[i].x);
-        }
-        return hi - lo;
-    };
     // Measured: 8.9 mm (8.8 mm with every strand splatting and sampled, stride 1).
-    const float still = tipSpread(settledPatch(0.0f, 1)), spread = tipSpread(one);
+    const float still = tipSpanX(settledPatch(0.0f, 1), 10), spread = tipSpanX(one, 10);
     EXPECT_NEAR(still, 0.0075f, 0.0005f);
     EXPECT_GT(spread, 1.1f * still);
 }
@@ -556,53 +575,20 @@ TEST(Volume, ADensePatchSplatsEveryFewStrandsWithTheSameBitsOnAnyThreads)
 // Above 250,000 particles (groom-1m) the grid is coarser and each particle meets only its nearest
 // node: a patch of 128 x 128 strands of 16 particles, 1 mm apart, keeps the same bits on any thread
 // count and still spreads where at volume 0 it hangs straight.
-std::vector<glm::vec3> denseDrape(float volume, int threads, HairVolumeGrid::Kernel* kernel = nullptr)
+PatchRun denseDrape(float volume, int threads)
 {
-    HairCurves rest;
-    for (int row = 0; row < 128; ++row)
-        for (int lane = 0; lane < 128; ++lane) {
-            auto p = rest.strandForWrite(rest.addStrand(16));
-            for (int j = 0; j < 16; ++j)
-                p[static_cast<std::size_t>(j)] = glm::vec3(0.001f * static_cast<float>(lane),
-                    -0.01f * static_cast<float>(j), 0.001f * static_cast<float>(row));
-        }
-    Solver solver(threads);
-    EXPECT_EQ(solver.setStrands(rest), "");
-    SolverSettings s;
-    s.substeps = 1;
-    s.dampingPerSecond = 2.0f;
-    s.volume = volume;
-    s.hairFriction = 0.3f;
-    EXPECT_EQ(solver.setSettings(s), "");
-    for (int i = 0; i < 12; ++i)
-        solver.step();
-    if (kernel && solver.volumeGrid())
-        *kernel = solver.volumeGrid()->kernel();
-    std::vector<glm::vec3> p;
-    solver.copyPositions(p);
-    return p;
+    return runPatch(densePatch(128, 16, 0.001f, 0.01f), volume, threads, 1, 12);
 }
 
 TEST(Volume, ADenseGroomMeetsItsNearestNodeWithTheSameBitsOnAnyThreads)
 {
-    HairVolumeGrid::Kernel kernel = HairVolumeGrid::Kernel::Trilinear;
-    const std::vector<glm::vec3> one = denseDrape(1.0f, 1, &kernel), three = denseDrape(1.0f, 3);
-    EXPECT_EQ(kernel, HairVolumeGrid::Kernel::NearestSmoothed);
-    ASSERT_EQ(one.size(), 128u * 128u * 16u);
-    ASSERT_EQ(one.size(), three.size());
-    EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(glm::vec3)), 0);
+    const PatchRun one = denseDrape(1.0f, 1), three = denseDrape(1.0f, 3);
+    EXPECT_EQ(one.kernel, HairVolumeGrid::Kernel::NearestSmoothed);
+    ASSERT_EQ(one.positions.size(), 128u * 128u * 16u);
+    ASSERT_EQ(one.positions.size(), three.positions.size());
+    EXPECT_EQ(std::memcmp(one.positions.data(), three.positions.data(), one.positions.size() * sizeof(glm::vec3)), 0);
     // The tips of the patch's outer strands: pushed outward from the dense middle.
-    const std::vector<glm::vec3> still = denseDrape(0.0f, 1);
-    auto tipWidth = [](const std::vector<glm::vec3>& p) {
-        float lo = INFINITY, hi = -INFINITY;
-        for (std::size_t i = 15; i < p.size(); i += 16) {
-            EXPECT_TRUE(std::isfinite(p[i].x + p[i].y + p[i].z));
-            lo = std::min(lo, p[i].x);
-            hi = std::max(hi, p[i].x);
-        }
-        return hi - lo;
-    };
-    const float hanging = tipWidth(still), spread = tipWidth(one);
+    const float hanging = tipSpanX(denseDrape(0.0f, 1).positions, 16), spread = tipSpanX(one.positions, 16);
     std::printf("dense drape, tips across x after 12 steps: %.1f mm at volume 0, %.1f mm at volume 1\n", 1e3 * hanging,
         1e3 * spread);
     EXPECT_NEAR(hanging, 0.127f, 0.002f);

@@ -168,6 +168,7 @@ void Solver::updateVolumeBounds()
         }
     m_volumeLo = lo;
     m_volumeHi = hi;
+    m_volumeUnitsStale = true; // the weights changed: the grid's fixed point is set on the next pass
     if (!(m_scalpArea > 0.0f))
         m_scalpArea = estimatedScalpArea(m_blocks);
     m_hairPerScalpArea = m_scalpArea > 0.0f ? static_cast<float>(hair / m_scalpArea) : 0.0f;
@@ -260,53 +261,86 @@ int Solver::volumeRefreshSubsteps(float substepSeconds)
     return std::max(1, static_cast<int>(kVolumeRefreshSeconds / substepSeconds + 1e-3f));
 }
 
+// A row's sixteen strands lie side by side on the scalp. Where a dense groom puts them much closer
+// than a cell (groom-1m: 1-3 mm apart in 2 cm cells), the grid cannot tell them apart: only every
+// stride-th strand splats, with the weight of those it stands for, and is sampled; the strands
+// between blend the samples around them (HairVolumeGrid::sampleRow), as members follow their key.
+// The stride is chosen per row (the particles at one distance from the roots): the largest power of
+// two whose sampled strands are within kVolumeLodCellShare of a cell of each other there, where they
+// are now (Solver::volumeSplat), so the roots and lengths that lie together are thinned even where
+// the tips flutter apart; 1 for a block with padding, and in practice for the editor's keys (5-10 mm
+// apart in 8-15 mm cells).
+constexpr float kVolumeLodCellShare = 0.5f;
+// The grid's nodes (HairVolumeGrid::setBounds) for a scene of `particles`: all the memory bound
+// allows up to kVolumeFullGridParticles, and fewer in proportion beyond (a quarter at a million,
+// cells 1.6 times as wide): the splat and the read wait on cache misses in a grid much larger than
+// the cache, and a dense groom has hair enough in every cell of the coarser grid. Beyond it, too,
+// each particle meets only its nearest node (HairVolumeGrid::Kernel::NearestSmoothed): a cell
+// holds dozens of particles (groom-1m: a million in 27,000 nodes), so one crossing between nodes
+// barely changes either, and the splat and the read cost a node, not eight.
+constexpr std::size_t kVolumeFullGridParticles = 250'000;
+std::size_t volumeGridNodes(std::size_t particles)
+{
+    return particles <= kVolumeFullGridParticles
+        ? HairVolumeGrid::kMaxNodes
+        : static_cast<std::size_t>(static_cast<double>(HairVolumeGrid::kMaxNodes)
+            * (static_cast<double>(kVolumeFullGridParticles) / static_cast<double>(particles)));
+}
+
+int Solver::volumeStrideOfStrand(std::size_t strand) const
+{
+    if (strand >= m_slotOfStrand.size())
+        return 0;
+    const std::vector<std::uint8_t>& strides = m_blocks[m_slotOfStrand[strand].block].volumeStrides;
+    return strides.empty() ? 1 : *std::min_element(strides.begin(), strides.end());
+}
+
 void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
 {
     if (!m_volumeGrid) {
         m_volumeGrid = std::make_unique<HairVolumeGrid>();
-        if (m_volumeGrid->setBounds(m_volumeLo, m_volumeHi) && m_sdf)
+        m_volumeUnitsStale = true;
+        const HairVolumeGrid::Kernel kernel = m_particleCount > kVolumeFullGridParticles
+            ? HairVolumeGrid::Kernel::NearestSmoothed
+            : HairVolumeGrid::Kernel::Trilinear;
+        if (m_volumeGrid->setBounds(m_volumeLo, m_volumeHi, threadCount(), volumeGridNodes(m_particleCount), kernel)
+            && m_sdf)
             m_volumeGrid->setSolid([&](const glm::vec3& p) { return m_sdf->distance(p); });
     }
     HairVolumeGrid& grid = *m_volumeGrid;
     if (grid.empty())
         return;
+    if (m_volumeUnitsStale) {
+        double total = 0.0; // the most weight a pass splats: every particle's
+        for (const Block& b : m_blocks)
+            for (int l = 0; l < kLanes; ++l)
+                total += static_cast<double>(b.volumeWeight[l]) * b.points;
+        grid.clear(nullptr);
+        grid.setWeightBound(total);
+        m_volumeSplatted = false;
+        m_volumeUnitsStale = false;
+    }
     ++m_volumePasses;
     // Few particles (the editor's keys): the calling thread does it all; waking the pool for each of
     // the pass's loops would cost more than they do.
     constexpr std::size_t kParallelVolumeParticles = 50'000;
     ThreadPool* pool = m_particleCount >= kParallelVolumeParticles ? m_pool.get() : nullptr;
-    // Each chunk in use is cleared by the thread that splats it; finish() reads only those in use.
-    grid.setChunks(pool ? HairVolumeGrid::kSplatChunks : 1);
-    const std::size_t blockCount = m_blocks.size();
-    const std::size_t kChunks = static_cast<std::size_t>(grid.chunks());
-    const glm::mat3 toHead = glm::transpose(c.rotation);
-    // A fixed split of the blocks into chunks, each summed in block order, row by row (a row's 16
-    // particles are neighbours on the scalp, so in the grid): the same bits on any thread count.
-    auto splatChunks = [&](std::size_t begin, std::size_t end) {
-        for (std::size_t chunk = begin; chunk < end; ++chunk) {
-            grid.clearChunk(static_cast<int>(chunk)); // the last pass's splats, by the thread that splats now
-            for (std::size_t i = chunk * blockCount / kChunks; i < (chunk + 1) * blockCount / kChunks; ++i) {
-                const Block& b = m_blocks[i];
-                for (std::uint32_t j = 0; j < b.points; ++j) { // row by row: a row's strands lie side by side
-                    const ParticleRow& r = b.state[j];
-                    const V3 x{ r.x, r.y, r.z };
-                    const V3 move = x - V3{ r.px, r.py, r.pz };
-                    // A particle gone non-finite or flying off (its strand is put back at rest at
-                    // the end of the step) must not spread through the grid.
-                    const Lane weight = select(l1Length(move) < kVolumeMaxMoveMetres, b.volumeWeight, splat(0.0f));
-                    const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
-                    grid.splatRow(static_cast<int>(chunk), reinterpret_cast<const float*>(&head.x),
-                        reinterpret_cast<const float*>(&head.y), reinterpret_cast<const float*>(&head.z),
-                        reinterpret_cast<const float*>(&weight), reinterpret_cast<const float*>(&move.x),
-                        reinterpret_cast<const float*>(&move.y), reinterpret_cast<const float*>(&move.z));
-                }
-            }
-        }
-    };
-    if (pool)
-        pool->parallelFor(kChunks, 1, splatChunks);
-    else
-        splatChunks(0, kChunks);
+    // The blocks splatted their end state at the end of the last run of substeps (step()); only
+    // when something moved particles since (or there was no run) do they splat here, in a sweep.
+    if (!m_volumeSplatted) {
+        grid.clear(pool);
+        auto splatBlocks = [&](std::size_t begin, std::size_t end) {
+            const int slot = grid.claimSlot();
+            for (std::size_t i = begin; i < end; ++i)
+                volumeSplat(m_blocks[i], c, slot);
+            grid.releaseSlot(slot);
+        };
+        if (pool)
+            pool->parallelFor(m_blocks.size(), 4, splatBlocks);
+        else
+            splatBlocks(0, m_blocks.size());
+    }
+    m_volumeSplatted = false;
     VolumeRead& v = m_volumeRead;
     v.target = volumeTargetDensity();
     grid.finish(pool, v.target);
@@ -322,6 +356,55 @@ void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
     const float refreshSeconds = c.dt * static_cast<float>(substepsUntilNext);
     v.stiffness = std::min(kVolumeStiffness, kVolumeStableShare * cell * cell / (refreshSeconds * refreshSeconds));
     v.pushDamping = 1.0f - std::exp(-kVolumeDampingPerSecond * c.dt);
+}
+
+// One block's splat into the grid's slot `slot`, row by row (a row's strands lie side by side):
+// each particle's weight and its move over the last substep, at its head-space position.
+void Solver::volumeSplat(Block& b, const StepConstants& c, int slot)
+{
+    HairVolumeGrid& grid = *m_volumeGrid;
+    const glm::mat3 toHead = glm::transpose(c.rotation);
+    // The level of detail (kVolumeLodCellShare), row by row: how far apart neighbouring lanes are now.
+    bool full = true;
+    for (int l = 0; l < kLanes; ++l)
+        full = full && b.strand[l] >= 0;
+    // At each group's first lane, the weight of its lanes, for strides 1, 2, 4, 8 and 16.
+    Lane groupWeight[5];
+    for (int s = 0, stride = 1; s < 5; ++s, stride *= 2) {
+        groupWeight[s] = splat(0.0f);
+        for (int l = 0; l < kLanes; ++l)
+            groupWeight[s][l - l % stride] += b.volumeWeight[l];
+    }
+    using LaneIndex = int __attribute__((vector_size(kLanes * sizeof(int))));
+    const LaneIndex next{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 15 };
+    const float reach = kVolumeLodCellShare * grid.cellMetres();
+    b.volumeStrides.resize(b.points);
+    for (std::uint32_t j = 0; j < b.points; ++j) {
+        const ParticleRow& r = b.state[j];
+        const V3 x{ r.x, r.y, r.z };
+        int level = 0; // log2 of the stride
+        if (full) {
+            const Lane dx = __builtin_shuffle(r.x, next) - r.x, dy = __builtin_shuffle(r.y, next) - r.y,
+                       dz = __builtin_shuffle(r.z, next) - r.z;
+            const Lane distance2 = dx * dx + dy * dy + dz * dz;
+            float spacing2 = 0.0f;
+            for (int l = 0; l < kLanes; ++l)
+                spacing2 = std::max(spacing2, distance2[l]); // NaN (a broken strand) leaves it, stride 1 below
+            while (level < 4 && std::isfinite(spacing2)
+                && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)
+                ++level;
+        }
+        b.volumeStrides[j] = static_cast<std::uint8_t>(1 << level);
+        const V3 move = x - V3{ r.px, r.py, r.pz };
+        // A particle gone non-finite or flying off (its strand is put back at rest at the end of
+        // the step) must not spread through the grid.
+        const Lane weight = select(l1Length(move) < kVolumeMaxMoveMetres, groupWeight[level], splat(0.0f));
+        const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
+        grid.splatRow(slot, reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
+            reinterpret_cast<const float*>(&head.z), reinterpret_cast<const float*>(&weight),
+            reinterpret_cast<const float*>(&move.x), reinterpret_cast<const float*>(&move.y),
+            reinterpret_cast<const float*>(&move.z), HairVolumeGrid::kRowLanes, 1 << level);
+    }
 }
 
 // The read of volumePass's grid for one block, all 16 lanes at once: each particle's velocity is
@@ -346,7 +429,8 @@ void Solver::volumeRead(Block& b, const StepConstants& c) const
         const V3 x{ r.x, r.y, r.z };
         const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
         grid.sampleRow(reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
-            reinterpret_cast<const float*>(&head.z), here);
+            reinterpret_cast<const float*>(&head.z), here, HairVolumeGrid::kRowLanes,
+            j < b.volumeStrides.size() ? b.volumeStrides[j] : 1);
         const Lane density = lane(here.density);
         const Mask inHair = density > 0.0f;
         if (!anyOf(inHair))
@@ -415,6 +499,7 @@ void Solver::setHeadTransform(const glm::mat4& headToWorld)
 
 void Solver::resetToRest()
 {
+    m_volumeSplatted = false; // the grid's last splats are of the old state
     m_previousHeadToWorld = m_headToWorld;
     const glm::mat3 rotation(m_headToWorld);
     const glm::vec3 translation(m_headToWorld[3]);
@@ -536,6 +621,8 @@ void Solver::step()
     const bool volume = s.volume > 0.0f && !m_blocks.empty();
     auto advance = [&](int first, int end) {
         m_pool->parallelFor(m_blocks.size(), 4, [&](std::size_t begin, std::size_t stop) {
+            HairVolumeGrid* const splatInto = volume && !m_volumeGrid->empty() ? m_volumeGrid.get() : nullptr;
+            const int slot = splatInto ? splatInto->claimSlot() : 0;
             for (std::size_t i = begin; i < stop; ++i) {
                 Block& b = m_blocks[i];
                 auto run = [&](int from, int to) { advanceBlock(b, c, from, to, globalShape); };
@@ -549,7 +636,11 @@ void Solver::step()
                     volumeRead(b, c);
                     run(substep, substep + 1);
                 }
+                if (splatInto)
+                    volumeSplat(b, c, slot); // for the next pass, while the block is in cache
             }
+            if (splatInto)
+                splatInto->releaseSlot(slot);
         });
     };
     if (volume) {
@@ -562,14 +653,19 @@ void Solver::step()
         // particle's own new position barely differs, while the pass is most of a substep's cost.
         // The push's stiffness is capped for the refresh interval, not the substep (volumePass).
         const int refreshEvery = volumeRefreshSubsteps(c.dt);
+        if (m_headToWorld != m_volumeSplatHead) // the last splats are in the last step's head space
+            m_volumeSplatted = false;
         for (int first = 0; first < c.substeps; first += refreshEvery) {
             const int end = std::min(first + refreshEvery, c.substeps);
             c.substep = first;
             volumePass(c, end - first);
             advance(first, end);
+            m_volumeSplatted = true;
         }
+        m_volumeSplatHead = m_headToWorld;
     } else {
         advance(0, c.substeps); // each block runs all its substeps in one go, in cache
+        m_volumeSplatted = false;
     }
     m_previousHeadToWorld = m_headToWorld;
     m_time += s.timeStepSeconds;

@@ -1,5 +1,6 @@
 #include "sim/solver/HairVolumeGrid.h"
 
+#include "sim/util/ShuffleLanes.h"
 #include "sim/util/ThreadPool.h"
 
 #include <glm/common.hpp>
@@ -521,7 +522,7 @@ void HairVolumeGrid::sampleRow(
         { out.density, out.hair, out.momentumX, out.momentumY, out.momentumZ, out.gradX, out.gradY, out.gradZ }) {
         Floats v;
         std::memcpy(&v, values, sizeof v);
-        const Floats from = __builtin_shuffle(v, before), to = __builtin_shuffle(v, after);
+        const Floats from = shuffleLanes(v, before), to = shuffleLanes(v, after);
         v = from + (to - from) * share;
         std::memcpy(values, &v, sizeof v);
     }

@@ -6,6 +6,7 @@
 #include "sim/solver/HairVolumeGrid.h"
 #include "sim/solver/SolverLanes.h"
 #include "sim/solver/SolverRows.h"
+#include "sim/util/ShuffleLanes.h"
 #include "sim/util/ThreadPool.h"
 
 #include <glm/common.hpp>
@@ -277,8 +278,8 @@ void Solver::volumeSplat(Block& b, const StepConstants& c, int slot)
         const V3 x{ r.x, r.y, r.z };
         int level = 0; // log2 of the stride
         if (full) {
-            const Lane dx = __builtin_shuffle(r.x, next) - r.x, dy = __builtin_shuffle(r.y, next) - r.y,
-                       dz = __builtin_shuffle(r.z, next) - r.z;
+            const Lane dx = shuffleLanes(r.x, next) - r.x, dy = shuffleLanes(r.y, next) - r.y,
+                       dz = shuffleLanes(r.z, next) - r.z;
             const Lane distance2 = dx * dx + dy * dy + dz * dz;
             float spacing2 = 0.0f;
             for (int l = 0; l < kLanes; ++l)

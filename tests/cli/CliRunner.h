@@ -13,10 +13,14 @@ struct CliRun {
     std::string output; // stdout and stderr together
 };
 
-// `timeoutSeconds` > 0 runs it under timeout(1): a run that blocks ends with status 124.
+// `timeoutSeconds` > 0 runs it under timeout(1): a run that blocks ends with status 124. The limit
+// is for the Release build; the sanitizer build (about ten times slower) gets it times
+// WISP_SLOW_BUILD_FACTOR, so a slow run is not mistaken for a blocked one.
 inline CliRun cli(const std::string& arguments, int timeoutSeconds = 0)
 {
-    const std::string prefix = timeoutSeconds > 0 ? "timeout " + std::to_string(timeoutSeconds) + " " : std::string();
+    const std::string prefix = timeoutSeconds > 0
+        ? "timeout " + std::to_string(timeoutSeconds * WISP_SLOW_BUILD_FACTOR) + " "
+        : std::string();
     const std::string command = prefix + std::string(WISP_CLI_PATH) + " " + arguments + " 2>&1";
     CliRun r;
     FILE* pipe = popen(command.c_str(), "r");

@@ -9,10 +9,15 @@
 #include "sim/solver/Frame.h"
 #include "widgets/ParameterPanel.h"
 
+#include <QApplication>
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
+#include <QMouseEvent>
 #include <QSignalSpy>
+#include <QSlider>
 #include <QStandardPaths>
+#include <QStyle>
+#include <QStyleOptionSlider>
 #include <QTest>
 #include <QUndoStack>
 
@@ -167,6 +172,28 @@ inline Ends meanEnds(const FramePtr& frame)
     e.root /= static_cast<float>(c.strandCount());
     e.tip /= static_cast<float>(c.strandCount());
     return e;
+}
+
+// Presses the slider's handle where the style draws it, moves right `steps` times by `stepPx`
+// (each move a live edit), releases: real mouse events.
+inline void dragSliderHandle(QSlider* slider, int steps, int stepPx)
+{
+    QStyleOptionSlider option;
+    option.initFrom(slider);
+    option.orientation = slider->orientation();
+    option.minimum = slider->minimum();
+    option.maximum = slider->maximum();
+    option.sliderPosition = slider->sliderPosition();
+    option.sliderValue = slider->value();
+    const QRect handle = slider->style()->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider);
+    QPoint at = handle.center();
+    QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, at);
+    for (int i = 0; i < steps; ++i) {
+        at += QPoint(stepPx, 0);
+        QMouseEvent move(QEvent::MouseMove, at, slider->mapToGlobal(at), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+        QApplication::sendEvent(slider, &move);
+    }
+    QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, at);
 }
 
 // Types a value into a parameter's spin box: select all, type, Enter.

@@ -355,9 +355,12 @@ TEST_F(HeadMotionTest, TheMotionPanelsSpinBoxesTakeTheirRangesFromTheRegistry)
     expectRange(panel->frequencyBox(), MotionSetting::Frequency, 0.01, "frequency");
     expectRange(panel->keyTimeBox(), MotionSetting::Time, 0.0, "key time (from 0 s, where the timeline starts)");
 
-    QComboBox* kind = panel->kindBox();
-    kind->setFocus();
-    QTest::keyClick(kind, Qt::Key_Down); // turn
+    // The kind is chosen with the keyboard, as an artist tabbing through the panel would.
+    const auto chooseKind = [kind = panel->kindBox()](Qt::Key key) {
+        kind->setFocus();
+        QTest::keyClick(kind, key);
+    };
+    chooseKind(Qt::Key_Down); // turn
     ASSERT_EQ(doc()->headMotion().procedural().kind, MotionKind::Turn);
     expectRange(panel->amplitudeBox(), MotionSetting::TurnAmplitude, 0.0, "turn amplitude");
     pageUp(panel->amplitudeBox(), 12);
@@ -365,8 +368,7 @@ TEST_F(HeadMotionTest, TheMotionPanelsSpinBoxesTakeTheirRangesFromTheRegistry)
     pageUp(panel->frequencyBox(), 3);
     EXPECT_DOUBLE_EQ(doc()->headMotion().procedural().frequencyHz, 10.0);
 
-    kind->setFocus();
-    QTest::keyClick(kind, Qt::Key_End); // walk
+    chooseKind(Qt::Key_End); // walk
     ASSERT_EQ(doc()->headMotion().procedural().kind, MotionKind::Walk);
     expectRange(panel->amplitudeBox(), MotionSetting::WalkAmplitude, 0.0, "walk amplitude");
     pageUp(panel->amplitudeBox(), 2);

@@ -119,23 +119,8 @@ TEST_F(EditorTest, OneSliderDragIsOneUndoStep)
 {
     QSlider* slider = window->forcePanel()->sliderFor(Param::Gravity);
     ASSERT_NE(slider, nullptr);
-    QStyleOptionSlider option;
-    option.initFrom(slider);
-    option.orientation = slider->orientation();
-    option.minimum = slider->minimum();
-    option.maximum = slider->maximum();
-    option.sliderPosition = slider->sliderPosition();
-    option.sliderValue = slider->value();
-    const QRect handle = slider->style()->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider);
     const double before = window->document()->parameters().get(Param::Gravity);
-    QPoint at = handle.center();
-    QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, at);
-    for (int i = 0; i < 8; ++i) {
-        at += QPoint(6, 0);
-        QMouseEvent move(QEvent::MouseMove, at, slider->mapToGlobal(at), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
-        QApplication::sendEvent(slider, &move);
-    }
-    QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, at);
+    dragSliderHandle(slider, 8, 6);
     const double after = window->document()->parameters().get(Param::Gravity);
     EXPECT_GT(after, before);
     EXPECT_EQ(window->document()->undoStack()->count(), 1);

@@ -29,6 +29,7 @@
 #include <vector>
 
 using namespace wisp;
+using wisp::test::dragSliderHandle;
 using wisp::test::typeValue;
 
 // Readable QStrings in failure messages.
@@ -104,27 +105,6 @@ void renameCurrentRow(QListWidget* list, const QString& text)
     QLineEdit* editor = openNameEditor(list);
     ASSERT_NE(editor, nullptr) << "F2 opened no name editor";
     typeName(list, editor, text);
-}
-
-// Presses the slider's handle, moves right in steps (each a live edit), releases.
-void dragSlider(QSlider* slider, int steps, int stepPx)
-{
-    QStyleOptionSlider option;
-    option.initFrom(slider);
-    option.orientation = slider->orientation();
-    option.minimum = slider->minimum();
-    option.maximum = slider->maximum();
-    option.sliderPosition = slider->sliderPosition();
-    option.sliderValue = slider->value();
-    const QRect handle = slider->style()->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider);
-    QPoint at = handle.center();
-    QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, at);
-    for (int i = 0; i < steps; ++i) {
-        at += QPoint(stepPx, 0);
-        QMouseEvent move(QEvent::MouseMove, at, slider->mapToGlobal(at), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
-        QApplication::sendEvent(slider, &move);
-    }
-    QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, at);
 }
 
 std::vector<std::uint32_t> documentIds(const Document& document)
@@ -535,7 +515,7 @@ TEST_F(WispPanelTest, OneSliderDragIsOneUndoStep)
     QSlider* slider = parameters()->sliderFor(Param::ClumpDegree);
     ASSERT_NE(slider, nullptr);
     const double before = document->region(1).values.get(Param::ClumpDegree);
-    ASSERT_NO_FATAL_FAILURE(dragSlider(slider, 8, 4));
+    ASSERT_NO_FATAL_FAILURE(dragSliderHandle(slider, 8, 4));
     const double after = document->region(1).values.get(Param::ClumpDegree);
     EXPECT_GT(after, before);
     EXPECT_DOUBLE_EQ(document->region(0).values.get(Param::ClumpDegree), before);

@@ -6,6 +6,21 @@ using namespace wisp::test;
 
 namespace {
 
+// Made-up wall time for the pacer: each step starts when it is due, or at once when it is late
+// (as the simulation thread does), and lasts `stepSeconds`, `solverSeconds` of them in the solver.
+struct PacerClock {
+    SimulationHostPacer& pacer;
+    double dt;
+    double now = 0.0;
+
+    SimulationHostPacer::StepReport step(double stepSeconds, double solverSeconds)
+    {
+        const double start = std::max(now, pacer.dueSeconds());
+        now = start + stepSeconds;
+        return pacer.finishStep(start, now, solverSeconds, dt);
+    }
+};
+
 TEST(SimulationHostPacer, KeepsAFixedCadenceAndCatchesUpASmallDelay)
 {
     SimulationHostPacer pacer;
@@ -47,14 +62,11 @@ TEST(SimulationHostPacer, TheRateMeansTheSameAtAnyTimeStep)
     EXPECT_FALSE(pacer.finishStep(stalled, stalled + 0.0005, 0.0004, dt).fallingBehind);
     // ...but steps of 2 ms are half speed: said within a tenth of a second, measured to a few
     // percent once the earlier real-time second has faded (two kRateSeconds).
-    double now = stalled + 0.0005;
+    PacerClock clock{ pacer, dt, stalled + 0.0005 };
     auto slowSteps = [&](int steps) {
         SimulationHostPacer::StepReport report;
-        for (int i = 0; i < steps; ++i) {
-            const double start = std::max(now, pacer.dueSeconds());
-            now = start + 0.002;
-            report = pacer.finishStep(start, now, 0.0019, dt);
-        }
+        for (int i = 0; i < steps; ++i)
+            report = clock.step(0.002, 0.0019);
         return report;
     };
     EXPECT_TRUE(slowSteps(50).fallingBehind);
@@ -69,22 +81,18 @@ TEST(SimulationHostPacer, SlowStepsAreNotChasedAndShedSubstepsDownToWhatFits)
     const double dt = 1.0 / 60.0;
     pacer.setRequestedSubsteps(8);
     pacer.restart(0.0);
-    double now = 0.0;
+    PacerClock clock{ pacer, dt };
     SimulationHostPacer::StepReport report;
     // 8 substeps of 6 ms plus 2 ms for the frame: 50 ms a step, three times the time step.
     for (int i = 0; i < SimulationHostPacer::kReduceAfterSteps - 1; ++i) {
-        const double start = std::max(now, pacer.dueSeconds());
-        now = start + 0.050;
-        report = pacer.finishStep(start, now, 0.048, dt);
+        report = clock.step(0.050, 0.048);
         EXPECT_TRUE(report.fallingBehind);
         EXPECT_FALSE(report.substepsChanged);
-        EXPECT_LE(pacer.dueSeconds(), now) << "the next step starts at once";
-        EXPECT_GE(pacer.dueSeconds(), now - dt) << "no backlog of more than one step";
+        EXPECT_LE(pacer.dueSeconds(), clock.now) << "the next step starts at once";
+        EXPECT_GE(pacer.dueSeconds(), clock.now - dt) << "no backlog of more than one step";
     }
     EXPECT_NEAR(report.timeScale, dt / 0.050, 0.02);
-    const double start = std::max(now, pacer.dueSeconds());
-    now = start + 0.050;
-    report = pacer.finishStep(start, now, 0.048, dt);
+    report = clock.step(0.050, 0.048);
     EXPECT_TRUE(report.substepsChanged);
     // floor((0.8 * 16.7 ms - 2 ms) / 6 ms) = 1
     EXPECT_EQ(pacer.substeps(), 1);
@@ -92,19 +100,13 @@ TEST(SimulationHostPacer, SlowStepsAreNotChasedAndShedSubstepsDownToWhatFits)
 
     // At 1 substep a step costs 8 ms: real time again (once the slow second has faded from the
     // rate), but still reported as behind (fewer substeps).
-    for (int i = 0; i < 150; ++i) {
-        const double s = std::max(now, pacer.dueSeconds());
-        now = s + 0.008;
-        report = pacer.finishStep(s, now, 0.006, dt);
-    }
+    for (int i = 0; i < 150; ++i)
+        report = clock.step(0.008, 0.006);
     EXPECT_EQ(report.timeScale, 1.0);
     EXPECT_TRUE(report.fallingBehind);
     // 2 substeps would cost 14 ms, over the restore share: stays at 1 (no flapping).
-    for (int i = 0; i < 3 * SimulationHostPacer::kRestoreAfterSteps; ++i) {
-        const double s = std::max(now, pacer.dueSeconds());
-        now = s + 0.008;
-        pacer.finishStep(s, now, 0.006, dt);
-    }
+    for (int i = 0; i < 3 * SimulationHostPacer::kRestoreAfterSteps; ++i)
+        clock.step(0.008, 0.006);
     EXPECT_EQ(pacer.substeps(), 1);
 }
 
@@ -114,14 +116,12 @@ TEST(SimulationHostPacer, GivesSubstepsBackOneAtATimeWhenThereIsHeadroom)
     const double dt = 1.0 / 60.0;
     pacer.setRequestedSubsteps(4);
     pacer.restart(0.0);
-    double now = 0.0;
+    PacerClock clock{ pacer, dt };
     auto run = [&](int steps, double perSubstep) {
         int changes = 0;
         for (int i = 0; i < steps; ++i) {
-            const double start = std::max(now, pacer.dueSeconds());
             const double solver = perSubstep * pacer.substeps();
-            now = start + solver + 0.001;
-            changes += pacer.finishStep(start, now, solver, dt).substepsChanged ? 1 : 0;
+            changes += clock.step(solver + 0.001, solver).substepsChanged ? 1 : 0;
         }
         return changes;
     };
@@ -136,7 +136,7 @@ TEST(SimulationHostPacer, GivesSubstepsBackOneAtATimeWhenThereIsHeadroom)
     EXPECT_EQ(pacer.substeps(), 4);
     run(5 * SimulationHostPacer::kRestoreAfterSteps, 0.001);
     EXPECT_EQ(pacer.substeps(), 4) << "never above the request";
-    const auto report = pacer.finishStep(now, now + 0.005, 0.004, dt);
+    const auto report = pacer.finishStep(clock.now, clock.now + 0.005, 0.004, dt);
     EXPECT_FALSE(report.fallingBehind);
 
     // Never below 1, however slow.

@@ -138,10 +138,7 @@ TEST_F(ViewportTest, GrowthOverlayAndBrushOnTheDefaultScalp)
     cursor.mirrorCentre = cursor.centre * glm::vec3(-1.0f, 1.0f, 1.0f);
     cursor.mirrorNormal = cursor.normal * glm::vec3(-1.0f, 1.0f, 1.0f);
     // On the crown, well inside the painted area, off the brush's rings.
-    const auto scalp = visibleFacingVertex(*viewport, [&](std::size_t i) {
-        return weights[i] > 0.99f && mesh.positions[i].y > head.max.y - 0.05f
-            && clearOfTheRings(cursor, mesh.positions[i]);
-    });
+    const auto scalp = crownScalpVertexClearOf(*viewport, head, cursor);
     ASSERT_TRUE(scalp);
     viewport->setGrowthOverlay(weights);
     viewport->setShowGrowthOverlay(true);
@@ -210,10 +207,7 @@ TEST_F(ViewportTest, OverlayBrushAndLooksSurviveANewContext)
     const TriangleMesh& mesh = defaultHead().mesh;
     const std::vector<float>& weights = defaultHead().growthWeights;
     BrushCursor cursor = foreheadBrush(*viewport, head);
-    const auto scalp = visibleFacingVertex(*viewport, [&](std::size_t i) {
-        return weights[i] > 0.99f && mesh.positions[i].y > head.max.y - 0.05f
-            && clearOfTheRings(cursor, mesh.positions[i]);
-    });
+    const auto scalp = crownScalpVertexClearOf(*viewport, head, cursor);
     ASSERT_TRUE(scalp);
     viewport->setGrowthOverlay(weights);
     viewport->setShowGrowthOverlay(true);

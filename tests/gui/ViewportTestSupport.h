@@ -319,6 +319,19 @@ inline bool clearOfTheRings(const BrushCursor& cursor, const glm::vec3& point)
     return clear(cursor.centre) && (!cursor.mirrored || clear(cursor.mirrorCentre));
 }
 
+// A crown vertex, well inside the default head's painted area (growth weight > 0.99, within 5 cm
+// of the top of `bounds`), that the camera sees squarely and that lies clear of the brush's rings.
+inline std::optional<std::size_t> crownScalpVertexClearOf(
+    const Viewport& viewport, const Aabb& bounds, const BrushCursor& cursor)
+{
+    const TriangleMesh& mesh = defaultHead().mesh;
+    const std::vector<float>& weights = defaultHead().growthWeights;
+    return visibleFacingVertex(viewport, [&](std::size_t i) {
+        return weights[i] > 0.99f && mesh.positions[i].y > bounds.max.y - 0.05f
+            && clearOfTheRings(cursor, mesh.positions[i]);
+    });
+}
+
 // Points on the brush's circle (as drawn: lifted off the surface), at `count` even angles.
 inline std::vector<glm::vec3> ringPoints(const BrushCursor& cursor, int count)
 {

@@ -264,7 +264,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                             lo = select(clear, lo, mid);
                         }
                         position = select(arcClears, onArc(hi), position);
-                        applyFriction(arcClears, nextDepth, next.normal, mu, before, position, previous);
+                        applyFriction(arcClears, nextDepth, next.normal, mu, parent, length, before, position, previous,
+                            splat(c.offset));
                     }
                     resolveContact(stuck & ~arcClears, nextDepth, next.normal, mu, parent, length, inverseLength,
                         before, position, previous, true, splat(c.offset));

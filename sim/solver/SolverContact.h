@@ -86,12 +86,8 @@ struct SdfSample {
 // Contact, as the last word of a substep: the penetrating lanes are turned about their (final)
 // parent onto the collider's tangent plane, so they leave it and keep their segment's length;
 // where no point at that length from the parent is outside (the parent itself is too deep), the
-// particle is pushed out along the normal and the length gives way. Then Coulomb friction
-// (velocity level, through the previous position): the contact's normal correction δ = depth
-// bounds the tangential slip it can stop, static while the slip is under μs δ, else the slip is
-// shortened by μk δ (Macklin et al. 2014, "Unified Particle Physics", eq. 24-25). Its effect per
-// second is μ × normal force / mass at any substep count. The normal part of the velocity is
-// kept only outward.
+// particle is pushed out along the normal and the length gives way. Then Coulomb friction at the
+// position level (applyFriction below). The normal part of the velocity is kept only outward.
 // Static friction of hair on skin is a little above its kinetic friction (measured hair-on-hair
 // and hair-on-skin coefficients differ by about this much).
 constexpr float kStaticOverKineticFriction = 1.25f;
@@ -119,7 +115,7 @@ struct ContactFriction {
 
 // Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below).
 [[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& oldPosition, const V3& position, V3& previous);
+    const V3& parent, Lane length, const V3& oldPosition, V3& position, V3& previous, Lane band);
 
 [[gnu::noinline]] void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
     const V3& parent, Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous,
@@ -144,22 +140,41 @@ struct ContactFriction {
     const Lane slack = select(length < band * 2.0f, band, splat(0.0f)); // only for segments that short
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
-    applyFriction(inside, depth, normal, mu, oldPosition, position, previous);
+    applyFriction(inside, depth, normal, mu, parent, length, oldPosition, position, previous, band);
 }
 
+// Coulomb friction at the position level (Macklin et al. 2014, "Unified Particle Physics for
+// Real-Time Applications", §6.1, eq. 24-25): the contact's normal correction d (its depth) bounds
+// the tangential displacement Δx⊥ of the particle over the substep that friction can take back.
+// Static while |Δx⊥| < μs d: all of it is removed; else kinetic: min(μk d / |Δx⊥|, 1) Δx⊥ is.
+// Removing it from the position (not only from the velocity) is what holds hair on a slope its
+// static friction can hold: the turn onto the tangent plane keeps the predicted slide, and a
+// velocity-only friction let that slide through every substep. The held point is put back at its
+// segment's length from its (final) parent, so the length stays the constraint friction yields
+// to, and only where that stays above the contact's tangent plane (the contact stays the last
+// word; the next look at the head catches the curvature). The previous position follows so that the velocity is what
+// the particle really moved, less any inward normal part: friction invents no velocity.
 [[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& oldPosition, const V3& position, V3& previous)
+    const V3& parent, Lane length, const V3& oldPosition, V3& position, V3& previous, Lane band)
 {
     const V3 move = position - oldPosition;
-    const Lane normalPart = dot(move, normal);
-    const V3 sliding = move - normal * normalPart;
+    const V3 sliding = move - normal * dot(move, normal); // Δx⊥
     const Lane slide2 = dot(sliding, sliding);
     const Lane invSlide = lrsqrt(lmax(slide2, splat(1e-24f)));
     const Lane slide = slide2 * invSlide;
     const Mask sticks = slide <= mu.statik * depth;
-    const Lane keptShare = select(sticks, splat(0.0f), lmax(splat(1.0f) - mu.kinetic * depth * invSlide, splat(0.0f)));
-    const V3 kept = sliding * keptShare + normal * lmax(normalPart, splat(0.0f));
-    previous = select(inside, position - kept, previous);
+    const Lane removedShare = select(sticks, splat(1.0f), lmin(mu.kinetic * depth * invSlide, splat(1.0f)));
+    const V3 fromParent = position - sliding * removedShare - parent;
+    const V3 atLength = parent + fromParent * (length * lrsqrt(lmax(dot(fromParent, fromParent), splat(1e-20f))));
+    // Where the held point at its length would sink below the tangent plane by more than a turn
+    // may leave (the segment points into the surface), the position stays and friction acts on
+    // the velocity alone: pushing it out would stretch the segment. (Rotating about the parent
+    // along a curved surface sinks it a few micrometres: the next look at the head takes that.)
+    const Lane sinkTolerance = band * kTurnToleranceShareOfOffset + kTurnToleranceMetres;
+    const Mask holds = inside & (dot(atLength - position, normal) >= -sinkTolerance);
+    position = select(holds, atLength, position);
+    const Lane movedNormal = dot(position - oldPosition, normal);
+    previous = select(inside, oldPosition + normal * lmin(movedNormal, splat(0.0f)), previous);
 }
 
 } // namespace

@@ -1,13 +1,12 @@
 #include "io/HeadPlacement.h"
+#include "io/RegularFile.h"
 #include "sim/util/NumberText.h"
 
 #include <glm/common.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <vector>
 
 namespace wisp::io {
@@ -236,10 +235,8 @@ std::string describePlacement(const HeadPlacement& placement)
 
 bool formatFixesUpAxis(const std::string& path)
 {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(
-        ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext == ".gltf" || ext == ".glb";
+    const std::string ext = lowerExtension(path);
+    return ext == "gltf" || ext == "glb";
 }
 
 } // namespace wisp::io

@@ -14,7 +14,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   qt6-base-dev libqt6opengl6-dev libgl-dev libgl1-mesa-dri
   libglm-dev nlohmann-json3-dev
-  libgtest-dev libbenchmark-dev clang-format
+  libgtest-dev libbenchmark-dev clang-format python3
   xvfb xauth
 )
 # Only the fuzz build uses clang (libFuzzer); every other build is g++.

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, checks the formatting of the folders scripts/check-format.sh
-# lists, and runs the whole test suite (GUI tests under a virtual X
-# server: Qt 6.4's offscreen platform cannot create QOpenGLWidget's context).
+# lists and the include graph (scripts/check-includes.py: no cycle, nothing upward), and runs the
+# whole test suite (GUI tests under a virtual X server: Qt 6.4's offscreen platform cannot create
+# QOpenGLWidget's context).
 #
 #   scripts/test.sh              Release build
 #   scripts/test.sh --sanitize   Debug build with AddressSanitizer + UBSan
@@ -17,6 +18,7 @@ build_dir=build
 [ "${1:-}" = "--sanitize" ] && build_dir=build-asan
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 scripts/check-format.sh
+scripts/check-includes.py
 cd "$build_dir"
 xvfb-run -a -s "-screen 0 1600x1000x24" ctest --output-on-failure -j2 --timeout 600
 cd ..

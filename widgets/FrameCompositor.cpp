@@ -146,7 +146,8 @@ void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels, Finis
     checkGlErrors(gl, "FrameCompositor::draw");
 }
 
-void FrameCompositor::resolveWithDepth(GLuint colourTexture, GLuint depthTexture, int samples, QSize pixels)
+void FrameCompositor::resolveWithDepth(
+    GLuint colourTexture, GLuint depthTexture, int samples, QSize pixels, const std::optional<Gradient>& under)
 {
     if (!m_composite || pixels.isEmpty() || samples <= 0)
         return;
@@ -162,6 +163,12 @@ void FrameCompositor::resolveWithDepth(GLuint colourTexture, GLuint depthTexture
     gl->glBindVertexArray(m_vao);
     m_resolve->bind();
     setUniform(*m_resolve, "u_samples", samples);
+    setUniform(*m_resolve, "u_gradient", under ? 1.0f : 0.0f);
+    if (under) {
+        setUniform(*m_resolve, "u_top", under->topSrgb);
+        setUniform(*m_resolve, "u_bottom", under->bottomSrgb);
+        setUniform(*m_resolve, "u_heightPixels", static_cast<float>(pixels.height()));
+    }
     gl->glActiveTexture(GL_TEXTURE1);
     gl->glBindTexture(GL_TEXTURE_2D_MULTISAMPLE, depthTexture);
     gl->glActiveTexture(GL_TEXTURE0);

@@ -12,6 +12,8 @@
 
 #include "widgets/GlSupport.h"
 
+#include <glm/vec3.hpp>
+
 #include <QImage>
 #include <QOpenGLShaderProgram>
 #include <QPoint>
@@ -21,6 +23,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 
 namespace wisp {
 
@@ -48,8 +51,14 @@ public:
     enum class Finish { Screen, Image, ImageWithAlpha };
     void draw(GLuint frameTexture, int samples, QSize pixels, Finish finish = Finish::Screen);
     // Resolves a multisampled colour and depth pair (GlCanvas's backdrop, `samples` > 0) into the
-    // bound single-sampled framebuffer, colour and depth (resources/shaders/resolve.frag).
-    void resolveWithDepth(GLuint colourTexture, GLuint depthTexture, int samples, QSize pixels);
+    // bound single-sampled framebuffer, colour and depth (resources/shaders/resolve.frag). With a
+    // gradient, the colour (premultiplied, transparent where nothing was drawn) is laid over it.
+    struct Gradient {
+        glm::vec3 topSrgb;
+        glm::vec3 bottomSrgb;
+    };
+    void resolveWithDepth(GLuint colourTexture, GLuint depthTexture, int samples, QSize pixels,
+        const std::optional<Gradient>& under = std::nullopt);
 
 private:
     // A rectangle of the target (pixels, origin at the bottom left as GL counts them).

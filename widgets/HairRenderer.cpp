@@ -1,5 +1,6 @@
 #include "widgets/HairRenderer.h"
 
+#include "widgets/HairSampling.h"
 #include "widgets/HairShadowMap.h"
 
 #include <glm/common.hpp>
@@ -279,8 +280,8 @@ void HairRenderer::upload(
     }
     m_bounds = low.x <= high.x ? Aabb{ low, high } : Aabb{};
     m_gl->glUnmapBuffer(GL_TEXTURE_BUFFER);
-    // A typical segment length (from up to 256 strands' first segments), to pick how finely the
-    // curves are sampled for the zoom.
+    // A typical segment length (from up to 256 strands' first segments) and turn at a joint, to pick
+    // how finely the curves are sampled for the zoom.
     double length = 0.0;
     int counted = 0;
     const std::size_t stride = std::max<std::size_t>(1, strands.strandCount() / 256);
@@ -295,6 +296,7 @@ void HairRenderer::upload(
         }
     }
     m_segmentMetres = counted > 0 ? static_cast<float>(length / counted) : 0.0f;
+    m_turnRadians = typicalTurnRadians(strands);
     m_gl->glBindBuffer(GL_TEXTURE_BUFFER, 0);
     checkGlErrors(m_gl, "HairRenderer::upload");
 }
@@ -325,11 +327,11 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     const float thickest = std::max(style.hairThicknessMetres, m_thickestLookMetres);
     const float rootPixels = thickest * style.lockWidthScale * widthScale * pixelsPerMetre;
     const bool lines = rootPixels <= style.minWidthPixels + 0.5f;
-    // Samples per segment: enough to keep chords about pixelsPerSample long at the head's depth.
+    // Samples per segment: the fewest that keep chords within maxDeviationPixels of the curve at the
+    // head's depth, for the hair's typical turn (HairSampling.h).
     const float centreDepth = std::max(-view.headCentreView.z, 1e-3f);
     const float segmentPixels = m_segmentMetres * view.projection[1][1] * 0.5f * view.viewportPixels.y / centreDepth;
-    const float wantedSamples = segmentPixels / std::max(style.pixelsPerSample, 1.0f);
-    const std::size_t stepIndex = coarse || wantedSamples <= 1.0f ? 2 : (wantedSamples <= 2.0f ? 1 : 0);
+    const std::size_t stepIndex = coarse ? 2 : sampleStepIndex(segmentPixels, m_turnRadians, style.maxDeviationPixels);
     const auto primitive = lines ? HairStripLayout::Primitive::Lines : HairStripLayout::Primitive::Ribbons;
     const HairStripLayout::IndexList& list = m_layout.indices(primitive, stepIndex);
 

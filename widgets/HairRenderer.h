@@ -49,9 +49,9 @@ struct HairStyle {
     float rootWidthMetres() const { return hairThicknessMetres * lockWidthScale; } // the style's drawn width
     float minWidthPixels = 1.0f; // narrower strands are drawn this wide, fainter
     float tipFade = 0.6f; // how far the tip fades out, 0..1
-    // Curves get as many Catmull-Rom samples per segment (1, 2 or 4) as keep the chords about
-    // this long on screen; longer chords would show as corners.
-    float pixelsPerSample = 12.0f;
+    // Curves get as few Catmull-Rom samples per segment (1, 2 or 4) as keep the chords within this
+    // many pixels of the curve (HairSampling.h); more would cost vertices and show nothing.
+    float maxDeviationPixels = 0.5f;
 };
 
 class HairRenderer {
@@ -130,6 +130,7 @@ private:
     std::array<std::array<std::size_t, 3>, 2> m_indexOffsets{};
     Aabb m_bounds;
     float m_segmentMetres = 0.0f; // typical segment length of the last frame
+    float m_turnRadians = 0.0f; // typical turn at a joint of the last frame (typicalTurnRadians)
     GLsizei m_vertexCount = 0; // 0: nothing to draw
     std::size_t m_skippedStrands = 0;
     std::size_t m_lastDrawnStrands = 0;

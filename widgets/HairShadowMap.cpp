@@ -92,7 +92,7 @@ void HairShadowMap::release()
     m_valid = false;
 }
 
-void HairShadowMap::render(HairRenderer& hair, HeadRenderer& head, HeadRenderer& body,
+void HairShadowMap::render(HairRenderer& hair, HeadRenderer& head, HeadRenderer& body, const glm::mat4& headToWorld,
     const glm::vec3& lightDirectionWorld, const glm::vec3& centre, float radiusMetres, float strandOpacity)
 {
     if (!m_gl || !m_hairProgram || !m_headProgram || !(radiusMetres > 0.0f) || !std::isfinite(radiusMetres))
@@ -131,6 +131,7 @@ void HairShadowMap::render(HairRenderer& hair, HeadRenderer& head, HeadRenderer&
     m_headProgram->bind();
     setUniform(*m_headProgram, "u_lightViewProjection", m_lightViewProjection);
     setUniform(*m_headProgram, "u_worldToShadow", m_worldToShadow);
+    setUniform(*m_headProgram, "u_modelToWorld", headToWorld);
     head.drawWith(*m_headProgram);
     body.drawWith(*m_headProgram);
     m_headProgram->release();

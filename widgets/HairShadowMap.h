@@ -51,9 +51,10 @@ public:
     // Draws both passes for a light shining along -lightDirectionWorld (unit, toward the light)
     // onto everything inside the sphere (centre, radius, metres). Leaves the GL viewport and
     // framebuffer binding to the caller to restore. `strandOpacity`: what one strand crossing a
-    // texel takes of the light, 0..1.
-    void render(HairRenderer& hair, HeadRenderer& head, HeadRenderer& body, const glm::vec3& lightDirectionWorld,
-        const glm::vec3& centre, float radiusMetres, float strandOpacity);
+    // texel takes of the light, 0..1. The head and the body are drawn placed by `headToWorld` (the
+    // frame's, as the main pass draws them); the hair is in world space already.
+    void render(HairRenderer& hair, HeadRenderer& head, HeadRenderer& body, const glm::mat4& headToWorld,
+        const glm::vec3& lightDirectionWorld, const glm::vec3& centre, float radiusMetres, float strandOpacity);
     // What receivers need (RenderView::shadow): the map as last rendered.
     ShadowLookup lookup() const;
     bool valid() const { return m_valid; }

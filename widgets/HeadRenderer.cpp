@@ -177,6 +177,7 @@ void HeadRenderer::draw(const RenderView& view, bool showGrowthOverlay)
     program.bind();
     setUniform(program, "u_view", view.view);
     setUniform(program, "u_viewProjection", view.viewProjection);
+    setUniform(program, "u_modelToWorld", view.modelToWorld);
     setUniform(program, "u_skinColour", linearFromSrgb(m_colourSrgb));
     setUniform(program, "u_keyLightView", view.keyLightView);
     setUniform(program, "u_fillLightView", view.fillLightView);

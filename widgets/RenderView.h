@@ -32,6 +32,9 @@ struct RenderView {
     float headRadiusMetres = 0.1f;
     int samples = 0; // MSAA samples of the target framebuffer (0 or 1: none)
     ShadowLookup shadow;
+    // The drawn mesh's model space to world (withModel): receivers look their shadows up at world
+    // points, so a moved head reads the map where it is, not where it rests.
+    glm::mat4 modelToWorld{ 1.0f };
 };
 
 // `view` for a mesh placed by `modelToWorld` (a rigid transform, so normals turn with the view):
@@ -40,6 +43,7 @@ inline RenderView withModel(RenderView view, const glm::mat4& modelToWorld)
 {
     view.view = view.view * modelToWorld;
     view.viewProjection = view.viewProjection * modelToWorld;
+    view.modelToWorld = view.modelToWorld * modelToWorld;
     return view;
 }
 

@@ -231,7 +231,8 @@ private:
     double frameRatio() const; // device pixels per logical pixel, of the frame
     void initializeGL();
     void paintGL(bool framebuffersRemade);
-    void drawBackdrop(const RenderView& view);
+    // `gradientInResolve`: cleared transparent, the background's gradient left to the resolve.
+    void drawBackdrop(const RenderView& view, bool gradientInResolve);
     // drawBackdrop, multisampled, resolved into the backdrop cache or the frame (GlCanvas).
     void drawResolvedBackdrop(const RenderView& view, bool intoCache);
     void paintImage(const RenderView& view); // paintGL's work for renderImage()

@@ -10,6 +10,7 @@
 #include "io/FramePattern.h"
 #include "io/HairFiles.h"
 #include "io/ProjectFile.h"
+#include "io/RegularFile.h"
 #include "io/UsdaWriter.h"
 #include "sim/geometry/DefaultHead.h"
 #include "sim/motion/HairBake.h"
@@ -52,16 +53,6 @@ std::pair<int, int> parseFrames(const std::string& text)
     return { a, b };
 }
 
-std::string extensionOf(const std::string& path)
-{
-    std::string ext = std::filesystem::path(path).extension().string();
-    if (!ext.empty())
-        ext.erase(0, 1);
-    for (char& c : ext)
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
 // Per drawn strand: its region's hair thickness (the viewport's 80 µm where a region gives none).
 std::vector<float> rootWidths(const HairSimulation& sim)
 {
@@ -93,7 +84,7 @@ int runBake(int argc, char** argv)
     if (!out)
         throw CliError{ kUsage, "needs --out FILE.usda or --out PATTERN.hair (see --help)" };
     checkOutputPath(*out, "--out", { "usda", "hair" });
-    const bool usd = extensionOf(*out) == "usda";
+    const bool usd = io::lowerExtension(*out) == "usda";
     if (!usd && std::filesystem::path(*out).filename().string().find('#') == std::string::npos)
         throw CliError{ kBadInput,
             "--out: " + *out
@@ -234,7 +225,7 @@ int runBake(int argc, char** argv)
               << result.cache.stepsPerFrame << " steps of " << result.cache.stepSeconds * 1000.0
               << " ms a frame, motion " << motionName(motion.procedural().kind) << ", " << motion.keys().size()
               << " keys): " << result.cache.offsets.size() - 1 << " strands, " << points << " points, "
-              << bytesPerBakedFrame(points) << " bytes a cached frame; drape " << drapeMs << " ms, then " << frameMs
+              << result.cache.bytesPerFrame() << " bytes a cached frame; drape " << drapeMs << " ms, then " << frameMs
               << " ms a frame; wrote " << (usd ? *out : std::to_string(written) + " files " + *out) << "\n";
     return kSuccess;
 }

@@ -1,11 +1,11 @@
 #include "app/cli/OutputCheck.h"
 
 #include "app/cli/CommandLine.h"
+#include "io/RegularFile.h"
 
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 
 namespace wisp::cli {
@@ -18,11 +18,7 @@ void checkOutputPath(const std::string& path, const std::string& what, const std
     if (path.empty())
         throw CliError{ kBadInput, what + ": the output path is empty" };
     if (!extensions.empty()) {
-        std::string ext = fs::path(path).extension().string();
-        if (!ext.empty())
-            ext.erase(0, 1);
-        std::transform(
-            ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        const std::string ext = io::lowerExtension(path);
         if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
             std::string list;
             for (const std::string& e : extensions)

@@ -9,29 +9,19 @@
 #include "io/MeshReader.h"
 #include "io/PresetFile.h"
 #include "io/ProjectFile.h"
+#include "io/RegularFile.h"
 #include "sim/groom/GrowthMap.h"
 #include "sim/solver/HairSimulation.h"
 
 #include <glm/common.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 
 namespace wisp::cli {
 
 namespace {
-
-std::string extensionOf(const std::string& path)
-{
-    std::string e = std::filesystem::path(path).extension().string();
-    if (!e.empty())
-        e.erase(0, 1);
-    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return e;
-}
 
 bool contains(const std::vector<std::string>& list, const std::string& item)
 {
@@ -148,7 +138,7 @@ int runValidate(int argc, char** argv)
         return args.has("help") ? kSuccess : kUsage;
     }
     const std::string& path = args.positional().front();
-    const std::string ext = extensionOf(path);
+    const std::string ext = io::lowerExtension(path);
     if (contains(io::supportedMeshExtensions(), ext))
         validateHead(path);
     else if (contains(io::hairReadExtensions(), ext))

@@ -5,6 +5,7 @@
 #include "sim/solver/HairSimulation.h"
 #include "sim/style/BrushContext.h"
 #include "sim/util/ThreadName.h"
+#include "sim/util/ThreadPool.h"
 
 #include <QMetaObject>
 
@@ -47,9 +48,7 @@ BakeOutcome runBake(const BakeInput& in, BakeOptions options)
     };
     BakeOutcome out;
     try {
-        // One core stays with the GUI, as the live simulation leaves it (SimulationHost).
-        const int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()) - 1);
-        HairSimulation sim(threads);
+        HairSimulation sim(solverThreadsBesideGui()); // as the live simulation: one core for the GUI
         if (in.style)
             sim.setStyle(in.style);
         out.error = sim.setup(in.head, in.regions, in.soloId, in.values);
@@ -70,7 +69,7 @@ BakeOutcome runBake(const BakeInput& in, BakeOptions options)
         fillFrame(sim, in.values, baked->look);
         baked->look.strands = {};
         baked->look.groomShape = groomShapeOf(sim);
-        baked->look.wetness.clear(); // the bake keeps positions only; wetness is not per frame
+        baked->look.wetness.clear(); // each cached frame has its own (BakedFrame::wetness)
         baked->cache = std::move(result.cache);
         baked->head = sim.headModel();
         const Clock::time_point end = Clock::now();
@@ -171,6 +170,7 @@ FramePtr BakeController::frameAt(int frame) const
     auto out = std::make_shared<Frame>(m_baked->look);
     out->strands.offsets = m_baked->cache.offsets;
     out->strands.positions = baked->positions;
+    out->wetness = baked->wetness; // wet hair scrubs wet, drying as it did in the bake
     out->headToWorld = baked->headToWorld; // the viewport draws the head where the bake had it
     out->step = static_cast<std::uint64_t>(frame - 1) * static_cast<std::uint64_t>(m_baked->cache.stepsPerFrame);
     out->simulatedSeconds = m_baked->cache.range.secondsOf(frame);

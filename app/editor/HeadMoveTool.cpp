@@ -2,6 +2,7 @@
 
 #include "app/editor/Document.h"
 #include "app/editor/SimulationHost.h"
+#include "sim/motion/FrameTime.h"
 #include "widgets/Viewport.h"
 
 #include <QMouseEvent>
@@ -15,7 +16,7 @@ namespace wisp {
 
 double keySecondsFor(const HeadMotion& motion, double timeSeconds, double fps)
 {
-    return motion.keys().empty() ? 0.0 : std::round(timeSeconds * fps) / fps;
+    return motion.keys().empty() ? 0.0 : snappedToFrame(timeSeconds, fps);
 }
 
 HeadMotion keyedMotion(HeadMotion motion, double timeSeconds, double fps, const HeadPose& pose)
@@ -35,6 +36,9 @@ HeadMoveTool::HeadMoveTool(Document* document, Viewport* viewport, SimulationHos
 
 double HeadMoveTool::currentSeconds() const
 {
+    if (m_timelineSeconds)
+        if (const std::optional<double> onTimeline = m_timelineSeconds())
+            return *onTimeline;
     const FramePtr frame = m_simulation->latestFrame();
     return frame ? frame->simulatedSeconds : 0.0;
 }

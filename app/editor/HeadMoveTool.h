@@ -17,6 +17,7 @@
 #include <QObject>
 #include <QPointF>
 
+#include <functional>
 #include <optional>
 
 namespace wisp {
@@ -38,8 +39,11 @@ public:
     HeadMoveTool(Document* document, Viewport* viewport, SimulationHost* simulation, QObject* parent = nullptr);
 
     bool dragging() const { return m_drag.has_value(); }
-    // The simulated time the editor is at (the newest frame's): where keys are set.
+    // The time the editor is at, where keys are set: the timeline's frame while the timeline is on
+    // one (scrubbed, a key selected, a cached frame shown), else the live simulation's newest frame's.
     double currentSeconds() const;
+    // Where the timeline's time comes from (TimelineDock::frameSeconds); nullopt: live.
+    void setTimelineSeconds(std::function<std::optional<double>()> seconds) { m_timelineSeconds = std::move(seconds); }
 
     static constexpr float kDegreesPerPixel = 0.4f;
 
@@ -67,6 +71,7 @@ private:
     Viewport* m_viewport;
     SimulationHost* m_simulation;
     std::optional<Drag> m_drag;
+    std::function<std::optional<double>()> m_timelineSeconds;
 };
 
 } // namespace wisp

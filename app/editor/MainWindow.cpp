@@ -300,6 +300,10 @@ void MainWindow::createDocks()
     tabifyDockWidget(presets, motion);
     const auto showFor8s = [this](const QString& text) { statusBar()->showMessage(text, 8000); };
     connect(m_motionPanel, &MotionPanel::message, this, showFor8s);
+    // One current time, as in Blender: the timeline's frame is where keys go, and a selected key
+    // takes the timeline to it.
+    m_headTool->setTimelineSeconds([this] { return m_timeline->frameSeconds(); });
+    connect(m_motionPanel, &MotionPanel::keySelected, m_timeline, &TimelineDock::goToSeconds);
     connect(m_headTool, &HeadMoveTool::message, this, showFor8s);
     forces->raise();
     connect(m_presetBrowser, &PresetBrowser::message, this,
@@ -323,8 +327,7 @@ void MainWindow::createDocks()
     connect(m_brushPanel, &BrushPanel::showOverlayToggled, m_overlayAction, &QAction::setChecked);
     connect(m_overlayAction, &QAction::toggled, m_brushPanel->overlayBox(), &QCheckBox::setChecked);
 
-    QDockWidget* timeline
-        = addPanelDock(tr("Timeline"), QStringLiteral("timelineDock"), m_timeline, Qt::BottomDockWidgetArea);
+    addPanelDock(tr("Timeline"), QStringLiteral("timelineDock"), m_timeline, Qt::BottomDockWidgetArea);
     // File ▸ Export Bake, after Export Hair (which writes the one frame shown).
     QAction* exportBake = new QAction(tr("Export &Bake…"), this);
     exportBake->setToolTip(tr("Write the timeline's bake as .usda or a .hair sequence"));

@@ -2,6 +2,7 @@
 
 #include "app/editor/Document.h"
 #include "app/editor/HeadMoveTool.h"
+#include "sim/motion/FrameTime.h"
 #include "sim/motion/HeadMotion.h"
 
 #include <QComboBox>
@@ -86,7 +87,7 @@ MotionPanel::MotionPanel(Document* document, HeadMoveTool* headTool, QWidget* pa
     m_keyTime->setDecimals(3);
     m_keyTime->setSuffix(tr(" s"));
     m_keyTime->setKeyboardTracking(false);
-    m_keyTime->setToolTip(tr("The selected key's time, seconds"));
+    m_keyTime->setToolTip(tr("The selected key's time, seconds (moved to the timeline's nearest frame)"));
     m_setKey = new QPushButton(tr("Set Key"), this);
     m_setKey->setToolTip(tr("Key the head's current pose at the current time"));
     m_deleteKey = new QPushButton(tr("Delete Key"), this);
@@ -115,6 +116,7 @@ MotionPanel::MotionPanel(Document* document, HeadMoveTool* headTool, QWidget* pa
         if (row >= 0 && row < static_cast<int>(keys.size())) {
             const QSignalBlocker block(m_keyTime);
             m_keyTime->setValue(keys[static_cast<std::size_t>(row)].timeSeconds);
+            emit keySelected(keys[static_cast<std::size_t>(row)].timeSeconds);
         }
     });
     connect(m_document, &Document::headMotionChanged, this, &MotionPanel::showMotion);
@@ -189,7 +191,7 @@ void MotionPanel::setKey()
     HeadMotion motion = m_document->headMotion();
     const double t = m_headTool->currentSeconds();
     const double fps = m_document->timeline().fps;
-    motion.setKey(std::round(t * fps) / fps, motion.keyedPoseAt(t));
+    motion.setKey(snappedToFrame(t, fps), motion.keyedPoseAt(t));
     apply(motion, tr("Set Head Key"));
 }
 
@@ -208,8 +210,11 @@ void MotionPanel::keyTimeEdited()
     const int row = m_keys->currentRow();
     if (row < 0 || row >= static_cast<int>(motion.keys().size()))
         return;
+    // On the timeline's nearest frame, as Set Key and the head drag key: the box shows
+    // milliseconds, so a time typed as shown (0.458 s for 11/24 s) must not leave the frame.
+    const double seconds = snappedToFrame(m_keyTime->value(), m_document->timeline().fps);
     std::size_t newIndex = 0;
-    if (const std::string refused = motion.moveKey(static_cast<std::size_t>(row), m_keyTime->value(), &newIndex);
+    if (const std::string refused = motion.moveKey(static_cast<std::size_t>(row), seconds, &newIndex);
         !refused.empty()) {
         emit message(QString::fromStdString(refused));
         showMotion();
@@ -219,6 +224,7 @@ void MotionPanel::keyTimeEdited()
         return;
     apply(motion, tr("Move Head Key"));
     m_keys->setCurrentRow(static_cast<int>(newIndex));
+    emit keySelected(motion.keys()[newIndex].timeSeconds); // the timeline follows the moved key
 }
 
 } // namespace wisp

@@ -35,6 +35,9 @@ public:
 
 signals:
     void message(const QString& text);
+    // The artist selected a key (or moved the selected one): the timeline goes to its time, as
+    // Blender's dopesheet moves the current frame.
+    void keySelected(double seconds);
 
 private:
     void showMotion();

@@ -5,6 +5,8 @@
 #include "widgets/Viewport.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/mat3x3.hpp>
 
 #include <QKeyEvent>
 #include <QMouseEvent>
@@ -91,13 +93,31 @@ void PaintTool::setMirror(bool mirror)
     emit settingsChanged();
 }
 
+glm::mat4 PaintTool::headToWorld() const
+{
+    const FramePtr frame = viewport()->frame();
+    return frame ? frame->headToWorld : glm::mat4(1.0f);
+}
+
 std::optional<PaintTool::Hit> PaintTool::hitAt(QPointF widgetPosition) const
 {
-    const ViewRay ray = viewport()->rayAt(widgetPosition);
-    const auto hit = m_document->headModel()->hitAlong(ray.origin, ray.direction);
+    const ViewRay ray_ws = viewport()->rayAt(widgetPosition);
+    const glm::mat4 toHead = glm::affineInverse(headToWorld()); // rigid
+    const auto hit = m_document->headModel()->hitAlong(
+        glm::vec3(toHead * glm::vec4(ray_ws.origin, 1.0f)), glm::mat3(toHead) * ray_ws.direction);
     if (!hit)
         return std::nullopt;
     return Hit{ hit->point, hit->normal };
+}
+
+void PaintTool::placeCursor(BrushCursor& cursor, const glm::vec3& point_hs, const glm::vec3& normal_hs) const
+{
+    const glm::mat4 toWorld = headToWorld();
+    const float plane = mirrorPlaneX();
+    cursor.centre = glm::vec3(toWorld * glm::vec4(point_hs, 1.0f));
+    cursor.normal = glm::mat3(toWorld) * normal_hs;
+    cursor.mirrorCentre = glm::vec3(toWorld * glm::vec4(2.0f * plane - point_hs.x, point_hs.y, point_hs.z, 1.0f));
+    cursor.mirrorNormal = glm::mat3(toWorld) * glm::vec3(-normal_hs.x, normal_hs.y, normal_hs.z);
 }
 
 // Held modifiers change the mode for as long as they are held: Ctrl erases, Shift smooths.
@@ -118,14 +138,10 @@ void PaintTool::showCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifie
         return;
     }
     BrushCursor cursor;
-    cursor.centre = hit->point;
-    cursor.normal = hit->normal;
+    placeCursor(cursor, hit->point, hit->normal);
     cursor.radiusMetres = m_settings.radiusMetres;
     cursor.erase = modeFor(modifiers) == BrushMode::Erase;
     cursor.mirrored = m_settings.mirrorX;
-    const float plane = mirrorPlaneX();
-    cursor.mirrorCentre = { 2.0f * plane - hit->point.x, hit->point.y, hit->point.z };
-    cursor.mirrorNormal = { -hit->normal.x, hit->normal.y, hit->normal.z };
     viewport()->setBrushCursor(cursor);
 }
 

@@ -17,7 +17,9 @@
 #include "app/editor/ViewportBrush.h"
 #include "sim/geometry/HeadModel.h"
 #include "sim/groom/ScalpBrush.h"
+#include "widgets/GuideGeometry.h"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include <QObject>
@@ -43,12 +45,19 @@ public:
     const BrushSettings& settings() const { return m_settings; }
     float mirrorPlaneX() const;
 
-    // Where the cursor's ray meets the head (the styling tools use it too).
+    // Where the cursor's ray meets the head as the viewport draws it (the styling tools use it too):
+    // head space, where the scalp is painted; the ray is taken into head space by the drawn frame's
+    // transform, so a turned or moved head is painted where it is seen.
     struct Hit {
-        glm::vec3 point;
-        glm::vec3 normal; // unit, facing the camera
+        glm::vec3 point; // head space, metres
+        glm::vec3 normal; // unit, head space, facing the camera
     };
     std::optional<Hit> hitAt(QPointF widgetPosition) const;
+    // Head space to world as the viewport draws the head (its frame's Frame::headToWorld).
+    glm::mat4 headToWorld() const;
+    // `cursor` at a head point with its normal (head space), and its mirror across the head's plane,
+    // placed in the world where the head is drawn.
+    void placeCursor(BrushCursor& cursor, const glm::vec3& point_hs, const glm::vec3& normal_hs) const;
     // [ and ] make the brush smaller and larger, for every tool that shares these settings; true
     // when `e` was one of them.
     bool resizeByKey(const QKeyEvent* e);

@@ -134,6 +134,10 @@ public:
     FramePtr latestFrame() const;
     // Thread: any. Frames published since construction.
     std::uint64_t publishedFrames() const;
+    // Thread: any. Times the simulation thread has woken (to take requests or to step) since
+    // construction. A paused host with nothing asked of it sleeps on a condition variable and adds
+    // none, however long it is left: what a test counts instead of timing the processor.
+    std::uint64_t loopWakeups() const;
     // Thread: any. Substeps the solver runs now: the requested substeps, or fewer while the machine
     // cannot keep real time (0 before the first groom).
     int effectiveSubsteps() const;
@@ -155,6 +159,9 @@ signals:
 private:
     class Loop;
     friend class Loop;
+
+    // Thread: simulation. Runs the Loop (SimulationHostLoop.cpp) until the host stops.
+    void runLoop();
 
     struct Regions {
         std::vector<GrowthRegion> regions;
@@ -203,6 +210,7 @@ private:
     std::atomic<bool> m_playing{ false }; // mirrors m_inbox.playing for lock-free reads
     std::atomic<std::shared_ptr<const Frame>> m_latest;
     std::atomic<std::uint64_t> m_published{ 0 };
+    std::atomic<std::uint64_t> m_loopWakeups{ 0 };
     std::atomic<bool> m_frameSignalPending{ false };
     std::atomic<int> m_effectiveSubsteps{ 0 };
 

@@ -8,6 +8,8 @@
 #include "widgets/Viewport.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/mat3x3.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -95,19 +97,17 @@ void StyleTool::showCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifie
     cursor.mirrored = s.mirrorX;
     const auto* comb = dynamic_cast<const CombOperation*>(m_operation.get());
     if (const auto hit = m_brushSettings->hitAt(widgetPosition)) {
-        cursor.centre = hit->point;
-        cursor.normal = hit->normal;
+        m_brushSettings->placeCursor(cursor, hit->point, hit->normal);
     } else if (comb && comb->catchDepthMetres()) { // the comb off the head: at the hair
         const ViewRay ray = viewport()->rayAt(widgetPosition);
-        cursor.centre = ray.origin + ray.direction * *comb->catchDepthMetres();
-        cursor.normal = -ray.direction;
+        const glm::mat4 toHead = glm::affineInverse(m_brushSettings->headToWorld());
+        m_brushSettings->placeCursor(cursor,
+            glm::vec3(toHead * glm::vec4(ray.origin + ray.direction * *comb->catchDepthMetres(), 1.0f)),
+            glm::mat3(toHead) * -ray.direction);
     } else {
         viewport()->setBrushCursor(std::nullopt);
         return;
     }
-    const float plane = m_brushSettings->mirrorPlaneX();
-    cursor.mirrorCentre = mirroredPoint(cursor.centre, plane);
-    cursor.mirrorNormal = mirroredDirection(cursor.normal);
     if (m_brush == StyleBrush::BlowDry) { // the cone of air, from the nozzle to where it aims
         const HairDryer dryer = dryersFor(context(), sampleAt(widgetPosition, modifiers)).front();
         cursor.dryer = true;

@@ -58,9 +58,10 @@ TimelineDock::TimelineDock(Document* document, QWidget* parent)
     connect(m_playButton, &QToolButton::toggled, this, &TimelineDock::setPlayingCache);
     m_slider = new QSlider(Qt::Horizontal);
     m_slider->setObjectName(QStringLiteral("timelineSlider"));
-    m_slider->setToolTip(tr("Scrub the baked cache: the viewport shows the baked frame (Esc goes back to live)"));
+    m_slider->setToolTip(tr("The current frame: where the head's keys are set; after a bake the viewport shows the "
+                            "baked frame (Esc goes back to live)"));
     m_slider->setPageStep(1);
-    connect(m_slider, &QSlider::valueChanged, this, &TimelineDock::showCacheFrame);
+    connect(m_slider, &QSlider::valueChanged, this, &TimelineDock::scrubbedTo);
     m_frameLabel = new QLabel;
     m_frameLabel->setObjectName(QStringLiteral("timelineFrameLabel"));
     m_frameLabel->setMinimumWidth(fontMetrics().horizontalAdvance(QStringLiteral("frame 000000 (stale)")));
@@ -116,12 +117,12 @@ TimelineDock::TimelineDock(Document* document, QWidget* parent)
         const BakeCache& cache = m_bake->baked()->cache;
         m_stale = m_changedDuringBake;
         m_staleReason = m_changeDuringBake;
+        showSliderRange();
         {
             const QSignalBlocker quiet(m_slider);
-            m_slider->setRange(cache.range.firstFrame, cache.range.lastFrame);
             m_slider->setValue(cache.range.firstFrame);
         }
-        showCacheFrame(cache.range.firstFrame);
+        scrubbedTo(cache.range.firstFrame);
         updateControls();
     });
     connect(m_bake, &BakeController::failed, this, [this](const QString& why) {
@@ -176,6 +177,42 @@ int TimelineDock::currentFrame() const
     return m_slider->value();
 }
 
+std::optional<double> TimelineDock::frameSeconds() const
+{
+    if (!m_onFrame)
+        return std::nullopt;
+    const double fps = m_showingCache ? m_bake->baked()->cache.range.fps : m_document->timeline().fps;
+    return secondsOfFrame(m_slider->value(), fps);
+}
+
+void TimelineDock::goToFrame(int frame)
+{
+    {
+        const QSignalBlocker quiet(m_slider); // once, below, even when the slider is there already
+        m_slider->setValue(frame); // clamped to the range
+    }
+    scrubbedTo(m_slider->value());
+}
+
+void TimelineDock::goToSeconds(double seconds)
+{
+    goToFrame(frameAtSeconds(seconds, m_document->timeline().fps));
+}
+
+void TimelineDock::scrubbedTo(int frame)
+{
+    m_onFrame = true;
+    showCacheFrame(frame);
+    updateStatus();
+}
+
+void TimelineDock::showSliderRange()
+{
+    const BakeRange& range = m_bake->baked() ? m_bake->baked()->cache.range : m_document->timeline();
+    const QSignalBlocker quiet(m_slider);
+    m_slider->setRange(range.firstFrame, range.lastFrame);
+}
+
 bool TimelineDock::isPlayingCache() const
 {
     return m_playTimer->isActive();
@@ -188,6 +225,7 @@ void TimelineDock::showRange()
     m_first->setValue(range.firstFrame);
     m_last->setValue(range.lastFrame);
     m_fps->setValue(range.fps);
+    showSliderRange();
 }
 
 void TimelineDock::commitRange()
@@ -278,10 +316,13 @@ void TimelineDock::showCacheFrame(int frame)
 void TimelineDock::leaveCache()
 {
     setPlayingCache(false);
-    if (!m_showingCache)
+    if (!m_showingCache && !m_onFrame)
         return;
-    m_showingCache = false;
-    emit cacheLeft();
+    m_onFrame = false;
+    if (m_showingCache) {
+        m_showingCache = false;
+        emit cacheLeft();
+    }
     updateStatus();
 }
 
@@ -292,7 +333,7 @@ void TimelineDock::setPlayingCache(bool playing)
     if (playing) {
         const double fps = m_bake->baked()->cache.range.fps;
         m_playTimer->start(std::max(1, static_cast<int>(std::lround(1000.0 / fps))));
-        showCacheFrame(m_slider->value());
+        scrubbedTo(m_slider->value());
     } else {
         m_playTimer->stop();
     }
@@ -316,7 +357,6 @@ void TimelineDock::updateControls()
     m_bakeButton->setEnabled(!running);
     m_cancelButton->setEnabled(running);
     m_progress->setVisible(running);
-    m_slider->setEnabled(cached);
     m_playButton->setEnabled(cached);
     m_exportButton->setEnabled(cached && !running);
     updateStatus();
@@ -339,16 +379,17 @@ void TimelineDock::updateStatus()
         text = tr("cache: %1 frames, %2 MB (%3 bytes a frame; groom and drape %4 s, then %5 ms a frame)")
                    .arg(baked.cache.frames.size())
                    .arg(static_cast<double>(baked.cache.memoryBytes()) / 1e6, 0, 'f', 1)
-                   .arg(bytesPerBakedFrame(baked.cache.pointCount()))
+                   .arg(baked.cache.bytesPerFrame())
                    .arg(baked.drapeMilliseconds / 1000.0, 0, 'f', 1)
                    .arg(baked.millisecondsPerFrame, 0, 'f', 0);
     }
     m_status->setText(text);
-    if (cached)
-        m_frameLabel->setText(
-            m_showingCache ? (m_stale ? tr("frame %1 (stale)") : tr("frame %1")).arg(m_slider->value()) : tr("live"));
-    else
+    if (!m_onFrame)
         m_frameLabel->setText(tr("live"));
+    else if (!m_showingCache)
+        m_frameLabel->setText(tr("frame %1 (not baked)").arg(m_slider->value())); // the live simulation drawn
+    else
+        m_frameLabel->setText((m_stale ? tr("frame %1 (stale)") : tr("frame %1")).arg(m_slider->value()));
 }
 
 } // namespace wisp

@@ -19,6 +19,8 @@
 #include <QString>
 #include <QWidget>
 
+#include <optional>
+
 class QDoubleSpinBox;
 class QLabel;
 class QProgressBar;
@@ -43,6 +45,11 @@ public:
     QString staleReason() const { return m_staleReason; }
     int currentFrame() const; // the slider's frame
     bool isPlayingCache() const;
+    // True while the timeline is on a frame (scrubbed, gone to a key, a cached frame shown) rather
+    // than following the live simulation; frameSeconds() is then that frame's time, (f - 1) / fps
+    // (sim/motion/FrameTime.h), where the head drag and Set Key put keys.
+    bool isOnFrame() const { return m_onFrame; }
+    std::optional<double> frameSeconds() const;
 
     // Widgets, for tests and the window's wiring.
     QSpinBox* firstFrameBox() const { return m_first; }
@@ -63,7 +70,11 @@ public:
 
 public slots:
     void startBake();
-    void leaveCache(); // back to the live simulation (nothing happens when no cache is shown)
+    void leaveCache(); // back to the live simulation (nothing happens when it is already live)
+    // The slider to `frame` (clamped to its range), as a scrub: the cached frame shown if baked.
+    void goToFrame(int frame);
+    // The slider to the frame nearest `seconds` at the document's fps (a selected key's time).
+    void goToSeconds(double seconds);
     void setPlayingCache(bool playing);
     void chooseExport(); // asks where (a file dialog), then exportBake
 
@@ -78,6 +89,8 @@ private:
     void commitRange(); // the spin boxes to the document (one undo step)
     void markStale(const QString& reason);
     void showCacheFrame(int frame);
+    void scrubbedTo(int frame); // the slider moved: on that frame, showing it if baked
+    void showSliderRange(); // the cache's range once baked, the document's before
     void advancePlayback();
     void updateStatus();
     void updateControls();
@@ -98,6 +111,7 @@ private:
     QTimer* m_playTimer = nullptr;
 
     bool m_showingCache = false;
+    bool m_onFrame = false;
     bool m_stale = false;
     QString m_staleReason;
     QString m_bakeError; // the last bake's refusal, shown until the next bake

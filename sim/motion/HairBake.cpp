@@ -36,9 +36,9 @@ std::string validateBakeRange(const BakeRange& r)
     return {};
 }
 
-std::size_t bytesPerBakedFrame(std::size_t points)
+std::size_t bytesPerBakedFrame(std::size_t points, std::size_t strands)
 {
-    return sizeof(BakedFrame) + points * sizeof(glm::vec3);
+    return sizeof(BakedFrame) + points * sizeof(glm::vec3) + strands * sizeof(float);
 }
 
 const BakedFrame* BakeCache::find(int frame) const
@@ -84,7 +84,7 @@ BakeResult bakeMotion(
         return result;
     }
     cache.offsets = sim.groom().rest.offsets;
-    const std::size_t perFrame = bytesPerBakedFrame(cache.pointCount());
+    const std::size_t perFrame = cache.bytesPerFrame();
     if (options.keepFrames) {
         const std::size_t frames = static_cast<std::size_t>(range.frameCount());
         if (frames > options.memoryBoundBytes / perFrame) {
@@ -125,6 +125,8 @@ BakeResult bakeMotion(
         HairCurves curves;
         sim.buildFrame(curves);
         baked.positions = std::move(curves.positions);
+        if (sim.anyWet())
+            sim.strandWetness(baked.wetness);
         if (options.onFrame) {
             if (std::string e = options.onFrame(baked, cache); !e.empty()) {
                 result.error = std::move(e);

@@ -10,14 +10,16 @@
 // 1 / (fps · stepsPerFrame) where it does not divide a frame (1/60 s at 24 fps: 3 steps of 1/72 s).
 // Deterministic: the solver's results do not depend on the thread count.
 //
-// Memory: bytesPerBakedFrame(points) = points x 12 bytes (float32 x, y, z) plus a frame's fixed
-// part (its head transform and bookkeeping); a bake whose frames would not fit the memory bound is
-// refused before it starts.
+// Memory: bytesPerBakedFrame(points, strands) = points x 12 bytes (float32 x, y, z) plus strands x
+// 4 bytes (float32 wetness, kept only while some hair is wet: the bound counts it always) plus a
+// frame's fixed part (its head transform and bookkeeping); a bake whose frames would not fit the
+// memory bound is refused before it starts.
 //
 // Thread: bakeMotion runs on the calling thread and owns `sim` for the call; `progress` and
 // `onFrame` are called on it, `cancelled` is asked from it between steps.
 
 #include "sim/geometry/HairCurves.h"
+#include "sim/motion/FrameTime.h"
 #include "sim/motion/HeadMotion.h"
 
 #include <glm/mat4x4.hpp>
@@ -39,7 +41,7 @@ struct BakeRange {
 
     int frameCount() const { return lastFrame - firstFrame + 1; }
     // Seconds at which `frame` is.
-    double secondsOf(int frame) const { return (frame - 1) / fps; }
+    double secondsOf(int frame) const { return secondsOfFrame(frame, fps); }
     bool operator==(const BakeRange&) const = default;
 
     static constexpr int kMaxFrame = 1'000'000;
@@ -54,10 +56,13 @@ struct BakedFrame {
     int frame = 0;
     glm::mat4 headToWorld{ 1.0f };
     std::vector<glm::vec3> positions; // world space, metres, in the layout of BakeCache::offsets
+    // Per drawn strand, 0..1, as the live frame has it (Frame::wetness: wet hair is drawn darker
+    // and clumped); empty when all the hair is dry.
+    std::vector<float> wetness;
 };
 
-// Bytes one kept frame of `points` drawn points takes.
-std::size_t bytesPerBakedFrame(std::size_t points);
+// Bytes one kept frame of `points` drawn points in `strands` strands takes at most (wet hair).
+std::size_t bytesPerBakedFrame(std::size_t points, std::size_t strands);
 
 // A bake kept in memory.
 struct BakeCache {
@@ -69,15 +74,17 @@ struct BakeCache {
 
     bool complete() const { return static_cast<int>(frames.size()) == range.frameCount(); }
     std::size_t pointCount() const { return offsets.empty() ? 0 : offsets.back(); }
+    std::size_t strandCount() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+    std::size_t bytesPerFrame() const { return bytesPerBakedFrame(pointCount(), strandCount()); }
     // The kept frame `frame`, or null when it was not baked.
     const BakedFrame* find(int frame) const;
     // That frame's strands (empty when it was not baked).
     HairCurves curvesAt(int frame) const;
-    std::size_t memoryBytes() const { return frames.size() * bytesPerBakedFrame(pointCount()); }
+    std::size_t memoryBytes() const { return frames.size() * bytesPerFrame(); }
 };
 
 // 2 GiB: a minute at 24 fps of the default scene fits many times over (see the README's figures);
-// a million-particle groom gets about 170 frames.
+// a million-particle groom gets 182 frames (11.7 MB each).
 inline constexpr std::size_t kDefaultBakeMemoryBytes = std::size_t(2) << 30;
 
 struct BakeOptions {

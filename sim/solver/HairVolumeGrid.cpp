@@ -207,8 +207,8 @@ void HairVolumeGrid::cellsOf(const float* x, const float* y, const float* z, int
     const float inverseCell = 1.0f / m_cell;
     const Floats gx = (px - m_origin.x) * inverseCell, gy = (py - m_origin.y) * inverseCell,
                  gz = (pz - m_origin.z) * inverseCell;
-    const Ints inside = gx >= 0.0f & gy >= 0.0f & gz >= 0.0f & gx < static_cast<float>(m_dims.x - 1)
-        & gy < static_cast<float>(m_dims.y - 1) & gz < static_cast<float>(m_dims.z - 1);
+    const Ints inside = (gx >= 0.0f) & (gy >= 0.0f) & (gz >= 0.0f) & (gx < static_cast<float>(m_dims.x - 1))
+        & (gy < static_cast<float>(m_dims.y - 1)) & (gz < static_cast<float>(m_dims.z - 1));
     const Floats zero{};
     const Ints ix = __builtin_convertvector(inside ? gx : zero, Ints),
                iy = __builtin_convertvector(inside ? gy : zero, Ints),

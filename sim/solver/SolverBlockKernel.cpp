@@ -91,12 +91,6 @@ inline void prefetchRows(const Solver::Block& block, std::uint32_t j)
     };
     ahead(block.state.data());
     ahead(block.rest.data());
-    if (j <= 1) { // the next block's root and root direction, and (once) its own fields
-        ahead(block.shape.data());
-        if (j == 0)
-            for (std::size_t byte = 0; byte < sizeof(block); byte += 64)
-                __builtin_prefetch(reinterpret_cast<const char*>(&block + 1) + byte);
-    }
 }
 
 // Substeps [firstSubstep, endSubstep) of the step; the last call of a step (endSubstep ==
@@ -226,11 +220,10 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 // What is left within half the offset (still clear of the skin) stays: turning it
                 // far along the arc below for that little would shake stiff hair lying on the head.
                 const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
-                const Lane turnTolerance = splat(kTurnToleranceShareOfOffset * c.offset + kTurnToleranceMetres);
                 for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
                     const SdfSample next = sampleHead(position);
                     const Lane nextDepth = splat(c.offset) - next.distance;
-                    const Mask stillInside = nextDepth > turnTolerance;
+                    const Mask stillInside = nextDepth > splat(0.0f);
                     const Mask stuck = stillInside & (nextDepth > slack);
                     if (!anyOf(pass < kHeadContactPasses ? stillInside : stuck))
                         break;
@@ -350,8 +343,6 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         // The target direction of segment j: its rest direction's coordinates in the parent's rest
         // frame, laid on the parent's frame now.
         V3 turned = frameD * rest[1].lx + frameE * rest[1].ly + frameB * rest[1].lz;
-        if (s == firstSubstep)
-            prefetchRows(block, 0);
         for (std::uint32_t j = 1; j < n; ++j) {
             ParticleRow& p = row[j];
             const RestRow& r = rest[j];

@@ -95,16 +95,14 @@ constexpr float kStaticOverKineticFriction = 1.25f;
 // nose or an ear is not its tangent plane); one more look takes what is still stuck along the arc
 // toward its parent's normal, and pushes only what no turn gets out.
 constexpr int kHeadContactPasses = 3;
-// A lane that a turn left inside the offset by less than this share of it (still that close to
-// clear of the skin) is done. The turn's own rounding leaves about half the turned lanes a few
-// nanometres inside; turning those again cost a lookup and a resolve on nearly every contact (97 %
-// of them on groom-1m) and replaced their friction with the almost frictionless one of a
-// nanometre-deep contact.
-constexpr float kTurnToleranceShareOfOffset = 0.05f;
-constexpr float kTurnToleranceMetres = 1e-7f; // (for an offset of 0)
 // Steps of the bisection along the arc from a stuck particle toward its parent's outward normal
 // (the first clear point to within 1/64 of the arc).
 constexpr int kArcBisections = 6;
+// How far below the contact's tangent plane friction may leave a held point (applyFriction): a
+// share of the hair offset, and a floor for an offset of 0. Turning a held point about its parent
+// along a curved surface sinks it a few micrometres; the next look at the head takes that.
+constexpr float kFrictionSinkShareOfOffset = 0.05f;
+constexpr float kFrictionSinkMetres = 1e-7f;
 
 // (resolveContact and applyFriction stay out of line: inlined, the compiler fuses multiplies and
 // adds across the call differently, and the step's results would change in the last bits.)
@@ -170,7 +168,7 @@ struct ContactFriction {
     // may leave (the segment points into the surface), the position stays and friction acts on
     // the velocity alone: pushing it out would stretch the segment. (Rotating about the parent
     // along a curved surface sinks it a few micrometres: the next look at the head takes that.)
-    const Lane sinkTolerance = band * kTurnToleranceShareOfOffset + kTurnToleranceMetres;
+    const Lane sinkTolerance = band * kFrictionSinkShareOfOffset + kFrictionSinkMetres;
     const Mask holds = inside & (dot(atLength - position, normal) >= -sinkTolerance);
     position = select(holds, atLength, position);
     const Lane movedNormal = dot(position - oldPosition, normal);

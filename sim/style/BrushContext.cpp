@@ -4,26 +4,68 @@
 #include "sim/style/StrandPicking.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/mat3x3.hpp>
 
 #include <algorithm>
 
 namespace wisp {
 
 namespace {
+
 constexpr float kFarMetres = 1.0e4f; // a ray that meets no head
+
+// `p_ws` (a point) or `d_ws` (a direction) mirrored across the head's mirror plane, which is
+// x = plane in head space.
+glm::vec3 mirroredPointWorld(const BrushContext& context, const glm::vec3& p_ws)
+{
+    const float plane = context.head ? context.head->mirrorPlaneX() : 0.0f;
+    const glm::vec3 p_hs = glm::vec3(worldToHeadOf(context) * glm::vec4(p_ws, 1.0f));
+    return glm::vec3(headToWorldOf(context) * glm::vec4(mirroredPoint(p_hs, plane), 1.0f));
+}
+
+glm::vec3 mirroredDirectionWorld(const BrushContext& context, const glm::vec3& d_ws)
+{
+    const glm::vec3 d_hs = glm::mat3(worldToHeadOf(context)) * d_ws;
+    return glm::mat3(headToWorldOf(context)) * mirroredDirection(d_hs);
+}
+
 } // namespace
+
+glm::mat4 headToWorldOf(const BrushContext& context)
+{
+    return context.frame ? context.frame->headToWorld : glm::mat4(1.0f);
+}
+
+glm::mat4 worldToHeadOf(const BrushContext& context)
+{
+    return glm::affineInverse(headToWorldOf(context)); // rigid: rotation and translation
+}
+
+std::optional<HeadModel::SurfaceHit> headHitAlong(
+    const BrushContext& context, const glm::vec3& origin_ws, const glm::vec3& direction_ws)
+{
+    if (!context.head)
+        return std::nullopt;
+    const glm::mat4 toHead = worldToHeadOf(context);
+    auto hit = context.head->hitAlong(glm::vec3(toHead * glm::vec4(origin_ws, 1.0f)), glm::mat3(toHead) * direction_ws);
+    if (hit) { // a rigid transform keeps the distance along the ray
+        const glm::mat4 toWorld = headToWorldOf(context);
+        hit->point = glm::vec3(toWorld * glm::vec4(hit->point, 1.0f));
+        hit->normal = glm::mat3(toWorld) * hit->normal;
+    }
+    return hit;
+}
 
 std::vector<BrushRay> brushRays(const BrushContext& context, const BrushSample& sample)
 {
     float maxDepth = kFarMetres;
-    if (context.head)
-        if (const auto hit = context.head->hitAlong(sample.eye_ws, sample.direction_ws))
-            maxDepth = hit->distanceMetres + context.brush.radiusMetres;
+    if (const auto hit = headHitAlong(context, sample.eye_ws, sample.direction_ws))
+        maxDepth = hit->distanceMetres + context.brush.radiusMetres;
     std::vector<BrushRay> rays{ { sample.eye_ws, sample.direction_ws, maxDepth } };
-    if (context.brush.mirrorX) {
-        const float plane = context.head ? context.head->mirrorPlaneX() : 0.0f;
-        rays.push_back({ mirroredPoint(sample.eye_ws, plane), mirroredDirection(sample.direction_ws), maxDepth });
-    }
+    if (context.brush.mirrorX)
+        rays.push_back({ mirroredPointWorld(context, sample.eye_ws),
+            mirroredDirectionWorld(context, sample.direction_ws), maxDepth });
     return rays;
 }
 
@@ -57,17 +99,15 @@ std::uint32_t heldStrandOf(const BrushContext& context, std::uint32_t strand)
 std::vector<HairDryer> dryersFor(const BrushContext& context, const BrushSample& sample)
 {
     glm::vec3 aim = sample.eye_ws + sample.direction_ws * sample.aimDepthMetres;
-    if (context.head)
-        if (const auto hit = context.head->hitAlong(sample.eye_ws, sample.direction_ws))
-            aim = hit->point;
+    if (const auto hit = headHitAlong(context, sample.eye_ws, sample.direction_ws))
+        aim = hit->point;
     HairDryer dryer;
     dryer.direction = glm::normalize(aim - sample.eye_ws);
     dryer.nozzle = aim - dryer.direction * kDryerDistanceMetres;
     std::vector<HairDryer> dryers{ dryer };
     if (context.brush.mirrorX) {
-        const float plane = context.head ? context.head->mirrorPlaneX() : 0.0f;
-        dryer.nozzle = mirroredPoint(dryer.nozzle, plane);
-        dryer.direction = mirroredDirection(dryer.direction);
+        dryer.nozzle = mirroredPointWorld(context, dryer.nozzle);
+        dryer.direction = mirroredDirectionWorld(context, dryer.direction);
         dryers.push_back(dryer);
     }
     return dryers;

@@ -2,8 +2,9 @@
 // What every salon brush reads (after Blender's curves_sculpt_* operations and their executors):
 // the context a stroke runs in (the hair as drawn, the head, the brush's settings) and one sample
 // of the stroke (a view ray from the artist's eye, as the cursor gives it in the editor and a
-// stroke point gives it in wisp-cli). Frames are world space; brush edits (StyleEdits) are head
-// space. The head does not move yet, so the two are the same frame; names say which one they mean.
+// stroke point gives it in wisp-cli). Frames are world space; the head (picking, its mirror plane)
+// and brush edits (StyleEdits) are head space; the frame's headToWorld joins them (the head moves
+// with its motion, HeadMotion.h). Names say which space they mean (_ws world, _hs head).
 
 #include "sim/geometry/HeadModel.h"
 #include "sim/groom/ScalpBrush.h"
@@ -11,10 +12,12 @@
 #include "sim/style/HairDryer.h"
 #include "sim/style/StyleEdits.h"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace wisp {
@@ -49,8 +52,17 @@ struct BrushRay {
     float maxDepthMetres = 1.0e4f;
 };
 
-// The sample's ray and, with X mirror on, its mirror across the head's mirror plane (second).
+// The sample's ray and, with X mirror on, its mirror across the head's mirror plane (second; the
+// plane is the head's, so it turns and moves with it).
 std::vector<BrushRay> brushRays(const BrushContext& context, const BrushSample& sample);
+
+// Head space to world space in the context's frame (identity without a frame), and back.
+glm::mat4 headToWorldOf(const BrushContext& context);
+glm::mat4 worldToHeadOf(const BrushContext& context);
+// Where a world ray meets the head, world space (the head is picked in its own space); nullopt
+// when it misses or there is no head.
+std::optional<HeadModel::SurfaceHit> headHitAlong(
+    const BrushContext& context, const glm::vec3& origin_ws, const glm::vec3& direction_ws);
 
 // True when the context's frame names its strands (a frame from before the first groom does not).
 bool hasStyledHair(const BrushContext& context);

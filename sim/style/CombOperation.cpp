@@ -80,13 +80,18 @@ StyleEffects CombOperation::step(const BrushContext& context, const BrushSample&
     return effects;
 }
 
-StyleEffects CombOperation::end(const BrushContext&, StyleEdits& edits)
+StyleEffects CombOperation::end(const BrushContext& context, StyleEdits& edits)
 {
     // The combed shape becomes where the strands rest; the simulation solves the rest shape that
-    // sags onto it, and lets go of them.
+    // sags onto it, and lets go of them. Edits are head space: the head may have moved.
     StyleEffects effects;
-    for (const Caught& c : m_caught)
-        edits[c.identity].shape = c.positions_ws; // world = head space while the head stands still
+    const glm::mat4 toHead = worldToHeadOf(context);
+    for (const Caught& c : m_caught) {
+        std::vector<glm::vec3>& shape_hs = edits[c.identity].shape;
+        shape_hs.clear();
+        for (const glm::vec3& p_ws : c.positions_ws)
+            shape_hs.push_back(glm::vec3(toHead * glm::vec4(p_ws, 1.0f)));
+    }
     effects.editsChanged = true;
     effects.held.emplace();
     m_caught.clear();

@@ -40,13 +40,16 @@ StyleEffects CutOperation::step(const BrushContext& context, const BrushSample& 
     };
     for (std::size_t r = 0; r < a.size() && r < b.size(); ++r) {
         const glm::vec3 eye_ws = a[r].origin_ws;
-        // The artist cuts what they see: a crossing behind the head (from this eye) is not cut.
+        // The artist cuts what they see: a crossing behind the head (from this eye) is not cut. The
+        // head is in head space: the line of sight is taken there.
+        const glm::mat4 toHead = worldToHeadOf(context);
+        const glm::vec3 eye_hs = glm::vec3(toHead * glm::vec4(eye_ws, 1.0f));
         const auto visible = [&](const glm::vec3& x_ws) {
             if (!context.head)
                 return true;
-            const glm::vec3 toX = x_ws - eye_ws;
-            const float distance = glm::length(toX);
-            return !context.head->bvh().raycast(eye_ws, toX / distance, distance - kSkinToleranceMetres).has_value();
+            const glm::vec3 toX_hs = glm::vec3(toHead * glm::vec4(x_ws, 1.0f)) - eye_hs;
+            const float distance = glm::length(toX_hs);
+            return !context.head->bvh().raycast(eye_hs, toX_hs / distance, distance - kSkinToleranceMetres).has_value();
         };
         std::map<std::uint32_t, float> keyLength; // wisp -> its cut key hair's new length
         std::set<std::uint32_t> cutNow;

@@ -67,8 +67,11 @@ void HairsprayOperation::applyToWisp(const BrushContext& context, const BrushSam
     const float cover = std::max(weight, 0.5f);
     edit.stiffnessScale = std::clamp(
         edit.stiffnessScale * (1.0f + kStiffening * context.brush.strength * cover), 1.0f, kStyleMaxStiffnessScale);
-    const auto points_ws = context.frame->strands.strand(key); // the shape it has now is the one to hold
-    edit.shape.assign(points_ws.begin(), points_ws.end());
+    // The shape it has now is the one to hold, head space (the head may have moved).
+    const glm::mat4 toHead = worldToHeadOf(context);
+    edit.shape.clear();
+    for (const glm::vec3& p_ws : context.frame->strands.strand(key))
+        edit.shape.push_back(glm::vec3(toHead * glm::vec4(p_ws, 1.0f)));
 }
 
 } // namespace wisp

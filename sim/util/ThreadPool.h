@@ -12,6 +12,16 @@
 
 namespace wisp {
 
+// The solver threads for a simulation that runs beside an interactive window (the editor's live
+// simulation and its bake): every core but one, which stays with the GUI so that drawing and input
+// never queue behind the solver; at least one. `cores` as std::thread::hardware_concurrency()
+// reports them (0: unknown).
+// Thread: any.
+inline int solverThreadsBesideGui(unsigned cores = std::thread::hardware_concurrency())
+{
+    return cores > 1 ? static_cast<int>(cores) - 1 : 1;
+}
+
 class ThreadPool {
 public:
     // threadCount 0 means one thread per hardware core. The calling thread takes part in the work,

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 
 using namespace wisp;
@@ -59,7 +60,7 @@ TEST(HairBake, KeepsEveryFrameWithTheHeadAndTheTipsMove)
     EXPECT_EQ(lastDone, 12);
     EXPECT_EQ(r.stepsRun, 11u * 3u);
     EXPECT_EQ(r.cache.pointCount(), sim->groom().rest.pointCount());
-    EXPECT_EQ(r.cache.memoryBytes(), 12 * bytesPerBakedFrame(r.cache.pointCount()));
+    EXPECT_EQ(r.cache.memoryBytes(), 12 * r.cache.bytesPerFrame());
     const HairCurves& rest = sim->groom().rest;
     double tipTravel = 0.0;
     for (int f = 1; f <= 12; ++f) {
@@ -110,7 +111,7 @@ TEST(HairBake, RefusesABakeOverTheMemoryBoundBeforeSimulating)
 {
     auto sim = makeSimulation(testParameters());
     BakeOptions o = quick(1, 100);
-    o.memoryBoundBytes = 50 * bytesPerBakedFrame(sim->groom().rest.pointCount());
+    o.memoryBoundBytes = 50 * bytesPerBakedFrame(sim->groom().rest.pointCount(), sim->groom().strandCount());
     const BakeResult r = bakeMotion(*sim, shake(), glm::vec3(0.0f), o);
     EXPECT_NE(
         r.error.find("a bake of 100 frames of " + std::to_string(sim->groom().rest.pointCount()) + " points needs"),
@@ -162,4 +163,39 @@ TEST(HairBake, RefusesBadRangesAndMotions)
     bad.setProcedural({ MotionKind::Nod, -1.0, 1.0, 0.0 });
     EXPECT_EQ(
         bakeMotion(*sim, bad, glm::vec3(0.0f), o).error, "head motion: motion: amplitude -1 is outside 0..90 degrees");
+}
+
+// Issue 17: a cached frame is drawn as the live one was, so it keeps the hair's wetness (wet hair
+// is darker and clumped); a dry bake keeps none.
+TEST(HairBake, KeepsEachFramesWetnessAsItDries)
+{
+    ParameterValues v = testParameters();
+    v.set(Param::DryingTime, 1.0); // half-life, s: visibly drier within half a second
+    auto sim = makeSimulation(v);
+    ASSERT_EQ(sim->applyForces(v), "");
+    const BakeResult dry = bakeMotion(*sim, shake(), glm::vec3(0.0f), quick(1, 3));
+    ASSERT_EQ(dry.error, "");
+    for (const BakedFrame& f : dry.cache.frames)
+        EXPECT_TRUE(f.wetness.empty()) << "frame " << f.frame;
+
+    std::vector<std::uint64_t> keys;
+    for (std::uint32_t strand : sim->groom().keyStrand)
+        keys.push_back(sim->groom().strandIdentity(strand));
+    sim->wet(keys, 1.0f);
+    const BakeResult wet = bakeMotion(*sim, shake(), glm::vec3(0.0f), quick(1, 12));
+    ASSERT_EQ(wet.error, "");
+    ASSERT_TRUE(wet.cache.complete());
+    const std::size_t strands = wet.cache.strandCount();
+    ASSERT_EQ(strands, sim->groom().strandCount());
+    const BakedFrame& first = wet.cache.frames.front();
+    const BakedFrame& last = wet.cache.frames.back();
+    ASSERT_EQ(first.wetness.size(), strands);
+    ASSERT_EQ(last.wetness.size(), strands);
+    EXPECT_GT(first.wetness[0], 0.9f);
+    // 11 frames at 24 fps is 0.458 s: a 1 s half-life leaves 2^-0.458 = 0.73 of it.
+    EXPECT_NEAR(last.wetness[0], first.wetness[0] * std::exp2(-11.0 / 24.0), 0.03);
+    std::vector<float> now;
+    sim->strandWetness(now);
+    EXPECT_EQ(now, last.wetness) << "the simulation's state is the last frame's";
+    EXPECT_EQ(wet.cache.bytesPerFrame(), sizeof(BakedFrame) + 12 * wet.cache.pointCount() + 4 * strands);
 }

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 
@@ -352,4 +353,56 @@ TEST(BlowDryOperation, AimsAtTheHeadAndKeepsWhatItDried)
     ASSERT_TRUE(ended.dryers.has_value());
     EXPECT_TRUE(ended.dryers->empty()) << "the dryers are put down";
     EXPECT_FLOAT_EQ(edits.at(salon.id(salon.key)).wetness, 0.3f);
+}
+
+// Issue 17: the head turned and moved (the frame's headToWorld). A stroke seen from an eye moved
+// with it catches the same strands (the head stops the rays in head space, the mirror plane is the
+// head's) and leaves the same edits, in head space, as the stroke on the head at rest.
+TEST(CombOperation, OnAMovedHeadCatchesAndEditsAsOnTheHeadAtRest)
+{
+    Salon rest;
+    rest.context.brush.mirrorX = true;
+    const glm::mat4 headToWorld = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.2f, 0.05f, 0.1f)),
+        glm::radians(40.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    auto movedFrame = std::make_shared<Frame>(*rest.context.frame);
+    for (glm::vec3& p : movedFrame->strands.positions)
+        p = glm::vec3(headToWorld * glm::vec4(p, 1.0f));
+    movedFrame->headToWorld = headToWorld;
+    BrushContext moved = rest.context;
+    moved.frame = movedFrame;
+    const auto place = [&](BrushSample s) {
+        s.eye_ws = glm::vec3(headToWorld * glm::vec4(s.eye_ws, 1.0f));
+        s.direction_ws = glm::mat3(headToWorld) * s.direction_ws;
+        return s;
+    };
+
+    CombOperation atRest, turned;
+    StyleEdits restEdits, turnedEdits;
+    atRest.begin(rest.context, Salon::lookAt(rest.middle_ws), restEdits);
+    turned.begin(moved, place(Salon::lookAt(rest.middle_ws)), turnedEdits);
+    ASSERT_GT(atRest.caughtStrands(), 0u);
+    EXPECT_EQ(turned.caughtStrands(), atRest.caughtStrands());
+    for (int i = 1; i <= 3; ++i) {
+        const BrushSample s = Salon::lookAt(rest.middle_ws + glm::vec3(0.01f * i, 0.0f, 0.0f));
+        atRest.step(rest.context, s, restEdits);
+        turned.step(moved, place(s), turnedEdits);
+    }
+    atRest.end(rest.context, restEdits);
+    turned.end(moved, turnedEdits);
+    ASSERT_EQ(turnedEdits.size(), restEdits.size());
+    float worst = 0.0f;
+    for (const auto& [id, style] : restEdits) {
+        ASSERT_TRUE(turnedEdits.count(id)) << "strand " << id;
+        const std::vector<glm::vec3>& a = style.shape;
+        const std::vector<glm::vec3>& b = turnedEdits.at(id).shape;
+        ASSERT_EQ(a.size(), b.size());
+        for (std::size_t j = 0; j < a.size(); ++j)
+            worst = std::max(worst, glm::distance(a[j], b[j]));
+    }
+    EXPECT_LT(worst, 1e-5f) << "the combed shapes are head space, as at rest";
+
+    // The dryer aims where the turned head is: at the same head point as at rest, placed.
+    const HairDryer atRestDryer = dryersFor(rest.context, Salon::lookAt(rest.middle_ws)).front();
+    const HairDryer turnedDryer = dryersFor(moved, place(Salon::lookAt(rest.middle_ws))).front();
+    EXPECT_LT(glm::distance(turnedDryer.nozzle, glm::vec3(headToWorld * glm::vec4(atRestDryer.nozzle, 1.0f))), 1e-5f);
 }

@@ -1,0 +1,196 @@
+// The viewport's hair shadows and two-pass ribbons.
+#include "ViewportTestSupport.h"
+
+using namespace wisp;
+using namespace wisp::test;
+
+namespace {
+
+// The editor's default scene: the default head's painted scalp with the registry's default
+// parameters, hanging at rest under gravity (once per run).
+FramePtr defaultSceneFrame()
+{
+    static const FramePtr frame = [] {
+        HairSimulation simulation(1);
+        const std::string error = simulation.setup(defaultHead().mesh, defaultHead().growthWeights, ParameterValues());
+        EXPECT_EQ(error, "");
+        simulation.drapeAtRest(200);
+        auto out = std::make_shared<Frame>();
+        simulation.buildFrame(out->strands);
+        out->simulatedStrands = out->strands.strandCount();
+        out->simulatedParticles = out->strands.pointCount();
+        return FramePtr(out);
+    }();
+    return frame;
+}
+
+// Ribbons at full detail are drawn in two passes (each spline sample evaluated and shaded once,
+// captured by transform feedback, then both edges drawn from it; HairRenderer): the image is the
+// one-pass image (WISP_ONE_PASS_RIBBONS), a close-up of the crown where the strands are ribbons
+// several pixels wide.
+TEST_F(ViewportTest, RibbonsInTwoPassesDrawWhatOnePassDraws)
+{
+    const FramePtr scene = defaultSceneFrame();
+    Viewport::ImageOptions options;
+    const glm::vec3 top{ head.center().x, head.max.y, head.center().z };
+    options.frameBounds = Aabb{ top - glm::vec3(0.03f), top + glm::vec3(0.03f) };
+    const QSize size(320, 320);
+    viewport->setLevelOfDetail(false);
+    viewport->setFrame(scene);
+    const QImage twoPasses = viewport->renderImage(size, options).convertToFormat(QImage::Format_RGB32);
+
+    qputenv("WISP_ONE_PASS_RIBBONS", "1"); // read when a viewport's GL starts
+    Viewport reference;
+    reference.resize(640, 480);
+    reference.setHead(defaultHead().mesh);
+    reference.setHairColours(QColor(40, 235, 40), QColor(40, 235, 40));
+    reference.show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(&reference));
+    reference.setLevelOfDetail(false);
+    reference.setFrame(scene);
+    const QImage onePass = reference.renderImage(size, options).convertToFormat(QImage::Format_RGB32);
+    qunsetenv("WISP_ONE_PASS_RIBBONS");
+    ASSERT_EQ(twoPasses.size(), size);
+    ASSERT_EQ(onePass.size(), size);
+
+    int hair = 0; // the fixture's green hair, so the comparison is not of two empty images
+    int differing = 0; // any channel more than 3 levels apart
+    for (int y = 0; y < size.height(); ++y)
+        for (int x = 0; x < size.width(); ++x) {
+            const QColor a = twoPasses.pixelColor(x, y);
+            const QColor b = onePass.pixelColor(x, y);
+            hair += a.green() > a.red() + 40 ? 1 : 0;
+            const int d = std::max(
+                { std::abs(a.red() - b.red()), std::abs(a.green() - b.green()), std::abs(a.blue() - b.blue()) });
+            differing += d > 3 ? 1 : 0;
+        }
+    std::printf(
+        "[ viewport ] close-up ribbons: %d hair pixels, %d differ between two passes and one\n", hair, differing);
+    EXPECT_GT(hair, size.width() * size.height() / 10);
+    EXPECT_LE(differing, size.width() * size.height() / 500);
+}
+
+double luminance(QColor c)
+{
+    return 0.2126 * c.redF() + 0.7152 * c.greenF() + 0.0722 * c.blueF();
+}
+
+// The default scene's size of hair over the crown, at 640x640: with shadows, at least a tenth of
+// what is not background is a fifth darker or more (issue 14), and skin under the hair's shadow is
+// darker than the same skin (same point, same normal) without it, while skin the hair does not
+// shade keeps its colour.
+TEST_F(ViewportTest, ShadowsDarkenTheHairAndTheSkinUnderIt)
+{
+    viewport->resize(640, 640);
+    viewport->frameHead();
+    viewport->setLevelOfDetail(false); // both images of every strand
+    viewport->setBody(defaultBody(defaultHead().mesh));
+    viewport->setHairColours(QColor(60, 40, 25), QColor(130, 90, 50)); // the editor's browns
+    const FramePtr scene = defaultSceneFrame();
+    ASSERT_GT(scene->strands.strandCount(), 3000u);
+    viewport->setFrame(scene);
+    EXPECT_TRUE(viewport->shadowsEnabled()); // the default
+    viewport->setShadowsEnabled(false);
+    const QImage off = grab();
+    viewport->setShadowsEnabled(true);
+    const QImage on = grab();
+    saveScreenshot(off, "viewport-shadows-off.png");
+    saveScreenshot(on, "viewport-shadows-on.png");
+    ASSERT_EQ(off.size(), QSize(640, 640));
+
+    int content = 0;
+    int darker = 0;
+    int skin = 0;
+    int shadedSkin = 0;
+    for (int y = 40; y < off.height(); ++y) {
+        const QColor background = Viewport::backgroundColour((y + 0.5) / off.height());
+        for (int x = 0; x < off.width(); ++x) {
+            if (x < 110 && y > off.height() - 110)
+                continue; // the axis gizmo
+            const QColor a = off.pixelColor(x, y);
+            const QColor b = on.pixelColor(x, y);
+            if (near(a, background, 6))
+                continue;
+            ++content;
+            const bool shaded = luminance(b) <= 0.8 * luminance(a);
+            darker += shaded ? 1 : 0;
+            if (isSkin(a)) {
+                ++skin;
+                shadedSkin += shaded ? 1 : 0;
+            }
+        }
+    }
+    std::printf("[ viewport ] shadows: %d of %d non-background pixels at least 20%% darker; %d of %d skin pixels\n",
+        darker, content, shadedSkin, skin);
+    ASSERT_GT(content, 640 * 640 / 10);
+    EXPECT_GE(darker, content / 10);
+    EXPECT_GE(shadedSkin, 500); // the hair's shadow on the skin
+    // The face, which no hair covers or shades from the key light, keeps its colour.
+    const QRect face = around(viewport->project(head.center() + glm::vec3(0.0f, 0.0f, 0.5f * head.size().z)), 2);
+    ASSERT_EQ(countPixels(off, isSkin, face), 25);
+    EXPECT_EQ(differingPixels(off.copy(face), on.copy(face)), 0);
+
+    // The hair's shadow on the head, against the same skin without hair: the skin under the crown's
+    // hair, where it shows between the strands, is darker with the hair there than without it.
+    viewport->setFrame(nullptr);
+    const QImage bare = grab();
+    int underHair = 0;
+    int underHairDarker = 0;
+    for (int y = 40; y < on.height(); ++y)
+        for (int x = 110; x < on.width(); ++x)
+            if (isSkin(bare.pixelColor(x, y)) && isSkin(off.pixelColor(x, y))
+                && off.pixelColor(x, y) == bare.pixelColor(x, y)) {
+                ++underHair;
+                underHairDarker += luminance(on.pixelColor(x, y)) < 0.9 * luminance(bare.pixelColor(x, y)) ? 1 : 0;
+            }
+    std::printf("[ viewport ] skin not covered by hair: %d pixels, %d of them darker in the hair's shadow\n", underHair,
+        underHairDarker);
+    EXPECT_GE(underHairDarker, 500);
+}
+
+TEST_F(ViewportTest, OrbitingAPausedSceneReusesTheShadowsAndMovingHairRendersThem)
+{
+    viewport->setFrame(scalpFrame(head, 600, 16, 0.0f));
+    grab();
+    const std::uint64_t passes = viewport->shadowPassCount();
+    EXPECT_GE(passes, 1u);
+    for (int k = 0; k < 4; ++k) {
+        drag(viewport.get(), Qt::MiddleButton, Qt::NoModifier, { 300, 240 }, { 320, 240 });
+        grab();
+    }
+    EXPECT_EQ(viewport->shadowPassCount(), passes); // the key light stays with the head
+    viewport->setFrame(scalpFrame(head, 600, 16, 1.0f));
+    grab();
+    EXPECT_EQ(viewport->shadowPassCount(), passes + 1);
+    // A light that follows the camera renders them again as the camera turns.
+    viewport->setLightFollowsCamera(true);
+    grab();
+    const std::uint64_t following = viewport->shadowPassCount();
+    drag(viewport.get(), Qt::MiddleButton, Qt::NoModifier, { 300, 240 }, { 340, 240 });
+    grab();
+    EXPECT_EQ(viewport->shadowPassCount(), following + 1);
+    // Off: none rendered.
+    viewport->setShadowsEnabled(false);
+    viewport->setFrame(scalpFrame(head, 600, 16, 2.0f));
+    grab();
+    EXPECT_EQ(viewport->shadowPassCount(), following + 1);
+}
+
+// While the hair moves (frames streaming in, not grabbed), the shadow maps are rendered every third
+// paint: the key light is fixed to the head, and each render costs a software rasteriser about a
+// fifth of a simulating paint. Every other paint rendered them before.
+TEST_F(ViewportTest, WhileTheHairMovesItsShadowsAreRenderedEveryThirdPaint)
+{
+    viewport->setFrame(scalpFrame(head, 600, 16, 0.0f));
+    grab();
+    const std::uint64_t passes = viewport->shadowPassCount();
+    const std::uint64_t paints = viewport->paintCount();
+    for (int k = 1; k <= 9; ++k) {
+        viewport->setFrame(scalpFrame(head, 600, 16, static_cast<float>(k)));
+        viewport->repaint();
+    }
+    ASSERT_EQ(viewport->paintCount(), paints + 9);
+    EXPECT_EQ(viewport->shadowPassCount(), passes + 3);
+}
+
+} // namespace

@@ -194,6 +194,9 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         V3 position = ftl.position;
         const V3 correction = ftl.correction;
         bool looked = false; // whether contact may have moved it (else `checked` is final)
+        // The head's (and the body's) own motion here over this substep, which friction takes the
+        // slide relative to: none while the head stands still.
+        const V3 headMove = Transformed ? transform(c.headMoveLinear, position) + splat(c.headMoveOffset) : V3{};
 
         // The field lookup is most of a step's cost (memory latency), so it is skipped while the
         // clearance bound says no lane can touch: the bound shrinks by each move's L1 length,
@@ -215,8 +218,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             if (anyOf(inside)) {
                 // A curved surface is not its tangent plane: turn onto the plane, look again from
                 // there, and only then push what the segment cannot reach.
-                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position,
-                    previous, false, splat(c.offset));
+                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, headMove,
+                    position, previous, false, splat(c.offset));
                 // What is left within half the offset (still clear of the skin) stays: turning it
                 // far along the arc below for that little would shake stiff hair lying on the head.
                 const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
@@ -229,7 +232,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                         break;
                     if (pass < kHeadContactPasses) {
                         resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before,
-                            position, previous, false, splat(c.offset));
+                            headMove, position, previous, false, splat(c.offset));
                         // Turning converges fast on a smooth surface: look once more only where a
                         // lane was still a quarter of the offset deep before this last turn (in a
                         // crevice the last turn may put it deeper on the other wall).
@@ -257,11 +260,11 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                             lo = select(clear, lo, mid);
                         }
                         position = select(arcClears, onArc(hi), position);
-                        applyFriction(arcClears, nextDepth, next.normal, mu, parent, length, before, position, previous,
-                            splat(c.offset));
+                        applyFriction(arcClears, nextDepth, next.normal, mu, parent, length, before, headMove, position,
+                            previous, splat(c.offset));
                     }
                     resolveContact(stuck & ~arcClears, nextDepth, next.normal, mu, parent, length, inverseLength,
-                        before, position, previous, true, splat(c.offset));
+                        before, headMove, position, previous, true, splat(c.offset));
                 }
             }
             // A moving head moves the field under the particles: no bound survives that.
@@ -282,8 +285,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
             if (anyOf(inside)) {
                 const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
-                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous,
-                    true, splat(c.offset));
+                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, headMove, position,
+                    previous, true, splat(c.offset));
                 looked = true;
             }
         }

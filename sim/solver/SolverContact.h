@@ -111,13 +111,14 @@ struct ContactFriction {
     Lane statik; // μs
 };
 
-// Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below).
+// Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below);
+// `headMove` is the collider's own motion there over the substep (StepConstants::headMoveLinear).
 [[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, Lane length, const V3& oldPosition, V3& position, V3& previous, Lane band);
+    const V3& parent, Lane length, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band);
 
 [[gnu::noinline]] void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous,
-    bool pushWhatIsLeft, Lane band)
+    const V3& parent, Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position,
+    V3& previous, bool pushWhatIsLeft, Lane band)
 {
     const V3 u0 = (position - parent) * inverseLength;
     const Lane along = dot(normal, u0);
@@ -138,24 +139,26 @@ struct ContactFriction {
     const Lane slack = select(length < band * 2.0f, band, splat(0.0f)); // only for segments that short
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
-    applyFriction(inside, depth, normal, mu, parent, length, oldPosition, position, previous, band);
+    applyFriction(inside, depth, normal, mu, parent, length, oldPosition, headMove, position, previous, band);
 }
 
 // Coulomb friction at the position level (Macklin et al. 2014, "Unified Particle Physics for
 // Real-Time Applications", §6.1, eq. 24-25): the contact's normal correction d (its depth) bounds
-// the tangential displacement Δx⊥ of the particle over the substep that friction can take back.
+// the tangential displacement Δx⊥ of the particle over the substep, relative to the collider's
+// own motion there (a moving head carries the hair lying on it), that friction can take back.
 // Static while |Δx⊥| < μs d: all of it is removed; else kinetic: min(μk d / |Δx⊥|, 1) Δx⊥ is.
 // Removing it from the position (not only from the velocity) is what holds hair on a slope its
 // static friction can hold: the turn onto the tangent plane keeps the predicted slide, and a
 // velocity-only friction let that slide through every substep. The held point is put back at its
 // segment's length from its (final) parent, so the length stays the constraint friction yields
 // to, and only where that stays above the contact's tangent plane (the contact stays the last
-// word; the next look at the head catches the curvature). The previous position follows so that the velocity is what
-// the particle really moved, less any inward normal part: friction invents no velocity.
+// word; the next look at the head catches the curvature). The previous position follows so that
+// the velocity is what the particle really moved, less any part into the collider (relative to
+// its motion): friction invents no velocity.
 [[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, Lane length, const V3& oldPosition, V3& position, V3& previous, Lane band)
+    const V3& parent, Lane length, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
 {
-    const V3 move = position - oldPosition;
+    const V3 move = position - oldPosition - headMove;
     const V3 sliding = move - normal * dot(move, normal); // Δx⊥
     const Lane slide2 = dot(sliding, sliding);
     const Lane invSlide = lrsqrt(lmax(slide2, splat(1e-24f)));
@@ -171,7 +174,7 @@ struct ContactFriction {
     const Lane sinkTolerance = band * kFrictionSinkShareOfOffset + kFrictionSinkMetres;
     const Mask holds = inside & (dot(atLength - position, normal) >= -sinkTolerance);
     position = select(holds, atLength, position);
-    const Lane movedNormal = dot(position - oldPosition, normal);
+    const Lane movedNormal = dot(position - oldPosition - headMove, normal);
     previous = select(inside, oldPosition + normal * lmin(movedNormal, splat(0.0f)), previous);
 }
 

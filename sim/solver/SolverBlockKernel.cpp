@@ -217,22 +217,30 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             const Mask inside = depth > splat(0.0f);
             if (anyOf(inside)) {
                 // A curved surface is not its tangent plane: turn onto the plane, look again from
-                // there, and only then push what the segment cannot reach.
-                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, headMove,
-                    position, previous, false, splat(c.offset));
+                // there, and only then push what the segment cannot reach. Friction comes once, after
+                // the last look: its normal correction is what all the looks moved the particle out
+                // (their depths summed), on the tangent plane where it ends (a second look's own
+                // depth, nanometres on a smooth head, would have let the slide through).
+                Lane contactDepth = depth;
+                V3 contactNormal = sample.normal;
+                turnOutOfContact(
+                    inside, depth, sample.normal, parent, length, inverseLength, position, false, splat(c.offset));
                 // What is left within half the offset (still clear of the skin) stays: turning it
                 // far along the arc below for that little would shake stiff hair lying on the head.
                 const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
                 for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
                     const SdfSample next = sampleHead(position);
                     const Lane nextDepth = splat(c.offset) - next.distance;
-                    const Mask stillInside = nextDepth > splat(0.0f);
+                    const Mask stillInside = nextDepth > splat(kContactResidualMetres);
                     const Mask stuck = stillInside & (nextDepth > slack);
                     if (!anyOf(pass < kHeadContactPasses ? stillInside : stuck))
                         break;
+                    const Mask turns = pass < kHeadContactPasses ? stillInside : stuck;
+                    contactDepth = contactDepth + select(turns, nextDepth, splat(0.0f));
+                    contactNormal = select(turns, next.normal, contactNormal);
                     if (pass < kHeadContactPasses) {
-                        resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before,
-                            headMove, position, previous, false, splat(c.offset));
+                        turnOutOfContact(stillInside, nextDepth, next.normal, parent, length, inverseLength, position,
+                            false, splat(c.offset));
                         // Turning converges fast on a smooth surface: look once more only where a
                         // lane was still a quarter of the offset deep before this last turn (in a
                         // crevice the last turn may put it deeper on the other wall).
@@ -260,12 +268,12 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                             lo = select(clear, lo, mid);
                         }
                         position = select(arcClears, onArc(hi), position);
-                        applyFriction(arcClears, nextDepth, next.normal, mu, parent, length, before, headMove, position,
-                            previous, splat(c.offset));
                     }
-                    resolveContact(stuck & ~arcClears, nextDepth, next.normal, mu, parent, length, inverseLength,
-                        before, headMove, position, previous, true, splat(c.offset));
+                    turnOutOfContact(stuck & ~arcClears, nextDepth, next.normal, parent, length, inverseLength,
+                        position, true, splat(c.offset));
                 }
+                applyFriction(inside, contactDepth, contactNormal, mu, parent, length, before, headMove, position,
+                    previous, splat(c.offset));
             }
             // A moving head moves the field under the particles: no bound survives that.
             clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));

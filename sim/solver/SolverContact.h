@@ -87,7 +87,8 @@ struct SdfSample {
 // parent onto the collider's tangent plane, so they leave it and keep their segment's length;
 // where no point at that length from the parent is outside (the parent itself is too deep), the
 // particle is pushed out along the normal and the length gives way. Then Coulomb friction at the
-// position level (applyFriction below). The normal part of the velocity is kept only outward.
+// position level (applyFriction below), once per contact: after the head's last look, or with
+// each capsule. The normal part of the velocity is kept only outward.
 // Static friction of hair on skin is a little above its kinetic friction (measured hair-on-hair
 // and hair-on-skin coefficients differ by about this much).
 constexpr float kStaticOverKineticFriction = 1.25f;
@@ -95,6 +96,11 @@ constexpr float kStaticOverKineticFriction = 1.25f;
 // nose or an ear is not its tangent plane); one more look takes what is still stuck along the arc
 // toward its parent's normal, and pushes only what no turn gets out.
 constexpr int kHeadContactPasses = 3;
+// What a look after the first turn leaves alone: a turn onto the field's tangent plane lands on
+// it to the float rounding of the positions (nanometres), so many turned particles read as a
+// hair's breadth inside and were turned and looked at again for nothing. A micrometre is far
+// below anything drawn or measured and far above that rounding.
+constexpr float kContactResidualMetres = 1e-6f;
 // Steps of the bisection along the arc from a stuck particle toward its parent's outward normal
 // (the first clear point to within 1/64 of the arc).
 constexpr int kArcBisections = 6;
@@ -104,7 +110,7 @@ constexpr int kArcBisections = 6;
 constexpr float kFrictionSinkShareOfOffset = 0.05f;
 constexpr float kFrictionSinkMetres = 1e-7f;
 
-// (resolveContact and applyFriction stay out of line: inlined, the compiler fuses multiplies and
+// (turnOutOfContact and applyFriction stay out of line: inlined, the compiler fuses multiplies and
 // adds across the call differently, and the step's results would change in the last bits.)
 struct ContactFriction {
     Lane kinetic; // μk
@@ -116,9 +122,10 @@ struct ContactFriction {
 [[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
     const V3& parent, Lane length, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band);
 
-[[gnu::noinline]] void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position,
-    V3& previous, bool pushWhatIsLeft, Lane band)
+// The contact's turn (and push) alone, for the head's looks: their friction is taken once, after
+// the last look, from their summed depths (advanceBlock).
+[[gnu::noinline]] void turnOutOfContact(Mask inside, Lane depth, const V3& normal, const V3& parent, Lane length,
+    Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
 {
     const V3 u0 = (position - parent) * inverseLength;
     const Lane along = dot(normal, u0);
@@ -139,6 +146,14 @@ struct ContactFriction {
     const Lane slack = select(length < band * 2.0f, band, splat(0.0f)); // only for segments that short
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
+}
+
+// Contact and its friction in one (a capsule: one look).
+inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
+    Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position, V3& previous,
+    bool pushWhatIsLeft, Lane band)
+{
+    turnOutOfContact(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
     applyFriction(inside, depth, normal, mu, parent, length, oldPosition, headMove, position, previous, band);
 }
 

@@ -272,8 +272,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                     turnOutOfContact(stuck & ~arcClears, nextDepth, next.normal, parent, length, inverseLength,
                         position, true, splat(c.offset));
                 }
-                applyFriction(inside, contactDepth, contactNormal, mu, parent, length, before, headMove, position,
-                    previous, splat(c.offset));
+                applyFriction(inside, contactDepth, contactNormal, mu, parent, before, headMove, position, previous,
+                    splat(c.offset));
             }
             // A moving head moves the field under the particles: no bound survives that.
             clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));

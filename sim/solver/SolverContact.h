@@ -120,7 +120,7 @@ struct ContactFriction {
 // Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below);
 // `headMove` is the collider's own motion there over the substep (StepConstants::headMoveLinear).
 [[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, Lane length, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band);
+    const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band);
 
 // The contact's turn (and push) alone, for the head's looks: their friction is taken once, after
 // the last look, from their summed depths (advanceBlock).
@@ -154,7 +154,7 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
     bool pushWhatIsLeft, Lane band)
 {
     turnOutOfContact(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
-    applyFriction(inside, depth, normal, mu, parent, length, oldPosition, headMove, position, previous, band);
+    applyFriction(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
 }
 
 // Coulomb friction at the position level (Macklin et al. 2014, "Unified Particle Physics for
@@ -164,14 +164,15 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
 // Static while |Δx⊥| < μs d: all of it is removed; else kinetic: min(μk d / |Δx⊥|, 1) Δx⊥ is.
 // Removing it from the position (not only from the velocity) is what holds hair on a slope its
 // static friction can hold: the turn onto the tangent plane keeps the predicted slide, and a
-// velocity-only friction let that slide through every substep. The held point is put back at its
-// segment's length from its (final) parent, so the length stays the constraint friction yields
-// to, and only where that stays above the contact's tangent plane (the contact stays the last
-// word; the next look at the head catches the curvature). The previous position follows so that
-// the velocity is what the particle really moved, less any part into the collider (relative to
-// its motion): friction invents no velocity.
+// velocity-only friction let that slide through every substep. The held point is turned about
+// its (final) parent, at the distance contact left it there, so friction never changes a
+// segment's length (and with nothing to take back, μ = 0, it moves nothing), and only where that
+// stays above the contact's tangent plane (the contact stays the last word; the next look at the
+// head catches the curvature). The previous position follows so that the velocity is what the
+// particle really moved, less any part into the collider (relative to its motion): friction
+// invents no velocity.
 [[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, Lane length, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
+    const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
 {
     const V3 move = position - oldPosition - headMove;
     const V3 sliding = move - normal * dot(move, normal); // Δx⊥
@@ -180,14 +181,18 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
     const Lane slide = slide2 * invSlide;
     const Mask sticks = slide <= mu.statik * depth;
     const Lane removedShare = select(sticks, splat(1.0f), lmin(mu.kinetic * depth * invSlide, splat(1.0f)));
-    const V3 fromParent = position - sliding * removedShare - parent;
-    const V3 atLength = parent + fromParent * (length * lrsqrt(lmax(dot(fromParent, fromParent), splat(1e-20f))));
+    // About the parent, at the distance contact left it there (a push may have stretched the
+    // segment; friction neither undoes nor adds to that).
+    const V3 reach = position - parent;
+    const Lane reachLength = lsqrt(dot(reach, reach));
+    const V3 fromParent = reach - sliding * removedShare;
+    const V3 atLength = parent + fromParent * (reachLength * lrsqrt(lmax(dot(fromParent, fromParent), splat(1e-20f))));
     // Where the held point at its length would sink below the tangent plane by more than a turn
     // may leave (the segment points into the surface), the position stays and friction acts on
     // the velocity alone: pushing it out would stretch the segment. (Rotating about the parent
     // along a curved surface sinks it a few micrometres: the next look at the head takes that.)
     const Lane sinkTolerance = band * kFrictionSinkShareOfOffset + kFrictionSinkMetres;
-    const Mask holds = inside & (dot(atLength - position, normal) >= -sinkTolerance);
+    const Mask holds = inside & (removedShare > splat(0.0f)) & (dot(atLength - position, normal) >= -sinkTolerance);
     position = select(holds, atLength, position);
     const Lane movedNormal = dot(position - oldPosition - headMove, normal);
     previous = select(inside, oldPosition + normal * lmin(movedNormal, splat(0.0f)), previous);

@@ -25,6 +25,15 @@ int readFrame(const json& value, const std::string& path)
     return static_cast<int>(n);
 }
 
+// A finite number inside the registry's range for `setting`; refused at `path` otherwise.
+double readMotionSetting(const json& value, const std::string& path, MotionSetting setting)
+{
+    const double x = readFiniteNumber(value, path);
+    if (std::string problem = checkMotionSetting(setting, x); !problem.empty())
+        throw Refusal{ path, problem };
+    return x;
+}
+
 } // namespace
 
 ordered_json motionToJson(const HeadMotion& motion)
@@ -82,7 +91,7 @@ HeadMotion readMotion(const json& value, const std::string& path, Warnings& warn
             const auto time = k.find("time");
             if (time == k.end())
                 throw Refusal{ childPath(keyPath, "time"), "missing" };
-            key.timeSeconds = readFiniteNumber(*time, childPath(keyPath, "time"));
+            key.timeSeconds = readMotionSetting(*time, childPath(keyPath, "time"), MotionSetting::Time);
             if (!(key.timeSeconds - previous > HeadMotion::kSameTimeSeconds))
                 throw Refusal{ childPath(keyPath, "time"), "keys must be in increasing time" };
             previous = key.timeSeconds;
@@ -91,7 +100,8 @@ HeadMotion readMotion(const json& value, const std::string& path, Warnings& warn
                 if (!t->is_array() || t->size() != 3)
                     throw Refusal{ tPath, "expected 3 finite numbers (metres)" };
                 for (int c = 0; c < 3; ++c)
-                    key.pose.translationMetres[c] = static_cast<float>(readFiniteNumber((*t)[c], tPath));
+                    key.pose.translationMetres[c] = static_cast<float>(
+                        readMotionSetting((*t)[c], tPath + "[" + std::to_string(c) + "]", MotionSetting::Translation));
             }
             if (const auto r = k.find("rotation"); r != k.end()) {
                 const std::string rPath = childPath(keyPath, "rotation");
@@ -118,11 +128,11 @@ HeadMotion readMotion(const json& value, const std::string& path, Warnings& warn
             p = motionPreset(*k);
         }
         if (const auto a = it->find("amplitude"); a != it->end())
-            p.amplitude = readFiniteNumber(*a, childPath(pPath, "amplitude"));
+            p.amplitude = readMotionSetting(*a, childPath(pPath, "amplitude"), amplitudeSettingOf(p.kind));
         if (const auto f = it->find("frequency"); f != it->end())
-            p.frequencyHz = readFiniteNumber(*f, childPath(pPath, "frequency"));
+            p.frequencyHz = readMotionSetting(*f, childPath(pPath, "frequency"), MotionSetting::Frequency);
         if (const auto s = it->find("start"); s != it->end())
-            p.startSeconds = readFiniteNumber(*s, childPath(pPath, "start"));
+            p.startSeconds = readMotionSetting(*s, childPath(pPath, "start"), MotionSetting::Time);
         if (std::string e = HeadMotion::validateProcedural(p); !e.empty())
             throw Refusal{ pPath, e };
         motion.setProcedural(p);

@@ -6,9 +6,10 @@
 //   "timeline": { "first_frame": 1, "last_frame": 48, "fps": 24 }
 //
 // Seconds, metres, degrees (metres for walk), Hz; rotations are unit quaternions w, x, y, z. Keys
-// in increasing time. Reading checks everything as HeadMotion::validate and validateBakeRange do,
-// and refuses with the key path ("motion.keys[1].rotation: ..."). Missing objects or keys read as
-// the defaults (no motion; frames 1..48 at 24 fps), so older files still open.
+// in increasing time. Reading checks everything as HeadMotion::validate and validateBakeRange do
+// (each number against the registry's range for it, sim/params/Parameters.h's MotionSetting), and
+// refuses with the key path of the field ("motion.procedural.amplitude: 120 is outside 0..90 degrees"). Missing objects
+// or keys read as the defaults (no motion; frames 1..48 at 24 fps), so older files still open.
 //
 // Thread safety: any thread; no state.
 

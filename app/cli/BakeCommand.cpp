@@ -14,7 +14,9 @@
 #include "io/UsdaWriter.h"
 #include "sim/geometry/DefaultHead.h"
 #include "sim/motion/HairBake.h"
+#include "sim/params/MotionSettings.h"
 #include "sim/solver/HairSimulation.h"
+#include "sim/util/NumberText.h"
 
 #include <chrono>
 #include <cstdio>
@@ -26,14 +28,23 @@ namespace wisp::cli {
 
 namespace {
 
+// "0..90 degrees": a motion setting's range as the registry states it.
+std::string rangeText(MotionSetting setting)
+{
+    const MotionSettingInfo& info = motionSettingInfo(setting);
+    return formatNumber(info.minimum) + ".." + formatNumber(info.maximum) + " " + std::string(info.unit);
+}
+
 std::vector<OptionSpec> bakeOptions()
 {
     return optionsWithParameters({
         { "frames", "A:B", "the frames to write, 1 or more (frame 1 is 0 s; default: the project's timeline)" },
         { "fps", "N", "frames per second (default: the project's, else 24)" },
         { "motion", "KIND", "turn, nod, shake, walk or none: the procedural motion, replacing the project's" },
-        { "amplitude", "X", "the motion's amplitude: degrees (turn, nod, shake) or metres (walk)" },
-        { "frequency", "HZ", "the motion's frequency, cycles per second" },
+        { "amplitude", "X",
+            "the motion's amplitude: " + rangeText(MotionSetting::TurnAmplitude) + " (turn, nod, shake) or "
+                + rangeText(MotionSetting::WalkAmplitude) + " (walk)" },
+        { "frequency", "HZ", "the motion's frequency, cycles per second, " + rangeText(MotionSetting::Frequency) },
         { "threads", "N", "solver threads (default: one per core; the result does not depend on it)" },
         { "memory-mib", "N", "the most a .usda bake may keep in memory, MiB (default 2048)" },
         { "no-drape", "", "start from the groom's rest shape instead of the hair settled under gravity" },

@@ -11,8 +11,10 @@
 #include "sim/geometry/MeshBvh.h"
 #include "sim/groom/GrowthMap.h"
 #include "sim/groom/ScalpBrush.h"
+#include "sim/solver/FloorSweep.h"
 #include "sim/solver/HairSimulation.h"
 #include "sim/style/StyleEdits.h"
+#include "sim/util/SimdTarget.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -38,6 +40,9 @@ struct BenchResult {
     double meanMs = 0;
     double solverBytesPerParticle = 0;
     double peakRssMb = 0;
+    // Steps of the solver over `particles` (not dabs or releases): such a row gets a floor row.
+    bool solverSteps = true;
+    double floorMs = 0; // the floor's median at this particle count, this run (0: none)
 };
 
 // Peak resident memory of this process; reset between workloads so each reports its own.
@@ -204,6 +209,7 @@ BenchResult brushWorkload(const RunOptions& o)
     int dab = 0;
     BenchResult r{ o.headPath.empty() ? "brush-dab"
                                       : "brush-dab (" + o.headPath.substr(o.headPath.rfind('/') + 1) + ")" };
+    r.solverSteps = false;
     r.threads = sim.solver().threadCount();
     r.substeps = sim.solver().settings().substeps;
     timeSteps(
@@ -243,6 +249,7 @@ BenchResult combWorkload(const RunOptions& o)
     int stroke = 0;
     BenchResult r{ o.headPath.empty() ? "comb-release"
                                       : "comb-release (" + o.headPath.substr(o.headPath.rfind('/') + 1) + ")" };
+    r.solverSteps = false;
     r.threads = sim.solver().threadCount();
     r.substeps = sim.solver().settings().substeps;
     timeSteps(
@@ -314,15 +321,38 @@ std::vector<Workload> workloads()
     };
 }
 
+// The memory floor at a workload's particle count (FloorSweep.h): strands of 15 particles, the
+// same threads, timed as the workload was.
+BenchResult floorWorkload(std::size_t particles, const RunOptions& o)
+{
+    FloorSweep floor(particles, 15, o.threads);
+    BenchResult r{ "floor" };
+    r.particles = floor.particleCount();
+    r.strands = floor.strandCount();
+    r.threads = floor.threadCount();
+    r.substeps = 1;
+    r.solverBytesPerParticle = static_cast<double>(floor.bytesPerStep()) / 2.0 / static_cast<double>(r.particles);
+    timeSteps(
+        o, [&] { floor.step(); }, r);
+    r.floorMs = r.medianMs;
+    return r;
+}
+
+double ratioToFloor(const BenchResult& r)
+{
+    return r.floorMs > 0.0 ? r.medianMs / r.floorMs : 0.0;
+}
+
 std::string json(const BenchResult& r)
 {
-    char buffer[512];
+    char buffer[768];
     std::snprintf(buffer, sizeof buffer,
-        "{\"name\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, \"substeps\": %d, "
-        "\"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
+        "{\"name\": \"%s\", \"target\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, "
+        "\"substeps\": %d, \"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
+        "\"floor_ms_per_step\": %.4f, \"ratio_to_floor\": %.2f, "
         "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %.1f}",
-        r.name.c_str(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs, r.meanMs,
-        r.solverBytesPerParticle, r.peakRssMb);
+        r.name.c_str(), compiledSimdTarget(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs,
+        r.meanMs, r.floorMs, ratioToFloor(r), r.solverBytesPerParticle, r.peakRssMb);
     return buffer;
 }
 
@@ -350,7 +380,10 @@ int runBench(int argc, char** argv)
             std::cout << "  " << w.name << std::string(w.name.size() < 16 ? 16 - w.name.size() : 1, ' ')
                       << w.description << "\n";
         std::cout << "\nms_per_step is the median wall-clock time of one solver step; peak_rss_mb the process's\n"
-                     "peak resident memory during that workload.\n";
+                     "peak resident memory during that workload. After each stepping workload, a floor row\n"
+                     "times the minimal follow-the-leader sweep over as many particles (each position and\n"
+                     "previous position read and written once, one length constraint, nothing else), and\n"
+                     "x floor is the workload's ratio to it: how far it is from what this machine allows.\n";
         return kSuccess;
     }
     RunOptions o;
@@ -375,21 +408,40 @@ int runBench(int argc, char** argv)
         }
     }
     const bool asJson = args.has("json");
-    if (!asJson)
-        std::printf("%-16s %10s %8s %7s %8s %12s %12s %10s %10s\n", "workload", "particles", "strands", "threads",
-            "substeps", "ms/step", "mean ms", "B/particle", "peak MB");
+    if (!asJson) {
+        std::printf("target %s (compiled for it; %d floats a register, the solver's lanes are 16)\n",
+            compiledSimdTarget(), compiledVectorFloats());
+        std::printf("%-16s %10s %8s %7s %8s %12s %12s %8s %10s %10s\n", "workload", "particles", "strands", "threads",
+            "substeps", "ms/step", "mean ms", "x floor", "B/particle", "peak MB");
+    }
+    auto print = [&](const BenchResult& r) {
+        if (asJson) {
+            std::printf("%s\n", json(r).c_str());
+        } else {
+            char ratio[16] = "-";
+            if (r.floorMs > 0.0)
+                std::snprintf(ratio, sizeof ratio, "%.2f", ratioToFloor(r));
+            std::printf("%-16s %10zu %8zu %7d %8d %12.4f %12.4f %8s %10.1f %10.1f\n", r.name.c_str(), r.particles,
+                r.strands, r.threads, r.substeps, r.medianMs, r.meanMs, ratio, r.solverBytesPerParticle, r.peakRssMb);
+        }
+        std::fflush(stdout);
+    };
     for (const Workload& w : all) {
         if (only && w.name != *only)
             continue;
         resetPeakRss();
         BenchResult r = w.run(o);
         r.peakRssMb = peakRssMb();
-        if (asJson)
-            std::printf("%s\n", json(r).c_str());
-        else
-            std::printf("%-16s %10zu %8zu %7d %8d %12.4f %12.4f %10.1f %10.1f\n", r.name.c_str(), r.particles,
-                r.strands, r.threads, r.substeps, r.medianMs, r.meanMs, r.solverBytesPerParticle, r.peakRssMb);
-        std::fflush(stdout);
+        if (!r.solverSteps || r.particles == 0) {
+            print(r);
+            continue;
+        }
+        resetPeakRss();
+        BenchResult floor = floorWorkload(r.particles, o);
+        floor.peakRssMb = peakRssMb();
+        r.floorMs = floor.floorMs;
+        print(r);
+        print(floor);
     }
     return kSuccess;
 }

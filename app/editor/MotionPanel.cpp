@@ -32,6 +32,23 @@ bool inMetres(MotionKind kind)
     return kind == MotionKind::Walk;
 }
 
+QString text(std::string_view s)
+{
+    return QString::fromUtf8(s.data(), static_cast<qsizetype>(s.size()));
+}
+
+// A spin box's range and tooltip from the registry's motion setting (sim/params/Parameters.h):
+// "<help>, <min> to <max> <unit>". `minimum` may raise the low end (key times start at 0 s in the
+// panel, where the timeline starts).
+void takeRange(QDoubleSpinBox* box, MotionSetting setting, double minimum = -INFINITY)
+{
+    const MotionSettingInfo& info = motionSettingInfo(setting);
+    const double low = std::max(info.minimum, minimum);
+    box->setRange(low, info.maximum);
+    box->setToolTip(
+        QStringLiteral("%1, %2 to %3 %4").arg(text(info.help)).arg(low).arg(info.maximum).arg(text(info.unit)));
+}
+
 QString keyText(const HeadKey& key)
 {
     // Short enough for the dock: the time, the turn as X Y Z angles (degrees) and the move (cm).
@@ -69,13 +86,10 @@ MotionPanel::MotionPanel(Document* document, HeadMoveTool* headTool, QWidget* pa
     form->addRow(tr("Amplitude"), m_amplitude);
     m_frequency = new QDoubleSpinBox(this);
     m_frequency->setObjectName(QStringLiteral("motionFrequency"));
-    m_frequency->setRange(MotionLimits::kMinFrequencyHz, MotionLimits::kMaxFrequencyHz);
+    takeRange(m_frequency, MotionSetting::Frequency);
     m_frequency->setDecimals(2);
     m_frequency->setSuffix(tr(" Hz"));
     m_frequency->setKeyboardTracking(false);
-    m_frequency->setToolTip(tr("Cycles per second (strides, for walk), %1 to %2 Hz")
-                                .arg(MotionLimits::kMinFrequencyHz)
-                                .arg(MotionLimits::kMaxFrequencyHz));
     form->addRow(tr("Frequency"), m_frequency);
 
     m_keys = new QListWidget(this);
@@ -83,11 +97,11 @@ MotionPanel::MotionPanel(Document* document, HeadMoveTool* headTool, QWidget* pa
     m_keys->setToolTip(tr("The head's keys: Ctrl+Alt+drag in the viewport turns the head and keys it"));
     m_keyTime = new QDoubleSpinBox(this);
     m_keyTime->setObjectName(QStringLiteral("motionKeyTime"));
-    m_keyTime->setRange(0.0, MotionLimits::kMaxSeconds);
+    takeRange(m_keyTime, MotionSetting::Time, 0.0);
+    m_keyTime->setToolTip(m_keyTime->toolTip() + tr(" (moved to the timeline's nearest frame)"));
     m_keyTime->setDecimals(3);
     m_keyTime->setSuffix(tr(" s"));
     m_keyTime->setKeyboardTracking(false);
-    m_keyTime->setToolTip(tr("The selected key's time, seconds (moved to the timeline's nearest frame)"));
     m_setKey = new QPushButton(tr("Set Key"), this);
     m_setKey->setToolTip(tr("Key the head's current pose at the current time"));
     m_deleteKey = new QPushButton(tr("Delete Key"), this);
@@ -130,11 +144,8 @@ void MotionPanel::showMotion()
     const QSignalBlocker a(m_kind), b(m_amplitude), c(m_frequency), d(m_keys), e(m_keyTime);
     m_kind->setCurrentIndex(static_cast<int>(p.kind));
     const bool metres = inMetres(p.kind);
-    m_amplitude->setRange(0.0, metres ? MotionLimits::kMaxWalkMetres : MotionLimits::kMaxDegrees);
+    takeRange(m_amplitude, amplitudeSettingOf(p.kind));
     m_amplitude->setSuffix(metres ? tr(" m") : tr("°"));
-    m_amplitude->setToolTip(metres
-            ? tr("How far the head bobs up, metres (it sways half that), up to %1 m").arg(MotionLimits::kMaxWalkMetres)
-            : tr("How far the head turns each way, degrees, up to %1°").arg(MotionLimits::kMaxDegrees));
     m_amplitude->setValue(p.amplitude);
     m_frequency->setValue(p.frequencyHz);
     m_amplitude->setEnabled(p.kind != MotionKind::None);

@@ -2,10 +2,10 @@
 
 #include "app/editor/Document.h"
 #include "sim/params/Parameters.h"
+#include "sim/solver/FrameSpace.h"
 #include "widgets/Viewport.h"
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/mat3x3.hpp>
 
 #include <QKeyEvent>
@@ -93,16 +93,10 @@ void PaintTool::setMirror(bool mirror)
     emit settingsChanged();
 }
 
-glm::mat4 PaintTool::headToWorld() const
-{
-    const FramePtr frame = viewport()->frame();
-    return frame ? frame->headToWorld : glm::mat4(1.0f);
-}
-
 std::optional<PaintTool::Hit> PaintTool::hitAt(QPointF widgetPosition) const
 {
     const ViewRay ray_ws = viewport()->rayAt(widgetPosition);
-    const glm::mat4 toHead = glm::affineInverse(headToWorld()); // rigid
+    const glm::mat4 toHead = worldToHeadOf(viewport()->frame()); // the head as drawn
     const auto hit = m_document->headModel()->hitAlong(
         glm::vec3(toHead * glm::vec4(ray_ws.origin, 1.0f)), glm::mat3(toHead) * ray_ws.direction);
     if (!hit)
@@ -112,7 +106,7 @@ std::optional<PaintTool::Hit> PaintTool::hitAt(QPointF widgetPosition) const
 
 void PaintTool::placeCursor(BrushCursor& cursor, const glm::vec3& point_hs, const glm::vec3& normal_hs) const
 {
-    const glm::mat4 toWorld = headToWorld();
+    const glm::mat4 toWorld = headToWorldOf(viewport()->frame());
     const float plane = mirrorPlaneX();
     cursor.centre = glm::vec3(toWorld * glm::vec4(point_hs, 1.0f));
     cursor.normal = glm::mat3(toWorld) * normal_hs;

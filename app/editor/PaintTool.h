@@ -53,8 +53,6 @@ public:
         glm::vec3 normal; // unit, head space, facing the camera
     };
     std::optional<Hit> hitAt(QPointF widgetPosition) const;
-    // Head space to world as the viewport draws the head (its frame's Frame::headToWorld).
-    glm::mat4 headToWorld() const;
     // `cursor` at a head point with its normal (head space), and its mirror across the head's plane,
     // placed in the world where the head is drawn.
     void placeCursor(BrushCursor& cursor, const glm::vec3& point_hs, const glm::vec3& normal_hs) const;

@@ -3,12 +3,12 @@
 #include "app/editor/Document.h"
 #include "app/editor/PaintTool.h"
 #include "app/editor/SimulationHost.h"
+#include "sim/solver/FrameSpace.h"
 #include "sim/style/CombOperation.h"
 #include "sim/style/StrandPicking.h"
 #include "widgets/Viewport.h"
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/mat3x3.hpp>
 
 #include <algorithm>
@@ -100,7 +100,7 @@ void StyleTool::showCursor(QPointF widgetPosition, Qt::KeyboardModifiers modifie
         m_brushSettings->placeCursor(cursor, hit->point, hit->normal);
     } else if (comb && comb->catchDepthMetres()) { // the comb off the head: at the hair
         const ViewRay ray = viewport()->rayAt(widgetPosition);
-        const glm::mat4 toHead = glm::affineInverse(m_brushSettings->headToWorld());
+        const glm::mat4 toHead = worldToHeadOf(viewport()->frame());
         m_brushSettings->placeCursor(cursor,
             glm::vec3(toHead * glm::vec4(ray.origin + ray.direction * *comb->catchDepthMetres(), 1.0f)),
             glm::mat3(toHead) * -ray.direction);

@@ -142,15 +142,15 @@ void distanceTransformRow(const double* f, int n, double* out, int* sites, doubl
 } // namespace
 
 // Pass 1: exact squared distances within the band (kFarMarker elsewhere).
-bool bakeBand(
-    int threads, const std::vector<BakeTriangle>& triangles, const Grid& grid, float band, std::vector<float>& dist2)
+bool bakeBand(ThreadPool* pool, const std::vector<BakeTriangle>& triangles, const Grid& grid, float band,
+    std::vector<float>& dist2)
 {
     const SlabBins bins = binBySlab(triangles, grid, 2, band);
     const int slabs = static_cast<int>(bins.offsets.size()) - 1;
     // A hair of slack keeps float rounding from dropping a sample that is exactly `band` away.
     const double reach = static_cast<double>(band) * 1.0001 + 1e-7;
     const double h = grid.h;
-    return parallelFor(threads, slabs, [&](int s) {
+    return parallelFor(pool, slabs, [&](int s) {
         const int k0 = s * kSlabPlanes, k1 = std::min(grid.dims.z - 1, k0 + kSlabPlanes - 1);
         for (std::uint32_t n = bins.offsets[static_cast<std::size_t>(s)];
              n < bins.offsets[static_cast<std::size_t>(s) + 1]; ++n) {
@@ -206,7 +206,7 @@ bool bakeBand(
 }
 
 // Pass 2, once per ray axis: adds to `votes` the signed crossings along +axis and -axis.
-bool voteAlongAxis(int threads, const std::vector<BakeTriangle>& triangles, const Grid& grid, int axis,
+bool voteAlongAxis(ThreadPool* pool, const std::vector<BakeTriangle>& triangles, const Grid& grid, int axis,
     std::vector<std::int16_t>& votes)
 {
     // (u, v) = the two other axes in cyclic order, so the 2D orientation of a projected triangle
@@ -216,7 +216,7 @@ bool voteAlongAxis(int threads, const std::vector<BakeTriangle>& triangles, cons
     const SlabBins bins = binBySlab(triangles, grid, v, 0.0f);
     const int slabs = static_cast<int>(bins.offsets.size()) - 1;
     const double h = grid.h;
-    return parallelFor(threads, slabs, [&](int s) {
+    return parallelFor(pool, slabs, [&](int s) {
         const int v0 = s * kSlabPlanes, v1 = std::min(grid.dims[v] - 1, v0 + kSlabPlanes - 1);
         const std::size_t rowLength = static_cast<std::size_t>(n) + 1;
         // crossings[row][m] = signed crossings whose coordinate lies in (sample m-1, sample m].
@@ -277,13 +277,13 @@ bool voteAlongAxis(int threads, const std::vector<BakeTriangle>& triangles, cons
     });
 }
 
-bool distanceTransform(int threads, const Grid& grid, std::vector<float>& field)
+bool distanceTransform(ThreadPool* pool, const Grid& grid, std::vector<float>& field)
 {
     for (int axis = 0; axis < 3; ++axis) {
         const int u = (axis + 1) % 3, v = (axis + 2) % 3;
         const int n = grid.dims[axis];
         const int planes = grid.dims[v];
-        const bool ok = parallelFor(threads, planes, [&](int jv) {
+        const bool ok = parallelFor(pool, planes, [&](int jv) {
             std::vector<double> in(static_cast<std::size_t>(n)), out(static_cast<std::size_t>(n)),
                 bounds(static_cast<std::size_t>(n) + 1);
             std::vector<int> sites(static_cast<std::size_t>(n));

@@ -1,6 +1,6 @@
 #pragma once
 // The passes of SignedDistanceField::bake, over a sample grid, each split into slabs of planes
-// handed to threads. Used by SignedDistanceField.cpp; not part of sim/'s API.
+// handed to a ThreadPool's threads. Used by SignedDistanceField.cpp; not part of sim/'s API.
 //
 // How the bake works, and why.
 //
@@ -38,11 +38,12 @@
 //    farther than d - B + sqrt(3) h. The true distance is also at most e + B, so the far field is
 //    within sqrt(3) cells of exact, monotone, and never claims the surface is farther than it is.
 //
-// Every pass is split into slabs of planes handed to threads; each sample is written by exactly
+// Every pass is split into slabs of planes handed to the threads of a ThreadPool (HairSimulation
+// passes its solver's, so one pool serves the bake and the steps); each sample is written by exactly
 // one slab per pass and combines its inputs with min or integer sums, so the result does not
 // depend on the number of threads or on scheduling.
 
-#include "sim/util/ThreadName.h"
+#include "sim/util/ThreadPool.h"
 
 #include <glm/vec3.hpp>
 
@@ -51,44 +52,35 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <thread>
+#include <functional>
 #include <vector>
 
 namespace wisp::sdf_detail {
 
 inline constexpr float kFarMarker = 1.0e30f; // "no band sample on this row yet" in the distance transform
 
-// Calls fn(i) once for every i in [0, count) on `threadCount` threads (the caller's included).
-// Returns false when fn ran out of memory somewhere.
-template <class Fn> bool parallelFor(int threadCount, int count, Fn&& fn)
+// Calls fn(i) once for every i in [0, count), on the pool's threads (the caller's included; on the
+// caller alone when `pool` is null), one index at a time as a thread frees (ThreadPool's dynamic
+// chunks, grain 1: slabs differ in cost). Returns false when fn ran out of memory somewhere; the
+// exception never reaches the pool's threads (sim/ never throws across its API), and the other
+// indices are skipped once one failed.
+template <class Fn> bool parallelFor(ThreadPool* pool, int count, Fn&& fn)
 {
     if (count <= 0)
         return true;
-    const int threads = std::min(threadCount, count);
-    std::atomic<int> next{ 0 };
     std::atomic<bool> failed{ false };
-    auto worker = [&]() noexcept {
+    const std::function<void(std::size_t, std::size_t)> body = [&](std::size_t begin, std::size_t end) noexcept {
         try {
-            for (int i = next.fetch_add(1); i < count && !failed.load(std::memory_order_relaxed); i = next.fetch_add(1))
-                fn(i);
+            for (std::size_t i = begin; i < end && !failed.load(std::memory_order_relaxed); ++i)
+                fn(static_cast<int>(i));
         } catch (...) { // only std::bad_alloc from per-slab buffers can get here
             failed = true;
         }
     };
-    std::vector<std::thread> pool;
-    try {
-        pool.reserve(static_cast<std::size_t>(threads - 1));
-        for (int t = 1; t < threads; ++t)
-            pool.emplace_back([&worker] {
-                nameThisThread("wisp-sdf");
-                worker();
-            });
-    } catch (...) {
-        // No more threads to be had: the ones running (and this one) finish the work.
-    }
-    worker();
-    for (std::thread& t : pool)
-        t.join();
+    if (pool)
+        pool->parallelFor(static_cast<std::size_t>(count), 1, body);
+    else
+        body(0, static_cast<std::size_t>(count));
     return !failed;
 }
 
@@ -131,12 +123,12 @@ struct Grid {
 };
 
 // Pass 1: exact squared distances within the band (kFarMarker elsewhere).
-bool bakeBand(
-    int threads, const std::vector<BakeTriangle>& triangles, const Grid& grid, float band, std::vector<float>& dist2);
+bool bakeBand(ThreadPool* pool, const std::vector<BakeTriangle>& triangles, const Grid& grid, float band,
+    std::vector<float>& dist2);
 
-bool voteAlongAxis(int threads, const std::vector<BakeTriangle>& triangles, const Grid& grid, int axis,
+bool voteAlongAxis(ThreadPool* pool, const std::vector<BakeTriangle>& triangles, const Grid& grid, int axis,
     std::vector<std::int16_t>& votes);
 
-bool distanceTransform(int threads, const Grid& grid, std::vector<float>& field);
+bool distanceTransform(ThreadPool* pool, const Grid& grid, std::vector<float>& field);
 
 } // namespace wisp::sdf_detail

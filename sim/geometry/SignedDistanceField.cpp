@@ -1,6 +1,7 @@
 #include "sim/geometry/SignedDistanceField.h"
 
 #include "sim/geometry/SdfBake.h"
+#include "sim/util/ThreadPool.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -43,6 +44,15 @@ SignedDistanceField SignedDistanceField::bake(
 {
     const int threads = threadCount > 0 ? std::min(threadCount, 64)
                                         : static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 64u));
+    if (threads == 1)
+        return bake(mesh, cellSize, margin, error, nullptr);
+    ThreadPool pool(threads);
+    return bake(mesh, cellSize, margin, error, &pool);
+}
+
+SignedDistanceField SignedDistanceField::bake(
+    const TriangleMesh& mesh, float cellSize, float margin, std::string* error, ThreadPool* pool)
+{
     auto fail = [&](std::string message) {
         if (error)
             *error = std::move(message);
@@ -110,12 +120,12 @@ SignedDistanceField SignedDistanceField::bake(
         }
 
         std::vector<float> values(grid.size(), kFarMarker); // squared band distances, then the result
-        if (!bakeBand(threads, triangles, grid, band, values))
+        if (!bakeBand(pool, triangles, grid, band, values))
             return fail("not enough memory to bake the collider");
 
         std::vector<std::int16_t> votes(grid.size(), 0);
         for (int axis = 0; axis < 3; ++axis)
-            if (!voteAlongAxis(threads, triangles, grid, axis, votes))
+            if (!voteAlongAxis(pool, triangles, grid, axis, votes))
                 return fail("not enough memory to bake the collider");
 
         // Band samples are the sources of the distance transform.
@@ -123,11 +133,11 @@ SignedDistanceField SignedDistanceField::bake(
         std::vector<float> nearestBand2(grid.size());
         for (std::size_t i = 0; i < values.size(); ++i)
             nearestBand2[i] = values[i] <= band2 ? 0.0f : kFarMarker;
-        if (!distanceTransform(threads, grid, nearestBand2))
+        if (!distanceTransform(pool, grid, nearestBand2))
             return fail("not enough memory to bake the collider");
 
         const float slack = kSqrt3 * grid.h;
-        const bool ok = parallelFor(threads, grid.dims.z, [&](int k) {
+        const bool ok = parallelFor(pool, grid.dims.z, [&](int k) {
             const std::size_t begin = grid.index(0, 0, k),
                               end
                 = begin + static_cast<std::size_t>(grid.dims.x) * static_cast<std::size_t>(grid.dims.y);

@@ -14,6 +14,8 @@
 
 namespace wisp {
 
+class ThreadPool;
+
 class SignedDistanceField {
 public:
     SignedDistanceField() = default;
@@ -23,8 +25,13 @@ public:
     // or margin that is not a positive (non-negative) finite number, or a box larger than
     // kMaxExtentMetres. Grids past kMaxSamples samples are made coarser (the cell size grows)
     // without complaint, so memory stays bounded whatever is asked.
-    // Runs on the calling thread plus helpers, `threadCount` in all (0: one per hardware thread);
-    // the result is bit-identical whatever the number of threads.
+    // Runs on the calling thread and the pool's threads (the calling thread alone when `pool` is
+    // null); the pool must not be running other work (ThreadPool::parallelFor is not reentrant).
+    // The result is bit-identical whatever the number of threads.
+    static SignedDistanceField bake(
+        const TriangleMesh& mesh, float cellSize, float margin, std::string* error, ThreadPool* pool);
+    // The same on a pool of `threadCount` threads made for this bake (0: one per hardware thread,
+    // at most 64), for callers that have no pool of their own (tests, tools).
     static SignedDistanceField bake(
         const TriangleMesh& mesh, float cellSize, float margin, std::string* error = nullptr, int threadCount = 0);
 

@@ -12,11 +12,6 @@ namespace wisp {
 
 namespace {
 
-bool finite(const glm::vec3& v)
-{
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 std::string number(double v)
 {
     char text[32];
@@ -153,8 +148,8 @@ std::string HeadMotion::moveKey(std::size_t index, double timeSeconds, std::size
 {
     if (index >= m_keys.size())
         return "there is no key " + std::to_string(index);
-    if (!std::isfinite(timeSeconds) || std::abs(timeSeconds) > MotionLimits::kMaxSeconds)
-        return "time " + number(timeSeconds) + " s is outside -1e6..1e6 s";
+    if (std::string problem = checkMotionSetting(MotionSetting::Time, timeSeconds); !problem.empty())
+        return "time " + problem;
     for (std::size_t i = 0; i < m_keys.size(); ++i)
         if (i != index && std::abs(m_keys[i].timeSeconds - timeSeconds) <= kSameTimeSeconds)
             return "there is already a key at " + number(timeSeconds) + " s";
@@ -166,18 +161,19 @@ std::string HeadMotion::moveKey(std::size_t index, double timeSeconds, std::size
     return {};
 }
 
+MotionSetting amplitudeSettingOf(MotionKind kind)
+{
+    return kind == MotionKind::Walk ? MotionSetting::WalkAmplitude : MotionSetting::TurnAmplitude;
+}
+
 std::string HeadMotion::validateProcedural(const ProceduralMotion& m)
 {
-    const double maxAmplitude = m.kind == MotionKind::Walk ? MotionLimits::kMaxWalkMetres : MotionLimits::kMaxDegrees;
-    if (!std::isfinite(m.amplitude) || m.amplitude < 0.0 || m.amplitude > maxAmplitude)
-        return "amplitude " + number(m.amplitude) + " is outside 0.." + number(maxAmplitude)
-            + (m.kind == MotionKind::Walk ? " m" : " degrees");
-    if (!std::isfinite(m.frequencyHz) || m.frequencyHz < MotionLimits::kMinFrequencyHz
-        || m.frequencyHz > MotionLimits::kMaxFrequencyHz)
-        return "frequency " + number(m.frequencyHz) + " Hz is outside " + number(MotionLimits::kMinFrequencyHz) + ".."
-            + number(MotionLimits::kMaxFrequencyHz) + " Hz";
-    if (!std::isfinite(m.startSeconds) || std::abs(m.startSeconds) > MotionLimits::kMaxSeconds)
-        return "start " + number(m.startSeconds) + " s is outside -1e6..1e6 s";
+    if (std::string problem = checkMotionSetting(amplitudeSettingOf(m.kind), m.amplitude); !problem.empty())
+        return "amplitude " + problem;
+    if (std::string problem = checkMotionSetting(MotionSetting::Frequency, m.frequencyHz); !problem.empty())
+        return "frequency " + problem;
+    if (std::string problem = checkMotionSetting(MotionSetting::Time, m.startSeconds); !problem.empty())
+        return "start " + problem;
     return {};
 }
 
@@ -186,14 +182,14 @@ std::string HeadMotion::validate() const
     for (std::size_t i = 0; i < m_keys.size(); ++i) {
         const HeadKey& k = m_keys[i];
         const std::string where = "keys[" + std::to_string(i) + "]: ";
-        if (!std::isfinite(k.timeSeconds) || std::abs(k.timeSeconds) > MotionLimits::kMaxSeconds)
-            return where + "time " + number(k.timeSeconds) + " s is outside -1e6..1e6 s";
+        if (std::string problem = checkMotionSetting(MotionSetting::Time, k.timeSeconds); !problem.empty())
+            return where + "time " + problem;
         if (i > 0 && !(k.timeSeconds - m_keys[i - 1].timeSeconds > kSameTimeSeconds))
             return where + "time " + number(k.timeSeconds) + " s does not come after the key before it";
-        const glm::vec3& t = k.pose.translationMetres;
-        if (!finite(t)
-            || glm::any(glm::greaterThan(glm::abs(t), glm::vec3(float(MotionLimits::kMaxTranslationMetres)))))
-            return where + "translation is not finite or beyond 100 m";
+        for (int axis = 0; axis < 3; ++axis)
+            if (std::string problem = checkMotionSetting(MotionSetting::Translation, k.pose.translationMetres[axis]);
+                !problem.empty())
+                return where + "translation[" + std::to_string(axis) + "] " + problem;
         const glm::quat& q = k.pose.rotation;
         const float length = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
         if (!std::isfinite(length) || std::abs(length - 1.0f) > 1e-3f)

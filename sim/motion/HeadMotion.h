@@ -19,6 +19,7 @@
 // turns (see pivotOf). Thread: value type, no shared state.
 
 #include "sim/geometry/TriangleMesh.h"
+#include "sim/params/MotionSettings.h"
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
@@ -73,15 +74,9 @@ std::optional<MotionKind> motionFromName(std::string_view name);
 // The preset of each kind: what `wisp-cli bake --motion NAME` and the editor's chooser start from.
 ProceduralMotion motionPreset(MotionKind kind);
 
-// Ranges, stated once (the editor's spin boxes and the project reader check against them).
-struct MotionLimits {
-    static constexpr double kMaxDegrees = 90.0;
-    static constexpr double kMaxWalkMetres = 0.2;
-    static constexpr double kMinFrequencyHz = 0.01;
-    static constexpr double kMaxFrequencyHz = 10.0;
-    static constexpr double kMaxTranslationMetres = 100.0; // a key's translation, each axis
-    static constexpr double kMaxSeconds = 1e6; // a key's or a motion's time
-};
+// The range a motion's amplitude has in the registry (sim/params/Parameters.h, where every motion
+// range is stated): metres for walk, degrees for the others.
+MotionSetting amplitudeSettingOf(MotionKind kind);
 
 class HeadMotion {
 public:
@@ -99,8 +94,9 @@ public:
     const ProceduralMotion& procedural() const { return m_procedural; }
     void setProcedural(const ProceduralMotion& motion) { m_procedural = motion; }
 
-    // Empty when every key and the procedural motion are finite and within MotionLimits, with
-    // unit rotations; otherwise what is wrong ("keys[2]: time nan is not finite").
+    // Empty when every key and the procedural motion are finite and within the registry's motion
+    // ranges (MotionSetting), with unit rotations; otherwise what is wrong, naming the field
+    // ("keys[2]: time nan is not a finite number", "motion: amplitude 120 is outside 0..90 degrees").
     std::string validate() const;
     static std::string validateProcedural(const ProceduralMotion& motion);
 

@@ -1,4 +1,5 @@
 #include "sim/params/Parameters.h"
+#include "sim/params/TableOrder.h"
 #include "sim/util/NumberText.h"
 
 #include "sim/groom/ScalpBrush.h"
@@ -102,14 +103,7 @@ constexpr std::array<ParameterInfo, kParamCount> kParameters{ {
         S::Linear },
 } };
 
-constexpr bool tableIsInOrder()
-{
-    for (std::size_t i = 0; i < kParameters.size(); ++i)
-        if (static_cast<std::size_t>(kParameters[i].id) != i)
-            return false;
-    return true;
-}
-static_assert(tableIsInOrder(), "kParameters must list the parameters in the order of enum Param");
+static_assert(rowsAreInEnumOrder(kParameters), "kParameters must list the parameters in the order of enum Param");
 
 } // namespace
 

@@ -33,8 +33,8 @@ std::string HairSimulation::prepareHead(HeadModelPtr model)
     const float extent = glm::max(box.size().x, glm::max(box.size().y, box.size().z));
     std::string error;
     // The margin covers the hair offset and curls lying on the skin; beyond it the field is clamped.
-    auto sdf = std::make_shared<SignedDistanceField>(
-        SignedDistanceField::bake(head, extent / kColliderCellsAcross, 0.1f * extent + 0.01f, &error));
+    auto sdf = std::make_shared<SignedDistanceField>(SignedDistanceField::bake(
+        head, extent / kColliderCellsAcross, 0.1f * extent + 0.01f, &error, &m_solver.threadPool()));
     if (sdf->empty())
         return "head: cannot build its collider: " + error;
     m_head = std::move(model);

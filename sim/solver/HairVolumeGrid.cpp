@@ -1,13 +1,16 @@
 #include "sim/solver/HairVolumeGrid.h"
 
+#include "sim/util/ShuffleLanes.h"
 #include "sim/util/ThreadPool.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
+#include <thread>
 
 namespace wisp {
 
@@ -23,12 +26,16 @@ void forRange(
 }
 } // namespace
 
-bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
+bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi, int slots, std::size_t maxNodes, Kernel kernel)
 {
+    m_slots = std::clamp(slots, 1, kMaxSlots);
+    m_kernel = kernel;
+    m_sums.clear();
+    m_smoothed.clear();
     m_nodes.clear();
     m_hairDensity.clear();
     m_solid.clear();
-    m_chunks.clear();
+    m_accumulators.clear();
     m_touched.clear();
     m_live.clear();
     m_liveList.clear();
@@ -38,7 +45,7 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
         || !(size.y > 0.0f) || !(size.z > 0.0f) || !(glm::length(size) < 1e3f))
         return false;
     // The finest cell whose nodes (one more than the cells each way) fit the memory bound.
-    const std::size_t maxNodes = kMaxBytes / kBytesPerNode;
+    maxNodes = std::clamp<std::size_t>(maxNodes, 64, kernel == Kernel::Trilinear ? kMaxNodes : kMaxSmoothedNodes);
     float cell = std::max(kFinestCellMetres, std::cbrt(size.x * size.y * size.z / static_cast<float>(maxNodes)));
     glm::ivec3 dims;
     for (;;) {
@@ -55,19 +62,55 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi)
     m_nodes.assign(count, Node{});
     m_hairDensity.assign(count, 0.0f);
     m_solid.assign(count, 0.0f);
-    m_chunks.assign(count * kSplatChunks, Accumulator{});
+    m_accumulators.assign(count * static_cast<std::size_t>(m_slots), Accumulator{});
+    if (kernel == Kernel::NearestSmoothed) {
+        m_sums.assign(count, Sums{});
+        m_smoothed.assign(count, Sums{});
+    }
     m_bricks = (dims + kBrick - 1) / kBrick;
     const std::size_t bricks = static_cast<std::size_t>(m_bricks.x) * m_bricks.y * m_bricks.z;
     m_live.assign(bricks, 0);
-    m_touched.assign(bricks * kSplatChunks, 0);
+    m_touched.assign(bricks * static_cast<std::size_t>(m_slots), 0);
     return true;
+}
+
+void HairVolumeGrid::setWeightBound(double totalWeight)
+{
+    // The largest powers of two that keep every sum below 2^61 (all the hair in one node, moving at
+    // kMaxMoveMetres): exact scales, and headroom for each splat's rounding.
+    auto units = [](double bound) {
+        const int exponent = std::isfinite(bound) && bound > 0.0 ? std::ilogb(bound) + 1 : 0;
+        return std::ldexp(1.0f, std::clamp(61 - exponent, -60, 100));
+    };
+    m_weightUnits = units(totalWeight);
+    m_moveUnits = units(totalWeight * kMaxMoveMetres);
+}
+
+int HairVolumeGrid::claimSlot()
+{
+    const std::uint32_t all = (1u << m_slots) - 1u;
+    for (;;) {
+        const std::uint32_t held = m_claimed.load(std::memory_order_relaxed);
+        if ((held & all) == all) {
+            std::this_thread::yield(); // more threads than slots: wait for one
+            continue;
+        }
+        const int slot = std::countr_one(held);
+        if (!(m_claimed.fetch_or(1u << slot, std::memory_order_acquire) & (1u << slot)))
+            return slot;
+    }
+}
+
+void HairVolumeGrid::releaseSlot(int slot)
+{
+    m_claimed.fetch_and(~(1u << slot), std::memory_order_release);
 }
 
 std::size_t HairVolumeGrid::memoryBytes() const
 {
     return m_nodes.capacity() * sizeof(Node) + (m_hairDensity.capacity() + m_solid.capacity()) * sizeof(float)
-        + m_chunks.capacity() * sizeof(Accumulator) + m_touched.capacity() + m_live.capacity()
-        + m_liveList.capacity() * sizeof(std::uint32_t);
+        + m_accumulators.capacity() * sizeof(Accumulator) + m_touched.capacity() + m_live.capacity()
+        + m_liveList.capacity() * sizeof(std::uint32_t) + (m_sums.capacity() + m_smoothed.capacity()) * sizeof(Sums);
 }
 
 void HairVolumeGrid::setSolid(const std::function<float(const glm::vec3&)>& signedDistance)
@@ -94,35 +137,52 @@ template <typename Fn> void HairVolumeGrid::forNodesOf(std::size_t brick, Fn&& f
 
 void HairVolumeGrid::clear(ThreadPool* pool)
 {
-    forRange(pool, kSplatChunks, 1, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t c = begin; c < end; ++c)
-            clearChunk(static_cast<int>(c));
-    });
-}
-
-void HairVolumeGrid::clearChunk(int chunk)
-{
     const std::size_t count = m_nodes.size(), bricks = m_live.size();
-    Accumulator* a = m_chunks.data() + static_cast<std::size_t>(chunk) * count;
-    std::uint8_t* touched = m_touched.data() + static_cast<std::size_t>(chunk) * bricks;
-    for (std::size_t b = 0; b < bricks; ++b)
-        if (touched[b]) {
-            forNodesOf(b, [&](int, int, int, std::size_t n) { a[n] = Accumulator{ 0.0f, 0.0f, 0.0f, 0.0f }; });
-            touched[b] = 0;
+    forRange(pool, static_cast<std::size_t>(m_slots), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t slot = begin; slot < end; ++slot) {
+            Accumulator* a = m_accumulators.data() + slot * count;
+            std::uint8_t* touched = m_touched.data() + slot * bricks;
+            for (std::size_t b = 0; b < bricks; ++b)
+                if (touched[b]) {
+                    forNodesOf(b, [&](int, int, int, std::size_t n) { a[n] = Accumulator{}; });
+                    touched[b] = 0;
+                }
         }
+    });
 }
 
 void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
 {
     const std::size_t count = m_nodes.size(), bricks = m_live.size();
-    // The bricks any chunk touched; the nodes of bricks touched last time and not now go empty.
+    // The bricks any slot touched; the nodes of bricks touched last time and not now go empty.
     std::vector<std::uint32_t> now;
     for (std::size_t b = 0; b < bricks; ++b) {
         bool any = false;
-        for (int c = 0; c < m_activeChunks && !any; ++c)
-            any = m_touched[static_cast<std::size_t>(c) * bricks + b] != 0;
+        for (int c = 0; c < m_slots; ++c) {
+            std::uint8_t& touched = m_touched[static_cast<std::size_t>(c) * bricks + b];
+            any = any || touched != 0;
+            touched = 0; // emptied below
+        }
         if (any)
             now.push_back(static_cast<std::uint32_t>(b));
+    }
+    if (m_kernel == Kernel::NearestSmoothed) {
+        // The smoothing spreads a node's sums one node each way: into the bricks beside.
+        std::vector<std::uint8_t> near(bricks, 0);
+        for (const std::uint32_t b : now) {
+            const int bx = static_cast<int>(b % static_cast<std::uint32_t>(m_bricks.x));
+            const int by = static_cast<int>(
+                (b / static_cast<std::uint32_t>(m_bricks.x)) % static_cast<std::uint32_t>(m_bricks.y));
+            const int bz = static_cast<int>(b / (static_cast<std::uint32_t>(m_bricks.x) * m_bricks.y));
+            for (int k = std::max(bz - 1, 0); k <= std::min(bz + 1, m_bricks.z - 1); ++k)
+                for (int j = std::max(by - 1, 0); j <= std::min(by + 1, m_bricks.y - 1); ++j)
+                    for (int i = std::max(bx - 1, 0); i <= std::min(bx + 1, m_bricks.x - 1); ++i)
+                        near[brickIndex(i, j, k)] = 1;
+        }
+        now.clear();
+        for (std::size_t b = 0; b < bricks; ++b)
+            if (near[b])
+                now.push_back(static_cast<std::uint32_t>(b));
     }
     for (const std::uint32_t b : m_liveList)
         m_live[b] = 0;
@@ -133,31 +193,51 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
             forNodesOf(b, [&](int, int, int, std::size_t n) {
                 m_nodes[n] = Node{};
                 m_hairDensity[n] = 0.0f;
+                if (!m_sums.empty())
+                    m_sums[n] = m_smoothed[n] = Sums{};
             });
     m_liveList = std::move(now);
     m_solidDensity = solidDensity;
 
-    // First the sums (every live node), then what sample() reads, which takes the neighbours' sums.
+    // First the sums (every live node; the slots are emptied for the next splats), then what
+    // sample() reads, which takes the neighbours' sums.
     const float perVolume = 1.0f / (m_cell * m_cell * m_cell);
+    const double perWeight = 1.0 / static_cast<double>(m_weightUnits), perMove = 1.0 / static_cast<double>(m_moveUnits);
+    auto store = [&](std::size_t n, const Sums& sums) { // what sample() reads of the hair at node n
+        Node& node = m_nodes[n];
+        node.weight = sums.weight;
+        node.moveX = sums.moveX;
+        node.moveY = sums.moveY;
+        node.moveZ = sums.moveZ;
+        m_hairDensity[n] = node.weight * perVolume;
+    };
     forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
         for (std::size_t l = begin; l < end; ++l)
             forNodesOf(m_liveList[l], [&](int, int, int, std::size_t n) {
-                Accumulator sum{ 0.0f, 0.0f, 0.0f, 0.0f };
-                for (int c = 0; c < m_activeChunks; ++c) { // always in chunk order: the same bits on any thread count
-                    const Accumulator& a = m_chunks[static_cast<std::size_t>(c) * count + n];
+                Accumulator sum{};
+                for (int c = 0; c < m_slots; ++c) { // integers: the same sum in any order
+                    Accumulator& a = m_accumulators[static_cast<std::size_t>(c) * count + n];
                     sum.weight += a.weight;
                     sum.moveX += a.moveX;
                     sum.moveY += a.moveY;
                     sum.moveZ += a.moveZ;
+                    a = Accumulator{};
                 }
-                Node& node = m_nodes[n];
-                node.weight = sum.weight;
-                node.moveX = sum.moveX;
-                node.moveY = sum.moveY;
-                node.moveZ = sum.moveZ;
-                m_hairDensity[n] = sum.weight * perVolume;
+                const Sums sums{ static_cast<float>(sum.weight * perWeight), static_cast<float>(sum.moveX * perMove),
+                    static_cast<float>(sum.moveY * perMove), static_cast<float>(sum.moveZ * perMove) };
+                if (m_kernel == Kernel::NearestSmoothed)
+                    m_sums[n] = sums;
+                else
+                    store(n, sums);
             });
     });
+    if (m_kernel == Kernel::NearestSmoothed) {
+        smooth(pool); // into m_smoothed
+        forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t l = begin; l < end; ++l)
+                forNodesOf(m_liveList[l], [&](int, int, int, std::size_t n) { store(n, m_smoothed[n]); });
+        });
+    }
     const float inv2h = 0.5f / m_cell;
     forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
         for (std::size_t l = begin; l < end; ++l)
@@ -171,18 +251,41 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
     });
 }
 
+void HairVolumeGrid::smooth(ThreadPool* pool)
+{
+    // [1 2 1]/4 along x, then y, then z (m_sums -> m_smoothed -> m_sums -> m_smoothed). At the grid's
+    // faces the missing neighbour is the node itself, so the smoothing keeps the total weight. Nodes
+    // outside the live bricks hold zeros (finish() empties them), and no sum reaches them.
+    const std::ptrdiff_t step[3] = { 1, m_dims.x, static_cast<std::ptrdiff_t>(m_dims.x) * m_dims.y };
+    for (int axis = 0; axis < 3; ++axis) {
+        const std::vector<Sums>& from = axis == 1 ? m_smoothed : m_sums;
+        std::vector<Sums>& to = axis == 1 ? m_sums : m_smoothed;
+        const int size = m_dims[axis];
+        forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t l = begin; l < end; ++l)
+                forNodesOf(m_liveList[l], [&](int i, int j, int k, std::size_t n) {
+                    const int at = axis == 0 ? i : axis == 1 ? j : k;
+                    const Sums& here = from[n];
+                    const Sums& before = at > 0 ? from[n - static_cast<std::size_t>(step[axis])] : here;
+                    const Sums& after = at + 1 < size ? from[n + static_cast<std::size_t>(step[axis])] : here;
+                    to[n] = Sums{ 0.25f * (before.weight + after.weight) + 0.5f * here.weight,
+                        0.25f * (before.moveX + after.moveX) + 0.5f * here.moveX,
+                        0.25f * (before.moveY + after.moveY) + 0.5f * here.moveY,
+                        0.25f * (before.moveZ + after.moveZ) + 0.5f * here.moveZ };
+                });
+        });
+    }
+}
+
 namespace {
 // Eight floats, one AVX register: a pair of neighbouring nodes along x (splat), or one node (sample).
 using Float8 = float __attribute__((vector_size(8 * sizeof(float))));
+using Fixed8 = std::int64_t __attribute__((vector_size(8 * sizeof(std::int64_t))));
 inline Float8 load8(const float* p)
 {
     Float8 v;
     std::memcpy(&v, p, sizeof v);
     return v;
-}
-inline void store8(float* p, Float8 v)
-{
-    std::memcpy(p, &v, sizeof v);
 }
 } // namespace
 
@@ -217,6 +320,11 @@ void HairVolumeGrid::cellsOf(const float* x, const float* y, const float* z, int
                  fy = inside ? gy - __builtin_convertvector(iy, Floats) : zero,
                  fz = inside ? gz - __builtin_convertvector(iz, Floats) : zero;
     const Ints node = inside ? ix + m_dims.x * (iy + m_dims.y * iz) : Ints{} - 1;
+    const Ints one = Ints{} + 1;
+    const Ints nearest = inside
+        ? node + ((fx >= 0.5f) & one) + m_dims.x * (((fy >= 0.5f) & one) + m_dims.y * ((fz >= 0.5f) & one))
+        : Ints{} - 1;
+    std::memcpy(out.nearest, &nearest, sizeof nearest);
     std::memcpy(out.ix, &ix, sizeof ix);
     std::memcpy(out.iy, &iy, sizeof iy);
     std::memcpy(out.iz, &iz, sizeof iz);
@@ -226,15 +334,18 @@ void HairVolumeGrid::cellsOf(const float* x, const float* y, const float* z, int
     std::memcpy(out.node, &node, sizeof node);
 }
 
-void HairVolumeGrid::splatRow(int chunk, const float* x, const float* y, const float* z, const float* weight,
-    const float* moveX, const float* moveY, const float* moveZ, int count)
+void HairVolumeGrid::splatRow(int slot, const float* x, const float* y, const float* z, const float* weight,
+    const float* moveX, const float* moveY, const float* moveZ, int count, int stride)
 {
+    stride = count == kRowLanes ? std::clamp(stride, 1, kRowLanes) : 1;
     CellRow cells;
     cellsOf(x, y, z, count, cells);
-    float* const grid = &m_chunks[static_cast<std::size_t>(chunk) * m_nodes.size()].weight;
+    std::int64_t* const grid = &m_accumulators[static_cast<std::size_t>(slot) * m_nodes.size()].weight;
     const std::ptrdiff_t strideY = 4 * static_cast<std::ptrdiff_t>(m_dims.x),
                          strideZ = strideY * static_cast<std::ptrdiff_t>(m_dims.y);
-    std::uint8_t* const touched = m_touched.data() + static_cast<std::size_t>(chunk) * m_live.size();
+    std::uint8_t* const touched = m_touched.data() + static_cast<std::size_t>(slot) * m_live.size();
+    const Float8 units{ m_weightUnits, m_moveUnits, m_moveUnits, m_moveUnits, m_weightUnits, m_moveUnits, m_moveUnits,
+        m_moveUnits };
     const std::size_t brickY = static_cast<std::size_t>(m_bricks.x),
                       brickZ = brickY * static_cast<std::size_t>(m_bricks.y);
     // Side-by-side particles (a row's neighbouring strands) often share a cell: their adds are
@@ -256,14 +367,24 @@ void HairVolumeGrid::splatRow(int chunk, const float* x, const float* y, const f
                 for (int j = 0; j <= ny; ++j)
                     for (int i = 0; i <= nx; ++i)
                         brick[i + j * brickY + k * brickZ] = 1;
-        float* const base = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
+        // In fixed point, rounded half away from zero: the same integers wherever this row is
+        // splatted, and no drift toward zero in the sums.
+        std::int64_t* const base = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
         for (int dz = 0; dz < 2; ++dz)
             for (int dy = 0; dy < 2; ++dy) {
-                float* const pair = base + dy * strideY + dz * strideZ;
-                store8(pair, load8(pair) + run[2 * dz + dy]);
+                std::int64_t* const pair = base + dy * strideY + dz * strideZ;
+                const Float8 value = run[2 * dz + dy] * units;
+                Fixed8 sum;
+                std::memcpy(&sum, pair, sizeof sum);
+                sum += __builtin_convertvector(value + (value < 0.0f ? Float8{} - 0.5f : Float8{} + 0.5f), Fixed8);
+                std::memcpy(pair, &sum, sizeof sum);
             }
     };
-    for (int l = 0; l < count; ++l) {
+    if (m_kernel == Kernel::NearestSmoothed) {
+        splatNearest(grid, touched, cells, weight, moveX, moveY, moveZ, count, stride);
+        return;
+    }
+    for (int l = 0; l < count; l += stride) {
         const float w = weight[l];
         if (cells.node[l] < 0 || !(w > 0.0f))
             continue;
@@ -277,7 +398,10 @@ void HairVolumeGrid::splatRow(int chunk, const float* x, const float* y, const f
         }
         // (weight, weight x move) at the low and the high node along x, in one register.
         const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
-        const Float8 value = Float8{ 1.0f, moveX[l], moveY[l], moveZ[l], 1.0f, moveX[l], moveY[l], moveZ[l] };
+        const float mx = std::clamp(moveX[l], -kMaxMoveMetres, kMaxMoveMetres),
+                    my = std::clamp(moveY[l], -kMaxMoveMetres, kMaxMoveMetres),
+                    mz = std::clamp(moveZ[l], -kMaxMoveMetres, kMaxMoveMetres);
+        const Float8 value = Float8{ 1.0f, mx, my, mz, 1.0f, mx, my, mz };
         const Float8 wx = Float8{ 1.0f - fx, 1.0f - fx, 1.0f - fx, 1.0f - fx, fx, fx, fx, fx };
         const float wz[2] = { w * (1.0f - fz), w * fz }, wy[2] = { 1.0f - fy, fy };
         for (int dz = 0; dz < 2; ++dz)
@@ -287,14 +411,82 @@ void HairVolumeGrid::splatRow(int chunk, const float* x, const float* y, const f
     flush();
 }
 
-void HairVolumeGrid::sampleRow(const float* x, const float* y, const float* z, SampleRow& out, int count) const
+void HairVolumeGrid::splatNearest(std::int64_t* grid, std::uint8_t* touched, const CellRow& cells, const float* weight,
+    const float* moveX, const float* moveY, const float* moveZ, int count, int stride)
+{
+    using Float4 = float __attribute__((vector_size(4 * sizeof(float))));
+    using Fixed4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
+    const Float4 units{ m_weightUnits, m_moveUnits, m_moveUnits, m_moveUnits };
+    // As the trilinear splat: a run of particles at one node is summed in registers, in lane order.
+    int runNode = -1;
+    Float4 run{};
+    auto flush = [&] {
+        if (runNode < 0)
+            return;
+        const Float4 value = run * units;
+        Fixed4 sum;
+        std::int64_t* const at = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
+        std::memcpy(&sum, at, sizeof sum);
+        sum += __builtin_convertvector(value + (value < 0.0f ? Float4{} - 0.5f : Float4{} + 0.5f), Fixed4);
+        std::memcpy(at, &sum, sizeof sum);
+    };
+    for (int l = 0; l < count; l += stride) {
+        const float w = weight[l];
+        if (cells.node[l] < 0 || !(w > 0.0f))
+            continue;
+        const int node = cells.nearest[l];
+        if (node != runNode) {
+            flush();
+            runNode = node;
+            run = Float4{};
+            const int dx = cells.fx[l] >= 0.5f, dy = cells.fy[l] >= 0.5f, dz = cells.fz[l] >= 0.5f;
+            touched[brickIndex((cells.ix[l] + dx) / kBrick, (cells.iy[l] + dy) / kBrick, (cells.iz[l] + dz) / kBrick)]
+                = 1;
+        }
+        const float mx = std::clamp(moveX[l], -kMaxMoveMetres, kMaxMoveMetres),
+                    my = std::clamp(moveY[l], -kMaxMoveMetres, kMaxMoveMetres),
+                    mz = std::clamp(moveZ[l], -kMaxMoveMetres, kMaxMoveMetres);
+        run += w * Float4{ 1.0f, mx, my, mz };
+    }
+    flush();
+}
+
+namespace {
+// For a row sampled every `stride` lanes and at its last lane: per lane the sampled lanes before and
+// after it and its share of the way from one to the other.
+struct LaneBlend {
+    alignas(64) int before[HairVolumeGrid::kRowLanes];
+    alignas(64) int after[HairVolumeGrid::kRowLanes];
+    alignas(64) float share[HairVolumeGrid::kRowLanes];
+};
+constexpr LaneBlend laneBlend(int stride)
+{
+    LaneBlend b{};
+    constexpr int last = HairVolumeGrid::kRowLanes - 1;
+    for (int l = 0; l < HairVolumeGrid::kRowLanes; ++l) {
+        const int before = l - l % stride, after = std::min(before + stride, last);
+        b.before[l] = before;
+        b.after[l] = after;
+        b.share[l] = after > before ? static_cast<float>(l - before) / static_cast<float>(after - before) : 0.0f;
+    }
+    return b;
+}
+constexpr LaneBlend kLaneBlends[5] = { laneBlend(1), laneBlend(2), laneBlend(4), laneBlend(8), laneBlend(16) };
+} // namespace
+
+void HairVolumeGrid::sampleRow(
+    const float* x, const float* y, const float* z, SampleRow& out, int count, int stride) const
 {
     CellRow cells;
     cellsOf(x, y, z, count, cells);
     const std::ptrdiff_t strideY = m_dims.x, strideZ = strideY * m_dims.y;
-    for (int l = 0; l < count; ++l) {
+    stride = count == kRowLanes ? std::clamp(stride, 1, kRowLanes) : 1;
+    for (int l = 0; l < count; l = l + stride < count || l == count - 1 ? l + stride : count - 1) {
         Float8 sum{};
-        if (cells.node[l] >= 0) {
+        if (m_kernel == Kernel::NearestSmoothed) {
+            if (cells.nearest[l] >= 0)
+                sum = load8(&m_nodes[static_cast<std::size_t>(cells.nearest[l])].density);
+        } else if (cells.node[l] >= 0) {
             const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
             const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
             const Node* const base = m_nodes.data() + cells.node[l];
@@ -314,6 +506,25 @@ void HairVolumeGrid::sampleRow(const float* x, const float* y, const float* z, S
         out.momentumY[l] = sum[5];
         out.momentumZ[l] = sum[6];
         out.hair[l] = sum[7];
+    }
+    if (stride == 1)
+        return;
+    // The lanes between two samples: the linear blend of the two, in one vector pass per array.
+    using Floats = float __attribute__((vector_size(kRowLanes * sizeof(float))));
+    using Ints = int __attribute__((vector_size(kRowLanes * sizeof(int))));
+    const LaneBlend& blend = kLaneBlends[std::countr_zero(static_cast<unsigned>(stride))];
+    Ints before, after;
+    Floats share;
+    std::memcpy(&before, blend.before, sizeof before);
+    std::memcpy(&after, blend.after, sizeof after);
+    std::memcpy(&share, blend.share, sizeof share);
+    for (float* values :
+        { out.density, out.hair, out.momentumX, out.momentumY, out.momentumZ, out.gradX, out.gradY, out.gradZ }) {
+        Floats v;
+        std::memcpy(&v, values, sizeof v);
+        const Floats from = shuffleLanes(v, before), to = shuffleLanes(v, after);
+        v = from + (to - from) * share;
+        std::memcpy(values, &v, sizeof v);
     }
 }
 

@@ -6,17 +6,20 @@
 // around them (trilinear, cloud-in-cell); the solver then reads back, at each particle, the hair
 // density, the hairs' mean move there and the density's gradient.
 //
-// Deterministic for any thread count without atomics: splats go into a fixed number of chunk grids
-// (each chunk always gets the same particles, summed in the same order), reduced in chunk order.
+// Deterministic for any thread count and any schedule, without float atomics: each splatting thread
+// adds into a slot of its own in 64-bit fixed point, and integer sums do not depend on their order;
+// the slots are summed into floats once, in finish(). So the splat can run wherever a particle is
+// in cache (the solver splats each block at the end of its substeps, Solver::step).
 //
 // Lives in head space, so it follows the head. Its resolution adapts to the box it is given, cells
 // no finer than kFinestCellMetres, within a bound of kMaxBytes for all its arrays.
 //
-// Thread: one owner; splat() may be called concurrently for different chunks.
+// Thread: one owner; splat() may be called concurrently for different slots (claimSlot()).
 
 #include <glm/vec3.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -28,13 +31,30 @@ class ThreadPool;
 
 class HairVolumeGrid {
 public:
-    static constexpr int kSplatChunks = 8;
+    static constexpr int kMaxSlots = 8; // splatting threads at once (more wait for a free slot)
     static constexpr std::size_t kMaxBytes = std::size_t{ 32 } << 20; // 32 MiB
     static constexpr float kFinestCellMetres = 0.008f;
 
-    // Lays nodes over [lo, hi] (head space, metres), as fine as the memory bound allows. False (and
-    // an empty grid) when the box is not finite or empty.
-    bool setBounds(const glm::vec3& lo, const glm::vec3& hi);
+    // How a particle meets the nodes.
+    enum class Kernel {
+        // It splats into and reads the eight nodes around it, trilinear (cloud-in-cell): the field
+        // is continuous in its position, what a groom with a few particles in a cell needs.
+        Trilinear,
+        // It splats into and reads its nearest node, one node instead of eight; the sums are smoothed
+        // by [1 2 1]/4 along each axis before the density is taken (about the cloud-in-cell's spread).
+        // For a dense groom (dozens of particles in a cell): one particle crossing between two nodes
+        // moves a small share of either's hair, and a particle's read changes by the difference of
+        // two smoothed neighbours.
+        NearestSmoothed,
+    };
+    // Lays nodes over [lo, hi] (head space, metres), as fine as the memory bound allows (at most
+    // `maxNodes`, at most kMaxNodes), with
+    // `slots` (1..kMaxSlots) splat slots: the threads that splat at once. The cell does not depend
+    // on `slots` (the same bits on any thread count). False (and an empty grid) when the box is not
+    // finite or empty.
+    bool setBounds(const glm::vec3& lo, const glm::vec3& hi, int slots = 1, std::size_t maxNodes = kMaxNodes,
+        Kernel kernel = Kernel::Trilinear);
+    Kernel kernel() const { return m_kernel; }
     bool empty() const { return m_nodes.empty(); }
 
     // The head as a solid in the grid (Petrovic et al. treat the body as solid too): each node's
@@ -43,28 +63,34 @@ public:
     // skin is pushed out as by more hair beneath it, and the gradient there points away from the head.
     void setSolid(const std::function<float(const glm::vec3&)>& signedDistance);
 
-    // Chunks in use (1..kSplatChunks): splat() takes chunk < this; fewer chunks, less to clear and
-    // sum. Choose it from the work, never from the thread count, to keep the same bits.
-    void setChunks(int chunks) { m_activeChunks = chunks < 1 ? 1 : chunks > kSplatChunks ? kSplatChunks : chunks; }
-    int chunks() const { return m_activeChunks; }
+    int slots() const { return m_slots; }
+    // The most weight all splats between two finish() calls add up to: it sets the fixed point's
+    // units (the sums cannot overflow). Call it with no splats pending.
+    void setWeightBound(double totalWeight);
+    // A move component beyond this (metres a substep) counts as this in the mean: the solver
+    // leaves particles moving farther out of the grid.
+    static constexpr float kMaxMoveMetres = 0.5f;
+    // A slot no other thread holds, for this thread's splats until releaseSlot().
+    int claimSlot();
+    void releaseSlot(int slot);
 
-    // Forgets the last splats (all chunks). `pool` null: on the calling thread (for few particles,
-    // waking the pool costs more than the work).
+    // Forgets the splats since the last finish(). `pool` null: on the calling thread (for few
+    // particles, waking the pool costs more than the work).
     void clear(ThreadPool* pool);
-    // The same for one chunk, on the calling thread: the chunk's splatting thread clears it first.
-    void clearChunk(int chunk);
-    // Adds `weight` and `weight * move` at head-space `p` to chunk `chunk` (0..kSplatChunks-1).
-    // Points outside the grid add nothing.
-    inline void splat(int chunk, const glm::vec3& p, float weight, const glm::vec3& move);
+    // Adds `weight` and `weight * move` at head-space `p` to slot `slot`. Points outside the grid add
+    // nothing.
+    inline void splat(int slot, const glm::vec3& p, float weight, const glm::vec3& move);
     // The same for a row of kRowLanes particles (structure of arrays: head-space positions, weights,
     // moves), one after the other in lane order; lanes with weight <= 0 add nothing. The grid
     // coordinates of the row are taken in one vector pass, then each particle adds its eight nodes
     // as four pairs of neighbours along x (one 32-byte add each).
     static constexpr int kRowLanes = 16;
-    void splatRow(int chunk, const float* x, const float* y, const float* z, const float* weight, const float* moveX,
-        const float* moveY, const float* moveZ, int count = kRowLanes);
-    // Sums the chunks in order and derives the density (weight / m³), the mean move and the
-    // density gradient (central differences at nodes) that sample() reads.
+    // `stride` (a power of two, full rows only): only every stride-th lane splats (lanes 0, stride,
+    // ...), each with the weight of the lanes it stands for (see sampleRow).
+    void splatRow(int slot, const float* x, const float* y, const float* z, const float* weight, const float* moveX,
+        const float* moveY, const float* moveZ, int count = kRowLanes, int stride = 1);
+    // Sums the slots (and empties them) and derives the density (weight / m³), the mean move and
+    // the density gradient (central differences at nodes) that sample() reads.
     void finish(ThreadPool* pool, float solidDensity = 0.0f);
 
     struct Sample {
@@ -90,7 +116,14 @@ public:
         alignas(64) float gradY[kRowLanes];
         alignas(64) float gradZ[kRowLanes];
     };
-    void sampleRow(const float* x, const float* y, const float* z, SampleRow& out, int count = kRowLanes) const;
+    //
+    // `stride` (a power of two, full rows only) is the level of detail of a dense groom, where a row's
+    // sixteen strands lie side by side much closer than a cell (Solver::volumeSplat): the
+    // grid is sampled at lanes 0, stride, 2 stride, ... and 15, and the lanes between take the linear
+    // blend of the two samples around them, as member hairs follow their keys. The blend is fixed
+    // per lane, not chosen by position, so it is as continuous in time as the samples.
+    void sampleRow(
+        const float* x, const float* y, const float* z, SampleRow& out, int count = kRowLanes, int stride = 1) const;
     float cellMetres() const { return m_cell; }
     glm::ivec3 dims() const { return m_dims; }
     glm::vec3 origin() const { return m_origin; }
@@ -98,11 +131,20 @@ public:
     // Total weight splatted (after finish), for tests: a splat conserves it.
     double totalWeight() const;
 
-    static constexpr std::size_t kBytesPerNode = kSplatChunks * 4 * sizeof(float) + 10 * sizeof(float);
+    // What one node takes, and each slot more: at most kMaxNodes nodes keep the grid within
+    // kMaxBytes with kMaxSlots slots.
+    static constexpr std::size_t kBytesPerNode = 10 * sizeof(float), kBytesPerNodeSlot = 4 * sizeof(std::int64_t);
+    static constexpr std::size_t kMaxNodes = kMaxBytes / (kBytesPerNode + kMaxSlots * kBytesPerNodeSlot);
+    // Kernel::NearestSmoothed's two arrays for the smoothing passes, and its node bound.
+    static constexpr std::size_t kBytesPerSmoothedNode = 2 * 4 * sizeof(float);
+    static constexpr std::size_t kMaxSmoothedNodes
+        = kMaxBytes / (kBytesPerNode + kBytesPerSmoothedNode + kMaxSlots * kBytesPerNodeSlot);
 
 private:
+    // A node's splats in a slot, fixed point (m_weightUnits and m_moveUnits): a pair of nodes
+    // along x is added in one vector instruction.
     struct Accumulator {
-        float weight, moveX, moveY, moveZ;
+        std::int64_t weight, moveX, moveY, moveZ;
     };
     // What sample() reads, eight floats: one node of a pair (x even, x odd) shares a cache line.
     struct alignas(32) Node {
@@ -115,6 +157,7 @@ private:
     // not finite), the node's coordinates and the position within the cell (0..1 each way).
     struct CellRow {
         alignas(64) int node[kRowLanes];
+        alignas(64) int nearest[kRowLanes]; // the index of the nearest node (-1: outside)
         alignas(64) int ix[kRowLanes];
         alignas(64) int iy[kRowLanes];
         alignas(64) int iz[kRowLanes];
@@ -123,6 +166,9 @@ private:
         alignas(64) float fz[kRowLanes];
     };
     void cellsOf(const float* x, const float* y, const float* z, int count, CellRow& out) const;
+    // splatRow for Kernel::NearestSmoothed: into slot grid `grid`, marking `touched` bricks.
+    void splatNearest(std::int64_t* grid, std::uint8_t* touched, const CellRow& cells, const float* weight,
+        const float* moveX, const float* moveY, const float* moveZ, int count, int stride);
     // Hair and head at a node (clamped into the grid), for the central differences.
     float densityAt(int i, int j, int k) const
     {
@@ -138,16 +184,29 @@ private:
             * (static_cast<std::size_t>(j) + static_cast<std::size_t>(m_dims.y) * k);
     }
 
+    // Kernel::NearestSmoothed: the sums along one axis, smoothed; each pass reads one, writes the other.
+    void smooth(ThreadPool* pool);
+    Kernel m_kernel = Kernel::Trilinear;
+    struct Sums {
+        float weight, moveX, moveY, moveZ;
+    };
+    std::vector<Sums> m_sums, m_smoothed; // per node (Kernel::NearestSmoothed only)
+
     glm::ivec3 m_dims{ 0 };
     glm::vec3 m_origin{ 0.0f };
     float m_cell = 0.0f;
-    std::vector<Accumulator> m_chunks; // kSplatChunks grids, one after the other
+    std::vector<Accumulator> m_accumulators; // m_slots grids, one after the other
+    int m_slots = 1;
+    // Fixed-point units per unit of weight and of weight x move (setWeightBound), powers of two.
+    float m_weightUnits = 0x1p20f, m_moveUnits = 0x1p24f;
+    std::atomic<std::uint32_t> m_claimed{ 0 }; // a bit per slot held
     std::vector<Node> m_nodes;
     std::vector<float> m_hairDensity; // per node: the hair's weight per m³ (0 outside the live bricks)
     std::vector<float> m_solid; // per node: 0..1 inside the head
     // Bricks of kBrick³ nodes: only those a splat touched are cleared, summed and differenced, so a
     // pass costs what the hair occupies, not the whole grid (the editor's 7,600 particles would
-    // otherwise pay for 200,000 nodes in eight chunks).
+    // otherwise pay for 200,000 nodes in eight chunks). Kernel::NearestSmoothed also the bricks
+    // beside them, where the smoothing spreads the sums.
     static constexpr int kBrick = 4;
     std::size_t brickIndex(int bx, int by, int bz) const
     {
@@ -157,15 +216,14 @@ private:
     }
     template <typename Fn> void forNodesOf(std::size_t brick, Fn&& fn) const;
     glm::ivec3 m_bricks{ 0 };
-    int m_activeChunks = kSplatChunks;
-    std::vector<std::uint8_t> m_touched; // per chunk and brick: a splat of the chunk wrote there
+    std::vector<std::uint8_t> m_touched; // per slot and brick: a splat of the slot wrote there
     std::vector<std::uint8_t> m_live; // per brick: its nodes hold the last finish's sums
     std::vector<std::uint32_t> m_liveList;
 };
 
-inline void HairVolumeGrid::splat(int chunk, const glm::vec3& p, float weight, const glm::vec3& move)
+inline void HairVolumeGrid::splat(int slot, const glm::vec3& p, float weight, const glm::vec3& move)
 {
-    splatRow(chunk, &p.x, &p.y, &p.z, &weight, &move.x, &move.y, &move.z, 1);
+    splatRow(slot, &p.x, &p.y, &p.z, &weight, &move.x, &move.y, &move.z, 1);
 }
 
 inline HairVolumeGrid::Sample HairVolumeGrid::sample(const glm::vec3& p) const

@@ -98,6 +98,9 @@ public:
     // Grid passes (splat and finish) since construction: one per substep, or fewer where substeps
     // are shorter than the grid's refresh interval (Solver.cpp, kVolumeRefreshSeconds).
     std::uint64_t volumePasses() const { return m_volumePasses; }
+    // The grid's level of detail at the strand's block (Solver::volumeSplat), its finest row: 1 where
+    // every strand splats, k where every k-th one does; for tests.
+    int volumeStrideOfStrand(std::size_t strand) const;
 
     // World-space positions in the layout of the rest curves given to setStrands.
     void copyPositions(std::vector<glm::vec3>& out) const;
@@ -116,6 +119,9 @@ public:
     std::size_t strandCount() const { return m_strandCount; }
     std::size_t particleCount() const { return m_particleCount; }
     int threadCount() const;
+    // The pool the steps run on, for other work between steps on the thread that steps (the head's
+    // SDF bake, HairSimulation::prepareHead): one pool for the whole simulation.
+    ThreadPool& threadPool() { return *m_pool; }
     double simulatedSeconds() const { return m_time; }
     // Strands that went non-finite or stretched past any plausible length and were put back at rest.
     std::uint64_t strandsReset() const { return m_strandsReset; }
@@ -144,6 +150,7 @@ private:
     void volumePass(const StepConstants& c, int substepsUntilNext);
     static int volumeRefreshSubsteps(float substepSeconds); // substeps between two grid passes
     void volumeRead(Block& b, const StepConstants& c) const;
+    void volumeSplat(Block& b, const StepConstants& c, int slot); // into the grid's slot, and its level of detail
     struct VolumeRead {
         float target = 0.0f; // density the hair keeps, metres of hair per m³
         float blend = 0.0f; // share of the difference from the hair's mean move lost this substep
@@ -174,6 +181,11 @@ private:
     std::unique_ptr<HairVolumeGrid> m_volumeGrid; // made on the first step with volume on
     VolumeRead m_volumeRead; // this substep's, set by volumePass
     glm::vec3 m_volumeLo{ 0.0f }, m_volumeHi{ 0.0f }; // head-space box every particle stays in
+    // The grid holds the blocks' splats of their state now, splatted by step() at the end of its
+    // last run in the head space of m_volumeSplatHead; whatever moves particles clears it.
+    bool m_volumeSplatted = false;
+    glm::mat4 m_volumeSplatHead{ 1.0f };
+    bool m_volumeUnitsStale = true; // the particles' weights changed since the grid's fixed point was set
     float m_scalpArea = 0.0f; // m², given or estimated
     float m_hairPerScalpArea = 0.0f; // metres of drawn hair per m² of scalp
     std::size_t m_strandCount = 0;

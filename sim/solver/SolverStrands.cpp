@@ -25,6 +25,7 @@ void Solver::moveParticle(std::size_t strand, std::size_t point, const glm::vec3
     if (point == 0 || point >= b.points)
         return;
     ParticleRow& row = b.state[point];
+    m_volumeSplatted = false; // the grid's last splats are of the old state
     row.x[slot.lane] = row.px[slot.lane] = position.x;
     row.y[slot.lane] = row.py[slot.lane] = position.y;
     row.z[slot.lane] = row.pz[slot.lane] = position.z;
@@ -102,6 +103,7 @@ bool Solver::setStrandState(
     Block& b = m_blocks[slot.block];
     if (positions.size() != b.points || previous.size() != b.points)
         return false;
+    m_volumeSplatted = false; // the grid's last splats are of the old state
     for (std::uint32_t j = 0; j < b.points; ++j)
         if (!std::isfinite(
                 positions[j].x + positions[j].y + positions[j].z + previous[j].x + previous[j].y + previous[j].z))

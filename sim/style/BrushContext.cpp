@@ -4,7 +4,6 @@
 #include "sim/style/StrandPicking.h"
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_inverse.hpp>
 #include <glm/mat3x3.hpp>
 
 #include <algorithm>
@@ -20,37 +19,27 @@ constexpr float kFarMetres = 1.0e4f; // a ray that meets no head
 glm::vec3 mirroredPointWorld(const BrushContext& context, const glm::vec3& p_ws)
 {
     const float plane = context.head ? context.head->mirrorPlaneX() : 0.0f;
-    const glm::vec3 p_hs = glm::vec3(worldToHeadOf(context) * glm::vec4(p_ws, 1.0f));
-    return glm::vec3(headToWorldOf(context) * glm::vec4(mirroredPoint(p_hs, plane), 1.0f));
+    const glm::vec3 p_hs = glm::vec3(worldToHeadOf(context.frame) * glm::vec4(p_ws, 1.0f));
+    return glm::vec3(headToWorldOf(context.frame) * glm::vec4(mirroredPoint(p_hs, plane), 1.0f));
 }
 
 glm::vec3 mirroredDirectionWorld(const BrushContext& context, const glm::vec3& d_ws)
 {
-    const glm::vec3 d_hs = glm::mat3(worldToHeadOf(context)) * d_ws;
-    return glm::mat3(headToWorldOf(context)) * mirroredDirection(d_hs);
+    const glm::vec3 d_hs = glm::mat3(worldToHeadOf(context.frame)) * d_ws;
+    return glm::mat3(headToWorldOf(context.frame)) * mirroredDirection(d_hs);
 }
 
 } // namespace
-
-glm::mat4 headToWorldOf(const BrushContext& context)
-{
-    return context.frame ? context.frame->headToWorld : glm::mat4(1.0f);
-}
-
-glm::mat4 worldToHeadOf(const BrushContext& context)
-{
-    return glm::affineInverse(headToWorldOf(context)); // rigid: rotation and translation
-}
 
 std::optional<HeadModel::SurfaceHit> headHitAlong(
     const BrushContext& context, const glm::vec3& origin_ws, const glm::vec3& direction_ws)
 {
     if (!context.head)
         return std::nullopt;
-    const glm::mat4 toHead = worldToHeadOf(context);
+    const glm::mat4 toHead = worldToHeadOf(context.frame);
     auto hit = context.head->hitAlong(glm::vec3(toHead * glm::vec4(origin_ws, 1.0f)), glm::mat3(toHead) * direction_ws);
     if (hit) { // a rigid transform keeps the distance along the ray
-        const glm::mat4 toWorld = headToWorldOf(context);
+        const glm::mat4 toWorld = headToWorldOf(context.frame);
         hit->point = glm::vec3(toWorld * glm::vec4(hit->point, 1.0f));
         hit->normal = glm::mat3(toWorld) * hit->normal;
     }

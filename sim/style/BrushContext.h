@@ -9,6 +9,7 @@
 #include "sim/geometry/HeadModel.h"
 #include "sim/groom/ScalpBrush.h"
 #include "sim/solver/Frame.h"
+#include "sim/solver/FrameSpace.h"
 #include "sim/style/HairDryer.h"
 #include "sim/style/StyleEdits.h"
 
@@ -56,9 +57,8 @@ struct BrushRay {
 // plane is the head's, so it turns and moves with it).
 std::vector<BrushRay> brushRays(const BrushContext& context, const BrushSample& sample);
 
-// Head space to world space in the context's frame (identity without a frame), and back.
-glm::mat4 headToWorldOf(const BrushContext& context);
-glm::mat4 worldToHeadOf(const BrushContext& context);
+// Head space to world space in the context's frame, and back: headToWorldOf(context.frame),
+// worldToHeadOf(context.frame) (sim/solver/FrameSpace.h).
 // Where a world ray meets the head, world space (the head is picked in its own space); nullopt
 // when it misses or there is no head.
 std::optional<HeadModel::SurfaceHit> headHitAlong(

@@ -85,7 +85,7 @@ StyleEffects CombOperation::end(const BrushContext& context, StyleEdits& edits)
     // The combed shape becomes where the strands rest; the simulation solves the rest shape that
     // sags onto it, and lets go of them. Edits are head space: the head may have moved.
     StyleEffects effects;
-    const glm::mat4 toHead = worldToHeadOf(context);
+    const glm::mat4 toHead = worldToHeadOf(context.frame);
     for (const Caught& c : m_caught) {
         std::vector<glm::vec3>& shape_hs = edits[c.identity].shape;
         shape_hs.clear();

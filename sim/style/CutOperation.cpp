@@ -42,7 +42,7 @@ StyleEffects CutOperation::step(const BrushContext& context, const BrushSample& 
         const glm::vec3 eye_ws = a[r].origin_ws;
         // The artist cuts what they see: a crossing behind the head (from this eye) is not cut. The
         // head is in head space: the line of sight is taken there.
-        const glm::mat4 toHead = worldToHeadOf(context);
+        const glm::mat4 toHead = worldToHeadOf(context.frame);
         const glm::vec3 eye_hs = glm::vec3(toHead * glm::vec4(eye_ws, 1.0f));
         const auto visible = [&](const glm::vec3& x_ws) {
             if (!context.head)

@@ -68,7 +68,7 @@ void HairsprayOperation::applyToWisp(const BrushContext& context, const BrushSam
     edit.stiffnessScale = std::clamp(
         edit.stiffnessScale * (1.0f + kStiffening * context.brush.strength * cover), 1.0f, kStyleMaxStiffnessScale);
     // The shape it has now is the one to hold, head space (the head may have moved).
-    const glm::mat4 toHead = worldToHeadOf(context);
+    const glm::mat4 toHead = worldToHeadOf(context.frame);
     edit.shape.clear();
     for (const glm::vec3& p_ws : context.frame->strands.strand(key))
         edit.shape.push_back(glm::vec3(toHead * glm::vec4(p_ws, 1.0f)));

@@ -10,11 +10,17 @@ ThreadPool::ThreadPool(int threadCount)
 {
     if (threadCount <= 0)
         threadCount = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    for (int i = 1; i < threadCount; ++i)
-        m_workers.emplace_back([this] {
-            nameThisThread("wisp-solver");
-            workerLoop();
-        });
+    try {
+        m_workers.reserve(static_cast<std::size_t>(threadCount - 1));
+        for (int i = 1; i < threadCount; ++i)
+            m_workers.emplace_back([this] {
+                nameThisThread("wisp-solver");
+                workerLoop();
+            });
+    } catch (...) {
+        // No more threads (or memory) to be had: the workers started and the caller do the work,
+        // rather than a throw out of sim/ with threads left running (std::terminate).
+    }
 }
 
 ThreadPool::~ThreadPool()

@@ -1,6 +1,8 @@
 #pragma once
-// A small persistent pool for the solver's parallel loops. Work is split into index ranges; which
-// thread runs which range never changes a result, because every range writes only its own data.
+// sim/'s one pool of threads: the solver's parallel loops and the head's SDF bake
+// (SignedDistanceField::bake, given the solver's pool by HairSimulation) run on it. Work is split
+// into index ranges handed out as threads free (dynamic chunks, m_next); which thread runs which
+// range never changes a result, because every range writes only its own data.
 
 #include <atomic>
 #include <condition_variable>
@@ -25,7 +27,8 @@ inline int solverThreadsBesideGui(unsigned cores = std::thread::hardware_concurr
 class ThreadPool {
 public:
     // threadCount 0 means one thread per hardware core. The calling thread takes part in the work,
-    // so a pool of N threads starts N - 1 workers.
+    // so a pool of N threads starts N - 1 workers (fewer, never a throw, when the system has no
+    // more threads to give: threadCount() says how many it got).
     explicit ThreadPool(int threadCount = 0);
     ~ThreadPool();
     ThreadPool(const ThreadPool&) = delete;
@@ -34,7 +37,8 @@ public:
     int threadCount() const { return static_cast<int>(m_workers.size()) + 1; }
 
     // Calls body(begin, end) over [0, count) in chunks of `grain`, on all threads; returns when done.
-    // Runs on the calling thread; not reentrant.
+    // body must not throw (a worker has nowhere to send it). Runs on the calling thread; not
+    // reentrant, and one caller at a time.
     void parallelFor(std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body);
 
 private:

@@ -1,6 +1,7 @@
 // wisp-cli as a user runs it: real processes, exit statuses, messages and output files.
 #include "io/StrandText.h"
 #include "sim/geometry/DefaultHead.h"
+#include "sim/util/SimdTarget.h"
 
 #include "CliRunner.h"
 
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sys/wait.h>
 
 namespace fs = std::filesystem;
@@ -186,4 +188,64 @@ TEST(Cli, BenchPrintsJsonLines)
     for (const char* field :
         { "\"name\": \"sphere\"", "\"particles\": 3000", "\"threads\": 2", "\"ms_per_step\"", "\"peak_rss_mb\"" })
         EXPECT_NE(r.output.find(field), std::string::npos) << field << " in " << r.output;
+}
+
+TEST(Cli, BenchNamesItsTargetAndMeasuresTheFloorBesideEachWorkload)
+{
+    const CliRun r = cli("bench --workload sphere --strands 200 --steps 50 --threads 2 --json");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::string target = std::string("\"target\": \"") + wisp::compiledSimdTarget() + "\"";
+    EXPECT_NE(r.output.find("\"name\": \"sphere\", " + target), std::string::npos) << r.output;
+    EXPECT_NE(
+        r.output.find("\"name\": \"floor\", " + target + ", \"particles\": 3000, \"strands\": 200"), std::string::npos)
+        << r.output;
+    // The workload's ratio is its time over the floor's, both measured in this run.
+    const std::regex row("\"name\": \"sphere\".*\"ms_per_step\": ([0-9.]+).*\"floor_ms_per_step\": ([0-9.]+), "
+                         "\"ratio_to_floor\": ([0-9.]+)");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.output, m, row)) << r.output;
+    const double ms = std::stod(m[1]), floorMs = std::stod(m[2]), ratio = std::stod(m[3]);
+    ASSERT_GT(floorMs, 0.0);
+    EXPECT_NEAR(ratio, ms / floorMs, 0.01 + 0.01 * ratio);
+
+    const CliRun table = cli("bench --workload sphere --strands 200 --steps 50 --threads 1");
+    ASSERT_EQ(table.status, 0) << table.output;
+    EXPECT_EQ(table.output.rfind(std::string("target ") + wisp::compiledSimdTarget() + " (", 0), 0u) << table.output;
+    EXPECT_NE(table.output.find("x floor"), std::string::npos) << table.output;
+    EXPECT_NE(table.output.find("\nfloor "), std::string::npos) << table.output;
+}
+
+TEST(Cli, BenchGivesNoFloorToTheBrushAndCombWorkloads)
+{
+    const CliRun r = cli("bench --workload brush-dab --steps 50 --threads 1 --json");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("\"name\": \"brush-dab\""), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("\"name\": \"floor\""), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("\"ratio_to_floor\": 0.00"), std::string::npos) << r.output;
+}
+
+TEST(Cli, ACpuWithoutTheBuildsInstructionsIsToldSoInsteadOfCrashing)
+{
+    // The refusal, as on a CPU without SSE2 (every build needs it; the test hook pretends).
+    ::setenv("WISP_TEST_CPU_LACKS", "sse2", 1);
+    const CliRun r = cli("--help");
+    ::unsetenv("WISP_TEST_CPU_LACKS");
+    EXPECT_EQ(r.status, 3) << r.output;
+    EXPECT_NE(
+        r.output.find("this build was compiled for instructions this CPU does not have: sse2."), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("-DWISP_NATIVE=OFF"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("usage:"), std::string::npos) << "it ran on: " << r.output;
+    // The widest instruction set the build was compiled for, lacking alone, is named alone.
+    const std::string widest = std::string(wisp::compiledSimdTarget()) == "AVX-512" ? "avx512f"
+        : std::string(wisp::compiledSimdTarget()) == "AVX2"                         ? "avx2"
+                                                                                    : "sse2";
+    ::setenv("WISP_TEST_CPU_LACKS", widest.c_str(), 1);
+    const CliRun wide = cli("--help");
+    ::unsetenv("WISP_TEST_CPU_LACKS");
+    EXPECT_EQ(wide.status, 3) << wide.output;
+    EXPECT_NE(wide.output.find("does not have: " + widest + "."), std::string::npos) << wide.output;
+    // And nothing is refused on the machine that built it.
+    const CliRun here = cli("--help");
+    EXPECT_EQ(here.status, 0) << here.output;
 }

@@ -2,6 +2,7 @@
 // What several GUI tests need: waiting for the simulation host's frames, measuring where the hair
 // hangs, and typing into a parameter panel as an artist does.
 
+#include "app/editor/Document.h"
 #include "app/editor/FileMenu.h"
 #include "app/editor/MainWindow.h"
 #include "app/editor/SimulationHost.h"
@@ -10,20 +11,63 @@
 
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
+#include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTest>
+#include <QUndoStack>
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <memory>
+#include <mutex>
+#include <thread>
 
 namespace wisp::test {
 
 // Default waits: generous for a Release build on a busy two-core machine, and longer still in the
 // sanitizer build, which runs several times slower (WISP_SLOW_BUILD_FACTOR, tests/CMakeLists.txt).
 constexpr int kWaitMs = 10000 * WISP_SLOW_BUILD_FACTOR;
+// Generous bounds for waits that only catch a hang, such as a whole groom and drape (the sanitizer
+// build is ~10x slower, and on a loaded two-core machine the editor's first groom and drape there
+// took over kWaitMs).
+inline constexpr int kSceneWaitMs = 120000 * WISP_SLOW_BUILD_FACTOR;
+
+// How long a call that must return (closing the editor, destroying the simulation host) may block
+// before it counts as hung: far above anything a healthy one takes however loaded the machine.
+constexpr int kHangGuardMs = 30000 * WISP_SLOW_BUILD_FACTOR;
+
+// Runs `call` on this thread (a QObject is destroyed on its own thread) while a watchdog thread waits
+// for it to return, at most timeoutMs. Should it never return, the watchdog names the hang on
+// stderr and aborts the run, so CI reports "HANG: <what>" at once instead of a 600 s timeout. No
+// duration is measured or asserted: the call returned, or it hung. The watchdog is joined before
+// this returns, so thread counts taken afterwards do not see it.
+inline void runWithHangGuard(const char* what, const std::function<void()>& call, int timeoutMs = kHangGuardMs)
+{
+    std::mutex mutex;
+    std::condition_variable returned;
+    bool done = false;
+    std::thread watchdog([&] {
+        std::unique_lock lock(mutex);
+        if (!returned.wait_for(lock, std::chrono::milliseconds(timeoutMs), [&] { return done; })) {
+            std::fprintf(stderr, "HANG: %s did not return (hang guard %d ms)\n", what, timeoutMs);
+            std::fflush(stderr);
+            std::abort();
+        }
+    });
+    call();
+    {
+        std::lock_guard lock(mutex);
+        done = true;
+    }
+    returned.notify_one();
+    watchdog.join();
+}
 
 // Polls `done` while the event loop runs, up to timeoutMs; its last answer.
 inline bool waitUntil(const std::function<bool()>& done, int timeoutMs = kWaitMs)
@@ -41,6 +85,12 @@ inline bool waitForFramesSince(
     const SimulationHost& host, std::uint64_t since, std::uint64_t count, int timeoutMs = kWaitMs)
 {
     return waitUntil([&] { return host.publishedFrames() >= since + count; }, timeoutMs);
+}
+
+// Waits for a new window's host to publish its first frame: the first groom and drape have run.
+inline bool waitForFirstFrame(const SimulationHost& host)
+{
+    return waitUntil([&] { return host.latestFrame() != nullptr; }, kSceneWaitMs);
 }
 
 // Waits for `count` more frames of a playing host.
@@ -70,6 +120,33 @@ inline std::unique_ptr<MainWindow> openEditor(int width = 1300, int height = 850
     EXPECT_TRUE(QTest::qWaitForWindowExposed(window.get()));
     window->activateWindow();
     EXPECT_TRUE(QTest::qWaitForWindowActive(window.get()));
+    return window;
+}
+
+// Waits until the host has taken every edit: no regroom finished (sceneReady) for `quietMs`.
+inline void waitUntilRegroomsStop(SimulationHost& host, int quietMs)
+{
+    QSignalSpy ready(&host, &SimulationHost::sceneReady);
+    while (ready.wait(quietMs)) { }
+}
+
+// The editor as the painting and styling tests start it: open, on a light groom (2 strands/cm² keeps
+// regrooms and the real-time simulation quick on two cores) with `edits` made too, the undo
+// history cleared, paused with a first frame, every regroom taken (quiet for `quietMs`). A failure
+// is recorded (the caller checks HasFailure()) when it does not get there.
+inline std::unique_ptr<MainWindow> openLightPausedEditor(
+    const std::function<void(Document&)>& edits = {}, int quietMs = 600 * WISP_SLOW_BUILD_FACTOR)
+{
+    auto window = openEditor();
+    Document* doc = window->document();
+    doc->editRegionParameter(0, Param::Density, 2.0, false);
+    if (edits)
+        edits(*doc);
+    doc->undoStack()->clear();
+    // Paused: strands that are carried over keep exactly their state, so frames compare exactly.
+    window->simulation()->pause();
+    EXPECT_TRUE(waitForFirstFrame(*window->simulation())) << "no first frame within " << kSceneWaitMs << " ms";
+    waitUntilRegroomsStop(*window->simulation(), quietMs);
     return window;
 }
 

@@ -35,7 +35,7 @@ protected:
     void SetUp() override
     {
         window = openEditor();
-        ASSERT_TRUE(waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
+        ASSERT_TRUE(waitForFirstFrame(*window->simulation()));
         if (window->playAction()->isChecked())
             window->playAction()->trigger();
         ASSERT_TRUE(waitUntil([&] { return !window->simulation()->isPlaying(); }));

@@ -86,7 +86,7 @@ protected:
         QDir(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation)).removeRecursively();
         window = openEditor();
         window->fileMenu()->setInteractive(false);
-        ASSERT_TRUE(waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
+        ASSERT_TRUE(waitForFirstFrame(*window->simulation()));
         pause();
         native = nativeWindowOf(*window->viewport());
         ASSERT_NE(native, nullptr);
@@ -330,7 +330,47 @@ TEST_F(HeadMotionTest, RefusedEditsSayWhyAndChangeNothing)
     QTest::keyClick(panel->kindBox(), Qt::Key_End);
     EXPECT_EQ(doc()->headMotion().procedural().kind, MotionKind::Walk);
     EXPECT_EQ(panel->amplitudeBox()->suffix(), QStringLiteral(" m"));
-    EXPECT_DOUBLE_EQ(panel->amplitudeBox()->maximum(), MotionLimits::kMaxWalkMetres);
+    EXPECT_DOUBLE_EQ(panel->amplitudeBox()->maximum(), motionSettingInfo(MotionSetting::WalkAmplitude).maximum);
+}
+
+// The Motion panel states no range of its own: each spin box takes its range and tooltip from the
+// registry's motion settings (sim/params/Parameters.h), and a value typed beyond it lands on the
+// registry's end.
+TEST_F(HeadMotionTest, TheMotionPanelsSpinBoxesTakeTheirRangesFromTheRegistry)
+{
+    MotionPanel* panel = window->motionPanel();
+    const auto expectRange = [](QDoubleSpinBox* box, MotionSetting setting, double minimum, const char* what) {
+        const MotionSettingInfo& info = motionSettingInfo(setting);
+        EXPECT_DOUBLE_EQ(box->minimum(), minimum) << what;
+        EXPECT_DOUBLE_EQ(box->maximum(), info.maximum) << what;
+        EXPECT_TRUE(box->toolTip().startsWith(QString::fromUtf8(info.help.data(), static_cast<int>(info.help.size()))))
+            << what << ": " << box->toolTip().toStdString();
+    };
+    // Page Up steps ten at a time: far past each end, where the box stops.
+    const auto pageUp = [](QDoubleSpinBox* box, int times) {
+        box->setFocus();
+        for (int i = 0; i < times; ++i)
+            QTest::keyClick(box, Qt::Key_PageUp);
+    };
+    expectRange(panel->frequencyBox(), MotionSetting::Frequency, 0.01, "frequency");
+    expectRange(panel->keyTimeBox(), MotionSetting::Time, 0.0, "key time (from 0 s, where the timeline starts)");
+
+    QComboBox* kind = panel->kindBox();
+    kind->setFocus();
+    QTest::keyClick(kind, Qt::Key_Down); // turn
+    ASSERT_EQ(doc()->headMotion().procedural().kind, MotionKind::Turn);
+    expectRange(panel->amplitudeBox(), MotionSetting::TurnAmplitude, 0.0, "turn amplitude");
+    pageUp(panel->amplitudeBox(), 12);
+    EXPECT_DOUBLE_EQ(doc()->headMotion().procedural().amplitude, 90.0);
+    pageUp(panel->frequencyBox(), 3);
+    EXPECT_DOUBLE_EQ(doc()->headMotion().procedural().frequencyHz, 10.0);
+
+    kind->setFocus();
+    QTest::keyClick(kind, Qt::Key_End); // walk
+    ASSERT_EQ(doc()->headMotion().procedural().kind, MotionKind::Walk);
+    expectRange(panel->amplitudeBox(), MotionSetting::WalkAmplitude, 0.0, "walk amplitude");
+    pageUp(panel->amplitudeBox(), 2);
+    EXPECT_DOUBLE_EQ(doc()->headMotion().procedural().amplitude, 0.2);
 }
 
 } // namespace wisp::test

@@ -142,7 +142,7 @@ TEST(MovedHeadTest, PaintingATurnedHeadLandsUnderTheCursorAndAMissPaintsNothing)
     SimulationHost* host = window->simulation();
     doc->editRegionParameter(0, Param::Density, 2.0, false); // a light groom: quick regrooms
     doc->undoStack()->clear();
-    ASSERT_TRUE(wisp::test::waitUntil([&] { return host->latestFrame() != nullptr; }));
+    ASSERT_TRUE(wisp::test::waitForFirstFrame(*host));
     if (window->playAction()->isChecked())
         window->playAction()->trigger();
     ASSERT_TRUE(wisp::test::waitUntil([&] { return !host->isPlaying(); }));

@@ -54,25 +54,13 @@ class PaintingTest : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        window = wisp::test::openEditor();
-        ASSERT_FALSE(HasFailure()) << "the window did not open";
-        Document* doc = window->document();
-        // A light groom keeps regrooms and the real-time simulation quick on two cores.
-        doc->editRegionParameter(0, Param::Density, 2.0, false);
-        doc->undoStack()->clear();
-        // Paused: strands that are carried over keep exactly their state, so frames compare exactly.
-        window->simulation()->pause();
-        ASSERT_TRUE(wisp::test::waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
-        settle();
-        bvh = std::make_unique<MeshBvh>(doc->head());
+        window = wisp::test::openLightPausedEditor();
+        ASSERT_FALSE(HasFailure()) << "the editor did not open paused on a light groom";
+        bvh = std::make_unique<MeshBvh>(window->document()->head());
     }
 
     // Waits until the host has taken every edit: no regroom for a while.
-    void settle()
-    {
-        QSignalSpy ready(window->simulation(), &SimulationHost::sceneReady);
-        while (ready.wait(600 * WISP_SLOW_BUILD_FACTOR)) { }
-    }
+    void settle() { wisp::test::waitUntilRegroomsStop(*window->simulation(), 600 * WISP_SLOW_BUILD_FACTOR); }
     FramePtr frame() const { return window->simulation()->latestFrame(); }
 
     // A point on the right cheek (no hair there by default), seen from the side, and where it shows.

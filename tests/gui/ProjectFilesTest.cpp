@@ -120,7 +120,7 @@ protected:
         window->fileMenu()->setInteractive(false);
         doc()->editRegionParameter(0, Param::Density, 2.0, false);
         doc()->undoStack()->clear();
-        ASSERT_TRUE(waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
+        ASSERT_TRUE(waitForFirstFrame(*window->simulation()));
     }
     void TearDown() override
     {

@@ -35,7 +35,7 @@ int pngCount(const QString& folder)
 TEST(RenderActions, RenderImageWritesAPngOfTheChosenSizeWithATransparentBackground)
 {
     auto window = test::openEditor();
-    ASSERT_TRUE(test::waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
+    ASSERT_TRUE(test::waitForFirstFrame(*window->simulation()));
     QTemporaryDir dir;
     RenderActions* render = window->fileMenu()->renderActions();
     int asked = 0;
@@ -70,7 +70,7 @@ TEST(RenderActions, ABadFileIsRefusedAndNamed)
 TEST(RenderActions, RenderTurntableWritesNFrames)
 {
     auto window = test::openEditor();
-    ASSERT_TRUE(test::waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
+    ASSERT_TRUE(test::waitForFirstFrame(*window->simulation()));
     QTemporaryDir dir;
     RenderActions* render = window->fileMenu()->renderActions();
     QSignalSpy finished(render, &RenderActions::turntableFinished);
@@ -94,7 +94,7 @@ TEST(RenderActions, RenderTurntableWritesNFrames)
 TEST(RenderActions, CancelOnTheProgressDialogStopsTheTurntable)
 {
     auto window = test::openEditor();
-    ASSERT_TRUE(test::waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
+    ASSERT_TRUE(test::waitForFirstFrame(*window->simulation()));
     QTemporaryDir dir;
     RenderActions* render = window->fileMenu()->renderActions();
     QSignalSpy finished(render, &RenderActions::turntableFinished);

@@ -87,28 +87,22 @@ class StylingTest : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        window = wisp::test::openEditor();
-        ASSERT_FALSE(HasFailure()) << "the window did not open";
-        Document* doc = window->document();
-        // A light groom keeps regrooms and the real-time simulation quick on two cores; no wind.
-        doc->editRegionParameter(0, Param::Density, 2.0, false);
-        doc->editRegionParameter(0, Param::LengthVariation, 0.0, false);
-        doc->editParameter(Param::WindSpeed, 0.0, false);
-        doc->editParameter(Param::Turbulence, 0.0, false);
-        doc->undoStack()->clear();
-        window->simulation()->pause();
-        ASSERT_TRUE(wisp::test::waitUntil([&] { return window->simulation()->latestFrame() != nullptr; }));
-        settle();
+        // A light groom, even lengths, no wind.
+        window = wisp::test::openLightPausedEditor(
+            [](Document& doc) {
+                doc.editRegionParameter(0, Param::LengthVariation, 0.0, false);
+                doc.editParameter(Param::WindSpeed, 0.0, false);
+                doc.editParameter(Param::Turbulence, 0.0, false);
+            },
+            kQuietMs);
+        ASSERT_FALSE(HasFailure()) << "the editor did not open paused on a light groom";
         runSteps(240); // hanging, at rest
-        box = boundsOf(doc->head());
+        box = boundsOf(window->document()->head());
     }
 
     // Waits until the host has taken every edit: no regroom for a while.
-    void settle()
-    {
-        QSignalSpy ready(window->simulation(), &SimulationHost::sceneReady);
-        while (ready.wait(800 * WISP_SLOW_BUILD_FACTOR)) { }
-    }
+    void settle() { wisp::test::waitUntilRegroomsStop(*window->simulation(), kQuietMs); }
+    static constexpr int kQuietMs = 800 * WISP_SLOW_BUILD_FACTOR;
     // Steps a paused simulation `count` times, as fast as it goes.
     void runSteps(int count)
     {

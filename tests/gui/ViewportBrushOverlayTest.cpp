@@ -227,13 +227,8 @@ TEST_F(ViewportTest, OverlayBrushAndLooksSurviveANewContext)
     grab();
 
     // Moving the widget into another window gives it a new GL context: all of it is sent again.
-    QWidget window;
-    window.resize(640, 480);
-    viewport->setParent(&window);
-    viewport->move(0, 0);
-    window.show();
-    viewport->show();
-    ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+    const ViewportInNewWindow newWindow(*viewport);
+    ASSERT_TRUE(newWindow.exposed());
     const QImage moved = grab();
     EXPECT_EQ(countPixels(moved, isGrowthTint, around(viewport->project(mesh.positions[*scalp]), 1)), 9);
     int onRing = 0;
@@ -242,7 +237,6 @@ TEST_F(ViewportTest, OverlayBrushAndLooksSurviveANewContext)
     EXPECT_GE(onRing, 23);
     const glm::vec2 lock = viewport->project(lockTop(head) - glm::vec3(0.0f, 0.5f * kLockLength, 0.0f));
     EXPECT_GE(countPixels(moved, isRed, around(lock, 2)), 15);
-    viewport->setParent(nullptr);
 }
 
 } // namespace

@@ -202,18 +202,14 @@ TEST_F(ViewportTest, SurvivesANewContextAndAnUnusableHead)
     // Moving the widget into another window gives it a new GL context: everything is uploaded again.
     viewport->setFrame(lockFrame(head));
     grab();
-    QWidget window;
-    window.resize(640, 480);
-    viewport->setParent(&window);
-    viewport->move(0, 0);
-    window.show();
-    viewport->show();
-    ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
-    const QImage moved = grab();
-    EXPECT_EQ(countPixels(moved, isSkin, around(viewport->project(head.center()), 2)), 25);
-    const glm::vec2 lock = viewport->project(lockTop(head) - glm::vec3(0.0f, 0.5f * kLockLength, 0.0f));
-    EXPECT_GE(countPixels(moved, isGreenHair, around(lock, 2)), 15);
-    viewport->setParent(nullptr);
+    {
+        const ViewportInNewWindow newWindow(*viewport);
+        ASSERT_TRUE(newWindow.exposed());
+        const QImage moved = grab();
+        EXPECT_EQ(countPixels(moved, isSkin, around(viewport->project(head.center()), 2)), 25);
+        const glm::vec2 lock = viewport->project(lockTop(head) - glm::vec3(0.0f, 0.5f * kLockLength, 0.0f));
+        EXPECT_GE(countPixels(moved, isGreenHair, around(lock, 2)), 15);
+    }
 
     // A head that cannot be drawn (an index out of range, a NaN) draws nothing, and framing falls
     // back to an average head's size.

@@ -36,6 +36,7 @@
 #include <QTest>
 #include <QTimer>
 #include <QWheelEvent>
+#include <QWidget>
 
 #include <gtest/gtest.h>
 
@@ -215,6 +216,33 @@ inline void wheel(QWidget* w, int eighthsOfDegree)
         Qt::NoScrollPhase, false);
     QApplication::sendEvent(w, &event);
 }
+
+// The viewport moved into a new window of its own, shown and exposed (check exposed()): a new GL
+// context, so everything it draws is uploaded again. Back out of the window (parentless) when this
+// goes, before the window does.
+class ViewportInNewWindow {
+public:
+    explicit ViewportInNewWindow(Viewport& viewport)
+        : m_viewport(viewport)
+    {
+        m_window.resize(640, 480);
+        viewport.setParent(&m_window);
+        viewport.move(0, 0);
+        m_window.show();
+        viewport.show();
+        m_exposed = QTest::qWaitForWindowExposed(&m_window);
+    }
+    ~ViewportInNewWindow() { m_viewport.setParent(nullptr); }
+    ViewportInNewWindow(const ViewportInNewWindow&) = delete;
+    ViewportInNewWindow& operator=(const ViewportInNewWindow&) = delete;
+
+    bool exposed() const { return m_exposed; }
+
+private:
+    Viewport& m_viewport;
+    QWidget m_window;
+    bool m_exposed = false;
+};
 
 class ViewportTest : public ::testing::Test {
 protected:

@@ -91,7 +91,20 @@ TEST(MotionFile, BadMotionIsRefusedWithItsKeyPath)
     EXPECT_EQ(refusal(j), path + ": motion.procedural.kind: 'spin' is not none, turn, nod, shake or walk");
     j = json;
     j["motion"]["procedural"]["amplitude"] = 5;
-    EXPECT_EQ(refusal(j), path + ": motion.procedural: amplitude 5 is outside 0..0.2 m");
+    EXPECT_EQ(refusal(j), path + ": motion.procedural.amplitude: 5 is outside 0..0.2 m");
+    // Every number against the registry's range (MotionSetting), refused at its own field.
+    j = json;
+    j["motion"]["procedural"]["frequency"] = 0.001;
+    EXPECT_EQ(refusal(j), path + ": motion.procedural.frequency: 0.001 is outside 0.01..10 Hz");
+    j = json;
+    j["motion"]["procedural"]["start"] = -2e6;
+    EXPECT_EQ(refusal(j), path + ": motion.procedural.start: -2e+06 is outside -1e+06..1e+06 s");
+    j = json;
+    j["motion"]["keys"][1]["time"] = 5e6;
+    EXPECT_EQ(refusal(j), path + ": motion.keys[1].time: 5e+06 is outside -1e+06..1e+06 s");
+    j = json;
+    j["motion"]["keys"][0]["translation"] = { 0, 150, 0 };
+    EXPECT_EQ(refusal(j), path + ": motion.keys[0].translation[1]: 150 is outside -100..100 m");
     j = json;
     j["timeline"] = { { "first_frame", 9 }, { "last_frame", 3 } };
     EXPECT_EQ(refusal(j), path + ": timeline: frames 9:3: the last frame comes before the first");

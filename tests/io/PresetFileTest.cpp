@@ -201,8 +201,13 @@ TEST_F(PresetFileTest, AProceduralHeadMotionIsKeptAndOnlyWhenThereIsOne)
     json["motion"]["procedural"]["amplitude"] = 400;
     const Result<PresetReadResult> wild = parsePreset(json.dump(), "wild.json");
     ASSERT_FALSE(wild);
-    EXPECT_NE(wild.error().toString().find("motion.procedural"), std::string::npos) << wild.error().toString();
-    EXPECT_NE(wild.error().toString().find("wild.json"), std::string::npos);
+    EXPECT_EQ(wild.error().toString(), "wild.json: motion.procedural.amplitude: 400 is outside 0..90 degrees");
+    // The ranges are the registry's (MotionSetting), the same the Motion panel's spin boxes take.
+    json["motion"]["procedural"]["amplitude"] = motionSettingInfo(MotionSetting::TurnAmplitude).maximum;
+    json["motion"]["procedural"]["frequency"] = motionSettingInfo(MotionSetting::Frequency).maximum * 2.0;
+    const Result<PresetReadResult> fast = parsePreset(json.dump(), "fast.json");
+    ASSERT_FALSE(fast);
+    EXPECT_EQ(fast.error().toString(), "fast.json: motion.procedural.frequency: 20 is outside 0.01..10 Hz");
 }
 
 TEST_F(PresetFileTest, WrittenJsonIsVersion2InRegistryOrderWithReadableNumbers)

@@ -175,8 +175,23 @@ TEST(HeadMotion, ValidationAndKeyEditing)
     m.setProcedural({ MotionKind::Turn, 120.0, 1.0, 0.0 });
     EXPECT_EQ(m.validate(), "motion: amplitude 120 is outside 0..90 degrees");
     m.setProcedural({ MotionKind::Walk, 0.04, std::nan(""), 0.0 });
-    EXPECT_EQ(m.validate(), "motion: frequency nan Hz is outside 0.01..10 Hz");
+    EXPECT_EQ(m.validate(), "motion: frequency nan is not a finite number");
+    m.setProcedural({ MotionKind::Walk, 0.04, 12.0, 0.0 });
+    EXPECT_EQ(m.validate(), "motion: frequency 12 is outside 0.01..10 Hz");
     m.setProcedural({});
+    // The limits are the registry's (sim/params/Parameters.h), read by the panel, files and CLI.
+    EXPECT_EQ(HeadMotion::validateProcedural(
+                  { MotionKind::Walk, motionSettingInfo(MotionSetting::WalkAmplitude).maximum, 1.0, 0.0 }),
+        "");
+    EXPECT_EQ(HeadMotion::validateProcedural(
+                  { MotionKind::Walk, motionSettingInfo(MotionSetting::WalkAmplitude).maximum * 1.01, 1.0, 0.0 }),
+        "amplitude 0.202 is outside 0..0.2 m");
+    EXPECT_EQ(m.moveKey(0, 2e6), "time 2e+06 is outside -1e+06..1e+06 s");
+    {
+        HeadMotion far;
+        far.setKey(0.0, { glm::vec3(0.0f, 0.0f, -101.0f), glm::quat(1.0f, 0.0f, 0.0f, 0.0f) });
+        EXPECT_EQ(far.validate(), "keys[0]: translation[2] -101 is outside -100..100 m");
+    }
     m.setKey(3.0, { glm::vec3(0.0f), glm::quat(2.0f, 0.0f, 0.0f, 0.0f) });
     EXPECT_EQ(m.validate(), "keys[1]: rotation is not a unit quaternion (length 2)");
     EXPECT_EQ(motionFromName("shake"), MotionKind::Shake);

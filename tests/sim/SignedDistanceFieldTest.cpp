@@ -1,17 +1,21 @@
 #include "sim/geometry/SignedDistanceField.h"
 #include "MeshFixtures.h"
 #include "sim/geometry/MeshBvh.h"
+#include "sim/geometry/SdfBake.h"
 #include "sim/geometry/TriangleMesh.h"
+#include "sim/util/ThreadPool.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <new>
 #include <random>
 
 namespace wisp {
@@ -263,6 +267,57 @@ TEST(SignedDistanceField, SameResultWithAnyThreadCount)
     const std::size_t bytes = sizeof(float) * static_cast<std::size_t>(one.dims().x) * one.dims().y * one.dims().z;
     EXPECT_EQ(std::memcmp(one.data(), three.data(), bytes), 0);
     EXPECT_EQ(std::memcmp(one.data(), all.data(), bytes), 0);
+}
+
+// The bake runs on a pool it is given (HairSimulation gives it its solver's): the same bits as on
+// the calling thread alone, and the same again when the pool is used a second time.
+TEST(SignedDistanceField, BakeOnAGivenPoolIsBitIdenticalToOneThread)
+{
+    REQUIRE_SHARED_ASSET(planckPath());
+    const TriangleMesh head = readObj(planckPath(), 0.001f);
+    const float cell = 0.004f, margin = 0.02f;
+    std::string error;
+    const SignedDistanceField alone = SignedDistanceField::bake(head, cell, margin, &error, nullptr);
+    ASSERT_FALSE(alone.empty()) << error;
+    ThreadPool pool(4);
+    ASSERT_EQ(pool.threadCount(), 4);
+    for (int round = 0; round < 2; ++round) {
+        const SignedDistanceField pooled = SignedDistanceField::bake(head, cell, margin, &error, &pool);
+        ASSERT_FALSE(pooled.empty()) << error;
+        ASSERT_EQ(pooled.dims(), alone.dims());
+        const std::size_t bytes
+            = sizeof(float) * static_cast<std::size_t>(alone.dims().x) * alone.dims().y * alone.dims().z;
+        EXPECT_EQ(std::memcmp(alone.data(), pooled.data(), bytes), 0) << "round " << round;
+    }
+}
+
+// The bake's loop over slabs on the pool: every index exactly once; a slab that runs out of memory
+// makes it return false (the bake's "not enough memory" message) instead of throwing out of a
+// pool thread, and the pool goes on working afterwards.
+TEST(SignedDistanceField, SlabLoopOnThePoolVisitsEachSlabOnceAndTurnsBadAllocIntoFalse)
+{
+    ThreadPool pool(3);
+    constexpr int kSlabs = 257;
+    std::vector<std::atomic<int>> visits(kSlabs);
+    EXPECT_TRUE(sdf_detail::parallelFor(&pool, kSlabs, [&](int i) { ++visits[static_cast<std::size_t>(i)]; }));
+    for (int i = 0; i < kSlabs; ++i)
+        EXPECT_EQ(visits[static_cast<std::size_t>(i)].load(), 1) << "slab " << i;
+
+    std::atomic<int> ran{ 0 };
+    EXPECT_FALSE(sdf_detail::parallelFor(&pool, kSlabs, [&](int i) {
+        ++ran;
+        if (i == 100)
+            throw std::bad_alloc();
+    }));
+    EXPECT_GE(ran.load(), 1);
+    EXPECT_FALSE(sdf_detail::parallelFor(nullptr, 5, [](int i) {
+        if (i == 2)
+            throw std::bad_alloc();
+    }));
+
+    std::atomic<int> after{ 0 };
+    EXPECT_TRUE(sdf_detail::parallelFor(&pool, kSlabs, [&](int) { ++after; }));
+    EXPECT_EQ(after.load(), kSlabs);
 }
 
 TEST(SignedDistanceField, BadInputGivesAnEmptyFieldAndAMessage)

@@ -406,3 +406,33 @@ TEST(CombOperation, OnAMovedHeadCatchesAndEditsAsOnTheHeadAtRest)
     const HairDryer turnedDryer = dryersFor(moved, place(Salon::lookAt(rest.middle_ws))).front();
     EXPECT_LT(glm::distance(turnedDryer.nozzle, glm::vec3(headToWorld * glm::vec4(atRestDryer.nozzle, 1.0f))), 1e-5f);
 }
+
+// One head-to-world for brushes and the editor's tools (Frame.h): the frame's transform, identity
+// before the first frame, and its inverse the way back. The brushes' picking goes through it: a
+// ray on the moved head meets it at the head-space hit carried to the world.
+TEST(BrushContext, HeadToWorldIsTheFramesOneTransformForBrushesAndTools)
+{
+    EXPECT_EQ(headToWorldOf(FramePtr{}), glm::mat4(1.0f));
+    EXPECT_EQ(worldToHeadOf(FramePtr{}), glm::mat4(1.0f));
+
+    Salon rest;
+    const glm::mat4 headToWorld = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-0.1f, 0.2f, 0.03f)),
+        glm::radians(-25.0f), glm::vec3(1.0f, 0.0f, 0.0f));
+    auto movedFrame = std::make_shared<Frame>(*rest.context.frame);
+    movedFrame->headToWorld = headToWorld;
+    BrushContext moved = rest.context;
+    moved.frame = movedFrame;
+    EXPECT_EQ(headToWorldOf(moved.frame), headToWorld);
+    const glm::mat4 roundTrip = worldToHeadOf(moved.frame) * headToWorld;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            EXPECT_NEAR(roundTrip[c][r], c == r ? 1.0f : 0.0f, 1e-6f) << c << "," << r;
+
+    const BrushSample look = Salon::lookAt(rest.middle_ws);
+    const auto atRest = headHitAlong(rest.context, look.eye_ws, look.direction_ws);
+    const auto turned = headHitAlong(
+        moved, glm::vec3(headToWorld * glm::vec4(look.eye_ws, 1.0f)), glm::mat3(headToWorld) * look.direction_ws);
+    ASSERT_TRUE(atRest.has_value());
+    ASSERT_TRUE(turned.has_value());
+    EXPECT_LT(glm::distance(turned->point, glm::vec3(headToWorld * glm::vec4(atRest->point, 1.0f))), 1e-5f);
+}

@@ -30,13 +30,13 @@ TEST(HairVolumeGrid, SplatConservesWeightAndSamplesWhatWasSplatted)
     HairVolumeGrid grid;
     ASSERT_TRUE(grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f)));
     EXPECT_FLOAT_EQ(grid.cellMetres(), HairVolumeGrid::kFinestCellMetres); // a small box gets the finest cells
-    grid.clear(&pool);
+    grid.setWeightBound(0.5 * 51 * 51 * 51);
     // A uniform block of hair moving at (1, 2, 3) mm per substep, one particle per 2 mm.
     int count = 0;
     for (float x = -0.05f; x < 0.05f; x += 0.002f)
         for (float y = -0.05f; y < 0.05f; y += 0.002f)
             for (float z = -0.05f; z < 0.05f; z += 0.002f) {
-                grid.splat(count % HairVolumeGrid::kSplatChunks, { x, y, z }, 0.5f, { 0.001f, 0.002f, 0.003f });
+                grid.splat(0, { x, y, z }, 0.5f, { 0.001f, 0.002f, 0.003f });
                 ++count;
             }
     grid.finish(&pool);
@@ -58,45 +58,128 @@ TEST(HairVolumeGrid, SplatConservesWeightAndSamplesWhatWasSplatted)
     EXPECT_EQ(grid.sample({ 5.0f, 0.0f, 0.0f }).density, 0.0f);
 }
 
+// A dense groom's kernel: each particle splats into its nearest node, and the sums are smoothed by
+// [1 2 1]/4 along each axis: a particle's weight at its node (1/8 of it), the six beside (1/16), the
+// twelve across an edge (1/32) and the eight across a corner (1/64); nothing two nodes away.
+TEST(HairVolumeGrid, NearestSmoothedSpreadsAParticleOverItsNeighboursAndConservesWeight)
+{
+    ThreadPool pool(2);
+    HairVolumeGrid grid;
+    ASSERT_TRUE(grid.setBounds(
+        glm::vec3(-0.1f), glm::vec3(0.1f), 1, HairVolumeGrid::kMaxNodes, HairVolumeGrid::Kernel::NearestSmoothed));
+    EXPECT_EQ(grid.kernel(), HairVolumeGrid::Kernel::NearestSmoothed);
+    grid.setWeightBound(10.0);
+    const float h = grid.cellMetres();
+    const glm::vec3 node = grid.origin() + h * glm::vec3(grid.dims() / 2);
+    // 0.4 of a cell off the node each way: still its nearest.
+    grid.splat(0, node + 0.4f * h * glm::vec3(1.0f, -1.0f, 1.0f), 2.0f, { 0.001f, 0.0f, -0.002f });
+    // And one at the grid's corner node: its shares beyond the faces stay in the grid.
+    grid.splat(0, grid.origin() + glm::vec3(0.1f * h), 1.0f, glm::vec3(0.0f));
+    grid.finish(&pool);
+    EXPECT_NEAR(grid.totalWeight(), 3.0, 1e-5);
+    const float perVolume = 1.0f / (h * h * h);
+    EXPECT_NEAR(grid.sample(node).density, 2.0f / 8.0f * perVolume, 1e-3f * perVolume);
+    EXPECT_NEAR(grid.sample(node + glm::vec3(h, 0.0f, 0.0f)).density, 2.0f / 16.0f * perVolume, 1e-3f * perVolume);
+    EXPECT_NEAR(grid.sample(node + glm::vec3(0.0f, -h, h)).density, 2.0f / 32.0f * perVolume, 1e-3f * perVolume);
+    EXPECT_NEAR(grid.sample(node + glm::vec3(-h, h, h)).density, 2.0f / 64.0f * perVolume, 1e-3f * perVolume);
+    EXPECT_EQ(grid.sample(node + glm::vec3(2.0f * h, 0.0f, 0.0f)).density, 0.0f);
+    // Read at the nearest node: 0.3 of a cell off reads the node itself, its mean move too.
+    const HairVolumeGrid::Sample near = grid.sample(node + glm::vec3(0.3f * h, -0.3f * h, 0.0f));
+    EXPECT_EQ(near.density, grid.sample(node).density);
+    EXPECT_NEAR(near.move.x, 0.001f, 1e-6f);
+    EXPECT_NEAR(near.move.z, -0.002f, 1e-6f);
+    // The gradient (central differences of the smoothed density) points back to the particle.
+    EXPECT_LT(grid.sample(node + glm::vec3(h, 0.0f, 0.0f)).gradient.x, 0.0f);
+    EXPECT_GT(grid.sample(node - glm::vec3(0.0f, 0.0f, h)).gradient.z, 0.0f);
+    // The next pass without the particle leaves nothing behind (its bricks and those beside go empty).
+    grid.finish(&pool);
+    EXPECT_EQ(grid.totalWeight(), 0.0);
+    EXPECT_EQ(grid.sample(node + glm::vec3(h, 0.0f, 0.0f)).density, 0.0f);
+}
+
 TEST(HairVolumeGrid, StaysWithinItsMemoryBoundForAHugeBox)
 {
     HairVolumeGrid grid;
     ASSERT_TRUE(grid.setBounds(glm::vec3(-2.0f), glm::vec3(2.0f)));
     EXPECT_LE(grid.memoryBytes(), HairVolumeGrid::kMaxBytes);
     EXPECT_GT(grid.cellMetres(), 0.05f); // 4 m across cannot have 8 mm cells in 32 MiB
+    ASSERT_TRUE(grid.setBounds(glm::vec3(-2.0f), glm::vec3(2.0f), HairVolumeGrid::kMaxSlots, HairVolumeGrid::kMaxNodes,
+        HairVolumeGrid::Kernel::NearestSmoothed));
+    EXPECT_LE(grid.memoryBytes(), HairVolumeGrid::kMaxBytes);
     EXPECT_FALSE(grid.setBounds(glm::vec3(0.0f), glm::vec3(NAN)));
     EXPECT_FALSE(grid.setBounds(glm::vec3(0.0f), glm::vec3(0.0f)));
     EXPECT_TRUE(grid.empty());
 }
 
-TEST(HairVolumeGrid, SameBitsWhicheverThreadsRunTheChunks)
+// Each thread splats into a slot of its own in fixed point: the same bits whichever thread splats
+// which particle, in whatever order (the pool hands out ranges as threads come free).
+TEST(HairVolumeGrid, SameBitsWhicheverThreadsSplatWhichParticles)
 {
-    auto run = [](int threads) {
-        ThreadPool pool(threads);
-        HairVolumeGrid grid;
-        grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f));
-        grid.clear(&pool);
-        pool.parallelFor(HairVolumeGrid::kSplatChunks, 1, [&](std::size_t begin, std::size_t end) {
-            for (std::size_t chunk = begin; chunk < end; ++chunk)
-                for (int i = 0; i < 5000; ++i) {
-                    const float t = static_cast<float>(i * HairVolumeGrid::kSplatChunks + chunk);
-                    grid.splat(static_cast<int>(chunk),
+    for (const HairVolumeGrid::Kernel kernel :
+        { HairVolumeGrid::Kernel::Trilinear, HairVolumeGrid::Kernel::NearestSmoothed }) {
+        auto run = [kernel](int threads) {
+            ThreadPool pool(threads);
+            HairVolumeGrid grid;
+            grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f), threads, HairVolumeGrid::kMaxNodes, kernel);
+            EXPECT_EQ(grid.slots(), threads);
+            grid.setWeightBound(0.2 * 40'000);
+            pool.parallelFor(40'000, 7, [&](std::size_t begin, std::size_t end) {
+                const int slot = grid.claimSlot();
+                for (std::size_t i = begin; i < end; ++i) {
+                    const float t = static_cast<float>(i);
+                    grid.splat(slot,
                         { 0.07f * std::sin(t * 0.37f), 0.07f * std::sin(t * 0.11f), 0.07f * std::cos(t * 0.23f) },
-                        0.1f + 0.01f * static_cast<float>(i % 7), { std::sin(t), std::cos(t), 0.5f });
+                        0.1f + 0.01f * static_cast<float>(i % 7), { 0.01f * std::sin(t), 0.01f * std::cos(t), 0.005f });
                 }
-        });
-        grid.finish(&pool);
-        std::vector<float> out;
-        for (float x = -0.08f; x < 0.08f; x += 0.013f) {
-            const HairVolumeGrid::Sample s = grid.sample({ x, 0.3f * x, -0.5f * x });
-            out.insert(
-                out.end(), { s.density, s.move.x, s.move.y, s.move.z, s.gradient.x, s.gradient.y, s.gradient.z });
-        }
-        return out;
-    };
-    const std::vector<float> one = run(1), three = run(3);
-    ASSERT_EQ(one.size(), three.size());
-    EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(float)), 0);
+                grid.releaseSlot(slot);
+            });
+            grid.finish(&pool);
+            std::vector<float> out;
+            for (float x = -0.08f; x < 0.08f; x += 0.013f) {
+                const HairVolumeGrid::Sample s = grid.sample({ x, 0.3f * x, -0.5f * x });
+                out.insert(
+                    out.end(), { s.density, s.move.x, s.move.y, s.move.z, s.gradient.x, s.gradient.y, s.gradient.z });
+            }
+            return out;
+        };
+        const std::vector<float> one = run(1), three = run(3);
+        ASSERT_EQ(one.size(), three.size());
+        EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(float)), 0);
+        EXPECT_GT(*std::max_element(one.begin(), one.end()), 1000.0f); // it read real hair
+    }
+}
+
+// A row sampled every fourth lane (the level of detail of a dense groom): lanes 0, 4, 8, 12 and 15
+// read what sample() reads there, the lanes between the linear blend of the two around them.
+TEST(HairVolumeGrid, AStridedRowBlendsTheSamplesAroundEachLane)
+{
+    HairVolumeGrid grid;
+    ASSERT_TRUE(grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f)));
+    grid.setWeightBound(2000.0);
+    for (int i = 0; i < 2000; ++i) {
+        const float t = static_cast<float>(i);
+        grid.splat(0, { 0.03f * std::sin(t * 0.37f), 0.03f * std::sin(t * 0.11f), 0.03f * std::cos(t * 0.23f) }, 1.0f,
+            { 0.001f, 0.0f, 0.0f });
+    }
+    grid.finish(nullptr);
+    alignas(64) float x[16], y[16], z[16];
+    for (int l = 0; l < 16; ++l) {
+        x[l] = -0.03f + 0.004f * static_cast<float>(l);
+        y[l] = 0.002f * static_cast<float>(l % 5);
+        z[l] = 0.01f;
+    }
+    HairVolumeGrid::SampleRow row;
+    grid.sampleRow(x, y, z, row, 16, 4);
+    auto at = [&](int l) { return grid.sample({ x[l], y[l], z[l] }); };
+    for (int l : { 0, 4, 8, 12, 15 }) {
+        EXPECT_FLOAT_EQ(row.density[l], at(l).density) << "lane " << l;
+        EXPECT_FLOAT_EQ(row.gradX[l], at(l).gradient.x) << "lane " << l;
+    }
+    EXPECT_GT(row.density[8], 1e5f); // inside the hair
+    EXPECT_FLOAT_EQ(row.density[5], 0.75f * at(4).density + 0.25f * at(8).density);
+    EXPECT_FLOAT_EQ(row.gradY[10], 0.5f * at(8).gradient.y + 0.5f * at(12).gradient.y);
+    EXPECT_FLOAT_EQ(row.density[13], (2.0f * at(12).density + at(15).density) / 3.0f);
+    EXPECT_NE(row.density[5], at(5).density); // not sampled there
 }
 
 // --- Volume on the head --------------------------------------------------------------------------
@@ -405,6 +488,111 @@ TEST(Volume, ALockLaidAcrossAnotherRestsOnIt)
     ASSERT_GE(with.over, 16u);
     EXPECT_GE(with.shareApart, 0.95);
     EXPECT_LT(without.shareApart, 0.5);
+}
+
+} // namespace
+
+namespace {
+
+// A square patch of side x side strands of `points` particles, `spacing` apart, hanging along -Y.
+HairCurves densePatch(int side = 16, int points = 10, float spacing = 0.0005f, float segment = 0.012f)
+{
+    HairCurves rest;
+    for (int row = 0; row < side; ++row)
+        for (int lane = 0; lane < side; ++lane) {
+            auto p = rest.strandForWrite(rest.addStrand(static_cast<std::size_t>(points)));
+            for (int j = 0; j < points; ++j)
+                p[static_cast<std::size_t>(j)] = glm::vec3(spacing * static_cast<float>(lane),
+                    -segment * static_cast<float>(j), spacing * static_cast<float>(row));
+        }
+    return rest;
+}
+
+struct PatchRun {
+    std::vector<glm::vec3> positions;
+    int stride = 0; // Solver::volumeStrideOfStrand(0) at the end
+    HairVolumeGrid::Kernel kernel = HairVolumeGrid::Kernel::Trilinear;
+};
+
+PatchRun runPatch(const HairCurves& rest, float volume, int threads, int substeps, int steps)
+{
+    Solver solver(threads);
+    EXPECT_EQ(solver.setStrands(rest), "");
+    SolverSettings s;
+    s.substeps = substeps;
+    s.dampingPerSecond = 2.0f;
+    s.volume = volume;
+    s.hairFriction = 0.3f;
+    EXPECT_EQ(solver.setSettings(s), "");
+    for (int i = 0; i < steps; ++i)
+        solver.step();
+    PatchRun run;
+    run.stride = solver.volumeStrideOfStrand(0);
+    if (solver.volumeGrid())
+        run.kernel = solver.volumeGrid()->kernel();
+    solver.copyPositions(run.positions);
+    return run;
+}
+
+std::vector<glm::vec3> settledPatch(float volume, int threads, int* stride = nullptr)
+{
+    PatchRun run = runPatch(densePatch(), volume, threads, 2, 60);
+    if (stride)
+        *stride = run.stride;
+    return std::move(run.positions);
+}
+
+// How far apart the tips (every `points`-th particle) lie along x; each finite.
+float tipSpanX(const std::vector<glm::vec3>& p, std::size_t points)
+{
+    float lo = INFINITY, hi = -INFINITY;
+    for (std::size_t i = points - 1; i < p.size(); i += points) {
+        EXPECT_TRUE(std::isfinite(p[i].x + p[i].y + p[i].z));
+        lo = std::min(lo, p[i].x);
+        hi = std::max(hi, p[i].x);
+    }
+    return hi - lo;
+}
+
+// A dense patch (strands 0.5 mm apart, rows of 16 side by side): the grid splats and samples every
+// few strands (Solver::volumeSplat's level of detail), keeps the same bits on any thread count with
+// the splat done at the end of each block's substeps, and spreads the hair as much as without the
+// level of detail.
+TEST(Volume, ADensePatchSplatsEveryFewStrandsWithTheSameBitsOnAnyThreads)
+{
+    int stride = 0;
+    const std::vector<glm::vec3> one = settledPatch(1.0f, 1, &stride), three = settledPatch(1.0f, 3);
+    EXPECT_GE(stride, 4); // 0.5 mm apart in 8 mm cells
+    ASSERT_EQ(one.size(), three.size());
+    EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(glm::vec3)), 0);
+    // The tips spread apart where at volume 0 they hang in a 7.5 mm square.
+    // Measured: 8.9 mm (8.8 mm with every strand splatting and sampled, stride 1).
+    const float still = tipSpanX(settledPatch(0.0f, 1), 10), spread = tipSpanX(one, 10);
+    EXPECT_NEAR(still, 0.0075f, 0.0005f);
+    EXPECT_GT(spread, 1.1f * still);
+}
+
+// Above 250,000 particles (groom-1m) the grid is coarser and each particle meets only its nearest
+// node: a patch of 128 x 128 strands of 16 particles, 1 mm apart, keeps the same bits on any thread
+// count and still spreads where at volume 0 it hangs straight.
+PatchRun denseDrape(float volume, int threads)
+{
+    return runPatch(densePatch(128, 16, 0.001f, 0.01f), volume, threads, 1, 12);
+}
+
+TEST(Volume, ADenseGroomMeetsItsNearestNodeWithTheSameBitsOnAnyThreads)
+{
+    const PatchRun one = denseDrape(1.0f, 1), three = denseDrape(1.0f, 3);
+    EXPECT_EQ(one.kernel, HairVolumeGrid::Kernel::NearestSmoothed);
+    ASSERT_EQ(one.positions.size(), 128u * 128u * 16u);
+    ASSERT_EQ(one.positions.size(), three.positions.size());
+    EXPECT_EQ(std::memcmp(one.positions.data(), three.positions.data(), one.positions.size() * sizeof(glm::vec3)), 0);
+    // The tips of the patch's outer strands: pushed outward from the dense middle.
+    const float hanging = tipSpanX(denseDrape(0.0f, 1).positions, 16), spread = tipSpanX(one.positions, 16);
+    std::printf("dense drape, tips across x after 12 steps: %.1f mm at volume 0, %.1f mm at volume 1\n", 1e3 * hanging,
+        1e3 * spread);
+    EXPECT_NEAR(hanging, 0.127f, 0.002f);
+    EXPECT_GT(spread, 1.05f * hanging);
 }
 
 } // namespace

@@ -1,0 +1,96 @@
+#include "sim/solver/FloorSweep.h"
+
+#include "sim/solver/SolverLanes.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace wisp {
+
+namespace {
+constexpr std::size_t kFields = 6; // x, y, z, px, py, pz
+constexpr float kStepSeconds = 1.0f / 60.0f;
+constexpr float kKeep = 0.99f; // velocity kept per step: a little damping, so a push dies out
+} // namespace
+
+FloorSweep::FloorSweep(std::size_t particles, std::uint32_t pointsPerStrand, int threadCount)
+    : m_pool(threadCount)
+    , m_points(std::max<std::uint32_t>(pointsPerStrand, 2))
+{
+    m_strands = std::max<std::size_t>(1, (particles + m_points - 1) / m_points);
+    m_blocks = (m_strands + kLanes - 1) / kLanes;
+    m_particles = m_strands * m_points;
+    m_segmentMetres = 0.3f / static_cast<float>(m_points - 1);
+    m_rows.assign(m_blocks * m_points * kFields * kLanes, 0.0f);
+    for (std::size_t b = 0; b < m_blocks; ++b)
+        for (std::uint32_t j = 0; j < m_points; ++j)
+            for (std::size_t l = 0; l < static_cast<std::size_t>(kLanes); ++l) {
+                float* row = m_rows.data() + (b * m_points + j) * kFields * kLanes + l;
+                const float x = 0.01f * static_cast<float>(b * kLanes + l);
+                const float y = -m_segmentMetres * static_cast<float>(j);
+                row[0 * kLanes] = row[3 * kLanes] = x;
+                row[1 * kLanes] = row[4 * kLanes] = y;
+            }
+}
+
+void FloorSweep::step()
+{
+    using namespace lanes;
+    const std::size_t pointFloats = kFields * kLanes;
+    const std::size_t blockFloats = m_points * pointFloats;
+    const Lane gravityStep = splat(-9.81f * kStepSeconds * kStepSeconds);
+    const Lane keep = splat(kKeep), length = splat(m_segmentMetres);
+    // A few blocks a chunk, as the solver splits its step.
+    m_pool.parallelFor(m_blocks, 4, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t b = begin; b < end; ++b) {
+            float* block = m_rows.data() + b * blockFloats;
+            auto load = [](const float* p) {
+                Lane v;
+                std::memcpy(&v, p, sizeof v);
+                return v;
+            };
+            auto store = [](float* p, Lane v) { std::memcpy(p, &v, sizeof v); };
+            V3 parent{ load(block), load(block + kLanes), load(block + 2 * kLanes) }; // the root stays
+            for (std::uint32_t j = 1; j < m_points; ++j) {
+                float* row = block + j * pointFloats;
+                const V3 x{ load(row), load(row + kLanes), load(row + 2 * kLanes) };
+                const V3 previous{ load(row + 3 * kLanes), load(row + 4 * kLanes), load(row + 5 * kLanes) };
+                // Verlet: x' = x + keep (x - x_prev) + g dt².
+                V3 moved = x + (x - previous) * keep;
+                moved.y = moved.y + gravityStep;
+                // Follow the leader: back onto the segment's length from the parent's new position.
+                const V3 d = moved - parent;
+                const V3 placed = parent + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-20f))));
+                store(row, placed.x);
+                store(row + kLanes, placed.y);
+                store(row + 2 * kLanes, placed.z);
+                store(row + 3 * kLanes, x.x);
+                store(row + 4 * kLanes, x.y);
+                store(row + 5 * kLanes, x.z);
+                parent = placed;
+            }
+        }
+    });
+}
+
+void FloorSweep::displace(float dxMetres, float dzMetres)
+{
+    for (std::size_t b = 0; b < m_blocks; ++b)
+        for (std::uint32_t j = 1; j < m_points; ++j)
+            for (std::size_t l = 0; l < static_cast<std::size_t>(kLanes); ++l) {
+                float* row = m_rows.data() + (b * m_points + j) * kFields * kLanes + l;
+                const float share = static_cast<float>(j) / static_cast<float>(m_points - 1);
+                row[0] += dxMetres * share;
+                row[3 * kLanes] += dxMetres * share;
+                row[2 * kLanes] += dzMetres * share;
+                row[5 * kLanes] += dzMetres * share;
+            }
+}
+
+float FloorSweep::at(std::size_t strand, std::uint32_t point, int field) const
+{
+    const std::size_t b = strand / kLanes, l = strand % kLanes;
+    return m_rows[((b * m_points + point) * kFields + static_cast<std::size_t>(field)) * kLanes + l];
+}
+
+} // namespace wisp

@@ -1,0 +1,70 @@
+// The memory floor's sweep (FloorSweep.h) does the work it claims, so `wisp-cli bench`'s floor
+// row times a real hair step: strands hang at their length from fixed roots, a push swings and
+// dies out, and the result is the same on 1 and 2 threads.
+#include "sim/solver/FloorSweep.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace wisp;
+
+TEST(FloorSweep, RoundsUpToWholeStrandsOfTheGivenLength)
+{
+    const FloorSweep floor(1000, 15, 1);
+    EXPECT_EQ(floor.strandCount(), 67u); // 1000 / 15 rounded up
+    EXPECT_EQ(floor.particleCount(), 1005u);
+    EXPECT_NEAR(floor.segmentMetres(), 0.3f / 14.0f, 1e-7f);
+    EXPECT_EQ(floor.bytesPerStep(), 5u * 15u * 6u * 16u * sizeof(float) * 2u); // 5 blocks of 16 strands
+    EXPECT_EQ(FloorSweep(1, 1, 1).pointsPerStrand(), 2u);
+}
+
+TEST(FloorSweep, StrandsHangAtTheirLengthFromFixedRoots)
+{
+    FloorSweep floor(1000, 15, 2);
+    for (int i = 0; i < 60; ++i)
+        floor.step();
+    for (std::size_t s = 0; s < floor.strandCount(); ++s) {
+        EXPECT_FLOAT_EQ(floor.x(s, 0), 0.01f * static_cast<float>(s)) << "strand " << s << "'s root moved";
+        EXPECT_FLOAT_EQ(floor.y(s, 0), 0.0f);
+        EXPECT_NEAR(floor.y(s, 14), -0.3f, 1e-4f) << "strand " << s;
+    }
+}
+
+TEST(FloorSweep, APushSwingsEveryParticleAndKeepsEverySegmentsLength)
+{
+    FloorSweep floor(32 * 15, 15, 2);
+    floor.displace(0.05f, 0.02f);
+    double moved = 0.0;
+    float worstStretch = 0.0f;
+    for (int i = 0; i < 30; ++i) {
+        const float before = floor.x(3, 14);
+        floor.step();
+        moved += std::abs(floor.x(3, 14) - before);
+        for (std::uint32_t j = 1; j < 15; ++j) {
+            const float dx = floor.x(3, j) - floor.x(3, j - 1), dy = floor.y(3, j) - floor.y(3, j - 1),
+                        dz = floor.z(3, j) - floor.z(3, j - 1);
+            worstStretch = std::max(
+                worstStretch, std::abs(std::sqrt(dx * dx + dy * dy + dz * dz) / floor.segmentMetres() - 1.0f));
+        }
+    }
+    EXPECT_GT(moved, 0.01) << "the pushed tip did not swing";
+    EXPECT_LT(worstStretch, 1e-4f);
+}
+
+TEST(FloorSweep, OneAndTwoThreadsGiveTheSameBits)
+{
+    FloorSweep one(5000, 15, 1), two(5000, 15, 2);
+    one.displace(0.03f, -0.01f);
+    two.displace(0.03f, -0.01f);
+    for (int i = 0; i < 20; ++i) {
+        one.step();
+        two.step();
+    }
+    for (std::size_t s = 0; s < one.strandCount(); ++s)
+        for (std::uint32_t j = 0; j < 15; ++j) {
+            ASSERT_EQ(one.x(s, j), two.x(s, j));
+            ASSERT_EQ(one.y(s, j), two.y(s, j));
+            ASSERT_EQ(one.z(s, j), two.z(s, j));
+        }
+}

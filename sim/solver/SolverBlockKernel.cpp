@@ -82,6 +82,10 @@ namespace {
 // Asks for row j of the block that follows this one in memory (blocks are laid out one after
 // another and a thread runs a contiguous range of them): its first touches would otherwise stall
 // the next block's serial chain on memory. A prefetch past the arrays' end is harmless.
+// A particle whose clearance bound is above this is not likely to look at the head this substep
+// (a substep moves hair far less): its field nodes are not prefetched.
+constexpr float kPrefetchClearanceMetres = 0.005f;
+
 inline void prefetchRows(const Solver::Block& block, std::uint32_t j)
 {
     const auto ahead = [&](const auto* rows) {
@@ -361,6 +365,16 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 == firstSubstep) // the next block's rows (the next in memory, which this thread most likely runs next)
                 prefetchRows(block, j);
             const V3 x{ p.x, p.y, p.z };
+            // The next particle's field nodes, where it was at the start of the substep, while this
+            // one is worked on, if its clearance bound is near running out (its lookup is likely).
+            if (c.field && j + 1 < n) {
+                const ParticleRow& q = row[j + 1];
+                if (Transformed || anyOf(q.clearance < splat(kPrefetchClearanceMetres))) {
+                    const V3 ahead{ q.x, q.y, q.z };
+                    prefetchField(*c.field,
+                        Transformed ? transform(glm::transpose(c.rotation), ahead - splat(c.translation)) : ahead);
+                }
+            }
             // Gusts are smooth over tens of centimetres: sampled at every kGustStride-th particle
             // (where the particles were at the start of the substep) and interpolated between.
             V3 gustHere{};

@@ -275,6 +275,14 @@ void Solver::step()
     c.previousRotation = glm::mat3(m_previousHeadToWorld);
     c.previousTranslation = glm::vec3(m_previousHeadToWorld[3]);
     c.transformed = m_headToWorld != glm::mat4(1.0f) || m_previousHeadToWorld != glm::mat4(1.0f);
+    {
+        // The head point now at world x was at M x + m a step ago (M = R_prev R^T, m = T_prev - M T),
+        // so over one substep it moves ((I - M) x - m) / substeps.
+        const glm::mat3 back = c.previousRotation * glm::transpose(c.rotation);
+        const float share = 1.0f / static_cast<float>(c.substeps);
+        c.headMoveLinear = (glm::mat3(1.0f) - back) * share;
+        c.headMoveOffset = -(c.previousTranslation - back * c.translation) * share;
+    }
     c.field = m_field.get();
     for (const Capsule& cap : m_capsules)
         c.capsulesWorld.push_back(

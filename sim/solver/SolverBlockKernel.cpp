@@ -82,6 +82,10 @@ namespace {
 // Asks for row j of the block that follows this one in memory (blocks are laid out one after
 // another and a thread runs a contiguous range of them): its first touches would otherwise stall
 // the next block's serial chain on memory. A prefetch past the arrays' end is harmless.
+// A particle whose clearance bound is above this is not likely to look at the head this substep
+// (a substep moves hair far less): its field nodes are not prefetched.
+constexpr float kPrefetchClearanceMetres = 0.005f;
+
 inline void prefetchRows(const Solver::Block& block, std::uint32_t j)
 {
     const auto ahead = [&](const auto* rows) {
@@ -194,6 +198,9 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         V3 position = ftl.position;
         const V3 correction = ftl.correction;
         bool looked = false; // whether contact may have moved it (else `checked` is final)
+        // The head's (and the body's) own motion here over this substep, which friction takes the
+        // slide relative to: none while the head stands still.
+        const V3 headMove = Transformed ? transform(c.headMoveLinear, position) + splat(c.headMoveOffset) : V3{};
 
         // The field lookup is most of a step's cost (memory latency), so it is skipped while the
         // clearance bound says no lane can touch: the bound shrinks by each move's L1 length,
@@ -214,22 +221,30 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             const Mask inside = depth > splat(0.0f);
             if (anyOf(inside)) {
                 // A curved surface is not its tangent plane: turn onto the plane, look again from
-                // there, and only then push what the segment cannot reach.
-                resolveContact(inside, depth, sample.normal, mu, parent, length, inverseLength, before, position,
-                    previous, false, splat(c.offset));
+                // there, and only then push what the segment cannot reach. Friction comes once, after
+                // the last look: its normal correction is what all the looks moved the particle out
+                // (their depths summed), on the tangent plane where it ends (a second look's own
+                // depth, nanometres on a smooth head, would have let the slide through).
+                Lane contactDepth = depth;
+                V3 contactNormal = sample.normal;
+                turnOutOfContact(
+                    inside, depth, sample.normal, parent, length, inverseLength, position, false, splat(c.offset));
                 // What is left within half the offset (still clear of the skin) stays: turning it
                 // far along the arc below for that little would shake stiff hair lying on the head.
                 const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
                 for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
                     const SdfSample next = sampleHead(position);
                     const Lane nextDepth = splat(c.offset) - next.distance;
-                    const Mask stillInside = nextDepth > splat(0.0f);
+                    const Mask stillInside = nextDepth > splat(kContactResidualMetres);
                     const Mask stuck = stillInside & (nextDepth > slack);
                     if (!anyOf(pass < kHeadContactPasses ? stillInside : stuck))
                         break;
+                    const Mask turns = pass < kHeadContactPasses ? stillInside : stuck;
+                    contactDepth = contactDepth + select(turns, nextDepth, splat(0.0f));
+                    contactNormal = select(turns, next.normal, contactNormal);
                     if (pass < kHeadContactPasses) {
-                        resolveContact(stillInside, nextDepth, next.normal, mu, parent, length, inverseLength, before,
-                            position, previous, false, splat(c.offset));
+                        turnOutOfContact(stillInside, nextDepth, next.normal, parent, length, inverseLength, position,
+                            false, splat(c.offset));
                         // Turning converges fast on a smooth surface: look once more only where a
                         // lane was still a quarter of the offset deep before this last turn (in a
                         // crevice the last turn may put it deeper on the other wall).
@@ -257,11 +272,12 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                             lo = select(clear, lo, mid);
                         }
                         position = select(arcClears, onArc(hi), position);
-                        applyFriction(arcClears, nextDepth, next.normal, mu, before, position, previous);
                     }
-                    resolveContact(stuck & ~arcClears, nextDepth, next.normal, mu, parent, length, inverseLength,
-                        before, position, previous, true, splat(c.offset));
+                    turnOutOfContact(stuck & ~arcClears, nextDepth, next.normal, parent, length, inverseLength,
+                        position, true, splat(c.offset));
                 }
+                applyFriction(inside, contactDepth, contactNormal, mu, parent, before, headMove, position, previous,
+                    splat(c.offset));
             }
             // A moving head moves the field under the particles: no bound survives that.
             clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));
@@ -281,8 +297,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
             if (anyOf(inside)) {
                 const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
-                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, position, previous,
-                    true, splat(c.offset));
+                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, headMove, position,
+                    previous, true, splat(c.offset));
                 looked = true;
             }
         }
@@ -349,6 +365,16 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 == firstSubstep) // the next block's rows (the next in memory, which this thread most likely runs next)
                 prefetchRows(block, j);
             const V3 x{ p.x, p.y, p.z };
+            // The next particle's field nodes, where it was at the start of the substep, while this
+            // one is worked on, if its clearance bound is near running out (its lookup is likely).
+            if (c.field && j + 1 < n) {
+                const ParticleRow& q = row[j + 1];
+                if (Transformed || anyOf(q.clearance < splat(kPrefetchClearanceMetres))) {
+                    const V3 ahead{ q.x, q.y, q.z };
+                    prefetchField(*c.field,
+                        Transformed ? transform(glm::transpose(c.rotation), ahead - splat(c.translation)) : ahead);
+                }
+            }
             // Gusts are smooth over tens of centimetres: sampled at every kGustStride-th particle
             // (where the particles were at the start of the substep) and interpolated between.
             V3 gustHere{};

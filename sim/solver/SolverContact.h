@@ -17,18 +17,41 @@ struct SdfSample {
     V3 normal;
 };
 
-[[gnu::always_inline]] inline SdfSample sampleField(const Solver::CollisionField& field, const V3& p)
+// The node nearest each lane's point (head space), clamped into the grid (outside it the
+// first-order extension keeps growing): its coordinates and its index in field.nodes.
+struct FieldNode {
+    Mask ix, iy, iz, index;
+};
+
+[[gnu::always_inline]] inline FieldNode nearestNode(const Solver::CollisionField& field, const V3& p)
 {
     const float inv = 1.0f / field.cellSize;
-    // Nearest node, clamped into the grid; outside it the first-order extension keeps growing.
     auto nearest = [&](Lane v, float origin, int count) {
         const Lane g = (v - origin) * inv + 0.5f;
         return __builtin_convertvector(lmin(lmax(g, splat(0.0f)), splat(static_cast<float>(count) - 0.5f)), Mask);
     };
-    const Mask ix = nearest(p.x, field.origin.x, field.dims.x);
-    const Mask iy = nearest(p.y, field.origin.y, field.dims.y);
-    const Mask iz = nearest(p.z, field.origin.z, field.dims.z);
-    const Mask index = ix + iy * field.dims.x + iz * (field.dims.x * field.dims.y);
+    FieldNode n;
+    n.ix = nearest(p.x, field.origin.x, field.dims.x);
+    n.iy = nearest(p.y, field.origin.y, field.dims.y);
+    n.iz = nearest(p.z, field.origin.z, field.dims.z);
+    n.index = n.ix + n.iy * field.dims.x + n.iz * (field.dims.x * field.dims.y);
+    return n;
+}
+
+// Asks the cache for the nodes sampleField will read near `p` (head space): the field is tens of
+// megabytes, and its read was a quarter of groom-1m's step, waiting on memory. A hint only: what is
+// computed does not change.
+[[gnu::always_inline]] inline void prefetchField(const Solver::CollisionField& field, const V3& p)
+{
+    const Mask index = nearestNode(field, p).index;
+    for (int l = 0; l < kLanes; ++l)
+        __builtin_prefetch(&field.nodes[static_cast<std::size_t>(index[l])]);
+}
+
+[[gnu::always_inline]] inline SdfSample sampleField(const Solver::CollisionField& field, const V3& p)
+{
+    const FieldNode node = nearestNode(field, p);
+    const Mask ix = node.ix, iy = node.iy, iz = node.iz, index = node.index;
     SdfSample s;
     Lane d;
 #if defined(__AVX512F__)
@@ -86,12 +109,9 @@ struct SdfSample {
 // Contact, as the last word of a substep: the penetrating lanes are turned about their (final)
 // parent onto the collider's tangent plane, so they leave it and keep their segment's length;
 // where no point at that length from the parent is outside (the parent itself is too deep), the
-// particle is pushed out along the normal and the length gives way. Then Coulomb friction
-// (velocity level, through the previous position): the contact's normal correction δ = depth
-// bounds the tangential slip it can stop, static while the slip is under μs δ, else the slip is
-// shortened by μk δ (Macklin et al. 2014, "Unified Particle Physics", eq. 24-25). Its effect per
-// second is μ × normal force / mass at any substep count. The normal part of the velocity is
-// kept only outward.
+// particle is pushed out along the normal and the length gives way. Then Coulomb friction at the
+// position level (applyFriction below), once per contact: after the head's last look, or with
+// each capsule. The normal part of the velocity is kept only outward.
 // Static friction of hair on skin is a little above its kinetic friction (measured hair-on-hair
 // and hair-on-skin coefficients differ by about this much).
 constexpr float kStaticOverKineticFriction = 1.25f;
@@ -99,24 +119,36 @@ constexpr float kStaticOverKineticFriction = 1.25f;
 // nose or an ear is not its tangent plane); one more look takes what is still stuck along the arc
 // toward its parent's normal, and pushes only what no turn gets out.
 constexpr int kHeadContactPasses = 3;
+// What a look after the first turn leaves alone: a turn onto the field's tangent plane lands on
+// it to the float rounding of the positions (nanometres), so many turned particles read as a
+// hair's breadth inside and were turned and looked at again for nothing. A micrometre is far
+// below anything drawn or measured and far above that rounding.
+constexpr float kContactResidualMetres = 1e-6f;
 // Steps of the bisection along the arc from a stuck particle toward its parent's outward normal
 // (the first clear point to within 1/64 of the arc).
 constexpr int kArcBisections = 6;
+// How far below the contact's tangent plane friction may leave a held point (applyFriction): a
+// share of the hair offset, and a floor for an offset of 0. Turning a held point about its parent
+// along a curved surface sinks it a few micrometres; the next look at the head takes that.
+constexpr float kFrictionSinkShareOfOffset = 0.05f;
+constexpr float kFrictionSinkMetres = 1e-7f;
 
-// (resolveContact and applyFriction stay out of line: inlined, the compiler fuses multiplies and
+// (turnOutOfContact and applyFriction stay out of line: inlined, the compiler fuses multiplies and
 // adds across the call differently, and the step's results would change in the last bits.)
 struct ContactFriction {
     Lane kinetic; // μk
     Lane statik; // μs
 };
 
-// Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below).
+// Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below);
+// `headMove` is the collider's own motion there over the substep (StepConstants::headMoveLinear).
 [[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& oldPosition, const V3& position, V3& previous);
+    const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band);
 
-[[gnu::noinline]] void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, Lane length, Lane inverseLength, const V3& oldPosition, V3& position, V3& previous,
-    bool pushWhatIsLeft, Lane band)
+// The contact's turn (and push) alone, for the head's looks: their friction is taken once, after
+// the last look, from their summed depths (advanceBlock).
+[[gnu::noinline]] void turnOutOfContact(Mask inside, Lane depth, const V3& normal, const V3& parent, Lane length,
+    Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
 {
     const V3 u0 = (position - parent) * inverseLength;
     const Lane along = dot(normal, u0);
@@ -137,22 +169,56 @@ struct ContactFriction {
     const Lane slack = select(length < band * 2.0f, band, splat(0.0f)); // only for segments that short
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
-    applyFriction(inside, depth, normal, mu, oldPosition, position, previous);
 }
 
-[[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& oldPosition, const V3& position, V3& previous)
+// Contact and its friction in one (a capsule: one look).
+inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
+    Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position, V3& previous,
+    bool pushWhatIsLeft, Lane band)
 {
-    const V3 move = position - oldPosition;
-    const Lane normalPart = dot(move, normal);
-    const V3 sliding = move - normal * normalPart;
+    turnOutOfContact(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+    applyFriction(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
+}
+
+// Coulomb friction at the position level (Macklin et al. 2014, "Unified Particle Physics for
+// Real-Time Applications", §6.1, eq. 24-25): the contact's normal correction d (its depth) bounds
+// the tangential displacement Δx⊥ of the particle over the substep, relative to the collider's
+// own motion there (a moving head carries the hair lying on it), that friction can take back.
+// Static while |Δx⊥| < μs d: all of it is removed; else kinetic: min(μk d / |Δx⊥|, 1) Δx⊥ is.
+// Removing it from the position (not only from the velocity) is what holds hair on a slope its
+// static friction can hold: the turn onto the tangent plane keeps the predicted slide, and a
+// velocity-only friction let that slide through every substep. The held point is turned about
+// its (final) parent, at the distance contact left it there, so friction never changes a
+// segment's length (and with nothing to take back, μ = 0, it moves nothing), and only where that
+// stays above the contact's tangent plane (the contact stays the last word; the next look at the
+// head catches the curvature). The previous position follows so that the velocity is what the
+// particle really moved, less any part into the collider (relative to its motion): friction
+// invents no velocity.
+[[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
+    const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
+{
+    const V3 move = position - oldPosition - headMove;
+    const V3 sliding = move - normal * dot(move, normal); // Δx⊥
     const Lane slide2 = dot(sliding, sliding);
     const Lane invSlide = lrsqrt(lmax(slide2, splat(1e-24f)));
     const Lane slide = slide2 * invSlide;
     const Mask sticks = slide <= mu.statik * depth;
-    const Lane keptShare = select(sticks, splat(0.0f), lmax(splat(1.0f) - mu.kinetic * depth * invSlide, splat(0.0f)));
-    const V3 kept = sliding * keptShare + normal * lmax(normalPart, splat(0.0f));
-    previous = select(inside, position - kept, previous);
+    const Lane removedShare = select(sticks, splat(1.0f), lmin(mu.kinetic * depth * invSlide, splat(1.0f)));
+    // About the parent, at the distance contact left it there (a push may have stretched the
+    // segment; friction neither undoes nor adds to that).
+    const V3 reach = position - parent;
+    const Lane reachLength = lsqrt(dot(reach, reach));
+    const V3 fromParent = reach - sliding * removedShare;
+    const V3 atLength = parent + fromParent * (reachLength * lrsqrt(lmax(dot(fromParent, fromParent), splat(1e-20f))));
+    // Where the held point at its length would sink below the tangent plane by more than a turn
+    // may leave (the segment points into the surface), the position stays and friction acts on
+    // the velocity alone: pushing it out would stretch the segment. (Rotating about the parent
+    // along a curved surface sinks it a few micrometres: the next look at the head takes that.)
+    const Lane sinkTolerance = band * kFrictionSinkShareOfOffset + kFrictionSinkMetres;
+    const Mask holds = inside & (removedShare > splat(0.0f)) & (dot(atLength - position, normal) >= -sinkTolerance);
+    position = select(holds, atLength, position);
+    const Lane movedNormal = dot(position - oldPosition - headMove, normal);
+    previous = select(inside, oldPosition + normal * lmin(movedNormal, splat(0.0f)), previous);
 }
 
 } // namespace

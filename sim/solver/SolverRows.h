@@ -95,6 +95,11 @@ struct StepConstants {
     glm::mat3 previousRotation{ 1.0f };
     glm::vec3 previousTranslation{ 0.0f };
     bool transformed = false; // head is not at the identity: SDF lookups need head space
+    // The head's own motion over one substep at a world point x on it (or on the body, which moves
+    // with it): headMoveLinear x + headMoveOffset, the step's rigid motion of the head point now at
+    // x shared evenly over the substeps, as the roots move. Friction takes the slide relative to it.
+    glm::mat3 headMoveLinear{ 0.0f };
+    glm::vec3 headMoveOffset{ 0.0f };
     const Solver::CollisionField* field = nullptr;
     std::vector<Capsule> capsulesWorld;
     std::uint64_t* resetCounter = nullptr;

@@ -1,6 +1,7 @@
 // Styling on live hair as an artist does it: the real window, each salon brush picked by its
 // shortcut and driven by mouse events on the viewport, the published frames measured.
 #include "StylingTestSupport.h"
+#include "sim/geometry/Body.h"
 
 using namespace wisp;
 using namespace wisp::test;
@@ -217,6 +218,15 @@ TEST_F(StylingTest, WetWispsClumpAndSpreadAgainOnceDry)
     for (std::uint32_t w : touched) {
         EXPECT_GT(wet->wetness[g.keyOfWisp[w]], 0.3f);
         EXPECT_LT(wispSpread(wet, w), 0.7f * wispSpread(dry, w)) << "wet wisp " << w << " did not clump";
+        // The figures, for a wisp near the bar: a key lying on the body (keyToBody 0 at the offset)
+        // clumps less, as its members are kept out of the capsules (WispMembers keepMemberShape).
+        float keyToBody = 1e9f;
+        const auto key = wet->strands.strand(g.keyOfWisp[w]);
+        for (const Capsule& c : defaultBody(document()->head()))
+            for (std::size_t j = key.size() / 2; j < key.size(); ++j)
+                keyToBody = std::min(keyToBody, capsuleDistance(c, key[j]));
+        std::printf("wisp %u: wet spread %.3f of dry (%.2f mm), key's lower half %.1f mm from the body\n", w,
+            wispSpread(wet, w) / wispSpread(dry, w), 1e3f * wispSpread(dry, w), 1e3f * keyToBody);
     }
     // About seven half-lives later the hair is dry, and spread as before.
     SimulationHost* host = window->simulation();

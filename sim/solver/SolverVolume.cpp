@@ -165,6 +165,10 @@ int Solver::volumeRefreshSubsteps(float substepSeconds)
 // the tips flutter apart; 1 for a block with padding, and in practice for the editor's keys (5-10 mm
 // apart in 8-15 mm cells).
 constexpr float kVolumeLodCellShare = 0.5f;
+// For a dense groom (Kernel::NearestSmoothed, a particle meets one node) within one cell, as its
+// rows (kVolumeRowCellShare): the lanes between two samples are then at the samples' node or the
+// next.
+constexpr float kVolumeNearestLodCellShare = 1.0f;
 // The grid's nodes (HairVolumeGrid::setBounds) for a scene of `particles`: all the memory bound
 // allows up to kVolumeFullGridParticles, and fewer in proportion beyond (a quarter at a million,
 // cells 1.6 times as wide): the splat and the read wait on cache misses in a grid much larger than
@@ -179,6 +183,12 @@ std::size_t volumeGridNodes(std::size_t particles)
         ? HairVolumeGrid::kMaxNodes
         : static_cast<std::size_t>(static_cast<double>(HairVolumeGrid::kMaxNodes)
             * (static_cast<double>(kVolumeFullGridParticles) / static_cast<double>(particles)));
+}
+
+int Solver::volumeRowsPerSampleOfStrand(std::size_t strand) const
+{
+    return strand < m_slotOfStrand.size() ? static_cast<int>(m_blocks[m_slotOfStrand[strand].block].volumeRowsPerSample)
+                                          : 0;
 }
 
 int Solver::volumeStrideOfStrand(std::size_t strand) const
@@ -254,10 +264,12 @@ void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
 
 // How many rows of a block splat and are sampled as one, at their centroid (Solver::volumeSplat):
 // for a dense groom (Kernel::NearestSmoothed), the most rows, a power of two up to
-// kVolumeMaxRowsPerSample, whose particles lie within kVolumeRowCellShare of a cell of each other
-// along the strand ((rows - 1) x the longest segment): groom-1m's 20 mm segments in 27 mm cells
-// go two by two. The editor's keys (Kernel::Trilinear) go one by one.
-constexpr float kVolumeRowCellShare = 1.0f;
+// kVolumeMaxRowsPerSample, whose stretch of strand (rows x the longest segment) is at most
+// kVolumeRowGroupCells cells: the [1 2 1]/4 smoothing spreads every splat over three nodes along
+// each axis anyway, so the field has no finer detail for the rows to miss. groom-1m's 20 mm
+// segments in 27 mm cells go four by four (80 mm). The editor's keys (Kernel::Trilinear) go one by
+// one.
+constexpr float kVolumeRowGroupCells = 3.0f;
 constexpr std::uint32_t kVolumeMaxRowsPerSample = 4;
 std::uint32_t volumeRowsPerSample(const Solver::Block& b, const HairVolumeGrid& grid)
 {
@@ -271,7 +283,7 @@ std::uint32_t volumeRowsPerSample(const Solver::Block& b, const HairVolumeGrid& 
         segment = std::max(segment, longest[l]);
     std::uint32_t rows = 1;
     while (rows < kVolumeMaxRowsPerSample
-        && static_cast<float>(2 * rows - 1) * segment <= kVolumeRowCellShare * grid.cellMetres())
+        && static_cast<float>(2 * rows) * segment <= kVolumeRowGroupCells * grid.cellMetres())
         rows *= 2;
     return rows;
 }
@@ -289,16 +301,22 @@ void Solver::volumeSplat(Block& b, const StepConstants& c, int slot)
         full = full && b.strand[l] >= 0;
     const std::uint32_t rows = b.volumeRowsPerSample = volumeRowsPerSample(b, grid);
     const std::uint32_t groups = (b.points + rows - 1) / rows;
-    // At each group's first lane, the weight of its lanes, for strides 1, 2, 4, 8 and 16.
-    Lane groupWeight[5];
-    for (int s = 0, stride = 1; s < 5; ++s, stride *= 2) {
-        groupWeight[s] = splat(0.0f);
-        for (int l = 0; l < kLanes; ++l)
-            groupWeight[s][l - l % stride] += b.volumeWeight[l];
-    }
+    // At each group's first lane, the weight of its lanes, for strides 1, 2, 4, 8 and 16: a group
+    // of 2s lanes is two of s (the other lanes hold partial sums that nothing reads).
     using LaneIndex = int __attribute__((vector_size(kLanes * sizeof(int))));
+    Lane groupWeight[5];
+    groupWeight[0] = b.volumeWeight;
+    for (int s = 1; s < 5; ++s) {
+        const int half = 1 << (s - 1);
+        LaneIndex partner;
+        for (int l = 0; l < kLanes; ++l)
+            partner[l] = std::min(l + half, kLanes - 1);
+        groupWeight[s] = groupWeight[s - 1] + shuffleLanes(groupWeight[s - 1], partner);
+    }
     const LaneIndex next{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 15 };
-    const float reach = kVolumeLodCellShare * grid.cellMetres();
+    const float reach
+        = (grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed ? kVolumeNearestLodCellShare : kVolumeLodCellShare)
+        * grid.cellMetres();
     b.volumeStrides.resize(groups);
     for (std::uint32_t g = 0; g < groups; ++g) {
         const std::uint32_t first = g * rows, count = std::min(rows, b.points - first);

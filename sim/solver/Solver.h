@@ -101,6 +101,9 @@ public:
     // The grid's level of detail at the strand's block (Solver::volumeSplat), its finest row: 1 where
     // every strand splats, k where every k-th one does; for tests.
     int volumeStrideOfStrand(std::size_t strand) const;
+    // How many rows of the strand's block splat and are sampled as one, at their centroid
+    // (Solver::volumeSplat): 1, or for a dense groom up to 4 (0 for no such strand).
+    int volumeRowsPerSampleOfStrand(std::size_t strand) const;
 
     // World-space positions in the layout of the rest curves given to setStrands.
     void copyPositions(std::vector<glm::vec3>& out) const;

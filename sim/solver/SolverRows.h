@@ -66,9 +66,11 @@ struct Solver::Block {
     Lane windX{}, windY{}, windZ{}; // per lane: wind of its own, m/s world (a hair dryer)
     Lane volumeWeight{}; // per lane: metres of drawn hair one particle stands for (0: padding)
     Lane volumeTargetScale{}; // per lane: multiplies the density the hair keeps (wet hair)
-    // The grid's level of detail at the block's last splat (Solver::volumeSplat), per row: every
-    // volumeStrides[j]-th lane of row j splats the weight of the lanes it stands for and is sampled.
+    // The grid's level of detail at the block's last splat (Solver::volumeSplat): the rows are taken
+    // volumeRowsPerSample at a time (their centroid splats and is sampled for all of them), and
+    // every volumeStrides[g]-th lane of group g splats the weight of the lanes it stands for.
     std::vector<std::uint8_t> volumeStrides;
+    std::uint32_t volumeRowsPerSample = 1;
     // Views into the solver's two row arrays: every block's rows follow the previous block's, so
     // a thread streams through memory in one sequential run that the prefetcher can follow.
     std::span<ParticleRow> state;

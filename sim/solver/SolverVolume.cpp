@@ -165,6 +165,10 @@ int Solver::volumeRefreshSubsteps(float substepSeconds)
 // the tips flutter apart; 1 for a block with padding, and in practice for the editor's keys (5-10 mm
 // apart in 8-15 mm cells).
 constexpr float kVolumeLodCellShare = 0.5f;
+// For a dense groom (Kernel::NearestSmoothed, a particle meets one node) within one cell, as its
+// rows (kVolumeRowCellShare): the lanes between two samples are then at the samples' node or the
+// next.
+constexpr float kVolumeNearestLodCellShare = 1.0f;
 // The grid's nodes (HairVolumeGrid::setBounds) for a scene of `particles`: all the memory bound
 // allows up to kVolumeFullGridParticles, and fewer in proportion beyond (a quarter at a million,
 // cells 1.6 times as wide): the splat and the read wait on cache misses in a grid much larger than
@@ -179,6 +183,12 @@ std::size_t volumeGridNodes(std::size_t particles)
         ? HairVolumeGrid::kMaxNodes
         : static_cast<std::size_t>(static_cast<double>(HairVolumeGrid::kMaxNodes)
             * (static_cast<double>(kVolumeFullGridParticles) / static_cast<double>(particles)));
+}
+
+int Solver::volumeRowsPerSampleOfStrand(std::size_t strand) const
+{
+    return strand < m_slotOfStrand.size() ? static_cast<int>(m_blocks[m_slotOfStrand[strand].block].volumeRowsPerSample)
+                                          : 0;
 }
 
 int Solver::volumeStrideOfStrand(std::size_t strand) const
@@ -252,34 +262,86 @@ void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
     v.pushDamping = 1.0f - std::exp(-kVolumeDampingPerSecond * c.dt);
 }
 
-// One block's splat into the grid's slot `slot`, row by row (a row's strands lie side by side):
-// each particle's weight and its move over the last substep, at its head-space position.
+// How many rows of a block splat and are sampled as one, at their centroid (Solver::volumeSplat):
+// for a dense groom (Kernel::NearestSmoothed), the most rows, a power of two up to
+// kVolumeMaxRowsPerSample, whose stretch of strand (rows x the longest segment) is at most
+// kVolumeRowGroupCells cells: the [1 2 1]/4 smoothing spreads every splat over three nodes along
+// each axis anyway, so the field has no finer detail for the rows to miss. groom-1m's 20 mm
+// segments in 27 mm cells go four by four (80 mm). The editor's keys (Kernel::Trilinear) go one by
+// one.
+constexpr float kVolumeRowGroupCells = 3.0f;
+constexpr std::uint32_t kVolumeMaxRowsPerSample = 4;
+std::uint32_t volumeRowsPerSample(const Solver::Block& b, const HairVolumeGrid& grid)
+{
+    if (grid.kernel() != HairVolumeGrid::Kernel::NearestSmoothed)
+        return 1;
+    Lane longest = splat(0.0f);
+    for (std::uint32_t j = 1; j < b.points; ++j)
+        longest = lmax(longest, b.rest[j].length);
+    float segment = 0.0f;
+    for (int l = 0; l < kLanes; ++l)
+        segment = std::max(segment, longest[l]);
+    std::uint32_t rows = 1;
+    while (rows < kVolumeMaxRowsPerSample
+        && static_cast<float>(2 * rows) * segment <= kVolumeRowGroupCells * grid.cellMetres())
+        rows *= 2;
+    return rows;
+}
+
+// One block's splat into the grid's slot `slot`, a group of volumeRowsPerSample rows at a time (a
+// row's sixteen strands lie side by side): each lane's weight and its move over the last substep,
+// at the group's centroid in head space; a lane with a particle gone wild in the group splats nothing.
 void Solver::volumeSplat(Block& b, const StepConstants& c, int slot)
 {
     HairVolumeGrid& grid = *m_volumeGrid;
     const glm::mat3 toHead = glm::transpose(c.rotation);
-    // The level of detail (kVolumeLodCellShare), row by row: how far apart neighbouring lanes are now.
+    // The level of detail (kVolumeLodCellShare), group by group: how far apart neighbouring lanes are now.
     bool full = true;
     for (int l = 0; l < kLanes; ++l)
         full = full && b.strand[l] >= 0;
-    // At each group's first lane, the weight of its lanes, for strides 1, 2, 4, 8 and 16.
-    Lane groupWeight[5];
-    for (int s = 0, stride = 1; s < 5; ++s, stride *= 2) {
-        groupWeight[s] = splat(0.0f);
-        for (int l = 0; l < kLanes; ++l)
-            groupWeight[s][l - l % stride] += b.volumeWeight[l];
-    }
+    const std::uint32_t rows = b.volumeRowsPerSample = volumeRowsPerSample(b, grid);
+    const std::uint32_t groups = (b.points + rows - 1) / rows;
+    // At each group's first lane, the weight of its lanes, for strides 1, 2, 4, 8 and 16: a group
+    // of 2s lanes is two of s (the other lanes hold partial sums that nothing reads).
     using LaneIndex = int __attribute__((vector_size(kLanes * sizeof(int))));
+    Lane groupWeight[5];
+    groupWeight[0] = b.volumeWeight;
+    for (int s = 1; s < 5; ++s) {
+        const int half = 1 << (s - 1);
+        LaneIndex partner;
+        for (int l = 0; l < kLanes; ++l)
+            partner[l] = std::min(l + half, kLanes - 1);
+        groupWeight[s] = groupWeight[s - 1] + shuffleLanes(groupWeight[s - 1], partner);
+    }
     const LaneIndex next{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 15 };
-    const float reach = kVolumeLodCellShare * grid.cellMetres();
-    b.volumeStrides.resize(b.points);
-    for (std::uint32_t j = 0; j < b.points; ++j) {
-        const ParticleRow& r = b.state[j];
-        const V3 x{ r.x, r.y, r.z };
+    const float reach
+        = (grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed ? kVolumeNearestLodCellShare : kVolumeLodCellShare)
+        * grid.cellMetres();
+    b.volumeStrides.resize(groups);
+    for (std::uint32_t g = 0; g < groups; ++g) {
+        const std::uint32_t first = g * rows, count = std::min(rows, b.points - first);
+        const ParticleRow& r = b.state[first];
+        V3 x{ r.x, r.y, r.z };
+        V3 move = x - V3{ r.px, r.py, r.pz };
+        // A particle gone non-finite or flying off (its strand is put back at rest at the end of
+        // the step) must not spread through the grid.
+        Mask tame = l1Length(move) < kVolumeMaxMoveMetres;
+        if (count > 1) {
+            for (std::uint32_t j = first + 1; j < first + count; ++j) {
+                const ParticleRow& q = b.state[j];
+                const V3 at{ q.x, q.y, q.z }, moved = at - V3{ q.px, q.py, q.pz };
+                tame = tame & (l1Length(moved) < kVolumeMaxMoveMetres);
+                x = x + at;
+                move = move + moved;
+            }
+            const float share = 1.0f / static_cast<float>(count);
+            x = x * splat(share);
+            move = move * splat(share);
+        }
         int level = 0; // log2 of the stride
         if (full) {
-            const Lane dx = shuffleLanes(r.x, next) - r.x, dy = shuffleLanes(r.y, next) - r.y,
-                       dz = shuffleLanes(r.z, next) - r.z;
+            const Lane dx = shuffleLanes(x.x, next) - x.x, dy = shuffleLanes(x.y, next) - x.y,
+                       dz = shuffleLanes(x.z, next) - x.z;
             const Lane distance2 = dx * dx + dy * dy + dz * dz;
             float spacing2 = 0.0f;
             for (int l = 0; l < kLanes; ++l)
@@ -288,11 +350,9 @@ void Solver::volumeSplat(Block& b, const StepConstants& c, int slot)
                 && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)
                 ++level;
         }
-        b.volumeStrides[j] = static_cast<std::uint8_t>(1 << level);
-        const V3 move = x - V3{ r.px, r.py, r.pz };
-        // A particle gone non-finite or flying off (its strand is put back at rest at the end of
-        // the step) must not spread through the grid.
-        const Lane weight = select(l1Length(move) < kVolumeMaxMoveMetres, groupWeight[level], splat(0.0f));
+        b.volumeStrides[g] = static_cast<std::uint8_t>(1 << level);
+        const Lane weight = select(
+            tame, count > 1 ? groupWeight[level] * static_cast<float>(count) : groupWeight[level], splat(0.0f));
         const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
         grid.splatRow(slot, reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
             reinterpret_cast<const float*>(&head.z), reinterpret_cast<const float*>(&weight),
@@ -301,9 +361,10 @@ void Solver::volumeSplat(Block& b, const StepConstants& c, int slot)
     }
 }
 
-// The read of volumePass's grid for one block, all 16 lanes at once: each particle's velocity is
-// blended toward the hair's mean velocity there by the hair friction, and where the density is
-// above the target it is accelerated down the density gradient (see volumePass).
+// The read of volumePass's grid for one block, all 16 lanes at once, a group of the splat's rows at
+// a time (sampled at their centroid): each particle's velocity is blended toward the hair's mean
+// velocity there by the hair friction, and where the density is above the target it is
+// accelerated down the density gradient (see volumePass).
 void Solver::volumeRead(Block& b, const StepConstants& c) const
 {
     const HairVolumeGrid& grid = *m_volumeGrid;
@@ -312,33 +373,42 @@ void Solver::volumeRead(Block& b, const StepConstants& c) const
     const Lane inverseKeep = splat(1.0f) / keep;
     const glm::mat3 toHead = glm::transpose(c.rotation);
     const float dt2 = c.dt * c.dt;
+    const std::uint32_t rows = std::max<std::uint32_t>(1, b.volumeRowsPerSample);
     HairVolumeGrid::SampleRow here;
     auto lane = [](const float* p) {
         Lane l;
         std::memcpy(&l, p, sizeof l);
         return l;
     };
-    for (std::uint32_t j = 1; j < b.points; ++j) { // roots are pinned
-        ParticleRow& r = b.state[j];
-        const V3 x{ r.x, r.y, r.z };
+    for (std::uint32_t first = 0, g = 0; first < b.points; first += rows, ++g) {
+        const std::uint32_t count = std::min(rows, b.points - first);
+        if (first + count <= 1)
+            continue; // roots are pinned
+        V3 x{ b.state[first].x, b.state[first].y, b.state[first].z };
+        if (count > 1) {
+            for (std::uint32_t j = first + 1; j < first + count; ++j)
+                x = x + V3{ b.state[j].x, b.state[j].y, b.state[j].z };
+            x = x * splat(1.0f / static_cast<float>(count));
+        }
         const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
         grid.sampleRow(reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
             reinterpret_cast<const float*>(&head.z), here, HairVolumeGrid::kRowLanes,
-            j < b.volumeStrides.size() ? b.volumeStrides[j] : 1);
+            g < b.volumeStrides.size() ? b.volumeStrides[g] : 1);
         const Lane density = lane(here.density);
         const Mask inHair = density > 0.0f;
         if (!anyOf(inHair))
             continue;
-        V3 move = x - V3{ r.px, r.py, r.pz };
+        // What the group's particles share: the hair's mean move, and the push and its direction.
         const Lane hair = lane(here.hair);
         const Mask hasHair = hair > 0.0f;
         const Lane inverseHair = select(hasHair, splat(1.0f) / hair, splat(0.0f));
         const V3 mean = V3{ lane(here.momentumX), lane(here.momentumY), lane(here.momentumZ) } * inverseHair;
-        move = select(hasHair, move + (mean - move) * splat(v.blend), move);
         const Lane excess = density * inverseKeep - 1.0f;
         const Mask pushing = excess > 0.0f;
-        if (anyOf(pushing)) {
-            V3 push = V3{ lane(here.gradX), lane(here.gradY), lane(here.gradZ) }
+        const bool anyPushing = anyOf(pushing);
+        V3 push{}, direction{};
+        if (anyPushing) {
+            push = V3{ lane(here.gradX), lane(here.gradY), lane(here.gradZ) }
                 * ((-v.stiffness) * lmin(excess, splat(1.0f)) * inverseKeep);
             const Lane length = lsqrt(dot(push, push));
             push = push * select(length > kVolumeMaxAcceleration, kVolumeMaxAcceleration / length, splat(1.0f));
@@ -347,14 +417,23 @@ void Solver::volumeRead(Block& b, const StepConstants& c) const
             // Pressure alone makes hair bounce on the hair beneath it (a stiff spring taken
             // explicitly): the motion along the push is damped where it pushes.
             const Mask along = pushing & (length > 0.0f);
-            const V3 direction = select(along, V3{ push.x / length, push.y / length, push.z / length }, V3{});
-            const V3 damped = move - direction * (v.pushDamping * dot(move, direction));
-            move = select(pushing, damped + push * splat(dt2), move);
+            direction = select(along, V3{ push.x / length, push.y / length, push.z / length }, V3{});
+            push = push * splat(dt2);
         }
-        const V3 now = select(inHair, x - move, V3{ r.px, r.py, r.pz });
-        r.px = now.x;
-        r.py = now.y;
-        r.pz = now.z;
+        for (std::uint32_t j = std::max<std::uint32_t>(first, 1); j < first + count; ++j) {
+            ParticleRow& r = b.state[j];
+            const V3 at{ r.x, r.y, r.z };
+            V3 move = at - V3{ r.px, r.py, r.pz };
+            move = select(hasHair, move + (mean - move) * splat(v.blend), move);
+            if (anyPushing) {
+                const V3 damped = move - direction * (v.pushDamping * dot(move, direction));
+                move = select(pushing, damped + push, move);
+            }
+            const V3 now = select(inHair, at - move, V3{ r.px, r.py, r.pz });
+            r.px = now.x;
+            r.py = now.y;
+            r.pz = now.z;
+        }
     }
 }
 

@@ -511,6 +511,8 @@ HairCurves densePatch(int side = 16, int points = 10, float spacing = 0.0005f, f
 struct PatchRun {
     std::vector<glm::vec3> positions;
     int stride = 0; // Solver::volumeStrideOfStrand(0) at the end
+    int rowsPerSample = 0; // Solver::volumeRowsPerSampleOfStrand(0) at the end
+    double gridWeight = 0.0; // the grid's total weight at its last pass
     HairVolumeGrid::Kernel kernel = HairVolumeGrid::Kernel::Trilinear;
 };
 
@@ -528,8 +530,11 @@ PatchRun runPatch(const HairCurves& rest, float volume, int threads, int substep
         solver.step();
     PatchRun run;
     run.stride = solver.volumeStrideOfStrand(0);
-    if (solver.volumeGrid())
+    run.rowsPerSample = solver.volumeRowsPerSampleOfStrand(0);
+    if (solver.volumeGrid()) {
         run.kernel = solver.volumeGrid()->kernel();
+        run.gridWeight = solver.volumeGrid()->totalWeight();
+    }
     solver.copyPositions(run.positions);
     return run;
 }
@@ -563,6 +568,7 @@ TEST(Volume, ADensePatchSplatsEveryFewStrandsWithTheSameBitsOnAnyThreads)
     int stride = 0;
     const std::vector<glm::vec3> one = settledPatch(1.0f, 1, &stride), three = settledPatch(1.0f, 3);
     EXPECT_GE(stride, 4); // 0.5 mm apart in 8 mm cells
+    EXPECT_EQ(runPatch(densePatch(), 1.0f, 1, 2, 2).rowsPerSample, 1); // the trilinear grid: row by row
     ASSERT_EQ(one.size(), three.size());
     EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(glm::vec3)), 0);
     // The tips spread apart where at volume 0 they hang in a 7.5 mm square.
@@ -593,6 +599,24 @@ TEST(Volume, ADenseGroomMeetsItsNearestNodeWithTheSameBitsOnAnyThreads)
         1e3 * spread);
     EXPECT_NEAR(hanging, 0.127f, 0.002f);
     EXPECT_GT(spread, 1.05f * hanging);
+}
+
+// A dense groom splats and samples its rows a few at a time, at their centroid, with the weight of
+// all of them (Solver::volumeSplat): as many as span at most three cells along the strand. The
+// 128 x 128 patch of 16 particles lays 8.1 mm cells: its 10 mm segments go two by two, 5 mm ones
+// four by four; either way the grid holds every particle's weight (a strand's length over its
+// segments, for each of its 16 particles).
+TEST(Volume, ADenseGroomSplatsItsRowsAFewAtATimeWithTheirWholeWeight)
+{
+    for (const float segment : { 0.01f, 0.005f }) {
+        const PatchRun run = runPatch(densePatch(128, 16, 0.001f, segment), 1.0f, 2, 1, 3);
+        EXPECT_EQ(run.kernel, HairVolumeGrid::Kernel::NearestSmoothed);
+        EXPECT_EQ(run.rowsPerSample, segment > 0.008f ? 2 : 4) << segment;
+        const double expected = 128.0 * 128.0 * 16.0 * segment;
+        EXPECT_NEAR(run.gridWeight, expected, 1e-4 * expected) << segment;
+        for (const glm::vec3& p : run.positions)
+            ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
+    }
 }
 
 } // namespace

@@ -52,6 +52,7 @@ public:
     int samples() const { return m_samples; } // the backdrop's, as made; 0: not multisampled
     // GL_TEXTURE_2D: the frame is single-sampled.
     GLuint frameColourTexture() const { return m_frame.colour; }
+    GLuint frameDepthTexture() const { return m_frame.depth; } // GL_TEXTURE_2D, DEPTH_COMPONENT24
     // GL_TEXTURE_2D_MULTISAMPLE, while samples() > 0.
     GLuint backdropColourTexture() const { return m_backdrop.colour; }
     GLuint backdropDepthTexture() const { return m_backdrop.depth; }

@@ -337,7 +337,7 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
 
     GlFunctions* gl = m_gl;
     gl->glEnable(GL_DEPTH_TEST);
-    gl->glDepthMask(GL_TRUE);
+    gl->glDepthMask(m_depthWrites ? GL_TRUE : GL_FALSE);
     gl->glDisable(GL_CULL_FACE); // the ribbon's winding flips with the strand's screen direction
     // Thin strands carry their coverage in alpha, which blending turns into thickness (with MSAA,
     // in each sample a strand covers). Not alpha-to-coverage: it gives every fragment of a pixel
@@ -382,6 +382,7 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     }
 
     gl->glDisable(GL_BLEND);
+    gl->glDepthMask(GL_TRUE);
     m_lastDrawnStrands = drawn;
     m_lastDrewLines = lines;
     m_lastDrewTwoPasses = drawnInTwoPasses;

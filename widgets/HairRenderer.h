@@ -77,6 +77,10 @@ public:
     // Draws `fraction` (0..1) of the strands, an even sample, each made wider to make up for the
     // rest; `coarse` draws one sample per segment (the points themselves) whatever the zoom.
     void draw(const RenderView& view, const HairStyle& style, float fraction = 1.0f, bool coarse = false);
+    // Whether draw() writes the strands' depth (it always tests it). Into a target whose pixels are
+    // larger than the frame's (HairLowResTarget), not: a partly covering strand in front would hide
+    // the strands beside it that share its pixel there but not in the frame.
+    void setDepthWrites(bool on) { m_depthWrites = on; }
 
     // Every strand as a line strip through its points (no subdivision), with another program,
     // already bound, that reads the points as hair.vert does (unit 0) from attribute 0 (the shadow
@@ -135,6 +139,7 @@ private:
     std::size_t m_skippedStrands = 0;
     std::size_t m_lastDrawnStrands = 0;
     bool m_lastDrewLines = false;
+    bool m_depthWrites = true;
     bool m_lastDrewTwoPasses = false;
     int m_lastSamplesPerSegment = 0;
     QString m_error;

@@ -90,6 +90,9 @@ Viewport::Viewport(QWidget* parent)
     rebuildGuides();
     m_frameClock.invalidate();
     // After a reduced paint, once nothing has asked for another for a moment, draw everything.
+    // WISP_FULL_RESOLUTION_HAIR: never half resolution, to compare with.
+    if (qEnvironmentVariableIsSet("WISP_FULL_RESOLUTION_HAIR"))
+        m_halfResolutionWhileMoving = false;
     m_refineTimer.setSingleShot(true);
     m_refineTimer.setInterval(300);
     connect(&m_refineTimer, &QTimer::timeout, this, [this] {
@@ -116,6 +119,7 @@ void Viewport::releaseGl()
         m_guides.release();
         m_hair.release();
         m_shadowMap.release();
+        m_lowRes.release();
         m_head.release();
         m_body.release();
         m_background.release();
@@ -293,6 +297,12 @@ void Viewport::setLevelOfDetail(bool enabled)
 {
     m_levelOfDetail = enabled;
     m_detail.reset();
+    scheduleFrame();
+}
+
+void Viewport::setHalfResolutionWhileMoving(bool enabled)
+{
+    m_halfResolutionWhileMoving = enabled;
     scheduleFrame();
 }
 

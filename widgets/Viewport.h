@@ -33,6 +33,7 @@
 #include "widgets/GuideRenderer.h"
 #include "widgets/HairChildren.h"
 #include "widgets/HairDetail.h"
+#include "widgets/HairLowResTarget.h"
 #include "widgets/HairRenderer.h"
 #include "widgets/HairShadowMap.h"
 #include "widgets/HeadRenderer.h"
@@ -91,6 +92,9 @@ public:
         // Below 1: the preview the view draws while things move (that fraction of the strands,
         // widened, coarse curves), for comparing it with full detail.
         float previewFraction = 1.0f;
+        // The hair at half the width and height, laid over the full-resolution image, as the view
+        // draws it while the camera or the hair moves (HairLowResTarget), for comparing the two.
+        bool hairAtHalfResolution = false;
     };
     QImage renderImage(QSize pixels, const ImageOptions& options);
     QImage renderImage(QSize pixels) { return renderImage(pixels, ImageOptions{}); }
@@ -160,6 +164,14 @@ public:
     bool levelOfDetail() const { return m_levelOfDetail; }
     float lastDrawnFraction() const { return m_lastFraction; } // of the strands, in the last paint
     bool lastPaintWasPreview() const { return m_lastPreview; }
+    // While the camera or the hair moves, the hair is drawn at half the width and height and laid
+    // over the frame (HairLowResTarget); a full-resolution paint follows once they stop (as the
+    // level of detail's refinement). On by default where GL is a software rasteriser (where
+    // rasterising the strands is most of a paint), off on a graphics card; grabs and images always
+    // draw it at full resolution.
+    void setHalfResolutionWhileMoving(bool enabled);
+    bool halfResolutionWhileMoving() const { return m_halfResolutionWhileMoving.value_or(m_softwareGl); }
+    bool lastPaintHairAtHalfResolution() const { return m_lastHairAtHalfResolution; }
     std::size_t lastDrawnStrands() const { return m_hair.lastDrawnStrands(); } // parents and children
 
     // Drawn density (HairChildren): `density` times the frame's strands are drawn, 0.25..4. Above 1
@@ -236,6 +248,8 @@ private:
     // drawBackdrop, multisampled, resolved into the backdrop cache or the frame (GlCanvas).
     void drawResolvedBackdrop(const RenderView& view, bool intoCache);
     void paintImage(const RenderView& view); // paintGL's work for renderImage()
+    // The hair into the bound frame, at full resolution or through m_lowRes.
+    void drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution);
     void uploadFrameIfChanged(); // streams m_frame's strands to the hair renderer once per frame
     void updateOverlays(const RenderView& view);
     void glUnavailable(const QString& why);
@@ -257,6 +271,7 @@ private:
         OrbitCamera camera;
         bool transparent = false;
         float previewFraction = 1.0f;
+        bool hairAtHalfResolution = false;
     };
     std::optional<ImageRender> m_image;
 
@@ -305,6 +320,9 @@ private:
     std::vector<Capsule> m_bodyCapsules;
     HairRenderer m_hair;
     HairShadowMap m_shadowMap;
+    HairLowResTarget m_lowRes;
+    std::optional<bool> m_halfResolutionWhileMoving; // unset: m_softwareGl
+    bool m_lastHairAtHalfResolution = false;
     bool m_hairMoved = false; // points uploaded since the shadow map was rendered
     glm::vec3 m_shadowLight{ 0.0f }; // the light the shadow map was rendered for
     std::uint64_t m_shadowPaint = 0; // m_paintCount when it was rendered

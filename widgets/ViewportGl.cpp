@@ -99,6 +99,9 @@ void Viewport::initializeGL()
     // Without shadows (a driver without float framebuffers) the hair is still drawn, lit.
     if (!m_shadowMap.initialize(m_gl))
         qWarning("Viewport: %s", qPrintable(m_shadowMap.error()));
+    // Without it (a shader that does not build) the hair is always drawn at full resolution.
+    if (!m_lowRes.initialize(m_gl))
+        qWarning("Viewport: %s", qPrintable(m_lowRes.error()));
     if (!m_guides.initialize(m_gl))
         errors << m_guides.error();
     if (!m_compositor.initialize(m_gl))
@@ -319,6 +322,7 @@ void Viewport::paintGL(bool framebuffersRemade)
     paintClock.start();
     m_passTimes = PassTimes{};
     m_passClock.start(gl, m_passTiming);
+    const bool hairIsNew = m_frameDirty; // a frame arrived: the hair moves
     uploadFrameIfChanged();
     m_passTimes.uploadMs = m_passClock.lap();
 
@@ -355,7 +359,11 @@ void Viewport::paintGL(bool framebuffersRemade)
     const bool preview = m_levelOfDetail && !refining && m_detail.previewing();
     const float fraction = preview ? m_detail.fraction(m_hair.strandCount()) : 1.0f;
     // Below a density of 1 only that share of the strands is drawn, widened (see setDisplayDensity).
-    m_hair.draw(view, drawnStyle(), std::min(m_displayDensity, 1.0f) * fraction, preview);
+    // While the camera or the hair moves (this paint's backdrop or hair differs from the last's), the
+    // hair at half resolution; the refinement paint after the motion draws it whole.
+    const bool moving = !settled || hairIsNew;
+    const bool halfResolution = halfResolutionWhileMoving() && moving && !refining && !m_grabbing;
+    drawHair(view, std::min(m_displayDensity, 1.0f) * fraction, preview, halfResolution);
     // Last: its hidden parts are drawn over everything.
     updateBrushRings(view);
     if (m_brushCursor)
@@ -375,7 +383,7 @@ void Viewport::paintGL(bool framebuffersRemade)
     m_lastPreview = preview;
     if (m_levelOfDetail && !refining)
         m_detail.paintTook(m_lastPaintMs, preview, fraction, strands);
-    if (preview)
+    if (preview || m_lastHairAtHalfResolution)
         m_refineTimer.start();
 
     updateOverlays(view);
@@ -439,9 +447,32 @@ void Viewport::paintImage(const RenderView& view)
     m_gl->glViewport(
         0, 0, static_cast<GLsizei>(imageView.viewportPixels.x), static_cast<GLsizei>(imageView.viewportPixels.y));
     const float preview = std::clamp(m_image->previewFraction, 0.0f, 1.0f);
-    m_hair.draw(imageView, drawnStyle(), std::min(m_displayDensity, 1.0f) * preview, preview < 1.0f);
+    drawHair(imageView, std::min(m_displayDensity, 1.0f) * preview, preview < 1.0f, m_image->hairAtHalfResolution);
     m_gl->glDisable(GL_DEPTH_TEST);
     checkGlErrors(m_gl, "Viewport::paintImage");
+}
+
+void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution)
+{
+    const QSize pixels = m_canvas.size();
+    m_lastHairAtHalfResolution = halfResolution && m_lowRes.begin(pixels, m_canvas.frameDepthTexture());
+    if (!m_lastHairAtHalfResolution) {
+        m_hair.draw(view, drawnStyle(), fraction, preview);
+        return;
+    }
+    // The same view over half the pixels: each strand's width in them, its coverage, and how finely
+    // its curve is sampled follow (HairRenderer::draw reads viewportPixels).
+    RenderView half = view;
+    half.viewportPixels
+        = glm::vec2(static_cast<float>(m_lowRes.size().width()), static_cast<float>(m_lowRes.size().height()));
+    // No depth writes: its texels are four pixels, and a partly covering strand would hide the
+    // strands beside it (measured on the default groom: 11 % of the hair's ink lost with them).
+    m_hair.setDepthWrites(false);
+    m_hair.draw(half, drawnStyle(), fraction, preview);
+    m_hair.setDepthWrites(true);
+    m_canvas.bindFrame();
+    m_lowRes.composite(pixels, m_canvas.frameDepthTexture(), view.projection);
+    m_gl->glEnable(GL_DEPTH_TEST); // as HairRenderer::draw leaves it
 }
 
 void Viewport::updateOverlays(const RenderView& view)

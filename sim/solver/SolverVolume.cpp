@@ -345,7 +345,7 @@ void Solver::volumeSplat(Block& b, const StepConstants& c, int slot)
             const Lane distance2 = dx * dx + dy * dy + dz * dz;
             float spacing2 = 0.0f;
             for (int l = 0; l < kLanes; ++l)
-                spacing2 = std::max(spacing2, distance2[l]); // NaN (a broken strand) leaves it, stride 1 below
+                spacing2 = std::max(spacing2, distance2[l]); // skips a NaN: a broken lane is not tame, splats 0
             while (level < 4 && std::isfinite(spacing2)
                 && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)
                 ++level;

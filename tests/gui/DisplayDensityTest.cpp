@@ -2,6 +2,7 @@
 // a preview that keeps the hair's coverage. The scene is the editor's default groom, draped.
 
 #include "GuiTestSupport.h"
+#include "SettledViewportTest.h"
 
 #include "app/editor/Document.h"
 #include "app/editor/ProjectController.h"
@@ -92,32 +93,8 @@ TEST(HairChildren, NoChildBridgesAPartingOrTwoLooks)
 
 // --- In the viewport ----------------------------------------------------------------------------
 
-class DisplayDensityTest : public ::testing::Test {
+class DisplayDensityTest : public test::SettledViewportTest {
 protected:
-    static void SetUpTestSuite()
-    {
-        Document document;
-        const SceneToSettle scene{ document.head(), document.regions(), document.soloRegion(), document.parameters(),
-            {} };
-        settled = new SettledFrame(settleScene(scene, 0, 2));
-        head = new TriangleMesh(document.head());
-    }
-    static void TearDownTestSuite()
-    {
-        delete settled;
-        delete head;
-    }
-    void SetUp() override
-    {
-        ASSERT_TRUE(settled->frame) << settled->error;
-        viewport = std::make_unique<Viewport>();
-        viewport->resize(585, 710); // the editor's default view between its docks
-        viewport->setHead(*head);
-        viewport->setBody(defaultBody(*head));
-        viewport->setShowGrowthOverlay(false);
-        viewport->setShowGrid(false);
-        viewport->setFrame(settled->frame);
-    }
     // Pixels where the hair changes the bare head's image (more than 24 levels over R+G+B).
     static double covered(const QImage& hair, const QImage& bare)
     {
@@ -138,9 +115,6 @@ protected:
         viewport->setFrame(settled->frame);
         return bare;
     }
-    static inline SettledFrame* settled = nullptr;
-    static inline TriangleMesh* head = nullptr;
-    std::unique_ptr<Viewport> viewport;
 };
 
 TEST_F(DisplayDensityTest, FourTimesDrawsFourTimesTheStrandsAndCoversNoLess)

@@ -2,6 +2,7 @@
 // coverage and colour as at full resolution, hair behind the head kept behind it, and a still view
 // drawn whole. The scene is the editor's default groom, draped, in its default view.
 
+#include "SettledViewportTest.h"
 #include "ViewportTestSupport.h"
 
 #include "app/editor/Document.h"
@@ -18,39 +19,12 @@
 namespace wisp {
 namespace {
 
-class HairLowResTest : public ::testing::Test {
+class HairLowResTest : public test::SettledViewportTest {
 protected:
-    static void SetUpTestSuite()
-    {
-        Document document;
-        const SceneToSettle scene{ document.head(), document.regions(), document.soloRegion(), document.parameters(),
-            {} };
-        settled = new SettledFrame(settleScene(scene, 0, 2));
-        head = new TriangleMesh(document.head());
-    }
-    static void TearDownTestSuite()
-    {
-        delete settled;
-        delete head;
-    }
-    void SetUp() override
-    {
-        ASSERT_TRUE(settled->frame) << settled->error;
-        viewport = std::make_unique<Viewport>();
-        viewport->resize(585, 710); // the editor's default view between its docks
-        viewport->setHead(*head);
-        viewport->setBody(defaultBody(*head));
-        viewport->setShowGrowthOverlay(false);
-        viewport->setShowGrid(false);
-        viewport->setFrame(settled->frame);
-    }
     static int difference(QRgb a, QRgb b)
     {
         return std::abs(qRed(a) - qRed(b)) + std::abs(qGreen(a) - qGreen(b)) + std::abs(qBlue(a) - qBlue(b));
     }
-    static inline SettledFrame* settled = nullptr;
-    static inline TriangleMesh* head = nullptr;
-    std::unique_ptr<Viewport> viewport;
 };
 
 TEST_F(HairLowResTest, HalfResolutionHairKeepsTheCoverageAndColourAndStaysBehindTheHead)

@@ -265,16 +265,13 @@ GltfLines readLines(const gltf::Document& model, std::vector<std::string>& warni
     return out;
 }
 
-} // namespace
-
-Result<GltfLines> readGltfLines(const std::string& path)
+// Runs one whole read of `path` and turns whatever it throws into the error the reader returns:
+// a ReadFailure names its place in the file, anything else (memory, a JSON parser's surprise)
+// is said without one. Every glTF read, heads and strands alike, ends here, so none can throw.
+template <typename T, typename ReadFn> Result<T> readGuarded(const std::string& path, ReadFn&& read)
 {
     try {
-        std::vector<std::string> warnings;
-        const gltf::Document document = readDocumentOf(path, warnings);
-        GltfLines lines = readLines(document, warnings);
-        lines.warnings = std::move(warnings);
-        return lines;
+        return read();
     } catch (const ReadFailure& failure) {
         return IoError{ path, failure.location, failure.message };
     } catch (const std::bad_alloc&) {
@@ -284,22 +281,29 @@ Result<GltfLines> readGltfLines(const std::string& path)
     }
 }
 
+} // namespace
+
+Result<GltfLines> readGltfLines(const std::string& path)
+{
+    return readGuarded<GltfLines>(path, [&] {
+        std::vector<std::string> warnings;
+        const gltf::Document document = readDocumentOf(path, warnings);
+        GltfLines lines = readLines(document, warnings);
+        lines.warnings = std::move(warnings);
+        return lines;
+    });
+}
+
 Result<MeshReadResult> readGltf(const std::string& path)
 {
-    try {
+    return readGuarded<MeshReadResult>(path, [&] {
         MeshReadResult result;
         const gltf::Document document = readDocumentOf(path, result.warnings);
         result.mesh = gltf::mergeScene(document, result.warnings);
         if (const std::string invalid = validateMesh(result.mesh); !invalid.empty())
             fail({}, invalid);
         return result;
-    } catch (const ReadFailure& failure) {
-        return IoError{ path, failure.location, failure.message };
-    } catch (const std::bad_alloc&) {
-        return IoError{ path, {}, "not enough memory to read this glTF file" };
-    } catch (const std::exception& e) {
-        return IoError{ path, {}, "unexpected error while reading: " + withoutJsonPrefix(e.what()) };
-    }
+    });
 }
 
 } // namespace wisp::io

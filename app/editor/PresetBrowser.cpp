@@ -1,6 +1,7 @@
 #include "app/editor/PresetBrowser.h"
 
 #include "app/editor/Document.h"
+#include "app/editor/ListMark.h"
 #include "app/editor/PresetThumbnails.h"
 
 #include <QDesktopServices>
@@ -37,24 +38,15 @@ namespace wisp {
 
 namespace {
 
-constexpr int kMarkSizePx = 16; // the bundled mark
+constexpr int kMarkSizePx = kListMarkSizePx; // the bundled mark
 constexpr int kIconSizePx = 48; // the list's icons: thumbnails, or the mark until they come
 constexpr int kMaxFileStemChars = 64; // file names stay short whatever the preset's name
 
-// The "bundled" mark: a small filled square in `colour`. User presets get a blank icon of the
-// same size so that all names line up.
+// The "bundled" mark: a small filled square in `colour` (ListMark.h); user presets get a blank
+// icon of the same size so that all names line up.
 QIcon bundledMark(const QColor& colour)
 {
-    QPixmap pixmap(kMarkSizePx, kMarkSizePx);
-    pixmap.fill(Qt::transparent);
-    if (colour.isValid()) {
-        QPainter painter(&pixmap);
-        painter.setRenderHint(QPainter::Antialiasing);
-        painter.setPen(Qt::NoPen);
-        painter.setBrush(colour);
-        painter.drawRoundedRect(QRectF(4.0, 4.0, kMarkSizePx - 8.0, kMarkSizePx - 8.0), 1.5, 1.5);
-    }
-    return QIcon(pixmap);
+    return listMark(colour, ListMarkShape::Square);
 }
 
 // A file stem every system accepts, from a preset's name: lower case, letters and digits, every

@@ -1,13 +1,12 @@
 #include "app/editor/RegionPanel.h"
 
 #include "app/editor/Document.h"
+#include "app/editor/ListMark.h"
 #include "sim/groom/GrowthRegion.h"
 
 #include <QHBoxLayout>
 #include <QIcon>
 #include <QListWidget>
-#include <QPainter>
-#include <QPixmap>
 #include <QScopedValueRollback>
 #include <QStyle>
 #include <QToolButton>
@@ -20,22 +19,11 @@ namespace wisp {
 
 namespace {
 
-constexpr int kMarkSizePx = 16; // the list's default icon size, so names line up with or without the mark
-
-// The solo mark: a filled dot in the selection colour. Rows without it get a blank icon of the
-// same size, so that solo'ing a region does not shift its name sideways.
+// The solo mark: a filled dot in the selection colour (ListMark.h). Rows without it get a blank
+// icon of the same size, so that solo'ing a region does not shift its name sideways.
 QIcon soloMark(const QColor& colour)
 {
-    QPixmap pixmap(kMarkSizePx, kMarkSizePx);
-    pixmap.fill(Qt::transparent);
-    if (colour.isValid()) {
-        QPainter painter(&pixmap);
-        painter.setRenderHint(QPainter::Antialiasing);
-        painter.setPen(Qt::NoPen);
-        painter.setBrush(colour);
-        painter.drawEllipse(QRectF(3.0, 3.0, kMarkSizePx - 6.0, kMarkSizePx - 6.0));
-    }
-    return QIcon(pixmap);
+    return listMark(colour, ListMarkShape::Dot);
 }
 
 QToolButton* makeButton(QWidget* parent, const QIcon& icon, const QString& text, const QString& tooltip)
@@ -66,7 +54,7 @@ RegionPanel::RegionPanel(Document* document, QWidget* parent)
     m_list->setObjectName(QStringLiteral("regionList"));
     m_list->setSelectionMode(QAbstractItemView::SingleSelection);
     m_list->setEditTriggers(QAbstractItemView::DoubleClicked | QAbstractItemView::EditKeyPressed);
-    m_list->setIconSize(QSize(kMarkSizePx, kMarkSizePx));
+    m_list->setIconSize(QSize(kListMarkSizePx, kListMarkSizePx));
     m_list->setToolTip(tr("Growth regions: each grows its own hair where it is painted.\n"
                           "Double-click or F2 renames; the check box shows or hides a region."));
     layout->addWidget(m_list, 1);

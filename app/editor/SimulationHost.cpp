@@ -44,40 +44,29 @@ void SimulationHost::setScene(TriangleMesh head, std::vector<float> growthWeight
     region.name = "growth map";
     region.weights = std::move(growthWeights);
     region.values = values;
-    Regions regions{ { std::move(region) }, kNoSolo, true };
-    std::optional<Scene> superseded; // freed after unlocking: the simulation thread never waits on a free
-    {
-        std::lock_guard lock(m_mutex);
-        superseded
-            = std::exchange(m_inbox.scene, Scene{ nullptr, std::move(head), std::move(regions), std::move(values) });
-        m_inbox.parameters.reset(); // the scene's values are newer
-        m_inbox.regions.reset();
-    }
-    m_wake.notify_one();
+    postScene(Scene{ nullptr, std::move(head), Regions{ { std::move(region) }, kNoSolo, true }, std::move(values) });
 }
 
 void SimulationHost::setScene(
     TriangleMesh head, std::vector<GrowthRegion> regions, std::uint32_t soloId, ParameterValues values)
 {
-    std::optional<Scene> superseded;
-    {
-        std::lock_guard lock(m_mutex);
-        superseded = std::exchange(m_inbox.scene,
-            Scene{ nullptr, std::move(head), Regions{ std::move(regions), soloId, false }, std::move(values) });
-        m_inbox.parameters.reset();
-        m_inbox.regions.reset();
-    }
-    m_wake.notify_one();
+    postScene(Scene{ nullptr, std::move(head), Regions{ std::move(regions), soloId, false }, std::move(values) });
 }
 
 void SimulationHost::setScene(
     HeadModelPtr head, std::vector<GrowthRegion> regions, std::uint32_t soloId, ParameterValues values)
 {
-    std::optional<Scene> superseded;
+    postScene(Scene{ std::move(head), {}, Regions{ std::move(regions), soloId, false }, std::move(values) });
+}
+
+// A new scene replaces any the simulation thread has not taken yet, and the parameters and regions
+// waiting beside it (the scene's are newer).
+void SimulationHost::postScene(Scene scene)
+{
+    std::optional<Scene> superseded; // freed after unlocking: the simulation thread never waits on a free
     {
         std::lock_guard lock(m_mutex);
-        superseded = std::exchange(m_inbox.scene,
-            Scene{ std::move(head), {}, Regions{ std::move(regions), soloId, false }, std::move(values) });
+        superseded = std::exchange(m_inbox.scene, std::move(scene));
         m_inbox.parameters.reset();
         m_inbox.regions.reset();
     }

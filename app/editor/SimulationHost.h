@@ -177,6 +177,7 @@ private:
         ParameterValues values;
     };
     enum class Action { Step, Reset };
+    void postScene(Scene scene);
     struct Wetting {
         std::vector<std::uint64_t> keyIdentities;
         float wetness = 0.0f;

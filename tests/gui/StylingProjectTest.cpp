@@ -33,11 +33,9 @@ TEST_F(StylingTest, EditsComeBackWithTheProjectAndPresetsLeaveThem)
     QTemporaryDir dir;
     const QString path = dir.filePath(QStringLiteral("styled.wisp"));
     ASSERT_TRUE(projects->saveAs(path)) << projects->lastError().toStdString();
-    ASSERT_TRUE(projects->newProject());
-    settle();
+    ASSERT_TRUE(settleNewGroom([&] { return projects->newProject(); }));
     EXPECT_TRUE(document()->style()->empty());
-    ASSERT_TRUE(projects->open(path)) << projects->lastError().toStdString();
-    settle();
+    ASSERT_TRUE(settleNewGroom([&] { return projects->open(path); })) << projects->lastError().toStdString();
     EXPECT_EQ(*document()->style(), styled);
     // The same density as the saved groom: compare the styled strands' rest shapes.
     const Strands reopened = byIdentity(frame(), true);

@@ -103,6 +103,21 @@ protected:
     // Waits until the host has taken every edit: no regroom for a while.
     void settle() { wisp::test::waitUntilRegroomsStop(*window->simulation(), kQuietMs); }
     static constexpr int kQuietMs = 800 * WISP_SLOW_BUILD_FACTOR;
+    // Runs `action`, which gives the host a new groom (File ▸ New, Open), and waits until a frame
+    // of it arrives, then until every edit is taken. The quiet wait alone is not enough there: on a
+    // loaded machine the new groom and drape can take longer than kQuietMs, and the frame read
+    // after it was still the old groom's (a reopened project compared 882 of its 1,080 styled
+    // strands against the New project's). False when no new groom came within the scene guard.
+    [[nodiscard]] bool settleNewGroom(const std::function<bool()>& action)
+    {
+        const std::uint64_t before = frame()->groomVersion;
+        if (!action())
+            return false;
+        if (!wisp::test::waitUntil([&] { return frame()->groomVersion > before; }, wisp::test::kSceneWaitMs))
+            return false;
+        settle();
+        return true;
+    }
     // Steps a paused simulation `count` times, as fast as it goes.
     void runSteps(int count)
     {

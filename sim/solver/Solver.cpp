@@ -292,9 +292,12 @@ void Solver::step()
     // Blocks are independent within a substep, so any split over threads gives the same bits.
     const bool globalShape = !m_globalShapeRows.empty();
     const bool volume = s.volume > 0.0f && !m_blocks.empty();
-    auto advance = [&](int first, int end) {
+    // Runs substeps [first, end) block by block; with volume each block first reads the grid before
+    // each substep, and splats its end state for the next pass when `splatAtEnd`.
+    auto advance = [&](int first, int end, bool splatAtEnd) {
         m_pool->parallelFor(m_blocks.size(), 4, [&](std::size_t begin, std::size_t stop) {
-            HairVolumeGrid* const splatInto = volume && !m_volumeGrid->empty() ? m_volumeGrid.get() : nullptr;
+            HairVolumeGrid* const splatInto
+                = volume && splatAtEnd && !m_volumeGrid->empty() ? m_volumeGrid.get() : nullptr;
             const int slot = splatInto ? splatInto->claimSlot() : 0;
             for (std::size_t i = begin; i < stop; ++i) {
                 Block& b = m_blocks[i];
@@ -325,20 +328,39 @@ void Solver::step()
         // that time hair moving at 0.5 m/s moves 4 mm, half a cell, so the field read at each
         // particle's own new position barely differs, while the pass is most of a substep's cost.
         // The push's stiffness is capped for the refresh interval, not the substep (volumePass).
-        const int refreshEvery = volumeRefreshSubsteps(c.dt);
+        // A dense groom lays it every kVolumeDenseRefreshSeconds, across steps if need be (the
+        // blocks still read it before every substep), SolverVolume.cpp.
+        const bool dense = volumeDense();
+        const int refreshEvery = volumeRefreshSubsteps(c.dt, dense);
+        const bool acrossSteps = dense && refreshEvery > c.substeps;
         if (m_headToWorld != m_volumeSplatHead) // the last splats are in the last step's head space
             m_volumeSplatted = false;
-        for (int first = 0; first < c.substeps; first += refreshEvery) {
-            const int end = std::min(first + refreshEvery, c.substeps);
-            c.substep = first;
-            volumePass(c, end - first);
-            advance(first, end);
-            m_volumeSplatted = true;
+        // Each step lays the grid first, unless a dense groom's interval goes on from the last step
+        // (and the grid is still there with its fixed point).
+        if (!acrossSteps || !m_volumeGrid || m_volumeUnitsStale)
+            m_volumeSubstepsToPass = 0;
+        m_volumeSubstepsToPass = std::min(m_volumeSubstepsToPass, refreshEvery);
+        for (int first = 0; first < c.substeps;) {
+            if (m_volumeSubstepsToPass == 0) {
+                c.substep = first;
+                volumePass(c, acrossSteps ? refreshEvery : std::min(refreshEvery, c.substeps - first));
+                m_volumeSubstepsToPass = refreshEvery;
+            }
+            const int end = std::min(first + m_volumeSubstepsToPass, c.substeps);
+            m_volumeSubstepsToPass -= end - first;
+            // The blocks splat for the next pass when it comes right after this run (or first thing
+            // next step); a dense groom's run in the middle of its interval does not.
+            const bool splatAtEnd = m_volumeSubstepsToPass == 0 || !acrossSteps;
+            advance(first, end, splatAtEnd);
+            m_volumeSplatted = splatAtEnd;
+            if (splatAtEnd)
+                m_volumeSplatHead = m_headToWorld;
+            first = end;
         }
-        m_volumeSplatHead = m_headToWorld;
     } else {
-        advance(0, c.substeps); // each block runs all its substeps in one go, in cache
+        advance(0, c.substeps, false); // each block runs all its substeps in one go, in cache
         m_volumeSplatted = false;
+        m_volumeSubstepsToPass = 0;
     }
     m_previousHeadToWorld = m_headToWorld;
     m_time += s.timeStepSeconds;

@@ -151,7 +151,10 @@ private:
     // The grid's pass (splat and finish) before a substep; its read, block by block, just before
     // the block advances (the block is then in cache for both).
     void volumePass(const StepConstants& c, int substepsUntilNext);
-    static int volumeRefreshSubsteps(float substepSeconds); // substeps between two grid passes
+    // Substeps between two grid passes; for a dense groom (volumeDense()) they may span steps.
+    static int volumeRefreshSubsteps(float substepSeconds, bool dense = false);
+    // The grid is (or will be, when laid) Kernel::NearestSmoothed: more than kVolumeFullGridParticles.
+    bool volumeDense() const;
     void volumeRead(Block& b, const StepConstants& c) const;
     void volumeSplat(Block& b, const StepConstants& c, int slot); // into the grid's slot, and its level of detail
     struct VolumeRead {
@@ -188,6 +191,9 @@ private:
     // last run in the head space of m_volumeSplatHead; whatever moves particles clears it.
     bool m_volumeSplatted = false;
     glm::mat4 m_volumeSplatHead{ 1.0f };
+    // Substeps until the grid is laid again (0: before the next substep). Only a dense groom carries
+    // it from one step to the next (kVolumeDenseRefreshSeconds); otherwise each step lays it first.
+    int m_volumeSubstepsToPass = 0;
     bool m_volumeUnitsStale = true; // the particles' weights changed since the grid's fixed point was set
     float m_scalpArea = 0.0f; // m², given or estimated
     float m_hairPerScalpArea = 0.0f; // metres of drawn hair per m² of scalp

@@ -133,12 +133,34 @@ constexpr float kVolumeMaxAcceleration = 30.0f; // m/s²
 // The push's stiffness is at most this times (cell / substep)², measured: 1 substep at 60 Hz with
 // 8 segments leaves 0 % of tips moving at 0.6 (VolumeTest's settling cases).
 constexpr float kVolumeStableShare = 0.6f;
+// The same for a dense groom's grid (HairVolumeGrid::Kernel::NearestSmoothed). Its [1 2 1]/4
+// smoothing takes out the shortest waves, the ones an explicit spring overshoots first. In one
+// dimension, for particles displaced by a wave of k (u = k x cell), the push's spring is
+// stiffness x u sin(u) x T(u) / cell², where T is the grid's transfer: sinc⁴(u/2) for a
+// trilinear splat and read, sinc²(u/2) cos²(u/2) = (sin u / u)² for the nearest node smoothed
+// (the central-difference gradient gives the sin u). Its peak is 0.69 against the trilinear
+// grid's 1.04, and a spring taken explicitly over T seconds is stable while ω T < 2. At 2.4 the
+// peak is ω T = sqrt(2.4 x 0.69) = 1.3 (the trilinear grid at 0.6: 0.8), and groom-1m, its grid laid
+// every 1/30 s (kVolumeDenseRefreshSeconds), keeps the stiffness it had laid every 1/60 s at 0.6.
+// Measured: VolumeTest.cpp, Volume.ADenseGroomLaidEveryOtherStepSettles.
+constexpr float kVolumeStableShareSmoothed = 2.4f;
 // Damping of the motion along the push where hair is denser than its target, per second: the share
 // 1 - exp(-this dt) of it is taken each substep (the same at any substep count).
 constexpr float kVolumeDampingPerSecond = 30.0f;
 // The grid is laid again after at least this long of substeps (Solver::step): 1/120 s, the default
 // substep (two at 60 Hz), so the default scene lays it every substep.
 constexpr float kVolumeRefreshSeconds = 1.0f / 120.0f;
+// A dense groom (volumeDense(): more than kVolumeFullGridParticles, the NearestSmoothed grid) lays
+// it only after this long, across steps when its substeps are longer (groom-1m, one substep at
+// 60 Hz: every other step); the blocks still read it before every substep. The splat and the
+// sums are per particle, as costly as the read (groom-1m: each about 0.27 of the solver's own
+// step), so this halves them. Hair moving at 0.5 m/s moves 17 mm in 1/30 s, under one of
+// groom-1m's 27 mm cells. The push's stiffness is capped for the longer interval as for any
+// refresh (volumePass, kVolumeStableShareSmoothed). Reading it only once a pass with the
+// interval's impulse would halve the read too, but the push, which holds the hair up against
+// gravity, then comes in kicks and the tips saw up and down by about g dt² a step (VolumeTest's
+// Volume.ADenseGroomLaidEveryOtherStepSettles: 18.7 % of a dense patch's tips moving after 10 s).
+constexpr float kVolumeDenseRefreshSeconds = 1.0f / 30.0f;
 // A particle that moved this far in one substep (or went non-finite) is left out of the grid.
 constexpr float kVolumeMaxMoveMetres = 0.5f;
 
@@ -150,9 +172,10 @@ constexpr float kVolumeMaxMoveMetres = 0.5f;
 // own volume: Petrovic et al.'s pressure term, here only above the target, so hair at or below
 // its volume feels nothing). Both change only the previous position (the velocity): the position
 // is as the last substep left it, so length and contact stay as they were.
-int Solver::volumeRefreshSubsteps(float substepSeconds)
+int Solver::volumeRefreshSubsteps(float substepSeconds, bool dense)
 {
-    return std::max(1, static_cast<int>(kVolumeRefreshSeconds / substepSeconds + 1e-3f));
+    const float refresh = dense ? kVolumeDenseRefreshSeconds : kVolumeRefreshSeconds;
+    return std::max(1, static_cast<int>(refresh / substepSeconds + 1e-3f));
 }
 
 // A row's sixteen strands lie side by side on the scalp. Where a dense groom puts them much closer
@@ -197,6 +220,12 @@ int Solver::volumeStrideOfStrand(std::size_t strand) const
         return 0;
     const std::vector<std::uint8_t>& strides = m_blocks[m_slotOfStrand[strand].block].volumeStrides;
     return strides.empty() ? 1 : *std::min_element(strides.begin(), strides.end());
+}
+
+bool Solver::volumeDense() const
+{
+    return m_volumeGrid ? m_volumeGrid->kernel() == HairVolumeGrid::Kernel::NearestSmoothed
+                        : m_particleCount > kVolumeFullGridParticles;
 }
 
 void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
@@ -258,7 +287,9 @@ void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
     // (The grid is read for substepsUntilNext substeps: the spring's step is that long.)
     const float cell = grid.cellMetres();
     const float refreshSeconds = c.dt * static_cast<float>(substepsUntilNext);
-    v.stiffness = std::min(kVolumeStiffness, kVolumeStableShare * cell * cell / (refreshSeconds * refreshSeconds));
+    const float stableShare
+        = grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed ? kVolumeStableShareSmoothed : kVolumeStableShare;
+    v.stiffness = std::min(kVolumeStiffness, stableShare * cell * cell / (refreshSeconds * refreshSeconds));
     v.pushDamping = 1.0f - std::exp(-kVolumeDampingPerSecond * c.dt);
 }
 

@@ -97,6 +97,19 @@ inline void prefetchRows(const Solver::Block& block, std::uint32_t j)
     ahead(block.rest.data());
 }
 
+// The next block's root and follicle direction (its shape rows 0 and 1, the only ones a step
+// reads): its first instructions load them, and `perf annotate` put a tenth of the kernel's time
+// on that load (a cold row every block, which the hardware prefetcher does not follow: two rows
+// read of every sixteen). Asked for a whole block ahead, in inline assembly: GCC 12 dropped a
+// __builtin_prefetch of these rows (here, and in prefetchRows, where it took that function's
+// other prefetches with it), so that the binary had none of them. A hint only.
+inline void prefetchNextShape(const Solver::Block& block)
+{
+    const char* at = reinterpret_cast<const char*>(block.shape.data() + block.points);
+    for (std::size_t byte = 0; byte < 2 * sizeof(ShapeRow); byte += 64)
+        asm volatile("prefetcht0 %0" : : "m"(*(at + byte)));
+}
+
 // Substeps [firstSubstep, endSubstep) of the step; the last call of a step (endSubstep ==
 // c.substeps) also puts back strands that went non-finite or flew away.
 template <bool Transformed, bool GlobalShape>
@@ -106,6 +119,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     ParticleRow* row = block.state.data();
     const RestRow* rest = block.rest.data();
     const GlobalShapeRow* globalShape = block.globalShape.data(); // null while it is off
+    prefetchNextShape(block);
 
     // Roots in world space at the start and the end of this step; substeps interpolate between them.
     const V3 rootHead{ block.shape[0].x, block.shape[0].y, block.shape[0].z };
@@ -450,6 +464,13 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
 }
 
 } // namespace
+
+void prefetchBlock(const Solver::Block& block)
+{
+    const char* at = reinterpret_cast<const char*>(&block);
+    for (std::size_t byte = 0; byte < sizeof(Solver::Block); byte += 64)
+        __builtin_prefetch(at + byte);
+}
 
 void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, bool globalShape)
 {

@@ -295,12 +295,19 @@ void Solver::step()
     // Runs substeps [first, end) block by block; with volume each block first reads the grid before
     // each substep, and splats its end state for the next pass when `splatAtEnd`.
     auto advance = [&](int first, int end, bool splatAtEnd) {
-        m_pool->parallelFor(m_blocks.size(), 4, [&](std::size_t begin, std::size_t stop) {
+        // Runs of blocks long enough that a thread's next block is nearly always the next one in
+        // memory (the kernel asks for its rows and fields while running this one: a run's first
+        // block starts cold), short enough that the threads still finish together.
+        const std::size_t grain
+            = std::clamp<std::size_t>(m_blocks.size() / (32 * static_cast<std::size_t>(threadCount())), 4, 64);
+        m_pool->parallelFor(m_blocks.size(), grain, [&](std::size_t begin, std::size_t stop) {
             HairVolumeGrid* const splatInto
                 = volume && splatAtEnd && !m_volumeGrid->empty() ? m_volumeGrid.get() : nullptr;
             const int slot = splatInto ? splatInto->claimSlot() : 0;
             for (std::size_t i = begin; i < stop; ++i) {
                 Block& b = m_blocks[i];
+                if (i + 1 < stop) // the next block this thread runs: its fields, while this one runs
+                    prefetchBlock(m_blocks[i + 1]);
                 auto run = [&](int from, int to) { advanceBlock(b, c, from, to, globalShape); };
                 if (!volume) {
                     run(first, end);

@@ -20,8 +20,11 @@ namespace {
 
 // Gusts: a few travelling sine waves in space and time per axis, evaluated at the strand's root;
 // smooth, cheap, deterministic, and different across the head. Amplitude about 1.
-// t: the time in seconds modulo 1000 (gustTime).
-V3 gust(const V3& p, float t)
+// t: the time in seconds modulo 1000 (gustTime). Inlined: GCC kept it out of line, and each call
+// (five a block per substep on groom-1m's 16-particle strands) passed and returned its lanes
+// through memory (perf: 3 % of a groom-1m run in the function). Its arithmetic is the same either
+// way (`wisp-cli simulate --out` byte-identical, with and without turbulence).
+[[gnu::always_inline]] inline V3 gust(const V3& p, float t)
 {
     return { 0.6f * lsin(13.0f * p.x + 7.0f * p.z + 2.3f * t)
             + 0.4f * lsin(-9.0f * p.y + 11.0f * p.z + 3.7f * t + 1.0f),
@@ -97,6 +100,19 @@ inline void prefetchRows(const Solver::Block& block, std::uint32_t j)
     ahead(block.rest.data());
 }
 
+// The next block's root and follicle direction (its shape rows 0 and 1, the only ones a step
+// reads): its first instructions load them, and `perf annotate` put a tenth of the kernel's time
+// on that load (a cold row every block, which the hardware prefetcher does not follow: two rows
+// read of every sixteen). Asked for a whole block ahead, in inline assembly: GCC 12 dropped a
+// __builtin_prefetch of these rows (here, and in prefetchRows, where it took that function's
+// other prefetches with it), so that the binary had none of them. A hint only.
+inline void prefetchNextShape(const Solver::Block& block)
+{
+    const char* at = reinterpret_cast<const char*>(block.shape.data() + block.points);
+    for (std::size_t byte = 0; byte < 2 * sizeof(ShapeRow); byte += 64)
+        asm volatile("prefetcht0 %0" : : "m"(*(at + byte)));
+}
+
 // Substeps [firstSubstep, endSubstep) of the step; the last call of a step (endSubstep ==
 // c.substeps) also puts back strands that went non-finite or flew away.
 template <bool Transformed, bool GlobalShape>
@@ -106,6 +122,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     ParticleRow* row = block.state.data();
     const RestRow* rest = block.rest.data();
     const GlobalShapeRow* globalShape = block.globalShape.data(); // null while it is off
+    prefetchNextShape(block);
 
     // Roots in world space at the start and the end of this step; substeps interpolate between them.
     const V3 rootHead{ block.shape[0].x, block.shape[0].y, block.shape[0].z };
@@ -450,6 +467,13 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
 }
 
 } // namespace
+
+void prefetchBlock(const Solver::Block& block)
+{
+    const char* at = reinterpret_cast<const char*>(&block);
+    for (std::size_t byte = 0; byte < sizeof(Solver::Block); byte += 64)
+        __builtin_prefetch(at + byte);
+}
 
 void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, bool globalShape)
 {

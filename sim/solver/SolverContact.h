@@ -7,6 +7,10 @@
 #include "sim/solver/SolverLanes.h"
 #include "sim/solver/SolverRows.h"
 
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+
 namespace wisp::lanes {
 
 // (Internal linkage, as when this lived in one file: each kernel file inlines these as it sees fit.)
@@ -38,20 +42,39 @@ struct FieldNode {
     return n;
 }
 
+// The 16 lanes' node indices as the scalar code that loads the nodes reads them: stored once and
+// read back as integers. Taken lane by lane from the register instead, each took an extract
+// (vmovd, vpextrd, vextracti32x4: about 20 instructions for 16 lanes, several of them two
+// micro-ops), and perf annotate put a fifth of the kernel's samples on those extracts. The same
+// nodes are read either way.
+struct NodeIndices {
+    alignas(64) std::int32_t at[kLanes];
+    [[gnu::always_inline]] explicit NodeIndices(const Mask& index)
+    {
+        std::memcpy(at, &index, sizeof at);
+        asm("" : "+m"(at)); // read back from memory: GCC would otherwise take the lanes out one by one again
+    }
+    [[gnu::always_inline]] const glm::vec4* node(const Solver::CollisionField& field, int l) const
+    {
+        return field.nodes + static_cast<std::ptrdiff_t>(at[l]);
+    }
+};
+
 // Asks the cache for the nodes sampleField will read near `p` (head space): the field is tens of
 // megabytes, and its read was a quarter of groom-1m's step, waiting on memory. A hint only: what is
 // computed does not change.
 [[gnu::always_inline]] inline void prefetchField(const Solver::CollisionField& field, const V3& p)
 {
-    const Mask index = nearestNode(field, p).index;
+    const NodeIndices index(nearestNode(field, p).index);
     for (int l = 0; l < kLanes; ++l)
-        __builtin_prefetch(&field.nodes[static_cast<std::size_t>(index[l])]);
+        __builtin_prefetch(index.node(field, l));
 }
 
 [[gnu::always_inline]] inline SdfSample sampleField(const Solver::CollisionField& field, const V3& p)
 {
     const FieldNode node = nearestNode(field, p);
-    const Mask ix = node.ix, iy = node.iy, iz = node.iz, index = node.index;
+    const Mask ix = node.ix, iy = node.iy, iz = node.iz;
+    const NodeIndices index(node.index);
     SdfSample s;
     Lane d;
 #if defined(__AVX512F__)
@@ -59,7 +82,7 @@ struct FieldNode {
     // nodes 4k, 4k+1, 4k+2, 4k+3 in its 128-bit block k, so the unpacks and shuffles leave lane
     // m of each result with node m (a few shuffles instead of moving 64 floats one by one). (The
     // zero-masked unpacks: the plain ones start from an undefined register GCC 12 warns about.)
-    auto load = [&](int l) { return _mm_loadu_ps(&field.nodes[static_cast<std::size_t>(index[l])].x); };
+    auto load = [&](int l) { return _mm_loadu_ps(&index.node(field, l)->x); };
     auto gather4 = [&](int first) {
         __m512 r = _mm512_castps128_ps512(load(first));
         r = _mm512_insertf32x4(r, load(first + 4), 1);
@@ -75,7 +98,7 @@ struct FieldNode {
     s.normal.z = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab1, ce1, 0xEE));
 #elif defined(__AVX__)
     // The same transposes, eight nodes to a pair of 128-bit blocks per register.
-    auto load = [&](int l) { return _mm_loadu_ps(&field.nodes[static_cast<std::size_t>(index[l])].x); };
+    auto load = [&](int l) { return _mm_loadu_ps(&index.node(field, l)->x); };
     for (int half = 0; half < kLanes; half += 8) {
         auto gather2 = [&](int first) {
             return _mm256_insertf128_ps(_mm256_castps128_ps256(load(half + first)), load(half + first + 4), 1);
@@ -92,7 +115,7 @@ struct FieldNode {
     }
 #else
     for (int l = 0; l < kLanes; ++l) {
-        const glm::vec4 node = field.nodes[static_cast<std::size_t>(index[l])];
+        const glm::vec4 node = *index.node(field, l);
         d[l] = node.x;
         s.normal.x[l] = node.y;
         s.normal.y[l] = node.z;

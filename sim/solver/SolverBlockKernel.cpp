@@ -18,7 +18,7 @@ using namespace lanes;
 
 namespace {
 
-// Gusts: a few travelling sine waves in space and time per axis, evaluated at the strand's root;
+// Gusts: a few travelling sine waves in space and time per axis, sampled along each strand (advanceBlockAs);
 // smooth, cheap, deterministic, and different across the head. Amplitude about 1.
 // t: the time in seconds modulo 1000 (gustTime). Inlined: GCC kept it out of line, and each call
 // (five a block per substep on groom-1m's 16-particle strands) passed and returned its lanes

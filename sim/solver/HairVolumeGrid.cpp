@@ -151,6 +151,27 @@ void HairVolumeGrid::clear(ThreadPool* pool)
     });
 }
 
+namespace {
+// A row of kBrick (4) nodes along x in finish(): their four sums each (Sums), one AVX-512 register
+// of floats (two of AVX2); the slots' fixed point and its conversion through doubles.
+using Float16 = float __attribute__((vector_size(16 * sizeof(float))));
+using Fixed16 = std::int64_t __attribute__((vector_size(16 * sizeof(std::int64_t))));
+using Double16 = double __attribute__((vector_size(16 * sizeof(double))));
+using Float4 = float __attribute__((vector_size(4 * sizeof(float)))); // one value of four nodes
+} // namespace
+
+template <typename Fn> void HairVolumeGrid::forRowsOf(std::size_t brick, Fn&& fn) const
+{
+    const int bx = static_cast<int>(brick % static_cast<std::size_t>(m_bricks.x));
+    const int by
+        = static_cast<int>((brick / static_cast<std::size_t>(m_bricks.x)) % static_cast<std::size_t>(m_bricks.y));
+    const int bz = static_cast<int>(brick / brickLayerSize());
+    const int i0 = bx * kBrick, nodes = std::min(kBrick, m_dims.x - i0);
+    for (int k = bz * kBrick; k < std::min((bz + 1) * kBrick, m_dims.z); ++k)
+        for (int j = by * kBrick; j < std::min((by + 1) * kBrick, m_dims.y); ++j)
+            fn(i0, j, k, index(i0, j, k), nodes);
+}
+
 void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
 {
     const std::size_t count = m_nodes.size(), bricks = m_live.size();
@@ -199,82 +220,170 @@ void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
     m_liveList = std::move(now);
     m_solidDensity = solidDensity;
 
-    // First the sums (every live node; the slots are emptied for the next splats), then what
-    // sample() reads, which takes the neighbours' sums.
+    // What sample() reads, in three passes over the live nodes, a row of kBrick nodes along x at a
+    // time (one vector each): the slots' sums (the slots emptied for the next splats), then the
+    // smoothing (Kernel::NearestSmoothed) and the node's hair, then the density's gradient, which
+    // takes the neighbours' density. Each pass is one wait for the pool: on a dense groom's small
+    // grid (25,000 nodes) the waits, not the arithmetic, were most of finish().
+    static_assert(sizeof(Sums) == 4 * sizeof(float) && sizeof(Accumulator) == 4 * sizeof(std::int64_t),
+        "a row of kBrick nodes is read and written as one vector of each");
     const float perVolume = 1.0f / (m_cell * m_cell * m_cell);
     const double perWeight = 1.0 / static_cast<double>(m_weightUnits), perMove = 1.0 / static_cast<double>(m_moveUnits);
-    auto store = [&](std::size_t n, const Sums& sums) { // what sample() reads of the hair at node n
-        Node& node = m_nodes[n];
-        node.weight = sums.weight;
-        node.moveX = sums.moveX;
-        node.moveY = sums.moveY;
-        node.moveZ = sums.moveZ;
-        m_hairDensity[n] = node.weight * perVolume;
+    // A row's sums over the slots, as floats (weight, move x, y, z a node, as Sums), into `out`.
+    auto sumRow = [&](std::size_t n0, int nodes, float* out) {
+        if (nodes == kBrick) {
+            Fixed16 total{};
+            for (int c = 0; c < m_slots; ++c) { // integers: the same sum in any order
+                Accumulator* const a = &m_accumulators[static_cast<std::size_t>(c) * count + n0];
+                Fixed16 v;
+                std::memcpy(&v, a, sizeof v);
+                total += v;
+                std::memset(static_cast<void*>(a), 0, sizeof v);
+            }
+            const Double16 units{ perWeight, perMove, perMove, perMove, perWeight, perMove, perMove, perMove, perWeight,
+                perMove, perMove, perMove, perWeight, perMove, perMove, perMove };
+            const Float16 sums = __builtin_convertvector(__builtin_convertvector(total, Double16) * units, Float16);
+            std::memcpy(out, &sums, sizeof sums);
+            return;
+        }
+        for (int i = 0; i < nodes; ++i) {
+            Accumulator sum{};
+            for (int c = 0; c < m_slots; ++c) {
+                Accumulator& a = m_accumulators[static_cast<std::size_t>(c) * count + n0 + i];
+                sum.weight += a.weight;
+                sum.moveX += a.moveX;
+                sum.moveY += a.moveY;
+                sum.moveZ += a.moveZ;
+                a = Accumulator{};
+            }
+            float* const s = out + 4 * i;
+            s[0] = static_cast<float>(sum.weight * perWeight);
+            s[1] = static_cast<float>(sum.moveX * perMove);
+            s[2] = static_cast<float>(sum.moveY * perMove);
+            s[3] = static_cast<float>(sum.moveZ * perMove);
+        }
     };
-    forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+    // [1 2 1]/4 of `from` along `axis` over a row, into `out` (as Sums). At the grid's faces the
+    // missing neighbour is the node itself, so the smoothing keeps the total weight. Nodes outside
+    // the live bricks hold zeros (emptied above), and no sum reaches them.
+    const std::ptrdiff_t steps[3] = { 1, m_dims.x, static_cast<std::ptrdiff_t>(m_dims.x) * m_dims.y };
+    auto smoothRow = [&](const Sums* from, int axis, int i0, int j, int k, std::size_t n0, int nodes, float* out) {
+        const std::ptrdiff_t step = steps[axis];
+        const int size = m_dims[axis];
+        if (nodes == kBrick && (axis != 0 || (i0 > 0 && i0 + kBrick < size))) {
+            const int at = axis == 1 ? j : k;
+            Float16 here, before, after;
+            std::memcpy(&here, from + n0, sizeof here);
+            if (axis != 0 && at == 0)
+                before = here;
+            else
+                std::memcpy(&before, from + n0 - step, sizeof before);
+            if (axis != 0 && at + 1 == size)
+                after = here;
+            else
+                std::memcpy(&after, from + n0 + step, sizeof after);
+            const Float16 smoothed = 0.25f * (before + after) + 0.5f * here;
+            std::memcpy(out, &smoothed, sizeof smoothed);
+            return;
+        }
+        for (int i = 0; i < nodes; ++i) {
+            const std::size_t n = n0 + static_cast<std::size_t>(i);
+            const int at = axis == 0 ? i0 + i : axis == 1 ? j : k;
+            const Sums& here = from[n];
+            const Sums& before = at > 0 ? from[n - static_cast<std::size_t>(step)] : here;
+            const Sums& after = at + 1 < size ? from[n + static_cast<std::size_t>(step)] : here;
+            float* const s = out + 4 * i;
+            s[0] = 0.25f * (before.weight + after.weight) + 0.5f * here.weight;
+            s[1] = 0.25f * (before.moveX + after.moveX) + 0.5f * here.moveX;
+            s[2] = 0.25f * (before.moveY + after.moveY) + 0.5f * here.moveY;
+            s[3] = 0.25f * (before.moveZ + after.moveZ) + 0.5f * here.moveZ;
+        }
+    };
+    auto storeRow = [&](std::size_t n0, int nodes, const float* sums) { // what sample() reads of the hair
+        for (int i = 0; i < nodes; ++i) {
+            Node& node = m_nodes[n0 + static_cast<std::size_t>(i)];
+            const float* const s = sums + 4 * i;
+            node.weight = s[0];
+            node.moveX = s[1];
+            node.moveY = s[2];
+            node.moveZ = s[3];
+            m_hairDensity[n0 + static_cast<std::size_t>(i)] = s[0] * perVolume;
+        }
+    };
+    auto rowsOfLive = [&](std::size_t begin, std::size_t end, auto&& fn) {
         for (std::size_t l = begin; l < end; ++l)
-            forNodesOf(m_liveList[l], [&](int, int, int, std::size_t n) {
-                Accumulator sum{};
-                for (int c = 0; c < m_slots; ++c) { // integers: the same sum in any order
-                    Accumulator& a = m_accumulators[static_cast<std::size_t>(c) * count + n];
-                    sum.weight += a.weight;
-                    sum.moveX += a.moveX;
-                    sum.moveY += a.moveY;
-                    sum.moveZ += a.moveZ;
-                    a = Accumulator{};
-                }
-                const Sums sums{ static_cast<float>(sum.weight * perWeight), static_cast<float>(sum.moveX * perMove),
-                    static_cast<float>(sum.moveY * perMove), static_cast<float>(sum.moveZ * perMove) };
-                if (m_kernel == Kernel::NearestSmoothed)
-                    m_sums[n] = sums;
-                else
-                    store(n, sums);
-            });
-    });
+            forRowsOf(m_liveList[l], fn);
+    };
     if (m_kernel == Kernel::NearestSmoothed) {
-        smooth(pool); // into m_smoothed
+        // The sums and the smoothing along x and y touch only nodes of one z plane: a layer of
+        // bricks (those of one brick z, contiguous in m_liveList, which is in brick order) does
+        // all three in one go. Along z it takes the layers beside: the next pass.
+        std::vector<std::size_t> layers;
+        for (std::size_t l = 0; l < m_liveList.size(); ++l)
+            if (l == 0 || m_liveList[l] / brickLayerSize() != m_liveList[l - 1] / brickLayerSize())
+                layers.push_back(l);
+        layers.push_back(m_liveList.size());
+        forRange(pool, layers.size() - 1, 1, [&](std::size_t begin, std::size_t end) {
+            const std::size_t first = layers[begin], last = layers[end];
+            rowsOfLive(
+                first, last, [&](int, int, int, std::size_t n0, int nodes) { sumRow(n0, nodes, &m_sums[n0].weight); });
+            rowsOfLive(first, last, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+                smoothRow(m_sums.data(), 0, i0, j, k, n0, nodes, &m_smoothed[n0].weight);
+            });
+            rowsOfLive(first, last, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+                smoothRow(m_smoothed.data(), 1, i0, j, k, n0, nodes, &m_sums[n0].weight);
+            });
+        });
         forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
-            for (std::size_t l = begin; l < end; ++l)
-                forNodesOf(m_liveList[l], [&](int, int, int, std::size_t n) { store(n, m_smoothed[n]); });
+            rowsOfLive(begin, end, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+                alignas(64) float sums[4 * kBrick];
+                smoothRow(m_sums.data(), 2, i0, j, k, n0, nodes, sums);
+                storeRow(n0, nodes, sums);
+            });
+        });
+    } else {
+        forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+            rowsOfLive(begin, end, [&](int, int, int, std::size_t n0, int nodes) {
+                alignas(64) float sums[4 * kBrick];
+                sumRow(n0, nodes, sums);
+                storeRow(n0, nodes, sums);
+            });
         });
     }
     const float inv2h = 0.5f / m_cell;
     forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t l = begin; l < end; ++l)
-            forNodesOf(m_liveList[l], [&](int i, int j, int k, std::size_t n) {
-                Node& node = m_nodes[n];
+        rowsOfLive(begin, end, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+            if (nodes == kBrick && i0 > 0 && i0 + kBrick < m_dims.x && j > 0 && j + 1 < m_dims.y && k > 0
+                && k + 1 < m_dims.z) {
+                auto density = [&](std::size_t n) { // hair and head at four nodes from n
+                    Float4 hair, solid;
+                    std::memcpy(&hair, &m_hairDensity[n], sizeof hair);
+                    std::memcpy(&solid, &m_solid[n], sizeof solid);
+                    return hair + solid * m_solidDensity;
+                };
+                const std::size_t sy = static_cast<std::size_t>(steps[1]), sz = static_cast<std::size_t>(steps[2]);
+                const Float4 here = density(n0), gx = (density(n0 + 1) - density(n0 - 1)) * inv2h,
+                             gy = (density(n0 + sy) - density(n0 - sy)) * inv2h,
+                             gz = (density(n0 + sz) - density(n0 - sz)) * inv2h;
+                for (int i = 0; i < kBrick; ++i) {
+                    Node& node = m_nodes[n0 + static_cast<std::size_t>(i)];
+                    node.density = here[i];
+                    node.gradX = gx[i];
+                    node.gradY = gy[i];
+                    node.gradZ = gz[i];
+                }
+                return;
+            }
+            for (int i = i0; i < i0 + nodes; ++i) {
+                Node& node = m_nodes[n0 + static_cast<std::size_t>(i - i0)];
+                const std::size_t n = n0 + static_cast<std::size_t>(i - i0);
                 node.density = m_hairDensity[n] + m_solid[n] * m_solidDensity;
                 node.gradX = (densityAt(i + 1, j, k) - densityAt(i - 1, j, k)) * inv2h;
                 node.gradY = (densityAt(i, j + 1, k) - densityAt(i, j - 1, k)) * inv2h;
                 node.gradZ = (densityAt(i, j, k + 1) - densityAt(i, j, k - 1)) * inv2h;
-            });
-    });
-}
-
-void HairVolumeGrid::smooth(ThreadPool* pool)
-{
-    // [1 2 1]/4 along x, then y, then z (m_sums -> m_smoothed -> m_sums -> m_smoothed). At the grid's
-    // faces the missing neighbour is the node itself, so the smoothing keeps the total weight. Nodes
-    // outside the live bricks hold zeros (finish() empties them), and no sum reaches them.
-    const std::ptrdiff_t step[3] = { 1, m_dims.x, static_cast<std::ptrdiff_t>(m_dims.x) * m_dims.y };
-    for (int axis = 0; axis < 3; ++axis) {
-        const std::vector<Sums>& from = axis == 1 ? m_smoothed : m_sums;
-        std::vector<Sums>& to = axis == 1 ? m_sums : m_smoothed;
-        const int size = m_dims[axis];
-        forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
-            for (std::size_t l = begin; l < end; ++l)
-                forNodesOf(m_liveList[l], [&](int i, int j, int k, std::size_t n) {
-                    const int at = axis == 0 ? i : axis == 1 ? j : k;
-                    const Sums& here = from[n];
-                    const Sums& before = at > 0 ? from[n - static_cast<std::size_t>(step[axis])] : here;
-                    const Sums& after = at + 1 < size ? from[n + static_cast<std::size_t>(step[axis])] : here;
-                    to[n] = Sums{ 0.25f * (before.weight + after.weight) + 0.5f * here.weight,
-                        0.25f * (before.moveX + after.moveX) + 0.5f * here.moveX,
-                        0.25f * (before.moveY + after.moveY) + 0.5f * here.moveY,
-                        0.25f * (before.moveZ + after.moveZ) + 0.5f * here.moveZ };
-                });
+            }
         });
-    }
+    });
 }
 
 namespace {
@@ -474,6 +583,46 @@ constexpr LaneBlend laneBlend(int stride)
 constexpr LaneBlend kLaneBlends[5] = { laneBlend(1), laneBlend(2), laneBlend(4), laneBlend(8), laneBlend(16) };
 } // namespace
 
+void HairVolumeGrid::nearestRow(const CellRow& cells, SampleRow& out, int stride) const
+{
+    // Each sampled lane's node, eight floats: sixteen nodes, transposed into the eight arrays in
+    // three rounds of two-register shuffles, in place of eight scalar stores a lane. A lane between
+    // samples (the blend sets it) and a lane outside the grid read a node of zeros.
+    static const Node kEmpty{};
+    const float* rows[kRowLanes];
+    for (int l = 0; l < kRowLanes; ++l)
+        rows[l] = (l % stride == 0 || l == kRowLanes - 1) && cells.nearest[l] >= 0
+            ? &m_nodes[static_cast<std::size_t>(cells.nearest[l])].density
+            : &kEmpty.density;
+    // v[k]: lanes k and k + 8 (a lane's eight values). Each round swaps a bit of the register's
+    // number with a bit of the position in it (the lane's with the value's), until register f
+    // holds value f of lanes 0..15 in order.
+    Float16 v[8];
+    for (int k = 0; k < 8; ++k) {
+        const Float8 low = load8(rows[k]), high = load8(rows[k + 8]);
+        v[k] = __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    }
+    for (int k = 0; k < 4; ++k) {
+        const Float16 a = v[k], b = v[k + 4];
+        v[k] = __builtin_shufflevector(a, b, 0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24, 25, 26, 27);
+        v[k + 4] = __builtin_shufflevector(a, b, 4, 5, 6, 7, 20, 21, 22, 23, 12, 13, 14, 15, 28, 29, 30, 31);
+    }
+    for (int k : { 0, 1, 4, 5 }) {
+        const Float16 a = v[k], b = v[k + 2];
+        v[k] = __builtin_shufflevector(a, b, 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24, 25, 12, 13, 28, 29);
+        v[k + 2] = __builtin_shufflevector(a, b, 2, 3, 18, 19, 6, 7, 22, 23, 10, 11, 26, 27, 14, 15, 30, 31);
+    }
+    for (int k : { 0, 2, 4, 6 }) {
+        const Float16 a = v[k], b = v[k + 1];
+        v[k] = __builtin_shufflevector(a, b, 0, 16, 2, 18, 4, 20, 6, 22, 8, 24, 10, 26, 12, 28, 14, 30);
+        v[k + 1] = __builtin_shufflevector(a, b, 1, 17, 3, 19, 5, 21, 7, 23, 9, 25, 11, 27, 13, 29, 15, 31);
+    }
+    float* const fields[8] = { out.density, out.gradX, out.gradY, out.gradZ, out.momentumX, out.momentumY,
+        out.momentumZ, out.hair }; // Node's order
+    for (int f = 0; f < 8; ++f)
+        std::memcpy(fields[f], &v[f], sizeof v[f]);
+}
+
 void HairVolumeGrid::sampleRow(
     const float* x, const float* y, const float* z, SampleRow& out, int count, int stride) const
 {
@@ -481,32 +630,35 @@ void HairVolumeGrid::sampleRow(
     cellsOf(x, y, z, count, cells);
     const std::ptrdiff_t strideY = m_dims.x, strideZ = strideY * m_dims.y;
     stride = count == kRowLanes ? std::clamp(stride, 1, kRowLanes) : 1;
-    for (int l = 0; l < count; l = l + stride < count || l == count - 1 ? l + stride : count - 1) {
-        Float8 sum{};
-        if (m_kernel == Kernel::NearestSmoothed) {
-            if (cells.nearest[l] >= 0)
-                sum = load8(&m_nodes[static_cast<std::size_t>(cells.nearest[l])].density);
-        } else if (cells.node[l] >= 0) {
-            const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
-            const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
-            const Node* const base = m_nodes.data() + cells.node[l];
-            for (int dz = 0; dz < 2; ++dz)
-                for (int dy = 0; dy < 2; ++dy) {
-                    const Node* const row = base + dy * strideY + dz * strideZ;
-                    const float wyz = wz[dz] * wy[dy];
-                    sum += load8(&row[0].density) * (wyz * wx[0]);
-                    sum += load8(&row[1].density) * (wyz * wx[1]);
-                }
+    if (m_kernel == Kernel::NearestSmoothed && count == kRowLanes)
+        nearestRow(cells, out, stride);
+    else
+        for (int l = 0; l < count; l = l + stride < count || l == count - 1 ? l + stride : count - 1) {
+            Float8 sum{};
+            if (m_kernel == Kernel::NearestSmoothed) {
+                if (cells.nearest[l] >= 0)
+                    sum = load8(&m_nodes[static_cast<std::size_t>(cells.nearest[l])].density);
+            } else if (cells.node[l] >= 0) {
+                const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
+                const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
+                const Node* const base = m_nodes.data() + cells.node[l];
+                for (int dz = 0; dz < 2; ++dz)
+                    for (int dy = 0; dy < 2; ++dy) {
+                        const Node* const row = base + dy * strideY + dz * strideZ;
+                        const float wyz = wz[dz] * wy[dy];
+                        sum += load8(&row[0].density) * (wyz * wx[0]);
+                        sum += load8(&row[1].density) * (wyz * wx[1]);
+                    }
+            }
+            out.density[l] = sum[0];
+            out.gradX[l] = sum[1];
+            out.gradY[l] = sum[2];
+            out.gradZ[l] = sum[3];
+            out.momentumX[l] = sum[4];
+            out.momentumY[l] = sum[5];
+            out.momentumZ[l] = sum[6];
+            out.hair[l] = sum[7];
         }
-        out.density[l] = sum[0];
-        out.gradX[l] = sum[1];
-        out.gradY[l] = sum[2];
-        out.gradZ[l] = sum[3];
-        out.momentumX[l] = sum[4];
-        out.momentumY[l] = sum[5];
-        out.momentumZ[l] = sum[6];
-        out.hair[l] = sum[7];
-    }
     if (stride == 1)
         return;
     // The lanes between two samples: the linear blend of the two, in one vector pass per array.

@@ -166,6 +166,8 @@ private:
         alignas(64) float fz[kRowLanes];
     };
     void cellsOf(const float* x, const float* y, const float* z, int count, CellRow& out) const;
+    // sampleRow's reads for Kernel::NearestSmoothed and a full row: lanes 0, stride, ... and 15.
+    void nearestRow(const CellRow& cells, SampleRow& out, int stride) const;
     // splatRow for Kernel::NearestSmoothed: into slot grid `grid`, marking `touched` bricks.
     void splatNearest(std::int64_t* grid, std::uint8_t* touched, const CellRow& cells, const float* weight,
         const float* moveX, const float* moveY, const float* moveZ, int count, int stride);
@@ -184,13 +186,13 @@ private:
             * (static_cast<std::size_t>(j) + static_cast<std::size_t>(m_dims.y) * k);
     }
 
-    // Kernel::NearestSmoothed: the sums along one axis, smoothed; each pass reads one, writes the other.
-    void smooth(ThreadPool* pool);
     Kernel m_kernel = Kernel::Trilinear;
     struct Sums {
         float weight, moveX, moveY, moveZ;
     };
-    std::vector<Sums> m_sums, m_smoothed; // per node (Kernel::NearestSmoothed only)
+    // Per node (Kernel::NearestSmoothed only): the sums, smoothed along one axis after another
+    // ([1 2 1]/4 along x into m_smoothed, along y back into m_sums, along z into the nodes).
+    std::vector<Sums> m_sums, m_smoothed;
 
     glm::ivec3 m_dims{ 0 };
     glm::vec3 m_origin{ 0.0f };
@@ -215,6 +217,10 @@ private:
             * (static_cast<std::size_t>(by) + static_cast<std::size_t>(m_bricks.y) * bz);
     }
     template <typename Fn> void forNodesOf(std::size_t brick, Fn&& fn) const;
+    // fn(i0, j, k, n0, nodes) for each row of a brick along x: `nodes` nodes from n0 = index(i0, j, k)
+    // (kBrick, fewer at the grid's far x face).
+    template <typename Fn> void forRowsOf(std::size_t brick, Fn&& fn) const;
+    std::size_t brickLayerSize() const { return static_cast<std::size_t>(m_bricks.x) * m_bricks.y; }
     glm::ivec3 m_bricks{ 0 };
     std::vector<std::uint8_t> m_touched; // per slot and brick: a splat of the slot wrote there
     std::vector<std::uint8_t> m_live; // per brick: its nodes hold the last finish's sums

@@ -442,13 +442,14 @@ void Solver::volumeRead(Block& b, const StepConstants& c) const
             push = V3{ lane(here.gradX), lane(here.gradY), lane(here.gradZ) }
                 * ((-v.stiffness) * lmin(excess, splat(1.0f)) * inverseKeep);
             const Lane length = lsqrt(dot(push, push));
-            push = push * select(length > kVolumeMaxAcceleration, kVolumeMaxAcceleration / length, splat(1.0f));
+            const Lane inverseLength = splat(1.0f) / length; // one division where there were four
+            push = push * select(length > kVolumeMaxAcceleration, kVolumeMaxAcceleration * inverseLength, splat(1.0f));
             if (c.transformed)
                 push = transform(c.rotation, push);
             // Pressure alone makes hair bounce on the hair beneath it (a stiff spring taken
             // explicitly): the motion along the push is damped where it pushes.
             const Mask along = pushing & (length > 0.0f);
-            direction = select(along, V3{ push.x / length, push.y / length, push.z / length }, V3{});
+            direction = select(along, push * inverseLength, V3{});
             push = push * splat(dt2);
         }
         for (std::uint32_t j = std::max<std::uint32_t>(first, 1); j < first + count; ++j) {

@@ -182,6 +182,59 @@ TEST(HairVolumeGrid, AStridedRowBlendsTheSamplesAroundEachLane)
     EXPECT_NE(row.density[5], at(5).density); // not sampled there
 }
 
+// A dense groom's grid reads a row's sixteen nodes at once (HairVolumeGrid::nearestRow, a transpose
+// in registers): each lane gets exactly what it reads alone, every one of the node's eight values;
+// lanes outside the grid read zeros.
+TEST(HairVolumeGrid, ANearestRowReadsWhatEachLaneReadsAlone)
+{
+    HairVolumeGrid grid;
+    ASSERT_TRUE(grid.setBounds(
+        glm::vec3(-0.1f), glm::vec3(0.1f), 1, HairVolumeGrid::kMaxNodes, HairVolumeGrid::Kernel::NearestSmoothed));
+    grid.setSolid([](const glm::vec3& p) { return glm::length(p) - 0.02f; });
+    grid.setWeightBound(2000.0);
+    for (int i = 0; i < 2000; ++i) {
+        const float t = static_cast<float>(i);
+        grid.splat(0, { 0.05f * std::sin(t * 0.37f), 0.05f * std::sin(t * 0.11f), 0.05f * std::cos(t * 0.23f) },
+            1.0f + 0.5f * std::sin(t), { 0.001f * std::cos(t), 0.0005f, -0.002f * std::sin(t * 0.7f) });
+    }
+    grid.finish(nullptr, 1e4f);
+    alignas(64) float x[16], y[16], z[16];
+    for (int l = 0; l < 16; ++l) {
+        x[l] = -0.045f + 0.006f * static_cast<float>(l);
+        y[l] = 0.007f * static_cast<float>(l % 5) - 0.01f;
+        z[l] = l == 3 ? 5.0f : 0.004f * static_cast<float>(l % 3); // lane 3 outside the grid
+    }
+    auto expectLane = [&](const HairVolumeGrid::SampleRow& row, int l) {
+        const HairVolumeGrid::Sample alone = grid.sample({ x[l], y[l], z[l] });
+        EXPECT_EQ(row.density[l], alone.density) << "lane " << l;
+        EXPECT_EQ(row.gradX[l], alone.gradient.x) << "lane " << l;
+        EXPECT_EQ(row.gradY[l], alone.gradient.y) << "lane " << l;
+        EXPECT_EQ(row.gradZ[l], alone.gradient.z) << "lane " << l;
+        EXPECT_EQ(row.hair[l], alone.hair) << "lane " << l;
+        if (alone.hair > 0.0f) {
+            EXPECT_FLOAT_EQ(row.momentumX[l] / row.hair[l], alone.move.x) << "lane " << l;
+            EXPECT_FLOAT_EQ(row.momentumY[l] / row.hair[l], alone.move.y) << "lane " << l;
+            EXPECT_FLOAT_EQ(row.momentumZ[l] / row.hair[l], alone.move.z) << "lane " << l;
+        }
+    };
+    HairVolumeGrid::SampleRow row;
+    grid.sampleRow(x, y, z, row, 16, 1);
+    for (int l = 0; l < 16; ++l)
+        expectLane(row, l);
+    EXPECT_EQ(row.density[3], 0.0f);
+    EXPECT_EQ(row.hair[3], 0.0f);
+    int inHair = 0;
+    for (int l = 0; l < 16; ++l)
+        inHair += row.hair[l] > 0.0f && row.gradX[l] != 0.0f;
+    EXPECT_GE(inHair, 12); // the row runs through the hair: the values compared are not all zeros
+    // Every fourth lane and the last: those read alone, the ones between blend them.
+    grid.sampleRow(x, y, z, row, 16, 4);
+    for (int l : { 0, 4, 8, 12, 15 })
+        expectLane(row, l);
+    EXPECT_FLOAT_EQ(row.density[6], 0.5f * row.density[4] + 0.5f * row.density[8]);
+    EXPECT_FLOAT_EQ(row.momentumZ[13], (2.0f * row.momentumZ[12] + row.momentumZ[15]) / 3.0f);
+}
+
 // --- Volume on the head --------------------------------------------------------------------------
 
 // The default groom as `wisp-cli simulate --wind_speed 0 --turbulence 0` grows it.
@@ -623,8 +676,9 @@ double denseTipsMoving(float volume, std::uint64_t* passes = nullptr)
         solver.step();
     if (volume > 0.0f) {
         EXPECT_NE(solver.volumeGrid(), nullptr);
-        if (solver.volumeGrid())
+        if (solver.volumeGrid()) {
             EXPECT_EQ(solver.volumeGrid()->kernel(), HairVolumeGrid::Kernel::NearestSmoothed);
+        }
     }
     std::size_t moving = 0, total = 0;
     std::vector<glm::vec3> before, after;

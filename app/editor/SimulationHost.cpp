@@ -215,6 +215,13 @@ std::uint64_t SimulationHost::loopWakeups() const
     return m_loopWakeups.load();
 }
 
+bool SimulationHost::isIdle() const
+{
+    std::lock_guard lock(m_mutex);
+    // The thread sleeps paused (its own playing is false) and nothing was asked since.
+    return m_idle.load() && !m_inbox.hasRequests(false);
+}
+
 int SimulationHost::effectiveSubsteps() const
 {
     return m_effectiveSubsteps.load();

@@ -138,6 +138,11 @@ public:
     // construction. A paused host with nothing asked of it sleeps on a condition variable and adds
     // none, however long it is left: what a test counts instead of timing the processor.
     std::uint64_t loopWakeups() const;
+    // Thread: any. Whether the simulation thread sleeps with nothing to do: paused (or no scene),
+    // every request taken and done, no step running. What a test waits for after pause() instead of
+    // a fixed delay: a step that was running when pause() came has published its frame by then
+    // (the sanitizer build's steps take longer than any delay that is short in the Release build).
+    bool isIdle() const;
     // Thread: any. Substeps the solver runs now: the requested substeps, or fewer while the machine
     // cannot keep real time (0 before the first groom).
     int effectiveSubsteps() const;
@@ -195,6 +200,12 @@ private:
         std::optional<HeadMotion> motion;
         bool playing = false;
         bool stopping = false;
+        // Something for a simulation thread that plays (`playing`) or not to take.
+        bool hasRequests(bool threadPlaying) const
+        {
+            return stopping || scene || parameters || regions || !actions.empty() || style || dryers || held
+                || !wettings.empty() || motion || playing != threadPlaying;
+        }
     };
 
     // Thread: simulation.
@@ -212,6 +223,7 @@ private:
     std::atomic<std::shared_ptr<const Frame>> m_latest;
     std::atomic<std::uint64_t> m_published{ 0 };
     std::atomic<std::uint64_t> m_loopWakeups{ 0 };
+    std::atomic<bool> m_idle{ false }; // isIdle(): set by the simulation thread
     std::atomic<bool> m_frameSignalPending{ false };
     std::atomic<int> m_effectiveSubsteps{ 0 };
 

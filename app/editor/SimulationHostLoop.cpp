@@ -136,11 +136,7 @@ private:
         const bool injectedStepDue = m_host.m_clock && m_playing && m_sim && now() >= m_pacer.dueSeconds();
         std::unique_lock lock(m_host.m_mutex);
         Inbox& inbox = m_host.m_inbox;
-        const auto ready = [&] {
-            return inbox.stopping || inbox.scene || inbox.parameters || inbox.regions || !inbox.actions.empty()
-                || inbox.style || inbox.dryers || inbox.held || !inbox.wettings.empty() || inbox.motion
-                || inbox.playing != m_playing;
-        };
+        const auto ready = [&] { return inbox.hasRequests(m_playing); };
         if (m_playing && m_sim && m_host.m_clock) {
             // An injected clock moves on its own terms: look again soon, unless a step is due now.
             if (!injectedStepDue)
@@ -150,7 +146,11 @@ private:
                 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(m_pacer.dueSeconds()));
             m_host.m_wake.wait_until(lock, due, ready);
         } else {
+            // Nothing to step: idle until asked (isIdle(), which also looks for requests not yet
+            // taken).
+            m_host.m_idle.store(!ready());
             m_host.m_wake.wait(lock, ready);
+            m_host.m_idle.store(false);
         }
         m_host.m_loopWakeups.fetch_add(1, std::memory_order_relaxed);
         if (inbox.stopping)

@@ -52,8 +52,9 @@ PaintRun paintFrames(Viewport& viewport, const std::vector<FramePtr>& frames, in
 PassTimes timedPasses(Viewport& viewport, const std::vector<FramePtr>& frames)
 {
     const bool timedFromTheStart = qEnvironmentVariableIsSet("WISP_PASS_TIMES");
-    if (!timedFromTheStart)
+    if (!timedFromTheStart) {
         EXPECT_EQ(viewport.lastPassTimes().totalMs(), 0.0);
+    }
     viewport.setPassTiming(true);
     PassTimes sum;
     constexpr int kTimed = 3;

@@ -93,6 +93,9 @@ Viewport::Viewport(QWidget* parent)
     // WISP_FULL_RESOLUTION_HAIR: never half resolution, to compare with.
     if (qEnvironmentVariableIsSet("WISP_FULL_RESOLUTION_HAIR"))
         m_halfResolutionWhileMoving = false;
+    // WISP_MULTISAMPLED_BACKDROP: the backdrop multisampled in every paint, to compare with.
+    if (qEnvironmentVariableIsSet("WISP_MULTISAMPLED_BACKDROP"))
+        m_singleSampledBackdropWhileMoving = false;
     m_refineTimer.setSingleShot(true);
     m_refineTimer.setInterval(300);
     connect(&m_refineTimer, &QTimer::timeout, this, [this] {
@@ -303,6 +306,12 @@ void Viewport::setLevelOfDetail(bool enabled)
 void Viewport::setHalfResolutionWhileMoving(bool enabled)
 {
     m_halfResolutionWhileMoving = enabled;
+    scheduleFrame();
+}
+
+void Viewport::setSingleSampledBackdropWhileMoving(bool enabled)
+{
+    m_singleSampledBackdropWhileMoving = enabled;
     scheduleFrame();
 }
 

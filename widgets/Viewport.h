@@ -95,6 +95,8 @@ public:
         // The hair at half the width and height, laid over the full-resolution image, as the view
         // draws it while the camera or the hair moves (HairLowResTarget), for comparing the two.
         bool hairAtHalfResolution = false;
+        // The backdrop single-sampled, as the view draws it while the camera moves.
+        bool backdropSingleSampled = false;
     };
     QImage renderImage(QSize pixels, const ImageOptions& options);
     QImage renderImage(QSize pixels) { return renderImage(pixels, ImageOptions{}); }
@@ -172,6 +174,14 @@ public:
     void setHalfResolutionWhileMoving(bool enabled);
     bool halfResolutionWhileMoving() const { return m_halfResolutionWhileMoving.value_or(m_softwareGl); }
     bool lastPaintHairAtHalfResolution() const { return m_lastHairAtHalfResolution; }
+    // While the camera moves, the backdrop (background, head, body, grid) is drawn single-sampled
+    // straight into the frame rather than multisampled and resolved: on llvmpipe the 4x pass and its
+    // resolve were two fifths of a paused orbit's paint (README "The hair's look"). The paint after
+    // the camera stops draws it multisampled into the backdrop cache, as before. On by default
+    // where GL is a software rasteriser; grabs and images always multisample.
+    void setSingleSampledBackdropWhileMoving(bool enabled);
+    bool singleSampledBackdropWhileMoving() const { return m_singleSampledBackdropWhileMoving.value_or(m_softwareGl); }
+    bool lastPaintBackdropSingleSampled() const { return m_lastBackdropSingleSampled; }
     std::size_t lastDrawnStrands() const { return m_hair.lastDrawnStrands(); } // parents and children
 
     // Drawn density (HairChildren): `density` times the frame's strands are drawn, 0.25..4. Above 1
@@ -245,8 +255,9 @@ private:
     void paintGL(bool framebuffersRemade);
     // `gradientInResolve`: cleared transparent, the background's gradient left to the resolve.
     void drawBackdrop(const RenderView& view, bool gradientInResolve);
-    // drawBackdrop, multisampled, resolved into the backdrop cache or the frame (GlCanvas).
-    void drawResolvedBackdrop(const RenderView& view, bool intoCache);
+    // drawBackdrop, multisampled (unless `multisample` is false or the canvas has no samples),
+    // resolved into the backdrop cache or the frame (GlCanvas).
+    void drawResolvedBackdrop(const RenderView& view, bool intoCache, bool multisample = true);
     void paintImage(const RenderView& view); // paintGL's work for renderImage()
     // The hair into the bound frame, at full resolution or through m_lowRes.
     void drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution);
@@ -272,6 +283,7 @@ private:
         bool transparent = false;
         float previewFraction = 1.0f;
         bool hairAtHalfResolution = false;
+        bool backdropSingleSampled = false;
     };
     std::optional<ImageRender> m_image;
 
@@ -323,6 +335,8 @@ private:
     HairLowResTarget m_lowRes;
     std::optional<bool> m_halfResolutionWhileMoving; // unset: m_softwareGl
     bool m_lastHairAtHalfResolution = false;
+    std::optional<bool> m_singleSampledBackdropWhileMoving; // unset: m_softwareGl
+    bool m_lastBackdropSingleSampled = false;
     bool m_hairMoved = false; // points uploaded since the shadow map was rendered
     glm::vec3 m_shadowLight{ 0.0f }; // the light the shadow map was rendered for
     std::uint64_t m_shadowPaint = 0; // m_paintCount when it was rendered

@@ -76,7 +76,7 @@ QImage Viewport::renderImage(QSize pixels, const ImageOptions& options)
     if (pixels.isEmpty() || pixels.width() > kMaxImageSide || pixels.height() > kMaxImageSide)
         return {};
     ImageRender render{ pixels, m_camera, options.transparentBackground, options.previewFraction,
-        options.hairAtHalfResolution };
+        options.hairAtHalfResolution, options.backdropSingleSampled };
     const float imageAspect = static_cast<float>(pixels.width()) / static_cast<float>(pixels.height());
     if (options.frameBounds && finiteBounds(*options.frameBounds))
         render.camera.reset(*options.frameBounds, imageAspect);

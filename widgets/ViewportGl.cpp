@@ -272,11 +272,11 @@ void Viewport::drawBackdrop(const RenderView& view, bool gradientInResolve)
         m_guides.drawGrid(view); // translucent and writing no depth: the hair is drawn over it
 }
 
-void Viewport::drawResolvedBackdrop(const RenderView& view, bool intoCache)
+void Viewport::drawResolvedBackdrop(const RenderView& view, bool intoCache, bool multisample)
 {
     // Multisampled (the head's silhouette is smooth), then resolved into the single-sampled target
     // the hair is drawn over (see GlCanvas).
-    const bool multisampled = m_canvas.samples() > 0;
+    const bool multisampled = multisample && m_canvas.samples() > 0;
     const auto bindTarget = [&] {
         if (intoCache)
             m_canvas.bindBackdropCache();
@@ -342,12 +342,16 @@ void Viewport::paintGL(bool framebuffersRemade)
         m_backdropKey.reset();
     const bool settled = m_lastBackdropKey == key;
     m_lastBackdropKey = key;
+    // While the camera moves, single-sampled (setSingleSampledBackdropWhileMoving).
+    const bool singleSampled
+        = !settled && singleSampledBackdropWhileMoving() && !m_grabbing && !m_refining && m_canvas.samples() > 0;
     if (m_backdropKey != key) {
         m_backdropKey.reset();
-        drawResolvedBackdrop(view, settled);
+        drawResolvedBackdrop(view, settled, !singleSampled);
         if (settled)
             m_backdropKey = key;
     }
+    m_lastBackdropSingleSampled = singleSampled && !m_backdropKey;
     if (m_backdropKey)
         m_canvas.copyBackdropCacheToFrame();
     m_canvas.bindFrame();
@@ -383,7 +387,7 @@ void Viewport::paintGL(bool framebuffersRemade)
     m_lastPreview = preview;
     if (m_levelOfDetail && !refining)
         m_detail.paintTook(m_lastPaintMs, preview, fraction, strands);
-    if (preview || m_lastHairAtHalfResolution)
+    if (preview || m_lastHairAtHalfResolution || m_lastBackdropSingleSampled)
         m_refineTimer.start();
 
     updateOverlays(view);
@@ -442,7 +446,7 @@ void Viewport::paintImage(const RenderView& view)
     m_samples = m_canvas.samples() > 1 ? m_canvas.samples() : 0;
     RenderView imageView = view;
     imageView.samples = m_samples;
-    drawResolvedBackdrop(imageView, false);
+    drawResolvedBackdrop(imageView, false, !m_image->backdropSingleSampled);
     m_canvas.bindFrame();
     m_gl->glViewport(
         0, 0, static_cast<GLsizei>(imageView.viewportPixels.x), static_cast<GLsizei>(imageView.viewportPixels.y));

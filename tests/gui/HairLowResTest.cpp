@@ -144,5 +144,82 @@ TEST_F(HairLowResTest, AnOrbitDrawsTheHairAtHalfResolutionAndTheStillViewWhole)
     EXPECT_TRUE(viewport->lastPaintHairAtHalfResolution());
 }
 
+// The backdrop single-sampled, as an orbit paint draws it (Viewport::setSingleSampledBackdropWhileMoving):
+// the same image but for the head's silhouette and the hair's edges, and the hair behind the head
+// still hidden by it (the frame's own depth, not the resolved one).
+TEST_F(HairLowResTest, ASingleSampledBackdropKeepsTheImageAndTheHeadInFront)
+{
+    const QSize size(585, 710);
+    viewport->setFrame(nullptr);
+    const QImage bare = viewport->renderImage(size);
+    viewport->setFrame(settled->frame);
+    const QImage full = viewport->renderImage(size);
+    Viewport::ImageOptions singleOptions;
+    singleOptions.backdropSingleSampled = true;
+    const QImage single = viewport->renderImage(size, singleOptions);
+    if (const QString shots = qEnvironmentVariable("WISP_SCREENSHOT_DIR"); !shots.isEmpty())
+        single.save(shots + QStringLiteral("/backdrop-single-sampled.png"));
+    ASSERT_EQ(single.size(), size);
+    const auto insideSkin = [&](int x, int y) {
+        for (int dy = -2; dy <= 2; ++dy)
+            for (int dx = -2; dx <= 2; ++dx) {
+                const int u = std::clamp(x + dx, 0, size.width() - 1);
+                const int v = std::clamp(y + dy, 0, size.height() - 1);
+                if (!test::isSkin(QColor(bare.pixel(u, v))) || full.pixel(u, v) != bare.pixel(u, v))
+                    return false;
+            }
+        return true;
+    };
+    qint64 differ = 0;
+    qint64 bareSkin = 0;
+    qint64 bareSkinChanged = 0;
+    for (int y = 0; y < size.height(); ++y)
+        for (int x = 0; x < size.width(); ++x) {
+            differ += difference(single.pixel(x, y), full.pixel(x, y)) > 24;
+            // Skin inside the head's outline that the hair leaves as it was in the multisampled
+            // image, two pixels around: untouched in this one too (edges differ by design).
+            if (insideSkin(x, y)) {
+                ++bareSkin;
+                bareSkinChanged += difference(single.pixel(x, y), bare.pixel(x, y)) > 24;
+            }
+        }
+    const double share = static_cast<double>(differ) / (static_cast<double>(size.width()) * size.height());
+    std::printf("[ backdrop ] single-sampled: %.2f %% of pixels differ by more than 24 levels; bare skin %lld, "
+                "changed %lld\n",
+        100.0 * share, static_cast<long long>(bareSkin), static_cast<long long>(bareSkinChanged));
+    EXPECT_GT(differ, 0); // it is single-sampled: the silhouette's edge pixels change
+    EXPECT_LT(share, 0.02);
+    ASSERT_GT(bareSkin, 5000);
+    EXPECT_LT(static_cast<double>(bareSkinChanged), 0.005 * static_cast<double>(bareSkin));
+}
+
+TEST_F(HairLowResTest, AnOrbitDrawsTheBackdropSingleSampledAndTheStillViewMultisampled)
+{
+    viewport->show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(viewport.get()));
+    viewport->setLevelOfDetail(false);
+    viewport->setSingleSampledBackdropWhileMoving(true);
+    viewport->repaint(); // a first frame
+    ASSERT_GT(viewport->samples(), 0) << "the view multisamples its backdrop";
+    for (int i = 0; i < 3; ++i) {
+        viewport->camera().orbit(6.0f, 0.0f);
+        viewport->repaint();
+        EXPECT_TRUE(viewport->lastPaintBackdropSingleSampled()) << i;
+    }
+    // Once the camera stops, one paint draws it multisampled (a bounded wait).
+    const std::uint64_t paints = viewport->paintCount();
+    EXPECT_TRUE(test::waitUntil([&] { return !viewport->lastPaintBackdropSingleSampled(); }));
+    EXPECT_GT(viewport->paintCount(), paints);
+    // A grab is the still view's frame.
+    viewport->camera().orbit(6.0f, 0.0f);
+    viewport->grabFramebuffer();
+    EXPECT_FALSE(viewport->lastPaintBackdropSingleSampled());
+    // Switched off, an orbit multisamples.
+    viewport->setSingleSampledBackdropWhileMoving(false);
+    viewport->camera().orbit(6.0f, 0.0f);
+    viewport->repaint();
+    EXPECT_FALSE(viewport->lastPaintBackdropSingleSampled());
+}
+
 } // namespace
 } // namespace wisp

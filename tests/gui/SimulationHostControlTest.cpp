@@ -48,6 +48,7 @@ TEST_F(SimulationHostTest, PauseStopsFramesAndStepOnceAddsExactlyOne)
 
     host->play();
     ASSERT_TRUE(waitForFrames(*host, 10));
+    EXPECT_FALSE(host->isIdle()); // it steps
     host->stepOnce(); // ignored while playing
     host->pause();
     EXPECT_FALSE(host->isPlaying());

@@ -174,11 +174,12 @@ public:
     void setHalfResolutionWhileMoving(bool enabled);
     bool halfResolutionWhileMoving() const { return m_halfResolutionWhileMoving.value_or(m_softwareGl); }
     bool lastPaintHairAtHalfResolution() const { return m_lastHairAtHalfResolution; }
-    // While the camera moves, the backdrop (background, head, body, grid) is drawn single-sampled
+    // While the backdrop (background, head, body, grid) changes from paint to paint (the camera
+    // moves, or the hair's shadow on the head moves with the hair), it is drawn single-sampled
     // straight into the frame rather than multisampled and resolved: on llvmpipe the 4x pass and its
-    // resolve were two fifths of a paused orbit's paint (README "The hair's look"). The paint after
-    // the camera stops draws it multisampled into the backdrop cache, as before. On by default
-    // where GL is a software rasteriser; grabs and images always multisample.
+    // resolve were two fifths of a paused orbit's paint (README "The hair's look"). The paint once
+    // it holds draws it multisampled into the backdrop cache, as before. On by default where GL is a
+    // software rasteriser; grabs and images always multisample.
     void setSingleSampledBackdropWhileMoving(bool enabled);
     bool singleSampledBackdropWhileMoving() const { return m_singleSampledBackdropWhileMoving.value_or(m_softwareGl); }
     bool lastPaintBackdropSingleSampled() const { return m_lastBackdropSingleSampled; }

@@ -342,7 +342,7 @@ void Viewport::paintGL(bool framebuffersRemade)
         m_backdropKey.reset();
     const bool settled = m_lastBackdropKey == key;
     m_lastBackdropKey = key;
-    // While the camera moves, single-sampled (setSingleSampledBackdropWhileMoving).
+    // While it changes every paint, single-sampled (setSingleSampledBackdropWhileMoving).
     const bool singleSampled
         = !settled && singleSampledBackdropWhileMoving() && !m_grabbing && !m_refining && m_canvas.samples() > 0;
     if (m_backdropKey != key) {

@@ -112,36 +112,53 @@ TEST_F(HairLowResTest, HalfResolutionHairKeepsTheCoverageAndColourAndStaysBehind
     EXPECT_LT(static_cast<double>(bareSkinChanged), 0.01 * static_cast<double>(bareSkin));
 }
 
+// While the camera moves, the hair at half resolution and the backdrop single-sampled; the still
+// view's paint after it draws both whole, and each switch works on its own.
 TEST_F(HairLowResTest, AnOrbitDrawsTheHairAtHalfResolutionAndTheStillViewWhole)
 {
     viewport->show();
     ASSERT_TRUE(QTest::qWaitForWindowExposed(viewport.get()));
     viewport->setLevelOfDetail(false);
     viewport->setHalfResolutionWhileMoving(true);
+    viewport->setSingleSampledBackdropWhileMoving(true);
     viewport->repaint(); // a first frame: the camera, the hair and the backdrop are new
+    ASSERT_GT(viewport->samples(), 0) << "the view multisamples its backdrop";
     for (int i = 0; i < 3; ++i) {
         viewport->camera().orbit(6.0f, 0.0f);
         viewport->repaint();
         EXPECT_TRUE(viewport->lastPaintHairAtHalfResolution()) << i;
+        EXPECT_TRUE(viewport->lastPaintBackdropSingleSampled()) << i;
     }
-    // Once the camera stops, one paint draws the hair whole (a bounded wait).
+    // Once the camera stops, one paint draws it all whole (a bounded wait).
     const std::uint64_t paints = viewport->paintCount();
-    EXPECT_TRUE(test::waitUntil([&] { return !viewport->lastPaintHairAtHalfResolution(); }));
+    EXPECT_TRUE(test::waitUntil(
+        [&] { return !viewport->lastPaintHairAtHalfResolution() && !viewport->lastPaintBackdropSingleSampled(); }));
     EXPECT_GT(viewport->paintCount(), paints);
     // A grab is the still view's frame, however it came.
     viewport->camera().orbit(6.0f, 0.0f);
     viewport->grabFramebuffer();
     EXPECT_FALSE(viewport->lastPaintHairAtHalfResolution());
-    // Switched off, an orbit draws it whole.
+    EXPECT_FALSE(viewport->lastPaintBackdropSingleSampled());
+    // Each switched off on its own.
     viewport->setHalfResolutionWhileMoving(false);
     viewport->camera().orbit(6.0f, 0.0f);
     viewport->repaint();
     EXPECT_FALSE(viewport->lastPaintHairAtHalfResolution());
-    // A new frame of the hair (it moves) at half resolution again.
+    EXPECT_TRUE(viewport->lastPaintBackdropSingleSampled());
+    viewport->setSingleSampledBackdropWhileMoving(false);
+    viewport->camera().orbit(6.0f, 0.0f);
+    viewport->repaint();
+    EXPECT_FALSE(viewport->lastPaintBackdropSingleSampled());
+    // A new frame of the hair (it moves, the camera does not): the hair at half resolution again,
+    // and the backdrop single-sampled too, as the hair's shadow on the head changes with it.
     viewport->setHalfResolutionWhileMoving(true);
+    viewport->setSingleSampledBackdropWhileMoving(true);
+    viewport->repaint(); // the camera's last move, settled
+    EXPECT_FALSE(viewport->lastPaintBackdropSingleSampled());
     viewport->setFrame(std::make_shared<Frame>(*settled->frame));
     viewport->repaint();
     EXPECT_TRUE(viewport->lastPaintHairAtHalfResolution());
+    EXPECT_EQ(viewport->lastPaintBackdropSingleSampled(), viewport->shadowsEnabled());
 }
 
 // The backdrop single-sampled, as an orbit paint draws it (Viewport::setSingleSampledBackdropWhileMoving):
@@ -191,34 +208,6 @@ TEST_F(HairLowResTest, ASingleSampledBackdropKeepsTheImageAndTheHeadInFront)
     EXPECT_LT(share, 0.02);
     ASSERT_GT(bareSkin, 5000);
     EXPECT_LT(static_cast<double>(bareSkinChanged), 0.005 * static_cast<double>(bareSkin));
-}
-
-TEST_F(HairLowResTest, AnOrbitDrawsTheBackdropSingleSampledAndTheStillViewMultisampled)
-{
-    viewport->show();
-    ASSERT_TRUE(QTest::qWaitForWindowExposed(viewport.get()));
-    viewport->setLevelOfDetail(false);
-    viewport->setSingleSampledBackdropWhileMoving(true);
-    viewport->repaint(); // a first frame
-    ASSERT_GT(viewport->samples(), 0) << "the view multisamples its backdrop";
-    for (int i = 0; i < 3; ++i) {
-        viewport->camera().orbit(6.0f, 0.0f);
-        viewport->repaint();
-        EXPECT_TRUE(viewport->lastPaintBackdropSingleSampled()) << i;
-    }
-    // Once the camera stops, one paint draws it multisampled (a bounded wait).
-    const std::uint64_t paints = viewport->paintCount();
-    EXPECT_TRUE(test::waitUntil([&] { return !viewport->lastPaintBackdropSingleSampled(); }));
-    EXPECT_GT(viewport->paintCount(), paints);
-    // A grab is the still view's frame.
-    viewport->camera().orbit(6.0f, 0.0f);
-    viewport->grabFramebuffer();
-    EXPECT_FALSE(viewport->lastPaintBackdropSingleSampled());
-    // Switched off, an orbit multisamples.
-    viewport->setSingleSampledBackdropWhileMoving(false);
-    viewport->camera().orbit(6.0f, 0.0f);
-    viewport->repaint();
-    EXPECT_FALSE(viewport->lastPaintBackdropSingleSampled());
 }
 
 } // namespace

@@ -100,7 +100,9 @@ bool HairLowResTarget::begin(QSize framePixels, GLuint frameDepthTexture)
     gl->glDepthMask(GL_TRUE);
     gl->glBindVertexArray(m_vao);
     m_depthProgram->bind();
-    m_depthProgram->setUniformValue("u_framePixels", framePixels.width(), framePixels.height());
+    // An ivec2: glUniform2i (QOpenGLShaderProgram's two-number setter is glUniform2f, which GL
+    // refuses for an integer uniform, leaving it 0: the depth fetch then clamped to texel -1).
+    gl->glUniform2i(m_depthProgram->uniformLocation("u_framePixels"), framePixels.width(), framePixels.height());
     m_depthProgram->setUniformValue("u_rect", -1.0f, -1.0f, 1.0f, 1.0f);
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_2D, frameDepthTexture);

@@ -431,16 +431,28 @@ TEST_F(StylingTest, ANewStrokeClearsTheLastStrokesWarning)
 {
     look(90.0f, { box.center().x, box.center().y - 0.05f, box.center().z });
     pick(Qt::Key_X, StyleBrush::Cut);
+    QSignalSpy said(window->statusBar(), &QStatusBar::messageChanged);
     // Far above the head: nothing to cut.
     stroke({ glm::vec3(box.max.x + 0.05f, box.max.y + 0.15f, box.center().z + 0.05f),
         glm::vec3(box.max.x + 0.05f, box.max.y + 0.15f, box.center().z - 0.05f) });
-    ASSERT_EQ(window->statusBar()->currentMessage(), QStringLiteral("Cut: no strand under the brush changed"));
+    const QString warning = QStringLiteral("Cut: no strand under the brush changed");
+    bool warned = false;
+    for (const QList<QVariant>& message : said)
+        warned = warned || message.value(0).toString() == warning;
+    ASSERT_TRUE(warned);
+    // The warning shows for 8 s: the sanitizer build's stroke can outlast it, and then there is
+    // nothing left for the next stroke to clear (the check below still runs, it cannot tell why).
+    const bool stillShown = window->statusBar()->currentMessage() == warning;
     pick(Qt::Key_W, StyleBrush::Wet);
     Viewport* view = window->viewport();
     const QPoint at = screenOf(rightSide(0.05f) + glm::vec3(0.03f, 0, 0));
+    const qsizetype changes = said.count();
     QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, at);
     EXPECT_TRUE(window->statusBar()->currentMessage().isEmpty())
         << "the new stroke still shows: " << window->statusBar()->currentMessage().toStdString();
+    if (stillShown) {
+        EXPECT_GT(said.count(), changes) << "the press cleared it, not the clock";
+    }
     QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, at);
     settle();
     EXPECT_TRUE(window->statusBar()->currentMessage().startsWith(QStringLiteral("Wet: ")));

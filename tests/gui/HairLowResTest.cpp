@@ -25,18 +25,29 @@ protected:
     {
         return std::abs(qRed(a) - qRed(b)) + std::abs(qGreen(a) - qGreen(b)) + std::abs(qBlue(a) - qBlue(b));
     }
+    static constexpr QSize kSize{ 585, 710 };
+    // The default view without hair, with it, and with it drawn as `options` ask.
+    struct Images {
+        QImage bare, full, variant;
+    };
+    Images renderImages(const Viewport::ImageOptions& options)
+    {
+        Images images;
+        viewport->setFrame(nullptr);
+        images.bare = viewport->renderImage(kSize);
+        viewport->setFrame(settled->frame);
+        images.full = viewport->renderImage(kSize);
+        images.variant = viewport->renderImage(kSize, options);
+        return images;
+    }
 };
 
 TEST_F(HairLowResTest, HalfResolutionHairKeepsTheCoverageAndColourAndStaysBehindTheHead)
 {
-    const QSize size(585, 710);
-    viewport->setFrame(nullptr);
-    const QImage bare = viewport->renderImage(size);
-    viewport->setFrame(settled->frame);
-    const QImage full = viewport->renderImage(size);
+    const QSize size = kSize;
     Viewport::ImageOptions halfOptions;
     halfOptions.hairAtHalfResolution = true;
-    const QImage half = viewport->renderImage(size, halfOptions);
+    const auto [bare, full, half] = renderImages(halfOptions);
     if (const QString shots = qEnvironmentVariable("WISP_SCREENSHOT_DIR"); !shots.isEmpty()) {
         full.save(shots + QStringLiteral("/hair-full-resolution.png"));
         half.save(shots + QStringLiteral("/hair-half-resolution.png"));
@@ -166,14 +177,10 @@ TEST_F(HairLowResTest, AnOrbitDrawsTheHairAtHalfResolutionAndTheStillViewWhole)
 // still hidden by it (the frame's own depth, not the resolved one).
 TEST_F(HairLowResTest, ASingleSampledBackdropKeepsTheImageAndTheHeadInFront)
 {
-    const QSize size(585, 710);
-    viewport->setFrame(nullptr);
-    const QImage bare = viewport->renderImage(size);
-    viewport->setFrame(settled->frame);
-    const QImage full = viewport->renderImage(size);
+    const QSize size = kSize;
     Viewport::ImageOptions singleOptions;
     singleOptions.backdropSingleSampled = true;
-    const QImage single = viewport->renderImage(size, singleOptions);
+    const auto [bare, full, single] = renderImages(singleOptions);
     if (const QString shots = qEnvironmentVariable("WISP_SCREENSHOT_DIR"); !shots.isEmpty())
         single.save(shots + QStringLiteral("/backdrop-single-sampled.png"));
     ASSERT_EQ(single.size(), size);

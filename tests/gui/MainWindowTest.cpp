@@ -62,9 +62,11 @@ protected:
         window->document()->undoStack()->clear();
         ASSERT_TRUE(waitForFrames(*window->simulation(), 5));
     }
+    // A bound that only catches a hang: 90 frames of the editor's scene took over kWaitMs (100 s) in
+    // the sanitizer build on a busy two-core machine.
     void settle(int frames = 90)
     {
-        ASSERT_TRUE(waitForFrames(*window->simulation(), static_cast<std::uint64_t>(frames)));
+        ASSERT_TRUE(waitForFrames(*window->simulation(), static_cast<std::uint64_t>(frames), kSceneWaitMs));
     }
     FramePtr frame() const { return window->simulation()->latestFrame(); }
 

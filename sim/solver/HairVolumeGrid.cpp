@@ -123,16 +123,24 @@ void HairVolumeGrid::setSolid(const std::function<float(const glm::vec3&)>& sign
             }
 }
 
-template <typename Fn> void HairVolumeGrid::forNodesOf(std::size_t brick, Fn&& fn) const
+template <typename Fn> void HairVolumeGrid::forRowsOf(std::size_t brick, Fn&& fn) const
 {
     const int bx = static_cast<int>(brick % static_cast<std::size_t>(m_bricks.x));
     const int by
         = static_cast<int>((brick / static_cast<std::size_t>(m_bricks.x)) % static_cast<std::size_t>(m_bricks.y));
-    const int bz = static_cast<int>(brick / (static_cast<std::size_t>(m_bricks.x) * m_bricks.y));
+    const int bz = static_cast<int>(brick / brickLayerSize());
+    const int i0 = bx * kBrick, nodes = std::min(kBrick, m_dims.x - i0);
     for (int k = bz * kBrick; k < std::min((bz + 1) * kBrick, m_dims.z); ++k)
         for (int j = by * kBrick; j < std::min((by + 1) * kBrick, m_dims.y); ++j)
-            for (int i = bx * kBrick; i < std::min((bx + 1) * kBrick, m_dims.x); ++i)
-                fn(i, j, k, index(i, j, k));
+            fn(i0, j, k, index(i0, j, k), nodes);
+}
+
+template <typename Fn> void HairVolumeGrid::forNodesOf(std::size_t brick, Fn&& fn) const
+{
+    forRowsOf(brick, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+        for (int i = 0; i < nodes; ++i)
+            fn(i0 + i, j, k, n0 + static_cast<std::size_t>(i));
+    });
 }
 
 void HairVolumeGrid::clear(ThreadPool* pool)
@@ -159,18 +167,6 @@ using Fixed16 = std::int64_t __attribute__((vector_size(16 * sizeof(std::int64_t
 using Double16 = double __attribute__((vector_size(16 * sizeof(double))));
 using Float4 = float __attribute__((vector_size(4 * sizeof(float)))); // one value of four nodes
 } // namespace
-
-template <typename Fn> void HairVolumeGrid::forRowsOf(std::size_t brick, Fn&& fn) const
-{
-    const int bx = static_cast<int>(brick % static_cast<std::size_t>(m_bricks.x));
-    const int by
-        = static_cast<int>((brick / static_cast<std::size_t>(m_bricks.x)) % static_cast<std::size_t>(m_bricks.y));
-    const int bz = static_cast<int>(brick / brickLayerSize());
-    const int i0 = bx * kBrick, nodes = std::min(kBrick, m_dims.x - i0);
-    for (int k = bz * kBrick; k < std::min((bz + 1) * kBrick, m_dims.z); ++k)
-        for (int j = by * kBrick; j < std::min((by + 1) * kBrick, m_dims.y); ++j)
-            fn(i0, j, k, index(i0, j, k), nodes);
-}
 
 void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
 {

@@ -1,7 +1,8 @@
 // Refuses to start, with a message, on a CPU that lacks an instruction set this build was compiled
-// for. The default build is -march=native (WISP_NATIVE in CMakeLists.txt): a binary built on an
-// AVX-512 machine and started on an AVX2 one would otherwise die with SIGILL somewhere in the
-// solver, with nothing said. Linked into wisp and wisp-cli.
+// for. The default build needs x86-64-v2 with AES (2010 on) and picks its solver's SIMD target at
+// run time; a WISP_NATIVE or WISP_MARCH build is compiled for the build machine's CPU or the one
+// named (CMakeLists.txt), and started on a CPU without those instructions it would otherwise die
+// with SIGILL somewhere, with nothing said. Linked into wisp and wisp-cli.
 //
 // The check runs as a high-priority constructor, before every other static initialiser of the
 // executable, and is itself compiled for the x86-64 baseline (target("arch=x86-64")), so it runs on
@@ -70,6 +71,12 @@ __attribute__((constructor(101), target("arch=x86-64"))) void refuseAMissingInst
 #if defined(__POPCNT__)
         { "popcnt", __builtin_cpu_supports("popcnt") != 0 },
 #endif
+#if defined(__AES__)
+        { "aes", __builtin_cpu_supports("aes") != 0 },
+#endif
+#if defined(__PCLMUL__)
+        { "pclmul", __builtin_cpu_supports("pclmul") != 0 },
+#endif
         { "sse2", true }, // the x86-64 baseline
     };
     // WISP_TEST_CPU_LACKS=NAME pretends this CPU lacks NAME (one of the names above), so a test can
@@ -87,10 +94,11 @@ __attribute__((constructor(101), target("arch=x86-64"))) void refuseAMissingInst
     for (const Feature& f : features)
         if (!f.built)
             std::fprintf(stderr, " %s", f.name);
-    std::fputs(".\nIt was built for a CPU that has them (the default build, WISP_NATIVE=ON, uses -march=native: "
-               "the instructions of the machine that compiled it).\n"
-               "Build it on this machine (scripts/setup.sh), or configure with -DWISP_NATIVE=OFF for a build "
-               "that runs on any x86-64 CPU.\n",
+    std::fputs(".\nIt was built for a CPU that has them (WISP_NATIVE=ON compiles for the machine that builds it, "
+               "WISP_MARCH for the CPU it names).\n"
+               "Build it on this machine (scripts/setup.sh), or configure with -DWISP_NATIVE=OFF -DWISP_MARCH= for "
+               "the default build, which runs on any x86-64 CPU with SSE4.2 and AES (2010 on) and picks the "
+               "best SIMD it has at run time.\n",
         stderr);
     std::_Exit(kCpuLacksInstructions);
 }

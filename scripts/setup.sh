@@ -16,7 +16,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build pkg-config
   qt6-base-dev libqt6opengl6-dev libgl-dev libgl1-mesa-dri
-  libglm-dev nlohmann-json3-dev
+  libglm-dev nlohmann-json3-dev libhwy-dev
   libgtest-dev libbenchmark-dev clang-format python3
   xvfb xauth
 )

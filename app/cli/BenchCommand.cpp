@@ -351,7 +351,7 @@ std::string json(const BenchResult& r)
         "\"substeps\": %d, \"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
         "\"floor_ms_per_step\": %.4f, \"ratio_to_floor\": %.2f, "
         "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %.1f}",
-        r.name.c_str(), compiledSimdTarget(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs,
+        r.name.c_str(), solverSimdTarget(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs,
         r.meanMs, r.floorMs, ratioToFloor(r), r.solverBytesPerParticle, r.peakRssMb);
     return buffer;
 }
@@ -371,6 +371,9 @@ int runBench(int argc, char** argv)
             "hair-hair interaction of the grid workloads, 0..1 (0 off; default: the volume parameter's default)" },
         { "head", "FILE",
             "head mesh for the brush-dab and comb-release workloads (OBJ, PLY, OFF, STL; default: the built-in head)" },
+        { "target", "NAME",
+            "run the solver's kernels on this SIMD target instead of the best this CPU has (AVX-512, AVX2, SSE4, "
+            "...: the first line of the table lists them)" },
     };
     const CommandLine args(argc, argv, 2, options);
     const std::vector<Workload> all = workloads();
@@ -407,10 +410,17 @@ int runBench(int argc, char** argv)
             throw CliError{ kBadInput, "--workload: no workload '" + *only + "' (there are:" + names + ")" };
         }
     }
+    if (const auto target = args.text("target")) {
+        if (std::string why = forceSimdTarget(*target); !why.empty())
+            throw CliError{ kBadInput, "--target: " + why };
+    }
     const bool asJson = args.has("json");
     if (!asJson) {
-        std::printf("target %s (compiled for it; %d floats a register, the solver's lanes are 16)\n",
-            compiledSimdTarget(), compiledVectorFloats());
+        std::string available;
+        for (const std::string& t : availableSimdTargets())
+            available += (available.empty() ? "" : ", ") + t;
+        std::printf("target %s (chosen at run time of %s; %d floats a register, the solver's lanes are 16)\n",
+            solverSimdTarget(), available.c_str(), solverVectorFloats());
         std::printf("%-16s %10s %8s %7s %8s %12s %12s %8s %10s %10s\n", "workload", "particles", "strands", "threads",
             "substeps", "ms/step", "mean ms", "x floor", "B/particle", "peak MB");
     }

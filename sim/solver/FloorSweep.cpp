@@ -1,17 +1,80 @@
 #include "sim/solver/FloorSweep.h"
 
-#include "sim/solver/SolverLanes.h"
-
 #include <algorithm>
 #include <cstring>
 
-namespace wisp {
+// The sweep is compiled once per SIMD target, as the solver's kernel (SolverBlockKernel.cpp), so the
+// floor is measured on the target the solver runs on.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "sim/solver/FloorSweep.cpp"
+#include <hwy/foreach_target.h> // (before highway.h)
 
-namespace {
+#include "sim/solver/SolverLanes-inl.h"
+
+#include <hwy/highway.h>
+
+#ifndef WISP_FLOOR_SWEEP_CONSTANTS_
+#define WISP_FLOOR_SWEEP_CONSTANTS_
+namespace wisp::floor_sweep {
 constexpr std::size_t kFields = 6; // x, y, z, px, py, pz
 constexpr float kStepSeconds = 1.0f / 60.0f;
 constexpr float kKeep = 0.99f; // velocity kept per step: a little damping, so a push dies out
-} // namespace
+} // namespace wisp::floor_sweep
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace wisp::HWY_NAMESPACE {
+
+using namespace floor_sweep;
+
+// Blocks [begin, end) of one step, on this SIMD target.
+void sweepBlocks(float* rows, std::size_t begin, std::size_t end, std::uint32_t points, float segmentMetres)
+{
+    using namespace lanes;
+    const std::size_t pointFloats = kFields * kLanes;
+    const std::size_t blockFloats = points * pointFloats;
+    const Lane gravityStep = splat(-9.81f * kStepSeconds * kStepSeconds);
+    const Lane keep = splat(kKeep), length = splat(segmentMetres);
+    for (std::size_t b = begin; b < end; ++b) {
+        float* block = rows + b * blockFloats;
+        auto load = [](const float* p) {
+            Lane v;
+            std::memcpy(&v, p, sizeof v);
+            return v;
+        };
+        auto store = [](float* p, Lane v) { std::memcpy(p, &v, sizeof v); };
+        V3 parent{ load(block), load(block + kLanes), load(block + 2 * kLanes) }; // the root stays
+        for (std::uint32_t j = 1; j < points; ++j) {
+            float* row = block + j * pointFloats;
+            const V3 x{ load(row), load(row + kLanes), load(row + 2 * kLanes) };
+            const V3 previous{ load(row + 3 * kLanes), load(row + 4 * kLanes), load(row + 5 * kLanes) };
+            // Verlet: x' = x + keep (x - x_prev) + g dt².
+            V3 moved = x + (x - previous) * keep;
+            moved.y = moved.y + gravityStep;
+            // Follow the leader: back onto the segment's length from the parent's new position.
+            const V3 d = moved - parent;
+            const V3 placed = parent + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-20f))));
+            store(row, placed.x);
+            store(row + kLanes, placed.y);
+            store(row + 2 * kLanes, placed.z);
+            store(row + 3 * kLanes, x.x);
+            store(row + 4 * kLanes, x.y);
+            store(row + 5 * kLanes, x.z);
+            parent = placed;
+        }
+    }
+}
+
+} // namespace wisp::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+
+namespace wisp {
+
+HWY_EXPORT(sweepBlocks);
+
+using namespace floor_sweep;
 
 FloorSweep::FloorSweep(std::size_t particles, std::uint32_t pointsPerStrand, int threadCount)
     : m_pool(threadCount)
@@ -35,41 +98,9 @@ FloorSweep::FloorSweep(std::size_t particles, std::uint32_t pointsPerStrand, int
 
 void FloorSweep::step()
 {
-    using namespace lanes;
-    const std::size_t pointFloats = kFields * kLanes;
-    const std::size_t blockFloats = m_points * pointFloats;
-    const Lane gravityStep = splat(-9.81f * kStepSeconds * kStepSeconds);
-    const Lane keep = splat(kKeep), length = splat(m_segmentMetres);
-    // A few blocks a chunk, as the solver splits its step.
+    // A few blocks a chunk, as the solver splits its step; on the SIMD target the solver runs on.
     m_pool.parallelFor(m_blocks, 4, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t b = begin; b < end; ++b) {
-            float* block = m_rows.data() + b * blockFloats;
-            auto load = [](const float* p) {
-                Lane v;
-                std::memcpy(&v, p, sizeof v);
-                return v;
-            };
-            auto store = [](float* p, Lane v) { std::memcpy(p, &v, sizeof v); };
-            V3 parent{ load(block), load(block + kLanes), load(block + 2 * kLanes) }; // the root stays
-            for (std::uint32_t j = 1; j < m_points; ++j) {
-                float* row = block + j * pointFloats;
-                const V3 x{ load(row), load(row + kLanes), load(row + 2 * kLanes) };
-                const V3 previous{ load(row + 3 * kLanes), load(row + 4 * kLanes), load(row + 5 * kLanes) };
-                // Verlet: x' = x + keep (x - x_prev) + g dt².
-                V3 moved = x + (x - previous) * keep;
-                moved.y = moved.y + gravityStep;
-                // Follow the leader: back onto the segment's length from the parent's new position.
-                const V3 d = moved - parent;
-                const V3 placed = parent + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-20f))));
-                store(row, placed.x);
-                store(row + kLanes, placed.y);
-                store(row + 2 * kLanes, placed.z);
-                store(row + 3 * kLanes, x.x);
-                store(row + 4 * kLanes, x.y);
-                store(row + 5 * kLanes, x.z);
-                parent = placed;
-            }
-        }
+        HWY_DYNAMIC_DISPATCH(sweepBlocks)(m_rows.data(), begin, end, m_points, m_segmentMetres);
     });
 }
 
@@ -94,3 +125,5 @@ float FloorSweep::at(std::size_t strand, std::uint32_t point, int field) const
 }
 
 } // namespace wisp
+
+#endif // HWY_ONCE

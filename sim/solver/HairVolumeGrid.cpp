@@ -1,6 +1,5 @@
 #include "sim/solver/HairVolumeGrid.h"
 
-#include "sim/util/ShuffleLanes.h"
 #include "sim/util/ThreadPool.h"
 
 #include <glm/common.hpp>
@@ -12,6 +11,8 @@
 #include <cstring>
 #include <thread>
 
+#ifndef WISP_HAIR_VOLUME_GRID_ONCE_
+#define WISP_HAIR_VOLUME_GRID_ONCE_
 namespace wisp {
 
 namespace {
@@ -25,6 +26,599 @@ void forRange(
         body(0, count);
 }
 } // namespace
+
+} // namespace wisp
+#endif
+
+// The per-particle and per-node loops (the splat, the read and finish()) are compiled once per SIMD
+// target, as the solver's kernels (SolverBlockKernel.cpp), and the members below run the best the
+// CPU has; the rest of the file once. Each target's loops are the static members of
+// HairVolumeGridKernels<its tag> (a friend: they read the grid's arrays).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "sim/solver/HairVolumeGrid.cpp"
+#include <hwy/foreach_target.h> // (before highway.h)
+
+#include "sim/util/ShuffleLanes-inl.h"
+
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace wisp {
+
+namespace HWY_NAMESPACE {
+struct GridTarget { }; // this target's HairVolumeGridKernels
+
+// For a row sampled every `stride` lanes and at its last lane: per lane the sampled lanes before and
+// after it and its share of the way from one to the other.
+struct LaneBlend {
+    alignas(64) int before[HairVolumeGrid::kRowLanes];
+    alignas(64) int after[HairVolumeGrid::kRowLanes];
+    alignas(64) float share[HairVolumeGrid::kRowLanes];
+};
+constexpr LaneBlend laneBlend(int stride)
+{
+    LaneBlend b{};
+    constexpr int last = HairVolumeGrid::kRowLanes - 1;
+    for (int l = 0; l < HairVolumeGrid::kRowLanes; ++l) {
+        const int before = l - l % stride, after = std::min(before + stride, last);
+        b.before[l] = before;
+        b.after[l] = after;
+        b.share[l] = after > before ? static_cast<float>(l - before) / static_cast<float>(after - before) : 0.0f;
+    }
+    return b;
+}
+constexpr LaneBlend kLaneBlends[5] = { laneBlend(1), laneBlend(2), laneBlend(4), laneBlend(8), laneBlend(16) };
+} // namespace HWY_NAMESPACE
+
+template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridTarget> {
+    using G = HairVolumeGrid;
+    using CellRow = G::CellRow;
+    using SampleRow = G::SampleRow;
+    using Node = G::Node;
+    using Sums = G::Sums;
+    using Accumulator = G::Accumulator;
+    using Kernel = G::Kernel;
+    static constexpr int kBrick = G::kBrick, kRowLanes = G::kRowLanes;
+    static constexpr float kMaxMoveMetres = G::kMaxMoveMetres;
+    // A row of kBrick (4) nodes along x in finish(): their four sums each (Sums), one AVX-512 register
+    // of floats (two of AVX2); the slots' fixed point and its conversion through doubles.
+    using Float16 = float __attribute__((vector_size(16 * sizeof(float))));
+    using Fixed16 = std::int64_t __attribute__((vector_size(16 * sizeof(std::int64_t))));
+    using Double16 = double __attribute__((vector_size(16 * sizeof(double))));
+    using Float4 = float __attribute__((vector_size(4 * sizeof(float)))); // one value of four nodes
+    // Eight floats, one AVX register: a pair of neighbouring nodes along x (splat), or one node (sample).
+    using Float8 = float __attribute__((vector_size(8 * sizeof(float))));
+    using Fixed8 = std::int64_t __attribute__((vector_size(8 * sizeof(std::int64_t))));
+    static Float8 load8(const float* p)
+    {
+        Float8 v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    }
+
+    // The row's grid coordinates (CellRow), in one vector pass.
+    static void cellsOf(const G& g, const float* x, const float* y, const float* z, int count, CellRow& out);
+    static void splatRow(G& g, int slot, const float* x, const float* y, const float* z, const float* weight,
+        const float* moveX, const float* moveY, const float* moveZ, int count, int stride);
+    // splatRow for Kernel::NearestSmoothed: into slot grid `grid`, marking `touched` bricks.
+    static void splatNearest(G& g, std::int64_t* grid, std::uint8_t* touched, const CellRow& cells, const float* weight,
+        const float* moveX, const float* moveY, const float* moveZ, int count, int stride);
+    // sampleRow's reads for Kernel::NearestSmoothed and a full row: lanes 0, stride, ... and 15.
+    static void nearestRow(const G& g, const CellRow& cells, SampleRow& out, int stride);
+    static void sampleRow(
+        const G& g, const float* x, const float* y, const float* z, SampleRow& out, int count, int stride);
+    static void finish(G& g, ThreadPool* pool, float solidDensity);
+};
+
+void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::finish(G& g, ThreadPool* pool, float solidDensity)
+{
+    const std::size_t count = g.m_nodes.size(), bricks = g.m_live.size();
+    // The bricks any slot touched; the nodes of bricks touched last time and not now go empty.
+    std::vector<std::uint32_t> now;
+    for (std::size_t b = 0; b < bricks; ++b) {
+        bool any = false;
+        for (int c = 0; c < g.m_slots; ++c) {
+            std::uint8_t& touched = g.m_touched[static_cast<std::size_t>(c) * bricks + b];
+            any = any || touched != 0;
+            touched = 0; // emptied below
+        }
+        if (any)
+            now.push_back(static_cast<std::uint32_t>(b));
+    }
+    if (g.m_kernel == Kernel::NearestSmoothed) {
+        // The smoothing spreads a node's sums one node each way: into the bricks beside.
+        std::vector<std::uint8_t> near(bricks, 0);
+        for (const std::uint32_t b : now) {
+            const int bx = static_cast<int>(b % static_cast<std::uint32_t>(g.m_bricks.x));
+            const int by = static_cast<int>(
+                (b / static_cast<std::uint32_t>(g.m_bricks.x)) % static_cast<std::uint32_t>(g.m_bricks.y));
+            const int bz = static_cast<int>(b / (static_cast<std::uint32_t>(g.m_bricks.x) * g.m_bricks.y));
+            for (int k = std::max(bz - 1, 0); k <= std::min(bz + 1, g.m_bricks.z - 1); ++k)
+                for (int j = std::max(by - 1, 0); j <= std::min(by + 1, g.m_bricks.y - 1); ++j)
+                    for (int i = std::max(bx - 1, 0); i <= std::min(bx + 1, g.m_bricks.x - 1); ++i)
+                        near[g.brickIndex(i, j, k)] = 1;
+        }
+        now.clear();
+        for (std::size_t b = 0; b < bricks; ++b)
+            if (near[b])
+                now.push_back(static_cast<std::uint32_t>(b));
+    }
+    for (const std::uint32_t b : g.m_liveList)
+        g.m_live[b] = 0;
+    for (const std::uint32_t b : now)
+        g.m_live[b] = 1;
+    for (const std::uint32_t b : g.m_liveList)
+        if (!g.m_live[b])
+            g.forNodesOf(b, [&](int, int, int, std::size_t n) {
+                g.m_nodes[n] = Node{};
+                g.m_hairDensity[n] = 0.0f;
+                if (!g.m_sums.empty())
+                    g.m_sums[n] = g.m_smoothed[n] = Sums{};
+            });
+    g.m_liveList = std::move(now);
+    g.m_solidDensity = solidDensity;
+
+    // What sample() reads, in three passes over the live nodes, a row of kBrick nodes along x at a
+    // time (one vector each): the slots' sums (the slots emptied for the next splats), then the
+    // smoothing (Kernel::NearestSmoothed) and the node's hair, then the density's gradient, which
+    // takes the neighbours' density. Each pass is one wait for the pool: on a dense groom's small
+    // grid (25,000 nodes) the waits, not the arithmetic, were most of finish().
+    static_assert(sizeof(Sums) == 4 * sizeof(float) && sizeof(Accumulator) == 4 * sizeof(std::int64_t),
+        "a row of kBrick nodes is read and written as one vector of each");
+    const float perVolume = 1.0f / (g.m_cell * g.m_cell * g.m_cell);
+    const double perWeight = 1.0 / static_cast<double>(g.m_weightUnits),
+                 perMove = 1.0 / static_cast<double>(g.m_moveUnits);
+    // A row's sums over the slots, as floats (weight, move x, y, z a node, as Sums), into `out`.
+    auto sumRow = [&](std::size_t n0, int nodes, float* out) {
+        if (nodes == kBrick) {
+            Fixed16 total{};
+            for (int c = 0; c < g.m_slots; ++c) { // integers: the same sum in any order
+                Accumulator* const a = &g.m_accumulators[static_cast<std::size_t>(c) * count + n0];
+                Fixed16 v;
+                std::memcpy(&v, a, sizeof v);
+                total += v;
+                std::memset(static_cast<void*>(a), 0, sizeof v);
+            }
+            const Double16 units{ perWeight, perMove, perMove, perMove, perWeight, perMove, perMove, perMove, perWeight,
+                perMove, perMove, perMove, perWeight, perMove, perMove, perMove };
+            const Float16 sums = __builtin_convertvector(__builtin_convertvector(total, Double16) * units, Float16);
+            std::memcpy(out, &sums, sizeof sums);
+            return;
+        }
+        for (int i = 0; i < nodes; ++i) {
+            Accumulator sum{};
+            for (int c = 0; c < g.m_slots; ++c) {
+                Accumulator& a = g.m_accumulators[static_cast<std::size_t>(c) * count + n0 + i];
+                sum.weight += a.weight;
+                sum.moveX += a.moveX;
+                sum.moveY += a.moveY;
+                sum.moveZ += a.moveZ;
+                a = Accumulator{};
+            }
+            float* const s = out + 4 * i;
+            s[0] = static_cast<float>(sum.weight * perWeight);
+            s[1] = static_cast<float>(sum.moveX * perMove);
+            s[2] = static_cast<float>(sum.moveY * perMove);
+            s[3] = static_cast<float>(sum.moveZ * perMove);
+        }
+    };
+    // [1 2 1]/4 of `from` along `axis` over a row, into `out` (as Sums). At the grid's faces the
+    // missing neighbour is the node itself, so the smoothing keeps the total weight. Nodes outside
+    // the live bricks hold zeros (emptied above), and no sum reaches them.
+    const std::ptrdiff_t steps[3] = { 1, g.m_dims.x, static_cast<std::ptrdiff_t>(g.m_dims.x) * g.m_dims.y };
+    auto smoothRow = [&](const Sums* from, int axis, int i0, int j, int k, std::size_t n0, int nodes, float* out) {
+        const std::ptrdiff_t step = steps[axis];
+        const int size = g.m_dims[axis];
+        if (nodes == kBrick && (axis != 0 || (i0 > 0 && i0 + kBrick < size))) {
+            const int at = axis == 1 ? j : k;
+            Float16 here, before, after;
+            std::memcpy(&here, from + n0, sizeof here);
+            if (axis != 0 && at == 0)
+                before = here;
+            else
+                std::memcpy(&before, from + n0 - step, sizeof before);
+            if (axis != 0 && at + 1 == size)
+                after = here;
+            else
+                std::memcpy(&after, from + n0 + step, sizeof after);
+            const Float16 smoothed = 0.25f * (before + after) + 0.5f * here;
+            std::memcpy(out, &smoothed, sizeof smoothed);
+            return;
+        }
+        for (int i = 0; i < nodes; ++i) {
+            const std::size_t n = n0 + static_cast<std::size_t>(i);
+            const int at = axis == 0 ? i0 + i : axis == 1 ? j : k;
+            const Sums& here = from[n];
+            const Sums& before = at > 0 ? from[n - static_cast<std::size_t>(step)] : here;
+            const Sums& after = at + 1 < size ? from[n + static_cast<std::size_t>(step)] : here;
+            float* const s = out + 4 * i;
+            s[0] = 0.25f * (before.weight + after.weight) + 0.5f * here.weight;
+            s[1] = 0.25f * (before.moveX + after.moveX) + 0.5f * here.moveX;
+            s[2] = 0.25f * (before.moveY + after.moveY) + 0.5f * here.moveY;
+            s[3] = 0.25f * (before.moveZ + after.moveZ) + 0.5f * here.moveZ;
+        }
+    };
+    auto storeRow = [&](std::size_t n0, int nodes, const float* sums) { // what sample() reads of the hair
+        for (int i = 0; i < nodes; ++i) {
+            Node& node = g.m_nodes[n0 + static_cast<std::size_t>(i)];
+            const float* const s = sums + 4 * i;
+            node.weight = s[0];
+            node.moveX = s[1];
+            node.moveY = s[2];
+            node.moveZ = s[3];
+            g.m_hairDensity[n0 + static_cast<std::size_t>(i)] = s[0] * perVolume;
+        }
+    };
+    auto rowsOfLive = [&](std::size_t begin, std::size_t end, auto&& fn) {
+        for (std::size_t l = begin; l < end; ++l)
+            g.forRowsOf(g.m_liveList[l], fn);
+    };
+    if (g.m_kernel == Kernel::NearestSmoothed) {
+        // The sums and the smoothing along x and y touch only nodes of one z plane: a layer of
+        // bricks (those of one brick z, contiguous in g.m_liveList, which is in brick order) does
+        // all three in one go. Along z it takes the layers beside: the next pass.
+        std::vector<std::size_t> layers;
+        for (std::size_t l = 0; l < g.m_liveList.size(); ++l)
+            if (l == 0 || g.m_liveList[l] / g.brickLayerSize() != g.m_liveList[l - 1] / g.brickLayerSize())
+                layers.push_back(l);
+        layers.push_back(g.m_liveList.size());
+        forRange(pool, layers.size() - 1, 1, [&](std::size_t begin, std::size_t end) {
+            const std::size_t first = layers[begin], last = layers[end];
+            rowsOfLive(first, last,
+                [&](int, int, int, std::size_t n0, int nodes) { sumRow(n0, nodes, &g.m_sums[n0].weight); });
+            rowsOfLive(first, last, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+                smoothRow(g.m_sums.data(), 0, i0, j, k, n0, nodes, &g.m_smoothed[n0].weight);
+            });
+            rowsOfLive(first, last, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+                smoothRow(g.m_smoothed.data(), 1, i0, j, k, n0, nodes, &g.m_sums[n0].weight);
+            });
+        });
+        forRange(pool, g.m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+            rowsOfLive(begin, end, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+                alignas(64) float sums[4 * kBrick];
+                smoothRow(g.m_sums.data(), 2, i0, j, k, n0, nodes, sums);
+                storeRow(n0, nodes, sums);
+            });
+        });
+    } else {
+        forRange(pool, g.m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+            rowsOfLive(begin, end, [&](int, int, int, std::size_t n0, int nodes) {
+                alignas(64) float sums[4 * kBrick];
+                sumRow(n0, nodes, sums);
+                storeRow(n0, nodes, sums);
+            });
+        });
+    }
+    const float inv2h = 0.5f / g.m_cell;
+    forRange(pool, g.m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
+        rowsOfLive(begin, end, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+            if (nodes == kBrick && i0 > 0 && i0 + kBrick < g.m_dims.x && j > 0 && j + 1 < g.m_dims.y && k > 0
+                && k + 1 < g.m_dims.z) {
+                auto density = [&](std::size_t n) { // hair and head at four nodes from n
+                    Float4 hair, solid;
+                    std::memcpy(&hair, &g.m_hairDensity[n], sizeof hair);
+                    std::memcpy(&solid, &g.m_solid[n], sizeof solid);
+                    return hair + solid * g.m_solidDensity;
+                };
+                const std::size_t sy = static_cast<std::size_t>(steps[1]), sz = static_cast<std::size_t>(steps[2]);
+                const Float4 here = density(n0), gx = (density(n0 + 1) - density(n0 - 1)) * inv2h,
+                             gy = (density(n0 + sy) - density(n0 - sy)) * inv2h,
+                             gz = (density(n0 + sz) - density(n0 - sz)) * inv2h;
+                for (int i = 0; i < kBrick; ++i) {
+                    Node& node = g.m_nodes[n0 + static_cast<std::size_t>(i)];
+                    node.density = here[i];
+                    node.gradX = gx[i];
+                    node.gradY = gy[i];
+                    node.gradZ = gz[i];
+                }
+                return;
+            }
+            for (int i = i0; i < i0 + nodes; ++i) {
+                Node& node = g.m_nodes[n0 + static_cast<std::size_t>(i - i0)];
+                const std::size_t n = n0 + static_cast<std::size_t>(i - i0);
+                node.density = g.m_hairDensity[n] + g.m_solid[n] * g.m_solidDensity;
+                node.gradX = (g.densityAt(i + 1, j, k) - g.densityAt(i - 1, j, k)) * inv2h;
+                node.gradY = (g.densityAt(i, j + 1, k) - g.densityAt(i, j - 1, k)) * inv2h;
+                node.gradZ = (g.densityAt(i, j, k + 1) - g.densityAt(i, j, k - 1)) * inv2h;
+            }
+        });
+    });
+}
+
+void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::cellsOf(
+    const G& g, const float* x, const float* y, const float* z, int count, CellRow& out)
+{
+    // A whole row in a few vector instructions; a shorter one is padded with NaN (outside).
+    using Floats = float __attribute__((vector_size(kRowLanes * sizeof(float))));
+    using Ints = int __attribute__((vector_size(kRowLanes * sizeof(int))));
+    Floats px, py, pz;
+    if (count == kRowLanes) {
+        std::memcpy(&px, x, sizeof px);
+        std::memcpy(&py, y, sizeof py);
+        std::memcpy(&pz, z, sizeof pz);
+    } else {
+        px = py = pz = Floats{} + NAN;
+        for (int l = 0; l < count; ++l) {
+            px[l] = x[l];
+            py[l] = y[l];
+            pz[l] = z[l];
+        }
+    }
+    const float inverseCell = 1.0f / g.m_cell;
+    const Floats gx = (px - g.m_origin.x) * inverseCell, gy = (py - g.m_origin.y) * inverseCell,
+                 gz = (pz - g.m_origin.z) * inverseCell;
+    const Ints inside = (gx >= 0.0f) & (gy >= 0.0f) & (gz >= 0.0f) & (gx < static_cast<float>(g.m_dims.x - 1))
+        & (gy < static_cast<float>(g.m_dims.y - 1)) & (gz < static_cast<float>(g.m_dims.z - 1));
+    const Floats zero{};
+    const Ints ix = __builtin_convertvector(inside ? gx : zero, Ints),
+               iy = __builtin_convertvector(inside ? gy : zero, Ints),
+               iz = __builtin_convertvector(inside ? gz : zero, Ints);
+    const Floats fx = inside ? gx - __builtin_convertvector(ix, Floats) : zero,
+                 fy = inside ? gy - __builtin_convertvector(iy, Floats) : zero,
+                 fz = inside ? gz - __builtin_convertvector(iz, Floats) : zero;
+    const Ints node = inside ? ix + g.m_dims.x * (iy + g.m_dims.y * iz) : Ints{} - 1;
+    const Ints one = Ints{} + 1;
+    const Ints nearest = inside
+        ? node + ((fx >= 0.5f) & one) + g.m_dims.x * (((fy >= 0.5f) & one) + g.m_dims.y * ((fz >= 0.5f) & one))
+        : Ints{} - 1;
+    std::memcpy(out.nearest, &nearest, sizeof nearest);
+    std::memcpy(out.ix, &ix, sizeof ix);
+    std::memcpy(out.iy, &iy, sizeof iy);
+    std::memcpy(out.iz, &iz, sizeof iz);
+    std::memcpy(out.fx, &fx, sizeof fx);
+    std::memcpy(out.fy, &fy, sizeof fy);
+    std::memcpy(out.fz, &fz, sizeof fz);
+    std::memcpy(out.node, &node, sizeof node);
+}
+
+void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::splatRow(G& g, int slot, const float* x, const float* y,
+    const float* z, const float* weight, const float* moveX, const float* moveY, const float* moveZ, int count,
+    int stride)
+{
+    stride = count == kRowLanes ? std::clamp(stride, 1, kRowLanes) : 1;
+    CellRow cells;
+    cellsOf(g, x, y, z, count, cells);
+    std::int64_t* const grid = &g.m_accumulators[static_cast<std::size_t>(slot) * g.m_nodes.size()].weight;
+    const std::ptrdiff_t strideY = 4 * static_cast<std::ptrdiff_t>(g.m_dims.x),
+                         strideZ = strideY * static_cast<std::ptrdiff_t>(g.m_dims.y);
+    std::uint8_t* const touched = g.m_touched.data() + static_cast<std::size_t>(slot) * g.m_live.size();
+    const Float8 units{ g.m_weightUnits, g.m_moveUnits, g.m_moveUnits, g.m_moveUnits, g.m_weightUnits, g.m_moveUnits,
+        g.m_moveUnits, g.m_moveUnits };
+    const std::size_t brickY = static_cast<std::size_t>(g.m_bricks.x),
+                      brickZ = brickY * static_cast<std::size_t>(g.m_bricks.y);
+    // Side-by-side particles (a row's neighbouring strands) often share a cell: their adds are
+    // summed in registers and written once per run of one cell, so they do not wait on each other
+    // through memory. Always in lane order: the same bits every time.
+    int runNode = -1, ix = 0, iy = 0, iz = 0;
+    Float8 run[4] = {};
+    auto flush = [&] {
+        if (runNode < 0)
+            return;
+        // The bricks of the eight nodes: one, unless the cell's far corner is in the next brick.
+        const int bx = ix / kBrick, by = iy / kBrick, bz = iz / kBrick;
+        const int nx = (ix + 1) / kBrick - bx, ny = (iy + 1) / kBrick - by, nz = (iz + 1) / kBrick - bz;
+        std::uint8_t* brick = touched + g.brickIndex(bx, by, bz);
+        if ((nx | ny | nz) == 0)
+            *brick = 1;
+        else
+            for (int k = 0; k <= nz; ++k)
+                for (int j = 0; j <= ny; ++j)
+                    for (int i = 0; i <= nx; ++i)
+                        brick[i + j * brickY + k * brickZ] = 1;
+        // In fixed point, rounded half away from zero: the same integers wherever this row is
+        // splatted, and no drift toward zero in the sums.
+        std::int64_t* const base = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
+        for (int dz = 0; dz < 2; ++dz)
+            for (int dy = 0; dy < 2; ++dy) {
+                std::int64_t* const pair = base + dy * strideY + dz * strideZ;
+                const Float8 value = run[2 * dz + dy] * units;
+                Fixed8 sum;
+                std::memcpy(&sum, pair, sizeof sum);
+                sum += __builtin_convertvector(value + (value < 0.0f ? Float8{} - 0.5f : Float8{} + 0.5f), Fixed8);
+                std::memcpy(pair, &sum, sizeof sum);
+            }
+    };
+    if (g.m_kernel == Kernel::NearestSmoothed) {
+        splatNearest(g, grid, touched, cells, weight, moveX, moveY, moveZ, count, stride);
+        return;
+    }
+    for (int l = 0; l < count; l += stride) {
+        const float w = weight[l];
+        if (cells.node[l] < 0 || !(w > 0.0f))
+            continue;
+        if (cells.node[l] != runNode) {
+            flush();
+            runNode = cells.node[l];
+            ix = cells.ix[l];
+            iy = cells.iy[l];
+            iz = cells.iz[l];
+            run[0] = run[1] = run[2] = run[3] = Float8{};
+        }
+        // (weight, weight x move) at the low and the high node along x, in one register.
+        const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
+        const float mx = std::clamp(moveX[l], -kMaxMoveMetres, kMaxMoveMetres),
+                    my = std::clamp(moveY[l], -kMaxMoveMetres, kMaxMoveMetres),
+                    mz = std::clamp(moveZ[l], -kMaxMoveMetres, kMaxMoveMetres);
+        const Float8 value = Float8{ 1.0f, mx, my, mz, 1.0f, mx, my, mz };
+        const Float8 wx = Float8{ 1.0f - fx, 1.0f - fx, 1.0f - fx, 1.0f - fx, fx, fx, fx, fx };
+        const float wz[2] = { w * (1.0f - fz), w * fz }, wy[2] = { 1.0f - fy, fy };
+        for (int dz = 0; dz < 2; ++dz)
+            for (int dy = 0; dy < 2; ++dy)
+                run[2 * dz + dy] += (wz[dz] * wy[dy]) * wx * value;
+    }
+    flush();
+}
+
+void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::splatNearest(G& g, std::int64_t* grid, std::uint8_t* touched,
+    const CellRow& cells, const float* weight, const float* moveX, const float* moveY, const float* moveZ, int count,
+    int stride)
+{
+    using Float4 = float __attribute__((vector_size(4 * sizeof(float))));
+    using Fixed4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
+    const Float4 units{ g.m_weightUnits, g.m_moveUnits, g.m_moveUnits, g.m_moveUnits };
+    // As the trilinear splat: a run of particles at one node is summed in registers, in lane order.
+    int runNode = -1;
+    Float4 run{};
+    auto flush = [&] {
+        if (runNode < 0)
+            return;
+        const Float4 value = run * units;
+        Fixed4 sum;
+        std::int64_t* const at = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
+        std::memcpy(&sum, at, sizeof sum);
+        sum += __builtin_convertvector(value + (value < 0.0f ? Float4{} - 0.5f : Float4{} + 0.5f), Fixed4);
+        std::memcpy(at, &sum, sizeof sum);
+    };
+    for (int l = 0; l < count; l += stride) {
+        const float w = weight[l];
+        if (cells.node[l] < 0 || !(w > 0.0f))
+            continue;
+        const int node = cells.nearest[l];
+        if (node != runNode) {
+            flush();
+            runNode = node;
+            run = Float4{};
+            const int dx = cells.fx[l] >= 0.5f, dy = cells.fy[l] >= 0.5f, dz = cells.fz[l] >= 0.5f;
+            touched[g.brickIndex((cells.ix[l] + dx) / kBrick, (cells.iy[l] + dy) / kBrick, (cells.iz[l] + dz) / kBrick)]
+                = 1;
+        }
+        const float mx = std::clamp(moveX[l], -kMaxMoveMetres, kMaxMoveMetres),
+                    my = std::clamp(moveY[l], -kMaxMoveMetres, kMaxMoveMetres),
+                    mz = std::clamp(moveZ[l], -kMaxMoveMetres, kMaxMoveMetres);
+        run += w * Float4{ 1.0f, mx, my, mz };
+    }
+    flush();
+}
+
+void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::nearestRow(
+    const G& g, const CellRow& cells, SampleRow& out, int stride)
+{
+    // Each sampled lane's node, eight floats: sixteen nodes, transposed into the eight arrays in
+    // three rounds of two-register shuffles, in place of eight scalar stores a lane. A lane between
+    // samples (the blend sets it) and a lane outside the grid read a node of zeros.
+    static const Node kEmpty{};
+    const float* rows[kRowLanes];
+    for (int l = 0; l < kRowLanes; ++l)
+        rows[l] = (l % stride == 0 || l == kRowLanes - 1) && cells.nearest[l] >= 0
+            ? &g.m_nodes[static_cast<std::size_t>(cells.nearest[l])].density
+            : &kEmpty.density;
+    // v[k]: lanes k and k + 8 (a lane's eight values). Each round swaps a bit of the register's
+    // number with a bit of the position in it (the lane's with the value's), until register f
+    // holds value f of lanes 0..15 in order.
+    Float16 v[8];
+    for (int k = 0; k < 8; ++k) {
+        const Float8 low = load8(rows[k]), high = load8(rows[k + 8]);
+        v[k] = __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    }
+    for (int k = 0; k < 4; ++k) {
+        const Float16 a = v[k], b = v[k + 4];
+        v[k] = __builtin_shufflevector(a, b, 0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24, 25, 26, 27);
+        v[k + 4] = __builtin_shufflevector(a, b, 4, 5, 6, 7, 20, 21, 22, 23, 12, 13, 14, 15, 28, 29, 30, 31);
+    }
+    for (int k : { 0, 1, 4, 5 }) {
+        const Float16 a = v[k], b = v[k + 2];
+        v[k] = __builtin_shufflevector(a, b, 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24, 25, 12, 13, 28, 29);
+        v[k + 2] = __builtin_shufflevector(a, b, 2, 3, 18, 19, 6, 7, 22, 23, 10, 11, 26, 27, 14, 15, 30, 31);
+    }
+    for (int k : { 0, 2, 4, 6 }) {
+        const Float16 a = v[k], b = v[k + 1];
+        v[k] = __builtin_shufflevector(a, b, 0, 16, 2, 18, 4, 20, 6, 22, 8, 24, 10, 26, 12, 28, 14, 30);
+        v[k + 1] = __builtin_shufflevector(a, b, 1, 17, 3, 19, 5, 21, 7, 23, 9, 25, 11, 27, 13, 29, 15, 31);
+    }
+    float* const fields[8] = { out.density, out.gradX, out.gradY, out.gradZ, out.momentumX, out.momentumY,
+        out.momentumZ, out.hair }; // Node's order
+    for (int f = 0; f < 8; ++f)
+        std::memcpy(fields[f], &v[f], sizeof v[f]);
+}
+
+void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::sampleRow(
+    const G& g, const float* x, const float* y, const float* z, SampleRow& out, int count, int stride)
+{
+    CellRow cells;
+    cellsOf(g, x, y, z, count, cells);
+    const std::ptrdiff_t strideY = g.m_dims.x, strideZ = strideY * g.m_dims.y;
+    stride = count == kRowLanes ? std::clamp(stride, 1, kRowLanes) : 1;
+    if (g.m_kernel == Kernel::NearestSmoothed && count == kRowLanes)
+        nearestRow(g, cells, out, stride);
+    else
+        for (int l = 0; l < count; l = l + stride < count || l == count - 1 ? l + stride : count - 1) {
+            Float8 sum{};
+            if (g.m_kernel == Kernel::NearestSmoothed) {
+                if (cells.nearest[l] >= 0)
+                    sum = load8(&g.m_nodes[static_cast<std::size_t>(cells.nearest[l])].density);
+            } else if (cells.node[l] >= 0) {
+                const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
+                const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
+                const Node* const base = g.m_nodes.data() + cells.node[l];
+                for (int dz = 0; dz < 2; ++dz)
+                    for (int dy = 0; dy < 2; ++dy) {
+                        const Node* const row = base + dy * strideY + dz * strideZ;
+                        const float wyz = wz[dz] * wy[dy];
+                        sum += load8(&row[0].density) * (wyz * wx[0]);
+                        sum += load8(&row[1].density) * (wyz * wx[1]);
+                    }
+            }
+            out.density[l] = sum[0];
+            out.gradX[l] = sum[1];
+            out.gradY[l] = sum[2];
+            out.gradZ[l] = sum[3];
+            out.momentumX[l] = sum[4];
+            out.momentumY[l] = sum[5];
+            out.momentumZ[l] = sum[6];
+            out.hair[l] = sum[7];
+        }
+    if (stride == 1)
+        return;
+    // The lanes between two samples: the linear blend of the two, in one vector pass per array.
+    using Floats = float __attribute__((vector_size(kRowLanes * sizeof(float))));
+    using Ints = int __attribute__((vector_size(kRowLanes * sizeof(int))));
+    const HWY_NAMESPACE::LaneBlend& blend = HWY_NAMESPACE::kLaneBlends[std::countr_zero(static_cast<unsigned>(stride))];
+    Ints before, after;
+    Floats share;
+    std::memcpy(&before, blend.before, sizeof before);
+    std::memcpy(&after, blend.after, sizeof after);
+    std::memcpy(&share, blend.share, sizeof share);
+    for (float* values :
+        { out.density, out.hair, out.momentumX, out.momentumY, out.momentumZ, out.gradX, out.gradY, out.gradZ }) {
+        Floats v;
+        std::memcpy(&v, values, sizeof v);
+        const Floats from = HWY_NAMESPACE::shuffleLanes(v, before), to = HWY_NAMESPACE::shuffleLanes(v, after);
+        v = from + (to - from) * share;
+        std::memcpy(values, &v, sizeof v);
+    }
+}
+
+namespace HWY_NAMESPACE {
+using Kernels = HairVolumeGridKernels<GridTarget>;
+using G = HairVolumeGrid;
+
+// What the members dispatch to.
+void splatRowOnTarget(G& g, int slot, const float* x, const float* y, const float* z, const float* weight,
+    const float* moveX, const float* moveY, const float* moveZ, int count, int stride)
+{
+    Kernels::splatRow(g, slot, x, y, z, weight, moveX, moveY, moveZ, count, stride);
+}
+void sampleRowOnTarget(
+    const G& g, const float* x, const float* y, const float* z, G::SampleRow& out, int count, int stride)
+{
+    Kernels::sampleRow(g, x, y, z, out, count, stride);
+}
+void finishOnTarget(G& g, ThreadPool* pool, float solidDensity)
+{
+    Kernels::finish(g, pool, solidDensity);
+}
+
+} // namespace HWY_NAMESPACE
+} // namespace wisp
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+
+namespace wisp {
+
+HWY_EXPORT(splatRowOnTarget);
+HWY_EXPORT(sampleRowOnTarget);
+HWY_EXPORT(finishOnTarget);
 
 bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi, int slots, std::size_t maxNodes, Kernel kernel)
 {
@@ -159,521 +753,21 @@ void HairVolumeGrid::clear(ThreadPool* pool)
     });
 }
 
-namespace {
-// A row of kBrick (4) nodes along x in finish(): their four sums each (Sums), one AVX-512 register
-// of floats (two of AVX2); the slots' fixed point and its conversion through doubles.
-using Float16 = float __attribute__((vector_size(16 * sizeof(float))));
-using Fixed16 = std::int64_t __attribute__((vector_size(16 * sizeof(std::int64_t))));
-using Double16 = double __attribute__((vector_size(16 * sizeof(double))));
-using Float4 = float __attribute__((vector_size(4 * sizeof(float)))); // one value of four nodes
-} // namespace
-
 void HairVolumeGrid::finish(ThreadPool* pool, float solidDensity)
 {
-    const std::size_t count = m_nodes.size(), bricks = m_live.size();
-    // The bricks any slot touched; the nodes of bricks touched last time and not now go empty.
-    std::vector<std::uint32_t> now;
-    for (std::size_t b = 0; b < bricks; ++b) {
-        bool any = false;
-        for (int c = 0; c < m_slots; ++c) {
-            std::uint8_t& touched = m_touched[static_cast<std::size_t>(c) * bricks + b];
-            any = any || touched != 0;
-            touched = 0; // emptied below
-        }
-        if (any)
-            now.push_back(static_cast<std::uint32_t>(b));
-    }
-    if (m_kernel == Kernel::NearestSmoothed) {
-        // The smoothing spreads a node's sums one node each way: into the bricks beside.
-        std::vector<std::uint8_t> near(bricks, 0);
-        for (const std::uint32_t b : now) {
-            const int bx = static_cast<int>(b % static_cast<std::uint32_t>(m_bricks.x));
-            const int by = static_cast<int>(
-                (b / static_cast<std::uint32_t>(m_bricks.x)) % static_cast<std::uint32_t>(m_bricks.y));
-            const int bz = static_cast<int>(b / (static_cast<std::uint32_t>(m_bricks.x) * m_bricks.y));
-            for (int k = std::max(bz - 1, 0); k <= std::min(bz + 1, m_bricks.z - 1); ++k)
-                for (int j = std::max(by - 1, 0); j <= std::min(by + 1, m_bricks.y - 1); ++j)
-                    for (int i = std::max(bx - 1, 0); i <= std::min(bx + 1, m_bricks.x - 1); ++i)
-                        near[brickIndex(i, j, k)] = 1;
-        }
-        now.clear();
-        for (std::size_t b = 0; b < bricks; ++b)
-            if (near[b])
-                now.push_back(static_cast<std::uint32_t>(b));
-    }
-    for (const std::uint32_t b : m_liveList)
-        m_live[b] = 0;
-    for (const std::uint32_t b : now)
-        m_live[b] = 1;
-    for (const std::uint32_t b : m_liveList)
-        if (!m_live[b])
-            forNodesOf(b, [&](int, int, int, std::size_t n) {
-                m_nodes[n] = Node{};
-                m_hairDensity[n] = 0.0f;
-                if (!m_sums.empty())
-                    m_sums[n] = m_smoothed[n] = Sums{};
-            });
-    m_liveList = std::move(now);
-    m_solidDensity = solidDensity;
-
-    // What sample() reads, in three passes over the live nodes, a row of kBrick nodes along x at a
-    // time (one vector each): the slots' sums (the slots emptied for the next splats), then the
-    // smoothing (Kernel::NearestSmoothed) and the node's hair, then the density's gradient, which
-    // takes the neighbours' density. Each pass is one wait for the pool: on a dense groom's small
-    // grid (25,000 nodes) the waits, not the arithmetic, were most of finish().
-    static_assert(sizeof(Sums) == 4 * sizeof(float) && sizeof(Accumulator) == 4 * sizeof(std::int64_t),
-        "a row of kBrick nodes is read and written as one vector of each");
-    const float perVolume = 1.0f / (m_cell * m_cell * m_cell);
-    const double perWeight = 1.0 / static_cast<double>(m_weightUnits), perMove = 1.0 / static_cast<double>(m_moveUnits);
-    // A row's sums over the slots, as floats (weight, move x, y, z a node, as Sums), into `out`.
-    auto sumRow = [&](std::size_t n0, int nodes, float* out) {
-        if (nodes == kBrick) {
-            Fixed16 total{};
-            for (int c = 0; c < m_slots; ++c) { // integers: the same sum in any order
-                Accumulator* const a = &m_accumulators[static_cast<std::size_t>(c) * count + n0];
-                Fixed16 v;
-                std::memcpy(&v, a, sizeof v);
-                total += v;
-                std::memset(static_cast<void*>(a), 0, sizeof v);
-            }
-            const Double16 units{ perWeight, perMove, perMove, perMove, perWeight, perMove, perMove, perMove, perWeight,
-                perMove, perMove, perMove, perWeight, perMove, perMove, perMove };
-            const Float16 sums = __builtin_convertvector(__builtin_convertvector(total, Double16) * units, Float16);
-            std::memcpy(out, &sums, sizeof sums);
-            return;
-        }
-        for (int i = 0; i < nodes; ++i) {
-            Accumulator sum{};
-            for (int c = 0; c < m_slots; ++c) {
-                Accumulator& a = m_accumulators[static_cast<std::size_t>(c) * count + n0 + i];
-                sum.weight += a.weight;
-                sum.moveX += a.moveX;
-                sum.moveY += a.moveY;
-                sum.moveZ += a.moveZ;
-                a = Accumulator{};
-            }
-            float* const s = out + 4 * i;
-            s[0] = static_cast<float>(sum.weight * perWeight);
-            s[1] = static_cast<float>(sum.moveX * perMove);
-            s[2] = static_cast<float>(sum.moveY * perMove);
-            s[3] = static_cast<float>(sum.moveZ * perMove);
-        }
-    };
-    // [1 2 1]/4 of `from` along `axis` over a row, into `out` (as Sums). At the grid's faces the
-    // missing neighbour is the node itself, so the smoothing keeps the total weight. Nodes outside
-    // the live bricks hold zeros (emptied above), and no sum reaches them.
-    const std::ptrdiff_t steps[3] = { 1, m_dims.x, static_cast<std::ptrdiff_t>(m_dims.x) * m_dims.y };
-    auto smoothRow = [&](const Sums* from, int axis, int i0, int j, int k, std::size_t n0, int nodes, float* out) {
-        const std::ptrdiff_t step = steps[axis];
-        const int size = m_dims[axis];
-        if (nodes == kBrick && (axis != 0 || (i0 > 0 && i0 + kBrick < size))) {
-            const int at = axis == 1 ? j : k;
-            Float16 here, before, after;
-            std::memcpy(&here, from + n0, sizeof here);
-            if (axis != 0 && at == 0)
-                before = here;
-            else
-                std::memcpy(&before, from + n0 - step, sizeof before);
-            if (axis != 0 && at + 1 == size)
-                after = here;
-            else
-                std::memcpy(&after, from + n0 + step, sizeof after);
-            const Float16 smoothed = 0.25f * (before + after) + 0.5f * here;
-            std::memcpy(out, &smoothed, sizeof smoothed);
-            return;
-        }
-        for (int i = 0; i < nodes; ++i) {
-            const std::size_t n = n0 + static_cast<std::size_t>(i);
-            const int at = axis == 0 ? i0 + i : axis == 1 ? j : k;
-            const Sums& here = from[n];
-            const Sums& before = at > 0 ? from[n - static_cast<std::size_t>(step)] : here;
-            const Sums& after = at + 1 < size ? from[n + static_cast<std::size_t>(step)] : here;
-            float* const s = out + 4 * i;
-            s[0] = 0.25f * (before.weight + after.weight) + 0.5f * here.weight;
-            s[1] = 0.25f * (before.moveX + after.moveX) + 0.5f * here.moveX;
-            s[2] = 0.25f * (before.moveY + after.moveY) + 0.5f * here.moveY;
-            s[3] = 0.25f * (before.moveZ + after.moveZ) + 0.5f * here.moveZ;
-        }
-    };
-    auto storeRow = [&](std::size_t n0, int nodes, const float* sums) { // what sample() reads of the hair
-        for (int i = 0; i < nodes; ++i) {
-            Node& node = m_nodes[n0 + static_cast<std::size_t>(i)];
-            const float* const s = sums + 4 * i;
-            node.weight = s[0];
-            node.moveX = s[1];
-            node.moveY = s[2];
-            node.moveZ = s[3];
-            m_hairDensity[n0 + static_cast<std::size_t>(i)] = s[0] * perVolume;
-        }
-    };
-    auto rowsOfLive = [&](std::size_t begin, std::size_t end, auto&& fn) {
-        for (std::size_t l = begin; l < end; ++l)
-            forRowsOf(m_liveList[l], fn);
-    };
-    if (m_kernel == Kernel::NearestSmoothed) {
-        // The sums and the smoothing along x and y touch only nodes of one z plane: a layer of
-        // bricks (those of one brick z, contiguous in m_liveList, which is in brick order) does
-        // all three in one go. Along z it takes the layers beside: the next pass.
-        std::vector<std::size_t> layers;
-        for (std::size_t l = 0; l < m_liveList.size(); ++l)
-            if (l == 0 || m_liveList[l] / brickLayerSize() != m_liveList[l - 1] / brickLayerSize())
-                layers.push_back(l);
-        layers.push_back(m_liveList.size());
-        forRange(pool, layers.size() - 1, 1, [&](std::size_t begin, std::size_t end) {
-            const std::size_t first = layers[begin], last = layers[end];
-            rowsOfLive(
-                first, last, [&](int, int, int, std::size_t n0, int nodes) { sumRow(n0, nodes, &m_sums[n0].weight); });
-            rowsOfLive(first, last, [&](int i0, int j, int k, std::size_t n0, int nodes) {
-                smoothRow(m_sums.data(), 0, i0, j, k, n0, nodes, &m_smoothed[n0].weight);
-            });
-            rowsOfLive(first, last, [&](int i0, int j, int k, std::size_t n0, int nodes) {
-                smoothRow(m_smoothed.data(), 1, i0, j, k, n0, nodes, &m_sums[n0].weight);
-            });
-        });
-        forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
-            rowsOfLive(begin, end, [&](int i0, int j, int k, std::size_t n0, int nodes) {
-                alignas(64) float sums[4 * kBrick];
-                smoothRow(m_sums.data(), 2, i0, j, k, n0, nodes, sums);
-                storeRow(n0, nodes, sums);
-            });
-        });
-    } else {
-        forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
-            rowsOfLive(begin, end, [&](int, int, int, std::size_t n0, int nodes) {
-                alignas(64) float sums[4 * kBrick];
-                sumRow(n0, nodes, sums);
-                storeRow(n0, nodes, sums);
-            });
-        });
-    }
-    const float inv2h = 0.5f / m_cell;
-    forRange(pool, m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
-        rowsOfLive(begin, end, [&](int i0, int j, int k, std::size_t n0, int nodes) {
-            if (nodes == kBrick && i0 > 0 && i0 + kBrick < m_dims.x && j > 0 && j + 1 < m_dims.y && k > 0
-                && k + 1 < m_dims.z) {
-                auto density = [&](std::size_t n) { // hair and head at four nodes from n
-                    Float4 hair, solid;
-                    std::memcpy(&hair, &m_hairDensity[n], sizeof hair);
-                    std::memcpy(&solid, &m_solid[n], sizeof solid);
-                    return hair + solid * m_solidDensity;
-                };
-                const std::size_t sy = static_cast<std::size_t>(steps[1]), sz = static_cast<std::size_t>(steps[2]);
-                const Float4 here = density(n0), gx = (density(n0 + 1) - density(n0 - 1)) * inv2h,
-                             gy = (density(n0 + sy) - density(n0 - sy)) * inv2h,
-                             gz = (density(n0 + sz) - density(n0 - sz)) * inv2h;
-                for (int i = 0; i < kBrick; ++i) {
-                    Node& node = m_nodes[n0 + static_cast<std::size_t>(i)];
-                    node.density = here[i];
-                    node.gradX = gx[i];
-                    node.gradY = gy[i];
-                    node.gradZ = gz[i];
-                }
-                return;
-            }
-            for (int i = i0; i < i0 + nodes; ++i) {
-                Node& node = m_nodes[n0 + static_cast<std::size_t>(i - i0)];
-                const std::size_t n = n0 + static_cast<std::size_t>(i - i0);
-                node.density = m_hairDensity[n] + m_solid[n] * m_solidDensity;
-                node.gradX = (densityAt(i + 1, j, k) - densityAt(i - 1, j, k)) * inv2h;
-                node.gradY = (densityAt(i, j + 1, k) - densityAt(i, j - 1, k)) * inv2h;
-                node.gradZ = (densityAt(i, j, k + 1) - densityAt(i, j, k - 1)) * inv2h;
-            }
-        });
-    });
-}
-
-namespace {
-// Eight floats, one AVX register: a pair of neighbouring nodes along x (splat), or one node (sample).
-using Float8 = float __attribute__((vector_size(8 * sizeof(float))));
-using Fixed8 = std::int64_t __attribute__((vector_size(8 * sizeof(std::int64_t))));
-inline Float8 load8(const float* p)
-{
-    Float8 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-} // namespace
-
-void HairVolumeGrid::cellsOf(const float* x, const float* y, const float* z, int count, CellRow& out) const
-{
-    // A whole row in a few vector instructions; a shorter one is padded with NaN (outside).
-    using Floats = float __attribute__((vector_size(kRowLanes * sizeof(float))));
-    using Ints = int __attribute__((vector_size(kRowLanes * sizeof(int))));
-    Floats px, py, pz;
-    if (count == kRowLanes) {
-        std::memcpy(&px, x, sizeof px);
-        std::memcpy(&py, y, sizeof py);
-        std::memcpy(&pz, z, sizeof pz);
-    } else {
-        px = py = pz = Floats{} + NAN;
-        for (int l = 0; l < count; ++l) {
-            px[l] = x[l];
-            py[l] = y[l];
-            pz[l] = z[l];
-        }
-    }
-    const float inverseCell = 1.0f / m_cell;
-    const Floats gx = (px - m_origin.x) * inverseCell, gy = (py - m_origin.y) * inverseCell,
-                 gz = (pz - m_origin.z) * inverseCell;
-    const Ints inside = (gx >= 0.0f) & (gy >= 0.0f) & (gz >= 0.0f) & (gx < static_cast<float>(m_dims.x - 1))
-        & (gy < static_cast<float>(m_dims.y - 1)) & (gz < static_cast<float>(m_dims.z - 1));
-    const Floats zero{};
-    const Ints ix = __builtin_convertvector(inside ? gx : zero, Ints),
-               iy = __builtin_convertvector(inside ? gy : zero, Ints),
-               iz = __builtin_convertvector(inside ? gz : zero, Ints);
-    const Floats fx = inside ? gx - __builtin_convertvector(ix, Floats) : zero,
-                 fy = inside ? gy - __builtin_convertvector(iy, Floats) : zero,
-                 fz = inside ? gz - __builtin_convertvector(iz, Floats) : zero;
-    const Ints node = inside ? ix + m_dims.x * (iy + m_dims.y * iz) : Ints{} - 1;
-    const Ints one = Ints{} + 1;
-    const Ints nearest = inside
-        ? node + ((fx >= 0.5f) & one) + m_dims.x * (((fy >= 0.5f) & one) + m_dims.y * ((fz >= 0.5f) & one))
-        : Ints{} - 1;
-    std::memcpy(out.nearest, &nearest, sizeof nearest);
-    std::memcpy(out.ix, &ix, sizeof ix);
-    std::memcpy(out.iy, &iy, sizeof iy);
-    std::memcpy(out.iz, &iz, sizeof iz);
-    std::memcpy(out.fx, &fx, sizeof fx);
-    std::memcpy(out.fy, &fy, sizeof fy);
-    std::memcpy(out.fz, &fz, sizeof fz);
-    std::memcpy(out.node, &node, sizeof node);
+    HWY_DYNAMIC_DISPATCH(finishOnTarget)(*this, pool, solidDensity);
 }
 
 void HairVolumeGrid::splatRow(int slot, const float* x, const float* y, const float* z, const float* weight,
     const float* moveX, const float* moveY, const float* moveZ, int count, int stride)
 {
-    stride = count == kRowLanes ? std::clamp(stride, 1, kRowLanes) : 1;
-    CellRow cells;
-    cellsOf(x, y, z, count, cells);
-    std::int64_t* const grid = &m_accumulators[static_cast<std::size_t>(slot) * m_nodes.size()].weight;
-    const std::ptrdiff_t strideY = 4 * static_cast<std::ptrdiff_t>(m_dims.x),
-                         strideZ = strideY * static_cast<std::ptrdiff_t>(m_dims.y);
-    std::uint8_t* const touched = m_touched.data() + static_cast<std::size_t>(slot) * m_live.size();
-    const Float8 units{ m_weightUnits, m_moveUnits, m_moveUnits, m_moveUnits, m_weightUnits, m_moveUnits, m_moveUnits,
-        m_moveUnits };
-    const std::size_t brickY = static_cast<std::size_t>(m_bricks.x),
-                      brickZ = brickY * static_cast<std::size_t>(m_bricks.y);
-    // Side-by-side particles (a row's neighbouring strands) often share a cell: their adds are
-    // summed in registers and written once per run of one cell, so they do not wait on each other
-    // through memory. Always in lane order: the same bits every time.
-    int runNode = -1, ix = 0, iy = 0, iz = 0;
-    Float8 run[4] = {};
-    auto flush = [&] {
-        if (runNode < 0)
-            return;
-        // The bricks of the eight nodes: one, unless the cell's far corner is in the next brick.
-        const int bx = ix / kBrick, by = iy / kBrick, bz = iz / kBrick;
-        const int nx = (ix + 1) / kBrick - bx, ny = (iy + 1) / kBrick - by, nz = (iz + 1) / kBrick - bz;
-        std::uint8_t* brick = touched + brickIndex(bx, by, bz);
-        if ((nx | ny | nz) == 0)
-            *brick = 1;
-        else
-            for (int k = 0; k <= nz; ++k)
-                for (int j = 0; j <= ny; ++j)
-                    for (int i = 0; i <= nx; ++i)
-                        brick[i + j * brickY + k * brickZ] = 1;
-        // In fixed point, rounded half away from zero: the same integers wherever this row is
-        // splatted, and no drift toward zero in the sums.
-        std::int64_t* const base = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
-        for (int dz = 0; dz < 2; ++dz)
-            for (int dy = 0; dy < 2; ++dy) {
-                std::int64_t* const pair = base + dy * strideY + dz * strideZ;
-                const Float8 value = run[2 * dz + dy] * units;
-                Fixed8 sum;
-                std::memcpy(&sum, pair, sizeof sum);
-                sum += __builtin_convertvector(value + (value < 0.0f ? Float8{} - 0.5f : Float8{} + 0.5f), Fixed8);
-                std::memcpy(pair, &sum, sizeof sum);
-            }
-    };
-    if (m_kernel == Kernel::NearestSmoothed) {
-        splatNearest(grid, touched, cells, weight, moveX, moveY, moveZ, count, stride);
-        return;
-    }
-    for (int l = 0; l < count; l += stride) {
-        const float w = weight[l];
-        if (cells.node[l] < 0 || !(w > 0.0f))
-            continue;
-        if (cells.node[l] != runNode) {
-            flush();
-            runNode = cells.node[l];
-            ix = cells.ix[l];
-            iy = cells.iy[l];
-            iz = cells.iz[l];
-            run[0] = run[1] = run[2] = run[3] = Float8{};
-        }
-        // (weight, weight x move) at the low and the high node along x, in one register.
-        const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
-        const float mx = std::clamp(moveX[l], -kMaxMoveMetres, kMaxMoveMetres),
-                    my = std::clamp(moveY[l], -kMaxMoveMetres, kMaxMoveMetres),
-                    mz = std::clamp(moveZ[l], -kMaxMoveMetres, kMaxMoveMetres);
-        const Float8 value = Float8{ 1.0f, mx, my, mz, 1.0f, mx, my, mz };
-        const Float8 wx = Float8{ 1.0f - fx, 1.0f - fx, 1.0f - fx, 1.0f - fx, fx, fx, fx, fx };
-        const float wz[2] = { w * (1.0f - fz), w * fz }, wy[2] = { 1.0f - fy, fy };
-        for (int dz = 0; dz < 2; ++dz)
-            for (int dy = 0; dy < 2; ++dy)
-                run[2 * dz + dy] += (wz[dz] * wy[dy]) * wx * value;
-    }
-    flush();
-}
-
-void HairVolumeGrid::splatNearest(std::int64_t* grid, std::uint8_t* touched, const CellRow& cells, const float* weight,
-    const float* moveX, const float* moveY, const float* moveZ, int count, int stride)
-{
-    using Float4 = float __attribute__((vector_size(4 * sizeof(float))));
-    using Fixed4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
-    const Float4 units{ m_weightUnits, m_moveUnits, m_moveUnits, m_moveUnits };
-    // As the trilinear splat: a run of particles at one node is summed in registers, in lane order.
-    int runNode = -1;
-    Float4 run{};
-    auto flush = [&] {
-        if (runNode < 0)
-            return;
-        const Float4 value = run * units;
-        Fixed4 sum;
-        std::int64_t* const at = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
-        std::memcpy(&sum, at, sizeof sum);
-        sum += __builtin_convertvector(value + (value < 0.0f ? Float4{} - 0.5f : Float4{} + 0.5f), Fixed4);
-        std::memcpy(at, &sum, sizeof sum);
-    };
-    for (int l = 0; l < count; l += stride) {
-        const float w = weight[l];
-        if (cells.node[l] < 0 || !(w > 0.0f))
-            continue;
-        const int node = cells.nearest[l];
-        if (node != runNode) {
-            flush();
-            runNode = node;
-            run = Float4{};
-            const int dx = cells.fx[l] >= 0.5f, dy = cells.fy[l] >= 0.5f, dz = cells.fz[l] >= 0.5f;
-            touched[brickIndex((cells.ix[l] + dx) / kBrick, (cells.iy[l] + dy) / kBrick, (cells.iz[l] + dz) / kBrick)]
-                = 1;
-        }
-        const float mx = std::clamp(moveX[l], -kMaxMoveMetres, kMaxMoveMetres),
-                    my = std::clamp(moveY[l], -kMaxMoveMetres, kMaxMoveMetres),
-                    mz = std::clamp(moveZ[l], -kMaxMoveMetres, kMaxMoveMetres);
-        run += w * Float4{ 1.0f, mx, my, mz };
-    }
-    flush();
-}
-
-namespace {
-// For a row sampled every `stride` lanes and at its last lane: per lane the sampled lanes before and
-// after it and its share of the way from one to the other.
-struct LaneBlend {
-    alignas(64) int before[HairVolumeGrid::kRowLanes];
-    alignas(64) int after[HairVolumeGrid::kRowLanes];
-    alignas(64) float share[HairVolumeGrid::kRowLanes];
-};
-constexpr LaneBlend laneBlend(int stride)
-{
-    LaneBlend b{};
-    constexpr int last = HairVolumeGrid::kRowLanes - 1;
-    for (int l = 0; l < HairVolumeGrid::kRowLanes; ++l) {
-        const int before = l - l % stride, after = std::min(before + stride, last);
-        b.before[l] = before;
-        b.after[l] = after;
-        b.share[l] = after > before ? static_cast<float>(l - before) / static_cast<float>(after - before) : 0.0f;
-    }
-    return b;
-}
-constexpr LaneBlend kLaneBlends[5] = { laneBlend(1), laneBlend(2), laneBlend(4), laneBlend(8), laneBlend(16) };
-} // namespace
-
-void HairVolumeGrid::nearestRow(const CellRow& cells, SampleRow& out, int stride) const
-{
-    // Each sampled lane's node, eight floats: sixteen nodes, transposed into the eight arrays in
-    // three rounds of two-register shuffles, in place of eight scalar stores a lane. A lane between
-    // samples (the blend sets it) and a lane outside the grid read a node of zeros.
-    static const Node kEmpty{};
-    const float* rows[kRowLanes];
-    for (int l = 0; l < kRowLanes; ++l)
-        rows[l] = (l % stride == 0 || l == kRowLanes - 1) && cells.nearest[l] >= 0
-            ? &m_nodes[static_cast<std::size_t>(cells.nearest[l])].density
-            : &kEmpty.density;
-    // v[k]: lanes k and k + 8 (a lane's eight values). Each round swaps a bit of the register's
-    // number with a bit of the position in it (the lane's with the value's), until register f
-    // holds value f of lanes 0..15 in order.
-    Float16 v[8];
-    for (int k = 0; k < 8; ++k) {
-        const Float8 low = load8(rows[k]), high = load8(rows[k + 8]);
-        v[k] = __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    }
-    for (int k = 0; k < 4; ++k) {
-        const Float16 a = v[k], b = v[k + 4];
-        v[k] = __builtin_shufflevector(a, b, 0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24, 25, 26, 27);
-        v[k + 4] = __builtin_shufflevector(a, b, 4, 5, 6, 7, 20, 21, 22, 23, 12, 13, 14, 15, 28, 29, 30, 31);
-    }
-    for (int k : { 0, 1, 4, 5 }) {
-        const Float16 a = v[k], b = v[k + 2];
-        v[k] = __builtin_shufflevector(a, b, 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24, 25, 12, 13, 28, 29);
-        v[k + 2] = __builtin_shufflevector(a, b, 2, 3, 18, 19, 6, 7, 22, 23, 10, 11, 26, 27, 14, 15, 30, 31);
-    }
-    for (int k : { 0, 2, 4, 6 }) {
-        const Float16 a = v[k], b = v[k + 1];
-        v[k] = __builtin_shufflevector(a, b, 0, 16, 2, 18, 4, 20, 6, 22, 8, 24, 10, 26, 12, 28, 14, 30);
-        v[k + 1] = __builtin_shufflevector(a, b, 1, 17, 3, 19, 5, 21, 7, 23, 9, 25, 11, 27, 13, 29, 15, 31);
-    }
-    float* const fields[8] = { out.density, out.gradX, out.gradY, out.gradZ, out.momentumX, out.momentumY,
-        out.momentumZ, out.hair }; // Node's order
-    for (int f = 0; f < 8; ++f)
-        std::memcpy(fields[f], &v[f], sizeof v[f]);
+    HWY_DYNAMIC_DISPATCH(splatRowOnTarget)(*this, slot, x, y, z, weight, moveX, moveY, moveZ, count, stride);
 }
 
 void HairVolumeGrid::sampleRow(
     const float* x, const float* y, const float* z, SampleRow& out, int count, int stride) const
 {
-    CellRow cells;
-    cellsOf(x, y, z, count, cells);
-    const std::ptrdiff_t strideY = m_dims.x, strideZ = strideY * m_dims.y;
-    stride = count == kRowLanes ? std::clamp(stride, 1, kRowLanes) : 1;
-    if (m_kernel == Kernel::NearestSmoothed && count == kRowLanes)
-        nearestRow(cells, out, stride);
-    else
-        for (int l = 0; l < count; l = l + stride < count || l == count - 1 ? l + stride : count - 1) {
-            Float8 sum{};
-            if (m_kernel == Kernel::NearestSmoothed) {
-                if (cells.nearest[l] >= 0)
-                    sum = load8(&m_nodes[static_cast<std::size_t>(cells.nearest[l])].density);
-            } else if (cells.node[l] >= 0) {
-                const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
-                const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
-                const Node* const base = m_nodes.data() + cells.node[l];
-                for (int dz = 0; dz < 2; ++dz)
-                    for (int dy = 0; dy < 2; ++dy) {
-                        const Node* const row = base + dy * strideY + dz * strideZ;
-                        const float wyz = wz[dz] * wy[dy];
-                        sum += load8(&row[0].density) * (wyz * wx[0]);
-                        sum += load8(&row[1].density) * (wyz * wx[1]);
-                    }
-            }
-            out.density[l] = sum[0];
-            out.gradX[l] = sum[1];
-            out.gradY[l] = sum[2];
-            out.gradZ[l] = sum[3];
-            out.momentumX[l] = sum[4];
-            out.momentumY[l] = sum[5];
-            out.momentumZ[l] = sum[6];
-            out.hair[l] = sum[7];
-        }
-    if (stride == 1)
-        return;
-    // The lanes between two samples: the linear blend of the two, in one vector pass per array.
-    using Floats = float __attribute__((vector_size(kRowLanes * sizeof(float))));
-    using Ints = int __attribute__((vector_size(kRowLanes * sizeof(int))));
-    const LaneBlend& blend = kLaneBlends[std::countr_zero(static_cast<unsigned>(stride))];
-    Ints before, after;
-    Floats share;
-    std::memcpy(&before, blend.before, sizeof before);
-    std::memcpy(&after, blend.after, sizeof after);
-    std::memcpy(&share, blend.share, sizeof share);
-    for (float* values :
-        { out.density, out.hair, out.momentumX, out.momentumY, out.momentumZ, out.gradX, out.gradY, out.gradZ }) {
-        Floats v;
-        std::memcpy(&v, values, sizeof v);
-        const Floats from = shuffleLanes(v, before), to = shuffleLanes(v, after);
-        v = from + (to - from) * share;
-        std::memcpy(values, &v, sizeof v);
-    }
+    HWY_DYNAMIC_DISPATCH(sampleRowOnTarget)(*this, x, y, z, out, count, stride);
 }
 
 double HairVolumeGrid::totalWeight() const
@@ -685,3 +779,5 @@ double HairVolumeGrid::totalWeight() const
 }
 
 } // namespace wisp
+
+#endif // HWY_ONCE

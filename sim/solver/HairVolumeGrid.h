@@ -28,8 +28,12 @@
 namespace wisp {
 
 class ThreadPool;
+// The grid's loops compiled for one SIMD target (HairVolumeGrid.cpp): one specialisation per target.
+template <class Target> struct HairVolumeGridKernels;
 
 class HairVolumeGrid {
+    template <class Target> friend struct HairVolumeGridKernels;
+
 public:
     static constexpr int kMaxSlots = 8; // splatting threads at once (more wait for a free slot)
     static constexpr std::size_t kMaxBytes = std::size_t{ 32 } << 20; // 32 MiB
@@ -165,12 +169,6 @@ private:
         alignas(64) float fy[kRowLanes];
         alignas(64) float fz[kRowLanes];
     };
-    void cellsOf(const float* x, const float* y, const float* z, int count, CellRow& out) const;
-    // sampleRow's reads for Kernel::NearestSmoothed and a full row: lanes 0, stride, ... and 15.
-    void nearestRow(const CellRow& cells, SampleRow& out, int stride) const;
-    // splatRow for Kernel::NearestSmoothed: into slot grid `grid`, marking `touched` bricks.
-    void splatNearest(std::int64_t* grid, std::uint8_t* touched, const CellRow& cells, const float* weight,
-        const float* moveX, const float* moveY, const float* moveZ, int count, int stride);
     // Hair and head at a node (clamped into the grid), for the central differences.
     float densityAt(int i, int j, int k) const
     {

@@ -21,8 +21,6 @@
 
 namespace wisp {
 
-using namespace lanes;
-
 Solver::Solver(int threadCount)
     : m_pool(std::make_unique<ThreadPool>(threadCount))
 {
@@ -137,7 +135,7 @@ std::string Solver::setSettings(const SolverSettings& settings)
     if (settings.hairOffsetMetres != m_settings.hairOffsetMetres) // clearances are measured from the offset
         for (Block& b : m_blocks)
             for (ParticleRow& row : b.state)
-                row.clearance = splat(-1.0f);
+                row.clearance = Lane{} - 1.0f;
     m_settings = settings;
     return {};
 }
@@ -149,7 +147,7 @@ void Solver::setCollider(std::shared_ptr<const SignedDistanceField> headSdf)
     m_volumeGrid.reset(); // its solid is the head
     for (Block& b : m_blocks)
         for (ParticleRow& row : b.state)
-            row.clearance = splat(-1.0f);
+            row.clearance = Lane{} - 1.0f;
 }
 
 void Solver::setCapsules(std::vector<Capsule> capsules)

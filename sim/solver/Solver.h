@@ -137,6 +137,12 @@ public:
     struct ShapeRow;
     struct Block; // 16 strands of equal particle count, interleaved (defined in SolverRows.h)
     struct GlobalShapeRow; // a particle's rest position and its global shape share (SolverRows.h)
+    struct VolumeRead {
+        float target = 0.0f; // density the hair keeps, metres of hair per m³
+        float blend = 0.0f; // share of the difference from the hair's mean move lost this substep
+        float stiffness = 0.0f; // m²/s²
+        float pushDamping = 0.0f; // share of the motion along the push taken this substep
+    };
 
     // The target density (the density hair keeps, metres of hair per m³) is hairPerScalpArea /
     // (volume x this). Not a layer one could measure on the head: hair hangs over far more than
@@ -157,12 +163,6 @@ private:
     bool volumeDense() const;
     void volumeRead(Block& b, const StepConstants& c) const;
     void volumeSplat(Block& b, const StepConstants& c, int slot); // into the grid's slot, and its level of detail
-    struct VolumeRead {
-        float target = 0.0f; // density the hair keeps, metres of hair per m³
-        float blend = 0.0f; // share of the difference from the hair's mean move lost this substep
-        float stiffness = 0.0f; // m²/s²
-        float pushDamping = 0.0f; // share of the motion along the push taken this substep
-    };
 
     std::unique_ptr<ThreadPool> m_pool;
     SolverSettings m_settings;

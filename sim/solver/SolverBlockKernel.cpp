@@ -1,9 +1,6 @@
 #include "sim/solver/SolverBlockKernel.h"
 
 #include "sim/geometry/ShortestArc.h"
-#include "sim/solver/SolverConstraints.h"
-#include "sim/solver/SolverContact.h"
-#include "sim/solver/SolverLanes.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -12,7 +9,20 @@
 #include <array>
 #include <cmath>
 
-namespace wisp {
+// The kernel is compiled once per SIMD target (Google Highway's dynamic dispatch: SSE4, AVX2 and
+// AVX-512 on x86) and advanceBlock() runs the best the CPU has; the rest of the file once.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "sim/solver/SolverBlockKernel.cpp"
+#include <hwy/foreach_target.h> // (before highway.h)
+
+#include "sim/solver/SolverConstraints.h"
+#include "sim/solver/SolverContact.h"
+#include "sim/solver/SolverLanes-inl.h"
+
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace wisp::HWY_NAMESPACE {
 
 using namespace lanes;
 
@@ -40,45 +50,6 @@ constexpr std::uint32_t kGustStride = 4;
 constexpr float kMaxKickGain = 1.1f;
 
 } // namespace
-
-void storeRestFrames(Solver::Block& block, int lane)
-{
-    RestRow* rest = block.rest.data();
-    const ShapeRow* shape = block.shape.data();
-    auto dir = [&](std::uint32_t j) { return glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]); };
-    glm::vec3 d = dir(1);
-    glm::vec3 e = anyPerpendicular(d);
-    rest[0].lx[lane] = e.x;
-    rest[0].ly[lane] = e.y;
-    rest[0].lz[lane] = e.z;
-    for (std::uint32_t j = 1; j < block.points; ++j) {
-        const glm::vec3 r = dir(j);
-        const glm::vec3 b = glm::cross(d, e);
-        rest[j].lx[lane] = glm::dot(r, d);
-        rest[j].ly[lane] = glm::dot(r, e);
-        rest[j].lz[lane] = glm::dot(r, b);
-        // Transport (d, e) onto r: the shortest rotation taking d to r.
-        e = rotateShortestArc(d, r, e);
-        e = glm::normalize(e - r * glm::dot(e, r));
-        d = r;
-    }
-}
-
-void placeLaneAtRest(Solver::Block& block, int lane, const glm::mat3& rotation, const glm::vec3& translation)
-{
-    const RestRow* rest = block.rest.data();
-    const ShapeRow* shape = block.shape.data();
-    ParticleRow* row = block.state.data();
-    glm::vec3 p = rotation * glm::vec3(shape[0].x[lane], shape[0].y[lane], shape[0].z[lane]) + translation;
-    for (std::uint32_t j = 0; j < block.points; ++j) {
-        if (j > 0)
-            p += rotation * glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]) * rest[j].length[lane];
-        row[j].x[lane] = row[j].px[lane] = p.x;
-        row[j].y[lane] = row[j].py[lane] = p.y;
-        row[j].z[lane] = row[j].pz[lane] = p.z;
-        row[j].clearance[lane] = -1.0f;
-    }
-}
 
 namespace {
 
@@ -468,14 +439,9 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
 
 } // namespace
 
-void prefetchBlock(const Solver::Block& block)
-{
-    const char* at = reinterpret_cast<const char*>(&block);
-    for (std::size_t byte = 0; byte < sizeof(Solver::Block); byte += 64)
-        __builtin_prefetch(at + byte);
-}
-
-void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, bool globalShape)
+// advanceBlock() for this target.
+void advanceBlockOnTarget(
+    Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, bool globalShape)
 {
     if (c.transformed)
         globalShape ? advanceBlockAs<true, true>(block, c, firstSubstep, endSubstep)
@@ -485,4 +451,66 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
                     : advanceBlockAs<false, false>(block, c, firstSubstep, endSubstep);
 }
 
+} // namespace wisp::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+
+namespace wisp {
+
+HWY_EXPORT(advanceBlockOnTarget);
+
+void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, bool globalShape)
+{
+    HWY_DYNAMIC_DISPATCH(advanceBlockOnTarget)(block, c, firstSubstep, endSubstep, globalShape);
+}
+
+void storeRestFrames(Solver::Block& block, int lane)
+{
+    RestRow* rest = block.rest.data();
+    const ShapeRow* shape = block.shape.data();
+    auto dir = [&](std::uint32_t j) { return glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]); };
+    glm::vec3 d = dir(1);
+    glm::vec3 e = anyPerpendicular(d);
+    rest[0].lx[lane] = e.x;
+    rest[0].ly[lane] = e.y;
+    rest[0].lz[lane] = e.z;
+    for (std::uint32_t j = 1; j < block.points; ++j) {
+        const glm::vec3 r = dir(j);
+        const glm::vec3 b = glm::cross(d, e);
+        rest[j].lx[lane] = glm::dot(r, d);
+        rest[j].ly[lane] = glm::dot(r, e);
+        rest[j].lz[lane] = glm::dot(r, b);
+        // Transport (d, e) onto r: the shortest rotation taking d to r.
+        e = rotateShortestArc(d, r, e);
+        e = glm::normalize(e - r * glm::dot(e, r));
+        d = r;
+    }
+}
+
+void placeLaneAtRest(Solver::Block& block, int lane, const glm::mat3& rotation, const glm::vec3& translation)
+{
+    const RestRow* rest = block.rest.data();
+    const ShapeRow* shape = block.shape.data();
+    ParticleRow* row = block.state.data();
+    glm::vec3 p = rotation * glm::vec3(shape[0].x[lane], shape[0].y[lane], shape[0].z[lane]) + translation;
+    for (std::uint32_t j = 0; j < block.points; ++j) {
+        if (j > 0)
+            p += rotation * glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]) * rest[j].length[lane];
+        row[j].x[lane] = row[j].px[lane] = p.x;
+        row[j].y[lane] = row[j].py[lane] = p.y;
+        row[j].z[lane] = row[j].pz[lane] = p.z;
+        row[j].clearance[lane] = -1.0f;
+    }
+}
+
+void prefetchBlock(const Solver::Block& block)
+{
+    const char* at = reinterpret_cast<const char*>(&block);
+    for (std::size_t byte = 0; byte < sizeof(Solver::Block); byte += 64)
+        __builtin_prefetch(at + byte);
+}
+
 } // namespace wisp
+
+#endif // HWY_ONCE

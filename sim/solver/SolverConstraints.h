@@ -1,4 +1,3 @@
-#pragma once
 // The strand's own constraints as pure functions of the lanes, each with its formula and paper
 // (after PositionBasedDynamics' solve_*Constraint): the bend toward the rest shape in the parent's
 // frame (XPBD, BendingModel.h), its equal and opposite reaction on the parent, the optional global
@@ -6,13 +5,22 @@
 // the block kernel (SolverBlockKernel.cpp), whose serial root-to-tip chain they are written for;
 // the rest-shape solve (RestShapeSolve.cpp) runs them through the solver and reads the bend's
 // shares from BendingModel.h. Internal to sim/solver.
+// Compiled once per SIMD target, as SolverLanes-inl.h.
 
-#include "sim/solver/SolverLanes.h"
+#if defined(WISP_SOLVER_CONSTRAINTS_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WISP_SOLVER_CONSTRAINTS_INL_H_
+#undef WISP_SOLVER_CONSTRAINTS_INL_H_
+#else
+#define WISP_SOLVER_CONSTRAINTS_INL_H_
+#endif
+
+#include "sim/solver/SolverLanes-inl.h"
 #include "sim/solver/SolverRows.h"
 
 #include <glm/mat3x3.hpp>
 
-namespace wisp::lanes {
+HWY_BEFORE_NAMESPACE();
+namespace wisp::HWY_NAMESPACE::lanes {
 
 // (Internal linkage, as the rest of the kernel's lane code: see SolverContact.h.)
 namespace {
@@ -74,4 +82,7 @@ struct LengthCorrection {
 
 } // namespace
 
-} // namespace wisp::lanes
+} // namespace wisp::HWY_NAMESPACE::lanes
+HWY_AFTER_NAMESPACE();
+
+#endif // per-target include guard

@@ -1,17 +1,25 @@
-#pragma once
 // Contact with the head and the body and its friction, as pure functions of the lanes (after
 // PositionBasedDynamics' solve_*Constraint): the head's distance and normal at a point, the
 // push-out that keeps a segment's length, and Coulomb friction. Called by the block kernel
 // (SolverBlockKernel.cpp). Internal to sim/solver.
+// Compiled once per SIMD target, as SolverLanes-inl.h.
 
-#include "sim/solver/SolverLanes.h"
+#if defined(WISP_SOLVER_CONTACT_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WISP_SOLVER_CONTACT_INL_H_
+#undef WISP_SOLVER_CONTACT_INL_H_
+#else
+#define WISP_SOLVER_CONTACT_INL_H_
+#endif
+
+#include "sim/solver/SolverLanes-inl.h"
 #include "sim/solver/SolverRows.h"
 
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
 
-namespace wisp::lanes {
+HWY_BEFORE_NAMESPACE();
+namespace wisp::HWY_NAMESPACE::lanes {
 
 // (Internal linkage, as when this lived in one file: each kernel file inlines these as it sees fit.)
 namespace {
@@ -77,7 +85,7 @@ struct NodeIndices {
     const NodeIndices index(node.index);
     SdfSample s;
     Lane d;
-#if defined(__AVX512F__)
+#if WISP_LANES_AVX512
     // The 16 nodes' (distance, normal) as four 4x4 transposes: register k of (a, b, c, e) holds
     // nodes 4k, 4k+1, 4k+2, 4k+3 in its 128-bit block k, so the unpacks and shuffles leave lane
     // m of each result with node m (a few shuffles instead of moving 64 floats one by one). (The
@@ -96,7 +104,7 @@ struct NodeIndices {
     s.normal.x = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab0, ce0, 0xEE));
     s.normal.y = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab1, ce1, 0x44));
     s.normal.z = reinterpret_cast<Lane>(_mm512_shuffle_ps(ab1, ce1, 0xEE));
-#elif defined(__AVX__)
+#elif WISP_LANES_AVX
     // The same transposes, eight nodes to a pair of 128-bit blocks per register.
     auto load = [&](int l) { return _mm_loadu_ps(&index.node(field, l)->x); };
     for (int half = 0; half < kLanes; half += 8) {
@@ -246,4 +254,7 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
 
 } // namespace
 
-} // namespace wisp::lanes
+} // namespace wisp::HWY_NAMESPACE::lanes
+HWY_AFTER_NAMESPACE();
+
+#endif // per-target include guard

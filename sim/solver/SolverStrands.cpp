@@ -14,8 +14,6 @@
 
 namespace wisp {
 
-using namespace lanes;
-
 void Solver::moveParticle(std::size_t strand, std::size_t point, const glm::vec3& position)
 {
     if (strand >= m_slotOfStrand.size())

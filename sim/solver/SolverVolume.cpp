@@ -4,9 +4,7 @@
 #include "sim/solver/Solver.h"
 
 #include "sim/solver/HairVolumeGrid.h"
-#include "sim/solver/SolverLanes.h"
 #include "sim/solver/SolverRows.h"
-#include "sim/util/ShuffleLanes.h"
 #include "sim/util/ThreadPool.h"
 
 #include <glm/common.hpp>
@@ -18,10 +16,275 @@
 #include <cmath>
 #include <cstring>
 #include <span>
+// The constants of the hair volume, for the kernels below (compiled once per target) and the rest.
+#ifndef WISP_SOLVER_VOLUME_CONSTANTS_
+#define WISP_SOLVER_VOLUME_CONSTANTS_
+namespace wisp {
+namespace {
+
+// How hard hair denser than its target pushes down the density gradient: the acceleration is this
+// times (density / target - 1, at most 1) times the gradient of density / target (1/m), so hair at
+// twice its target that thins out over 2 cm pushes at 200 m/s² before the cap. Capped at
+// kVolumeMaxAcceleration (3 g) so a particle deep in a knot is not flung. Measured on the default
+// groom (tests/sim/VolumeTest.cpp): 1 m²/s² leaves the top at 8 mm, 4 gives 18 mm, 10 gives 20 mm.
+constexpr float kVolumeStiffness = 4.0f; // m²/s²
+constexpr float kVolumeMaxAcceleration = 30.0f; // m/s²
+// The push's stiffness is at most this times (cell / substep)², measured: 1 substep at 60 Hz with
+// 8 segments leaves 0 % of tips moving at 0.6 (VolumeTest's settling cases).
+constexpr float kVolumeStableShare = 0.6f;
+// The same for a dense groom's grid (HairVolumeGrid::Kernel::NearestSmoothed). Its [1 2 1]/4
+// smoothing takes out the shortest waves, the ones an explicit spring overshoots first. In one
+// dimension, for particles displaced by a wave of k (u = k x cell), the push's spring is
+// stiffness x u sin(u) x T(u) / cell², where T is the grid's transfer: sinc⁴(u/2) for a
+// trilinear splat and read, sinc²(u/2) cos²(u/2) = (sin u / u)² for the nearest node smoothed
+// (the central-difference gradient gives the sin u). Its peak is 0.69 against the trilinear
+// grid's 1.04, and a spring taken explicitly over T seconds is stable while ω T < 2. At 2.4 the
+// peak is ω T = sqrt(2.4 x 0.69) = 1.3 (the trilinear grid at 0.6: 0.8), and groom-1m, its grid laid
+// every 1/30 s (kVolumeDenseRefreshSeconds), keeps the stiffness it had laid every 1/60 s at 0.6.
+// Measured: VolumeTest.cpp, Volume.ADenseGroomLaidEveryOtherStepSettles.
+constexpr float kVolumeStableShareSmoothed = 2.4f;
+// Damping of the motion along the push where hair is denser than its target, per second: the share
+// 1 - exp(-this dt) of it is taken each substep (the same at any substep count).
+constexpr float kVolumeDampingPerSecond = 30.0f;
+// The grid is laid again after at least this long of substeps (Solver::step): 1/120 s, the default
+// substep (two at 60 Hz), so the default scene lays it every substep.
+constexpr float kVolumeRefreshSeconds = 1.0f / 120.0f;
+// A dense groom (volumeDense(): more than kVolumeFullGridParticles, the NearestSmoothed grid) lays
+// it only after this long, across steps when its substeps are longer (groom-1m, one substep at
+// 60 Hz: every other step); the blocks still read it before every substep. The splat and the
+// sums are per particle, as costly as the read (groom-1m: each about 0.27 of the solver's own
+// step), so this halves them. Hair moving at 0.5 m/s moves 17 mm in 1/30 s, under one of
+// groom-1m's 27 mm cells. The push's stiffness is capped for the longer interval as for any
+// refresh (volumePass, kVolumeStableShareSmoothed). Reading it only once a pass with the
+// interval's impulse would halve the read too, but the push, which holds the hair up against
+// gravity, then comes in kicks and the tips saw up and down by about g dt² a step (VolumeTest's
+// Volume.ADenseGroomLaidEveryOtherStepSettles: 18.7 % of a dense patch's tips moving after 10 s).
+constexpr float kVolumeDenseRefreshSeconds = 1.0f / 30.0f;
+// A particle that moved this far in one substep (or went non-finite) is left out of the grid.
+constexpr float kVolumeMaxMoveMetres = 0.5f;
+
+// A row's sixteen strands lie side by side on the scalp. Where a dense groom puts them much closer
+// than a cell (groom-1m: 1-3 mm apart in 2 cm cells), the grid cannot tell them apart: only every
+// stride-th strand splats, with the weight of those it stands for, and is sampled; the strands
+// between blend the samples around them (HairVolumeGrid::sampleRow), as members follow their key.
+// The stride is chosen per row (the particles at one distance from the roots): the largest power of
+// two whose sampled strands are within kVolumeLodCellShare of a cell of each other there, where they
+// are now (Solver::volumeSplat), so the roots and lengths that lie together are thinned even where
+// the tips flutter apart; 1 for a block with padding, and in practice for the editor's keys (5-10 mm
+// apart in 8-15 mm cells).
+constexpr float kVolumeLodCellShare = 0.5f;
+// For a dense groom (Kernel::NearestSmoothed, a particle meets one node) within one cell, as its
+// rows (kVolumeRowCellShare): the lanes between two samples are then at the samples' node or the
+// next.
+constexpr float kVolumeNearestLodCellShare = 1.0f;
+
+// How many rows of a block splat and are sampled as one, at their centroid (Solver::volumeSplat):
+// for a dense groom (Kernel::NearestSmoothed), the most rows, a power of two up to
+// kVolumeMaxRowsPerSample, whose stretch of strand (rows x the longest segment) is at most
+// kVolumeRowGroupCells cells: the [1 2 1]/4 smoothing spreads every splat over three nodes along
+// each axis anyway, so the field has no finer detail for the rows to miss. groom-1m's 20 mm
+// segments in 27 mm cells go four by four (80 mm). The editor's keys (Kernel::Trilinear) go one by
+// one.
+constexpr float kVolumeRowGroupCells = 3.0f;
+constexpr std::uint32_t kVolumeMaxRowsPerSample = 4;
+
+} // namespace
+} // namespace wisp
+#endif
+
+// The splat and the read of a block are compiled once per SIMD target, as the solver's kernel
+// (SolverBlockKernel.cpp); the rest of the file once.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "sim/solver/SolverVolume.cpp"
+#include <hwy/foreach_target.h> // (before highway.h)
+
+#include "sim/util/ShuffleLanes-inl.h"
+
+#include "sim/solver/SolverLanes-inl.h"
+
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace wisp::HWY_NAMESPACE {
+
+using namespace lanes;
+
+namespace {
+std::uint32_t volumeRowsPerSample(const Solver::Block& b, const HairVolumeGrid& grid)
+{
+    if (grid.kernel() != HairVolumeGrid::Kernel::NearestSmoothed)
+        return 1;
+    Lane longest = splat(0.0f);
+    for (std::uint32_t j = 1; j < b.points; ++j)
+        longest = lmax(longest, b.rest[j].length);
+    float segment = 0.0f;
+    for (int l = 0; l < kLanes; ++l)
+        segment = std::max(segment, longest[l]);
+    std::uint32_t rows = 1;
+    while (rows < kVolumeMaxRowsPerSample
+        && static_cast<float>(2 * rows) * segment <= kVolumeRowGroupCells * grid.cellMetres())
+        rows *= 2;
+    return rows;
+}
+} // namespace
+
+// One block's splat into the grid's slot `slot`, a group of volumeRowsPerSample rows at a time (a
+// row's sixteen strands lie side by side): each lane's weight and its move over the last substep,
+// at the group's centroid in head space; a lane with a particle gone wild in the group splats nothing.
+void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConstants& c, int slot)
+{
+    const glm::mat3 toHead = glm::transpose(c.rotation);
+    // The level of detail (kVolumeLodCellShare), group by group: how far apart neighbouring lanes are now.
+    bool full = true;
+    for (int l = 0; l < kLanes; ++l)
+        full = full && b.strand[l] >= 0;
+    const std::uint32_t rows = b.volumeRowsPerSample = volumeRowsPerSample(b, grid);
+    const std::uint32_t groups = (b.points + rows - 1) / rows;
+    // At each group's first lane, the weight of its lanes, for strides 1, 2, 4, 8 and 16: a group
+    // of 2s lanes is two of s (the other lanes hold partial sums that nothing reads).
+    using LaneIndex = int __attribute__((vector_size(kLanes * sizeof(int))));
+    Lane groupWeight[5];
+    groupWeight[0] = b.volumeWeight;
+    for (int s = 1; s < 5; ++s) {
+        const int half = 1 << (s - 1);
+        LaneIndex partner;
+        for (int l = 0; l < kLanes; ++l)
+            partner[l] = std::min(l + half, kLanes - 1);
+        groupWeight[s] = groupWeight[s - 1] + shuffleLanes(groupWeight[s - 1], partner);
+    }
+    const LaneIndex next{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 15 };
+    const float reach
+        = (grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed ? kVolumeNearestLodCellShare : kVolumeLodCellShare)
+        * grid.cellMetres();
+    b.volumeStrides.resize(groups);
+    for (std::uint32_t g = 0; g < groups; ++g) {
+        const std::uint32_t first = g * rows, count = std::min(rows, b.points - first);
+        const ParticleRow& r = b.state[first];
+        V3 x{ r.x, r.y, r.z };
+        V3 move = x - V3{ r.px, r.py, r.pz };
+        // A particle gone non-finite or flying off (its strand is put back at rest at the end of
+        // the step) must not spread through the grid.
+        Mask tame = l1Length(move) < kVolumeMaxMoveMetres;
+        if (count > 1) {
+            for (std::uint32_t j = first + 1; j < first + count; ++j) {
+                const ParticleRow& q = b.state[j];
+                const V3 at{ q.x, q.y, q.z }, moved = at - V3{ q.px, q.py, q.pz };
+                tame = tame & (l1Length(moved) < kVolumeMaxMoveMetres);
+                x = x + at;
+                move = move + moved;
+            }
+            const float share = 1.0f / static_cast<float>(count);
+            x = x * splat(share);
+            move = move * splat(share);
+        }
+        int level = 0; // log2 of the stride
+        if (full) {
+            const Lane dx = shuffleLanes(x.x, next) - x.x, dy = shuffleLanes(x.y, next) - x.y,
+                       dz = shuffleLanes(x.z, next) - x.z;
+            const Lane distance2 = dx * dx + dy * dy + dz * dz;
+            float spacing2 = 0.0f;
+            for (int l = 0; l < kLanes; ++l)
+                spacing2 = std::max(spacing2, distance2[l]); // skips a NaN: a broken lane is not tame, splats 0
+            while (level < 4 && std::isfinite(spacing2)
+                && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)
+                ++level;
+        }
+        b.volumeStrides[g] = static_cast<std::uint8_t>(1 << level);
+        const Lane weight = select(
+            tame, count > 1 ? groupWeight[level] * static_cast<float>(count) : groupWeight[level], splat(0.0f));
+        const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
+        grid.splatRow(slot, reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
+            reinterpret_cast<const float*>(&head.z), reinterpret_cast<const float*>(&weight),
+            reinterpret_cast<const float*>(&move.x), reinterpret_cast<const float*>(&move.y),
+            reinterpret_cast<const float*>(&move.z), HairVolumeGrid::kRowLanes, 1 << level);
+    }
+}
+
+// The read of volumePass's grid for one block, all 16 lanes at once, a group of the splat's rows at
+// a time (sampled at their centroid): each particle's velocity is blended toward the hair's mean
+// velocity there by the hair friction, and where the density is above the target it is
+// accelerated down the density gradient (see volumePass).
+void volumeReadOnTarget(
+    const HairVolumeGrid& grid, const Solver::VolumeRead& v, Solver::Block& b, const StepConstants& c)
+{
+    const Lane keep = v.target * b.volumeTargetScale;
+    const Lane inverseKeep = splat(1.0f) / keep;
+    const glm::mat3 toHead = glm::transpose(c.rotation);
+    const float dt2 = c.dt * c.dt;
+    const std::uint32_t rows = std::max<std::uint32_t>(1, b.volumeRowsPerSample);
+    HairVolumeGrid::SampleRow here;
+    auto lane = [](const float* p) {
+        Lane l;
+        std::memcpy(&l, p, sizeof l);
+        return l;
+    };
+    for (std::uint32_t first = 0, g = 0; first < b.points; first += rows, ++g) {
+        const std::uint32_t count = std::min(rows, b.points - first);
+        if (first + count <= 1)
+            continue; // roots are pinned
+        V3 x{ b.state[first].x, b.state[first].y, b.state[first].z };
+        if (count > 1) {
+            for (std::uint32_t j = first + 1; j < first + count; ++j)
+                x = x + V3{ b.state[j].x, b.state[j].y, b.state[j].z };
+            x = x * splat(1.0f / static_cast<float>(count));
+        }
+        const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
+        grid.sampleRow(reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
+            reinterpret_cast<const float*>(&head.z), here, HairVolumeGrid::kRowLanes,
+            g < b.volumeStrides.size() ? b.volumeStrides[g] : 1);
+        const Lane density = lane(here.density);
+        const Mask inHair = density > 0.0f;
+        if (!anyOf(inHair))
+            continue;
+        // What the group's particles share: the hair's mean move, and the push and its direction.
+        const Lane hair = lane(here.hair);
+        const Mask hasHair = hair > 0.0f;
+        const Lane inverseHair = select(hasHair, splat(1.0f) / hair, splat(0.0f));
+        const V3 mean = V3{ lane(here.momentumX), lane(here.momentumY), lane(here.momentumZ) } * inverseHair;
+        const Lane excess = density * inverseKeep - 1.0f;
+        const Mask pushing = excess > 0.0f;
+        const bool anyPushing = anyOf(pushing);
+        V3 push{}, direction{};
+        if (anyPushing) {
+            push = V3{ lane(here.gradX), lane(here.gradY), lane(here.gradZ) }
+                * ((-v.stiffness) * lmin(excess, splat(1.0f)) * inverseKeep);
+            const Lane length = lsqrt(dot(push, push));
+            const Lane inverseLength = splat(1.0f) / length; // one division where there were four
+            push = push * select(length > kVolumeMaxAcceleration, kVolumeMaxAcceleration * inverseLength, splat(1.0f));
+            if (c.transformed)
+                push = transform(c.rotation, push);
+            // Pressure alone makes hair bounce on the hair beneath it (a stiff spring taken
+            // explicitly): the motion along the push is damped where it pushes.
+            const Mask along = pushing & (length > 0.0f);
+            direction = select(along, push * inverseLength, V3{});
+            push = push * splat(dt2);
+        }
+        for (std::uint32_t j = std::max<std::uint32_t>(first, 1); j < first + count; ++j) {
+            ParticleRow& r = b.state[j];
+            const V3 at{ r.x, r.y, r.z };
+            V3 move = at - V3{ r.px, r.py, r.pz };
+            move = select(hasHair, move + (mean - move) * splat(v.blend), move);
+            if (anyPushing) {
+                const V3 damped = move - direction * (v.pushDamping * dot(move, direction));
+                move = select(pushing, damped + push, move);
+            }
+            const V3 now = select(inHair, at - move, V3{ r.px, r.py, r.pz });
+            r.px = now.x;
+            r.py = now.y;
+            r.pz = now.z;
+        }
+    }
+}
+
+} // namespace wisp::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
 
 namespace wisp {
 
-using namespace lanes;
+HWY_EXPORT(volumeSplatOnTarget);
+HWY_EXPORT(volumeReadOnTarget);
 
 namespace {
 
@@ -123,47 +386,6 @@ std::string Solver::setVolumeTargetScales(std::span<const float> perStrand)
     return {};
 }
 
-// How hard hair denser than its target pushes down the density gradient: the acceleration is this
-// times (density / target - 1, at most 1) times the gradient of density / target (1/m), so hair at
-// twice its target that thins out over 2 cm pushes at 200 m/s² before the cap. Capped at
-// kVolumeMaxAcceleration (3 g) so a particle deep in a knot is not flung. Measured on the default
-// groom (tests/sim/VolumeTest.cpp): 1 m²/s² leaves the top at 8 mm, 4 gives 18 mm, 10 gives 20 mm.
-constexpr float kVolumeStiffness = 4.0f; // m²/s²
-constexpr float kVolumeMaxAcceleration = 30.0f; // m/s²
-// The push's stiffness is at most this times (cell / substep)², measured: 1 substep at 60 Hz with
-// 8 segments leaves 0 % of tips moving at 0.6 (VolumeTest's settling cases).
-constexpr float kVolumeStableShare = 0.6f;
-// The same for a dense groom's grid (HairVolumeGrid::Kernel::NearestSmoothed). Its [1 2 1]/4
-// smoothing takes out the shortest waves, the ones an explicit spring overshoots first. In one
-// dimension, for particles displaced by a wave of k (u = k x cell), the push's spring is
-// stiffness x u sin(u) x T(u) / cell², where T is the grid's transfer: sinc⁴(u/2) for a
-// trilinear splat and read, sinc²(u/2) cos²(u/2) = (sin u / u)² for the nearest node smoothed
-// (the central-difference gradient gives the sin u). Its peak is 0.69 against the trilinear
-// grid's 1.04, and a spring taken explicitly over T seconds is stable while ω T < 2. At 2.4 the
-// peak is ω T = sqrt(2.4 x 0.69) = 1.3 (the trilinear grid at 0.6: 0.8), and groom-1m, its grid laid
-// every 1/30 s (kVolumeDenseRefreshSeconds), keeps the stiffness it had laid every 1/60 s at 0.6.
-// Measured: VolumeTest.cpp, Volume.ADenseGroomLaidEveryOtherStepSettles.
-constexpr float kVolumeStableShareSmoothed = 2.4f;
-// Damping of the motion along the push where hair is denser than its target, per second: the share
-// 1 - exp(-this dt) of it is taken each substep (the same at any substep count).
-constexpr float kVolumeDampingPerSecond = 30.0f;
-// The grid is laid again after at least this long of substeps (Solver::step): 1/120 s, the default
-// substep (two at 60 Hz), so the default scene lays it every substep.
-constexpr float kVolumeRefreshSeconds = 1.0f / 120.0f;
-// A dense groom (volumeDense(): more than kVolumeFullGridParticles, the NearestSmoothed grid) lays
-// it only after this long, across steps when its substeps are longer (groom-1m, one substep at
-// 60 Hz: every other step); the blocks still read it before every substep. The splat and the
-// sums are per particle, as costly as the read (groom-1m: each about 0.27 of the solver's own
-// step), so this halves them. Hair moving at 0.5 m/s moves 17 mm in 1/30 s, under one of
-// groom-1m's 27 mm cells. The push's stiffness is capped for the longer interval as for any
-// refresh (volumePass, kVolumeStableShareSmoothed). Reading it only once a pass with the
-// interval's impulse would halve the read too, but the push, which holds the hair up against
-// gravity, then comes in kicks and the tips saw up and down by about g dt² a step (VolumeTest's
-// Volume.ADenseGroomLaidEveryOtherStepSettles: 18.7 % of a dense patch's tips moving after 10 s).
-constexpr float kVolumeDenseRefreshSeconds = 1.0f / 30.0f;
-// A particle that moved this far in one substep (or went non-finite) is left out of the grid.
-constexpr float kVolumeMaxMoveMetres = 0.5f;
-
 // One substep's hair-hair interaction, before the blocks advance (so contact, after it, stays the
 // last word): every particle splats its weight and its move over the last substep into the grid;
 // then each particle's velocity is blended toward the hair's mean velocity there by the hair
@@ -178,20 +400,6 @@ int Solver::volumeRefreshSubsteps(float substepSeconds, bool dense)
     return std::max(1, static_cast<int>(refresh / substepSeconds + 1e-3f));
 }
 
-// A row's sixteen strands lie side by side on the scalp. Where a dense groom puts them much closer
-// than a cell (groom-1m: 1-3 mm apart in 2 cm cells), the grid cannot tell them apart: only every
-// stride-th strand splats, with the weight of those it stands for, and is sampled; the strands
-// between blend the samples around them (HairVolumeGrid::sampleRow), as members follow their key.
-// The stride is chosen per row (the particles at one distance from the roots): the largest power of
-// two whose sampled strands are within kVolumeLodCellShare of a cell of each other there, where they
-// are now (Solver::volumeSplat), so the roots and lengths that lie together are thinned even where
-// the tips flutter apart; 1 for a block with padding, and in practice for the editor's keys (5-10 mm
-// apart in 8-15 mm cells).
-constexpr float kVolumeLodCellShare = 0.5f;
-// For a dense groom (Kernel::NearestSmoothed, a particle meets one node) within one cell, as its
-// rows (kVolumeRowCellShare): the lanes between two samples are then at the samples' node or the
-// next.
-constexpr float kVolumeNearestLodCellShare = 1.0f;
 // The grid's nodes (HairVolumeGrid::setBounds) for a scene of `particles`: all the memory bound
 // allows up to kVolumeFullGridParticles, and fewer in proportion beyond (a quarter at a million,
 // cells 1.6 times as wide): the splat and the read wait on cache misses in a grid much larger than
@@ -293,180 +501,16 @@ void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
     v.pushDamping = 1.0f - std::exp(-kVolumeDampingPerSecond * c.dt);
 }
 
-// How many rows of a block splat and are sampled as one, at their centroid (Solver::volumeSplat):
-// for a dense groom (Kernel::NearestSmoothed), the most rows, a power of two up to
-// kVolumeMaxRowsPerSample, whose stretch of strand (rows x the longest segment) is at most
-// kVolumeRowGroupCells cells: the [1 2 1]/4 smoothing spreads every splat over three nodes along
-// each axis anyway, so the field has no finer detail for the rows to miss. groom-1m's 20 mm
-// segments in 27 mm cells go four by four (80 mm). The editor's keys (Kernel::Trilinear) go one by
-// one.
-constexpr float kVolumeRowGroupCells = 3.0f;
-constexpr std::uint32_t kVolumeMaxRowsPerSample = 4;
-std::uint32_t volumeRowsPerSample(const Solver::Block& b, const HairVolumeGrid& grid)
-{
-    if (grid.kernel() != HairVolumeGrid::Kernel::NearestSmoothed)
-        return 1;
-    Lane longest = splat(0.0f);
-    for (std::uint32_t j = 1; j < b.points; ++j)
-        longest = lmax(longest, b.rest[j].length);
-    float segment = 0.0f;
-    for (int l = 0; l < kLanes; ++l)
-        segment = std::max(segment, longest[l]);
-    std::uint32_t rows = 1;
-    while (rows < kVolumeMaxRowsPerSample
-        && static_cast<float>(2 * rows) * segment <= kVolumeRowGroupCells * grid.cellMetres())
-        rows *= 2;
-    return rows;
-}
-
-// One block's splat into the grid's slot `slot`, a group of volumeRowsPerSample rows at a time (a
-// row's sixteen strands lie side by side): each lane's weight and its move over the last substep,
-// at the group's centroid in head space; a lane with a particle gone wild in the group splats nothing.
 void Solver::volumeSplat(Block& b, const StepConstants& c, int slot)
 {
-    HairVolumeGrid& grid = *m_volumeGrid;
-    const glm::mat3 toHead = glm::transpose(c.rotation);
-    // The level of detail (kVolumeLodCellShare), group by group: how far apart neighbouring lanes are now.
-    bool full = true;
-    for (int l = 0; l < kLanes; ++l)
-        full = full && b.strand[l] >= 0;
-    const std::uint32_t rows = b.volumeRowsPerSample = volumeRowsPerSample(b, grid);
-    const std::uint32_t groups = (b.points + rows - 1) / rows;
-    // At each group's first lane, the weight of its lanes, for strides 1, 2, 4, 8 and 16: a group
-    // of 2s lanes is two of s (the other lanes hold partial sums that nothing reads).
-    using LaneIndex = int __attribute__((vector_size(kLanes * sizeof(int))));
-    Lane groupWeight[5];
-    groupWeight[0] = b.volumeWeight;
-    for (int s = 1; s < 5; ++s) {
-        const int half = 1 << (s - 1);
-        LaneIndex partner;
-        for (int l = 0; l < kLanes; ++l)
-            partner[l] = std::min(l + half, kLanes - 1);
-        groupWeight[s] = groupWeight[s - 1] + shuffleLanes(groupWeight[s - 1], partner);
-    }
-    const LaneIndex next{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 15 };
-    const float reach
-        = (grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed ? kVolumeNearestLodCellShare : kVolumeLodCellShare)
-        * grid.cellMetres();
-    b.volumeStrides.resize(groups);
-    for (std::uint32_t g = 0; g < groups; ++g) {
-        const std::uint32_t first = g * rows, count = std::min(rows, b.points - first);
-        const ParticleRow& r = b.state[first];
-        V3 x{ r.x, r.y, r.z };
-        V3 move = x - V3{ r.px, r.py, r.pz };
-        // A particle gone non-finite or flying off (its strand is put back at rest at the end of
-        // the step) must not spread through the grid.
-        Mask tame = l1Length(move) < kVolumeMaxMoveMetres;
-        if (count > 1) {
-            for (std::uint32_t j = first + 1; j < first + count; ++j) {
-                const ParticleRow& q = b.state[j];
-                const V3 at{ q.x, q.y, q.z }, moved = at - V3{ q.px, q.py, q.pz };
-                tame = tame & (l1Length(moved) < kVolumeMaxMoveMetres);
-                x = x + at;
-                move = move + moved;
-            }
-            const float share = 1.0f / static_cast<float>(count);
-            x = x * splat(share);
-            move = move * splat(share);
-        }
-        int level = 0; // log2 of the stride
-        if (full) {
-            const Lane dx = shuffleLanes(x.x, next) - x.x, dy = shuffleLanes(x.y, next) - x.y,
-                       dz = shuffleLanes(x.z, next) - x.z;
-            const Lane distance2 = dx * dx + dy * dy + dz * dz;
-            float spacing2 = 0.0f;
-            for (int l = 0; l < kLanes; ++l)
-                spacing2 = std::max(spacing2, distance2[l]); // skips a NaN: a broken lane is not tame, splats 0
-            while (level < 4 && std::isfinite(spacing2)
-                && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)
-                ++level;
-        }
-        b.volumeStrides[g] = static_cast<std::uint8_t>(1 << level);
-        const Lane weight = select(
-            tame, count > 1 ? groupWeight[level] * static_cast<float>(count) : groupWeight[level], splat(0.0f));
-        const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
-        grid.splatRow(slot, reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
-            reinterpret_cast<const float*>(&head.z), reinterpret_cast<const float*>(&weight),
-            reinterpret_cast<const float*>(&move.x), reinterpret_cast<const float*>(&move.y),
-            reinterpret_cast<const float*>(&move.z), HairVolumeGrid::kRowLanes, 1 << level);
-    }
+    HWY_DYNAMIC_DISPATCH(volumeSplatOnTarget)(*m_volumeGrid, b, c, slot);
 }
 
-// The read of volumePass's grid for one block, all 16 lanes at once, a group of the splat's rows at
-// a time (sampled at their centroid): each particle's velocity is blended toward the hair's mean
-// velocity there by the hair friction, and where the density is above the target it is
-// accelerated down the density gradient (see volumePass).
 void Solver::volumeRead(Block& b, const StepConstants& c) const
 {
-    const HairVolumeGrid& grid = *m_volumeGrid;
-    const VolumeRead& v = m_volumeRead;
-    const Lane keep = v.target * b.volumeTargetScale;
-    const Lane inverseKeep = splat(1.0f) / keep;
-    const glm::mat3 toHead = glm::transpose(c.rotation);
-    const float dt2 = c.dt * c.dt;
-    const std::uint32_t rows = std::max<std::uint32_t>(1, b.volumeRowsPerSample);
-    HairVolumeGrid::SampleRow here;
-    auto lane = [](const float* p) {
-        Lane l;
-        std::memcpy(&l, p, sizeof l);
-        return l;
-    };
-    for (std::uint32_t first = 0, g = 0; first < b.points; first += rows, ++g) {
-        const std::uint32_t count = std::min(rows, b.points - first);
-        if (first + count <= 1)
-            continue; // roots are pinned
-        V3 x{ b.state[first].x, b.state[first].y, b.state[first].z };
-        if (count > 1) {
-            for (std::uint32_t j = first + 1; j < first + count; ++j)
-                x = x + V3{ b.state[j].x, b.state[j].y, b.state[j].z };
-            x = x * splat(1.0f / static_cast<float>(count));
-        }
-        const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
-        grid.sampleRow(reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
-            reinterpret_cast<const float*>(&head.z), here, HairVolumeGrid::kRowLanes,
-            g < b.volumeStrides.size() ? b.volumeStrides[g] : 1);
-        const Lane density = lane(here.density);
-        const Mask inHair = density > 0.0f;
-        if (!anyOf(inHair))
-            continue;
-        // What the group's particles share: the hair's mean move, and the push and its direction.
-        const Lane hair = lane(here.hair);
-        const Mask hasHair = hair > 0.0f;
-        const Lane inverseHair = select(hasHair, splat(1.0f) / hair, splat(0.0f));
-        const V3 mean = V3{ lane(here.momentumX), lane(here.momentumY), lane(here.momentumZ) } * inverseHair;
-        const Lane excess = density * inverseKeep - 1.0f;
-        const Mask pushing = excess > 0.0f;
-        const bool anyPushing = anyOf(pushing);
-        V3 push{}, direction{};
-        if (anyPushing) {
-            push = V3{ lane(here.gradX), lane(here.gradY), lane(here.gradZ) }
-                * ((-v.stiffness) * lmin(excess, splat(1.0f)) * inverseKeep);
-            const Lane length = lsqrt(dot(push, push));
-            const Lane inverseLength = splat(1.0f) / length; // one division where there were four
-            push = push * select(length > kVolumeMaxAcceleration, kVolumeMaxAcceleration * inverseLength, splat(1.0f));
-            if (c.transformed)
-                push = transform(c.rotation, push);
-            // Pressure alone makes hair bounce on the hair beneath it (a stiff spring taken
-            // explicitly): the motion along the push is damped where it pushes.
-            const Mask along = pushing & (length > 0.0f);
-            direction = select(along, push * inverseLength, V3{});
-            push = push * splat(dt2);
-        }
-        for (std::uint32_t j = std::max<std::uint32_t>(first, 1); j < first + count; ++j) {
-            ParticleRow& r = b.state[j];
-            const V3 at{ r.x, r.y, r.z };
-            V3 move = at - V3{ r.px, r.py, r.pz };
-            move = select(hasHair, move + (mean - move) * splat(v.blend), move);
-            if (anyPushing) {
-                const V3 damped = move - direction * (v.pushDamping * dot(move, direction));
-                move = select(pushing, damped + push, move);
-            }
-            const V3 now = select(inHair, at - move, V3{ r.px, r.py, r.pz });
-            r.px = now.x;
-            r.py = now.y;
-            r.pz = now.z;
-        }
-    }
+    HWY_DYNAMIC_DISPATCH(volumeReadOnTarget)(*m_volumeGrid, m_volumeRead, b, c);
 }
 
 } // namespace wisp
+
+#endif // HWY_ONCE

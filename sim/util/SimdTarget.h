@@ -1,14 +1,30 @@
 #pragma once
-// The SIMD instruction set this build's solver was compiled for, by name, so `wisp-cli bench`
-// can say what it measured (the solver's lanes are 16 floats: one register with AVX-512, two
-// with AVX2, four with SSE or NEON; sim/solver/SolverLanes.h).
-// Thread: any.
+// The SIMD instruction sets the solver runs on. Its kernels (sim/solver/*-inl.h users) are compiled
+// once per target (Google Highway's dynamic dispatch: SSE4, AVX2 and AVX-512 on x86; NEON and SVE
+// where built for ARM), and each call runs the best target this CPU has, unless one is forced
+// (forceSimdTarget, `wisp-cli bench --target`). Names as the README and `wisp-cli bench` print them:
+// "AVX-512", "AVX2", "SSE4", "NEON", "SVE", "SVE2", "EMU128" or "scalar".
+// Thread: any for the queries; forceSimdTarget() only while no solver is stepping.
+
+#include <string>
+#include <vector>
 
 namespace wisp {
 
-// "AVX-512", "AVX2", "AVX", "SSE4", "SSE2", "NEON" or "scalar": the widest set the compiler was
-// allowed to use (-march; see WISP_NATIVE in CMakeLists.txt).
-constexpr const char* compiledSimdTarget()
+// The target the solver's kernels run on now.
+const char* solverSimdTarget();
+// Floats one of its vector registers holds (the solver's lanes are 16 floats: one AVX-512
+// register, two AVX2, four SSE4 or NEON ones).
+int solverVectorFloats();
+// Every target compiled into this binary that this CPU can run, best first.
+std::vector<std::string> availableSimdTargets();
+// Runs the kernels on `name` (one of availableSimdTargets(), case-insensitive; "AVX3" and "AVX512"
+// name AVX-512 too) until the next call; empty: the best again. Returns an empty string, or why not.
+std::string forceSimdTarget(const std::string& name);
+
+// The widest instruction set the rest of the build may use (its -march baseline, WISP_MARCH and
+// WISP_NATIVE in CMakeLists.txt): "AVX-512", "AVX2", "AVX", "SSE4", "SSE2", "NEON" or "scalar".
+constexpr const char* baselineSimdTarget()
 {
 #if defined(__AVX512F__)
     return "AVX-512";
@@ -24,20 +40,6 @@ constexpr const char* compiledSimdTarget()
     return "NEON";
 #else
     return "scalar";
-#endif
-}
-
-// Floats one vector register holds for the compiled target.
-constexpr int compiledVectorFloats()
-{
-#if defined(__AVX512F__)
-    return 16;
-#elif defined(__AVX__)
-    return 8;
-#elif defined(__SSE2__) || defined(__ARM_NEON)
-    return 4;
-#else
-    return 1;
 #endif
 }
 

@@ -194,7 +194,7 @@ TEST(Cli, BenchNamesItsTargetAndMeasuresTheFloorBesideEachWorkload)
 {
     const CliRun r = cli("bench --workload sphere --strands 200 --steps 50 --threads 2 --json");
     ASSERT_EQ(r.status, 0) << r.output;
-    const std::string target = std::string("\"target\": \"") + wisp::compiledSimdTarget() + "\"";
+    const std::string target = std::string("\"target\": \"") + wisp::solverSimdTarget() + "\"";
     EXPECT_NE(r.output.find("\"name\": \"sphere\", " + target), std::string::npos) << r.output;
     EXPECT_NE(
         r.output.find("\"name\": \"floor\", " + target + ", \"particles\": 3000, \"strands\": 200"), std::string::npos)
@@ -210,9 +210,30 @@ TEST(Cli, BenchNamesItsTargetAndMeasuresTheFloorBesideEachWorkload)
 
     const CliRun table = cli("bench --workload sphere --strands 200 --steps 50 --threads 1");
     ASSERT_EQ(table.status, 0) << table.output;
-    EXPECT_EQ(table.output.rfind(std::string("target ") + wisp::compiledSimdTarget() + " (", 0), 0u) << table.output;
+    EXPECT_EQ(table.output.rfind(std::string("target ") + wisp::solverSimdTarget() + " (", 0), 0u) << table.output;
     EXPECT_NE(table.output.find("x floor"), std::string::npos) << table.output;
     EXPECT_NE(table.output.find("\nfloor "), std::string::npos) << table.output;
+}
+
+// --target runs the kernels on a lower target than the CPU's best, and says so in the table's first
+// line and each JSON row; a target the binary or the CPU lacks is refused with the choices.
+TEST(Cli, BenchRunsOnTheTargetItIsToldAndRefusesOneItLacks)
+{
+    for (const std::string& t : wisp::availableSimdTargets()) {
+        const CliRun r = cli("bench --workload sphere --strands 200 --steps 50 --threads 1 --json --target " + t);
+        ASSERT_EQ(r.status, 0) << r.output;
+        EXPECT_NE(r.output.find("\"name\": \"sphere\", \"target\": \"" + t + "\""), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("\"name\": \"floor\", \"target\": \"" + t + "\""), std::string::npos) << r.output;
+    }
+#if defined(__x86_64__)
+    const CliRun table = cli("bench --workload sphere --strands 200 --steps 50 --threads 1 --target sse4");
+    ASSERT_EQ(table.status, 0) << table.output;
+    EXPECT_EQ(table.output.rfind("target SSE4 (chosen at run time of ", 0), 0u) << table.output;
+#endif
+    const CliRun bad = cli("bench --workload sphere --strands 200 --steps 50 --target MMX");
+    EXPECT_EQ(bad.status, 1) << bad.output;
+    EXPECT_NE(bad.output.find("--target: no SIMD target 'MMX'"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find(wisp::availableSimdTargets().front()), std::string::npos) << bad.output;
 }
 
 TEST(Cli, BenchGivesNoFloorToTheBrushAndCombWorkloads)
@@ -237,8 +258,8 @@ TEST(Cli, ACpuWithoutTheBuildsInstructionsIsToldSoInsteadOfCrashing)
     EXPECT_NE(r.output.find("-DWISP_NATIVE=OFF"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("usage:"), std::string::npos) << "it ran on: " << r.output;
     // The widest instruction set the build was compiled for, lacking alone, is named alone.
-    const std::string widest = std::string(wisp::compiledSimdTarget()) == "AVX-512" ? "avx512f"
-        : std::string(wisp::compiledSimdTarget()) == "AVX2"                         ? "avx2"
+    const std::string widest = std::string(wisp::baselineSimdTarget()) == "AVX-512" ? "avx512f"
+        : std::string(wisp::baselineSimdTarget()) == "AVX2"                         ? "avx2"
                                                                                     : "sse2";
     ::setenv("WISP_TEST_CPU_LACKS", widest.c_str(), 1);
     const CliRun wide = cli("--help");

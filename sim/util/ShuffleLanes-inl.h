@@ -1,9 +1,20 @@
-#pragma once
 // r[i] = v[index[i]] for GCC/Clang vector-extension vectors (indices taken modulo the lane count):
 // GCC's __builtin_shuffle, which Clang (the fuzz build, scripts/fuzz.sh) lacks for a run-time
 // index vector, so Clang gets the same result lane by lane.
+// Compiled once per SIMD target, as sim/solver/SolverLanes-inl.h: a 64-byte vector passed to a
+// function compiled for another target changes the call's ABI (Clang refuses it).
 
-namespace wisp {
+#if defined(WISP_SHUFFLE_LANES_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WISP_SHUFFLE_LANES_INL_H_
+#undef WISP_SHUFFLE_LANES_INL_H_
+#else
+#define WISP_SHUFFLE_LANES_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace wisp::HWY_NAMESPACE {
 
 template <class Vector, class IndexVector> inline Vector shuffleLanes(Vector v, IndexVector index)
 {
@@ -18,4 +29,7 @@ template <class Vector, class IndexVector> inline Vector shuffleLanes(Vector v, 
 #endif
 }
 
-} // namespace wisp
+} // namespace wisp::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif // per-target include guard

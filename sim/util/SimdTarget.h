@@ -4,7 +4,9 @@
 // where built for ARM), and each call runs the best target this CPU has, unless one is forced
 // (forceSimdTarget, `wisp-cli bench --target`). Names as the README and `wisp-cli bench` print them:
 // "AVX-512", "AVX2", "SSE4", "NEON", "SVE", "SVE2", "EMU128" or "scalar".
-// Thread: any for the queries; forceSimdTarget() only while no solver is stepping.
+// Thread: solverSimdTarget() and solverVectorFloats() any; availableSimdTargets() and
+// forceSimdTarget() only while no solver is stepping (they set Highway's target mask, which a
+// dispatch reads).
 
 #include <string>
 #include <vector>

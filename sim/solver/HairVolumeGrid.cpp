@@ -38,7 +38,7 @@ void forRange(
 #define HWY_TARGET_INCLUDE "sim/solver/HairVolumeGrid.cpp"
 #include <hwy/foreach_target.h> // (before highway.h)
 
-#include "sim/util/ShuffleLanes-inl.h"
+#include "sim/solver/HairVolumeGridRead-inl.h"
 
 #include <hwy/highway.h>
 
@@ -48,26 +48,6 @@ namespace wisp {
 namespace HWY_NAMESPACE {
 struct GridTarget { }; // this target's HairVolumeGridKernels
 
-// For a row sampled every `stride` lanes and at its last lane: per lane the sampled lanes before and
-// after it and its share of the way from one to the other.
-struct LaneBlend {
-    alignas(64) int before[HairVolumeGrid::kRowLanes];
-    alignas(64) int after[HairVolumeGrid::kRowLanes];
-    alignas(64) float share[HairVolumeGrid::kRowLanes];
-};
-constexpr LaneBlend laneBlend(int stride)
-{
-    LaneBlend b{};
-    constexpr int last = HairVolumeGrid::kRowLanes - 1;
-    for (int l = 0; l < HairVolumeGrid::kRowLanes; ++l) {
-        const int before = l - l % stride, after = std::min(before + stride, last);
-        b.before[l] = before;
-        b.after[l] = after;
-        b.share[l] = after > before ? static_cast<float>(l - before) / static_cast<float>(after - before) : 0.0f;
-    }
-    return b;
-}
-constexpr LaneBlend kLaneBlends[5] = { laneBlend(1), laneBlend(2), laneBlend(4), laneBlend(8), laneBlend(16) };
 } // namespace HWY_NAMESPACE
 
 template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridTarget> {
@@ -78,6 +58,7 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridTarget> {
     using Sums = G::Sums;
     using Accumulator = G::Accumulator;
     using Kernel = G::Kernel;
+    using Read = HairVolumeGridKernels<HWY_NAMESPACE::GridReadTarget>; // the shared read (HairVolumeGridRead-inl.h)
     static constexpr int kBrick = G::kBrick, kRowLanes = G::kRowLanes;
     static constexpr float kMaxMoveMetres = G::kMaxMoveMetres;
     // A row of kBrick (4) nodes along x in finish(): their four sums each (Sums), one AVX-512 register
@@ -103,8 +84,6 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridTarget> {
     // splatRow for Kernel::NearestSmoothed: into slot grid `grid`, marking `touched` bricks.
     static void splatNearest(G& g, std::int64_t* grid, std::uint8_t* touched, const CellRow& cells, const float* weight,
         const float* moveX, const float* moveY, const float* moveZ, int count, int stride);
-    // sampleRow's reads for Kernel::NearestSmoothed and a full row: lanes 0, stride, ... and 15.
-    static void nearestRow(const G& g, const CellRow& cells, SampleRow& out, int stride);
     static void sampleRow(
         const G& g, const float* x, const float* y, const float* z, SampleRow& out, int count, int stride);
     static void finish(G& g, ThreadPool* pool, float solidDensity);
@@ -490,102 +469,62 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::splatNearest(G& g, std::i
     flush();
 }
 
-void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::nearestRow(
-    const G& g, const CellRow& cells, SampleRow& out, int stride)
-{
-    // Each sampled lane's node, eight floats: sixteen nodes, transposed into the eight arrays in
-    // three rounds of two-register shuffles, in place of eight scalar stores a lane. A lane between
-    // samples (the blend sets it) and a lane outside the grid read a node of zeros.
-    static const Node kEmpty{};
-    const float* rows[kRowLanes];
-    for (int l = 0; l < kRowLanes; ++l)
-        rows[l] = (l % stride == 0 || l == kRowLanes - 1) && cells.nearest[l] >= 0
-            ? &g.m_nodes[static_cast<std::size_t>(cells.nearest[l])].density
-            : &kEmpty.density;
-    // v[k]: lanes k and k + 8 (a lane's eight values). Each round swaps a bit of the register's
-    // number with a bit of the position in it (the lane's with the value's), until register f
-    // holds value f of lanes 0..15 in order.
-    Float16 v[8];
-    for (int k = 0; k < 8; ++k) {
-        const Float8 low = load8(rows[k]), high = load8(rows[k + 8]);
-        v[k] = __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-    }
-    for (int k = 0; k < 4; ++k) {
-        const Float16 a = v[k], b = v[k + 4];
-        v[k] = __builtin_shufflevector(a, b, 0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24, 25, 26, 27);
-        v[k + 4] = __builtin_shufflevector(a, b, 4, 5, 6, 7, 20, 21, 22, 23, 12, 13, 14, 15, 28, 29, 30, 31);
-    }
-    for (int k : { 0, 1, 4, 5 }) {
-        const Float16 a = v[k], b = v[k + 2];
-        v[k] = __builtin_shufflevector(a, b, 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24, 25, 12, 13, 28, 29);
-        v[k + 2] = __builtin_shufflevector(a, b, 2, 3, 18, 19, 6, 7, 22, 23, 10, 11, 26, 27, 14, 15, 30, 31);
-    }
-    for (int k : { 0, 2, 4, 6 }) {
-        const Float16 a = v[k], b = v[k + 1];
-        v[k] = __builtin_shufflevector(a, b, 0, 16, 2, 18, 4, 20, 6, 22, 8, 24, 10, 26, 12, 28, 14, 30);
-        v[k + 1] = __builtin_shufflevector(a, b, 1, 17, 3, 19, 5, 21, 7, 23, 9, 25, 11, 27, 13, 29, 15, 31);
-    }
-    float* const fields[8] = { out.density, out.gradX, out.gradY, out.gradZ, out.momentumX, out.momentumY,
-        out.momentumZ, out.hair }; // Node's order
-    for (int f = 0; f < 8; ++f)
-        std::memcpy(fields[f], &v[f], sizeof v[f]);
-}
-
 void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::sampleRow(
     const G& g, const float* x, const float* y, const float* z, SampleRow& out, int count, int stride)
 {
+    if (g.m_kernel == Kernel::NearestSmoothed && count == kRowLanes) { // the solver's read, in registers
+        Lane px, py, pz, v[8];
+        std::memcpy(&px, x, sizeof px);
+        std::memcpy(&py, y, sizeof py);
+        std::memcpy(&pz, z, sizeof pz);
+        Read::readNearestRow(g, px, py, pz, stride, v);
+        float* const fields[8] = { out.density, out.gradX, out.gradY, out.gradZ, out.momentumX, out.momentumY,
+            out.momentumZ, out.hair }; // Node's order
+        for (int f = 0; f < 8; ++f)
+            std::memcpy(fields[f], &v[f], sizeof v[f]);
+        return;
+    }
     CellRow cells;
     cellsOf(g, x, y, z, count, cells);
     const std::ptrdiff_t strideY = g.m_dims.x, strideZ = strideY * g.m_dims.y;
     stride = count == kRowLanes ? std::clamp(stride, 1, kRowLanes) : 1;
-    if (g.m_kernel == Kernel::NearestSmoothed && count == kRowLanes)
-        nearestRow(g, cells, out, stride);
-    else
-        for (int l = 0; l < count; l = l + stride < count || l == count - 1 ? l + stride : count - 1) {
-            Float8 sum{};
-            if (g.m_kernel == Kernel::NearestSmoothed) {
-                if (cells.nearest[l] >= 0)
-                    sum = load8(&g.m_nodes[static_cast<std::size_t>(cells.nearest[l])].density);
-            } else if (cells.node[l] >= 0) {
-                const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
-                const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
-                const Node* const base = g.m_nodes.data() + cells.node[l];
-                for (int dz = 0; dz < 2; ++dz)
-                    for (int dy = 0; dy < 2; ++dy) {
-                        const Node* const row = base + dy * strideY + dz * strideZ;
-                        const float wyz = wz[dz] * wy[dy];
-                        sum += load8(&row[0].density) * (wyz * wx[0]);
-                        sum += load8(&row[1].density) * (wyz * wx[1]);
-                    }
-            }
-            out.density[l] = sum[0];
-            out.gradX[l] = sum[1];
-            out.gradY[l] = sum[2];
-            out.gradZ[l] = sum[3];
-            out.momentumX[l] = sum[4];
-            out.momentumY[l] = sum[5];
-            out.momentumZ[l] = sum[6];
-            out.hair[l] = sum[7];
+    for (int l = 0; l < count; l = l + stride < count || l == count - 1 ? l + stride : count - 1) {
+        Float8 sum{};
+        if (g.m_kernel == Kernel::NearestSmoothed) {
+            if (cells.nearest[l] >= 0)
+                sum = load8(&g.m_nodes[static_cast<std::size_t>(cells.nearest[l])].density);
+        } else if (cells.node[l] >= 0) {
+            const float fx = cells.fx[l], fy = cells.fy[l], fz = cells.fz[l];
+            const float wz[2] = { 1.0f - fz, fz }, wy[2] = { 1.0f - fy, fy }, wx[2] = { 1.0f - fx, fx };
+            const Node* const base = g.m_nodes.data() + cells.node[l];
+            for (int dz = 0; dz < 2; ++dz)
+                for (int dy = 0; dy < 2; ++dy) {
+                    const Node* const row = base + dy * strideY + dz * strideZ;
+                    const float wyz = wz[dz] * wy[dy];
+                    sum += load8(&row[0].density) * (wyz * wx[0]);
+                    sum += load8(&row[1].density) * (wyz * wx[1]);
+                }
         }
+        out.density[l] = sum[0];
+        out.gradX[l] = sum[1];
+        out.gradY[l] = sum[2];
+        out.gradZ[l] = sum[3];
+        out.momentumX[l] = sum[4];
+        out.momentumY[l] = sum[5];
+        out.momentumZ[l] = sum[6];
+        out.hair[l] = sum[7];
+    }
     if (stride == 1)
         return;
     // The lanes between two samples: the linear blend of the two, in one vector pass per array.
-    using Floats = float __attribute__((vector_size(kRowLanes * sizeof(float))));
-    using Ints = int __attribute__((vector_size(kRowLanes * sizeof(int))));
-    const HWY_NAMESPACE::LaneBlend& blend = HWY_NAMESPACE::kLaneBlends[std::countr_zero(static_cast<unsigned>(stride))];
-    Ints before, after;
-    Floats share;
-    std::memcpy(&before, blend.before, sizeof before);
-    std::memcpy(&after, blend.after, sizeof after);
-    std::memcpy(&share, blend.share, sizeof share);
-    for (float* values :
-        { out.density, out.hair, out.momentumX, out.momentumY, out.momentumZ, out.gradX, out.gradY, out.gradZ }) {
-        Floats v;
-        std::memcpy(&v, values, sizeof v);
-        const Floats from = HWY_NAMESPACE::shuffleLanes(v, before), to = HWY_NAMESPACE::shuffleLanes(v, after);
-        v = from + (to - from) * share;
-        std::memcpy(values, &v, sizeof v);
-    }
+    float* const fields[8]
+        = { out.density, out.hair, out.momentumX, out.momentumY, out.momentumZ, out.gradX, out.gradY, out.gradZ };
+    Lane v[8];
+    for (int f = 0; f < 8; ++f)
+        std::memcpy(&v[f], fields[f], sizeof v[f]);
+    Read::blendBetweenSamples(stride, v, 8);
+    for (int f = 0; f < 8; ++f)
+        std::memcpy(fields[f], &v[f], sizeof v[f]);
 }
 
 namespace HWY_NAMESPACE {

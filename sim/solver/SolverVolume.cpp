@@ -98,6 +98,7 @@ constexpr std::uint32_t kVolumeMaxRowsPerSample = 4;
 #define HWY_TARGET_INCLUDE "sim/solver/SolverVolume.cpp"
 #include <hwy/foreach_target.h> // (before highway.h)
 
+#include "sim/solver/HairVolumeGridRead-inl.h"
 #include "sim/util/ShuffleLanes-inl.h"
 
 #include "sim/solver/SolverLanes-inl.h"
@@ -212,6 +213,9 @@ void volumeReadOnTarget(
     const glm::mat3 toHead = glm::transpose(c.rotation);
     const float dt2 = c.dt * c.dt;
     const std::uint32_t rows = std::max<std::uint32_t>(1, b.volumeRowsPerSample);
+    // A dense groom's grid is read in registers (HairVolumeGridRead-inl.h), the trilinear one through
+    // the grid's row arrays: the same values.
+    const bool nearest = grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed;
     HairVolumeGrid::SampleRow here;
     auto lane = [](const float* p) {
         Lane l;
@@ -229,25 +233,33 @@ void volumeReadOnTarget(
             x = x * splat(1.0f / static_cast<float>(count));
         }
         const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
-        grid.sampleRow(reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
-            reinterpret_cast<const float*>(&head.z), here, HairVolumeGrid::kRowLanes,
-            g < b.volumeStrides.size() ? b.volumeStrides[g] : 1);
-        const Lane density = lane(here.density);
+        const int stride = g < b.volumeStrides.size() ? b.volumeStrides[g] : 1;
+        Lane fields[8]; // the Node's order: density, gradient x y z, momentum x y z, hair
+        if (nearest)
+            HairVolumeGridKernels<GridReadTarget>::readNearestRow(grid, head.x, head.y, head.z, stride, fields);
+        else {
+            grid.sampleRow(reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
+                reinterpret_cast<const float*>(&head.z), here, HairVolumeGrid::kRowLanes, stride);
+            const float* const from[8] = { here.density, here.gradX, here.gradY, here.gradZ, here.momentumX,
+                here.momentumY, here.momentumZ, here.hair };
+            for (int f = 0; f < 8; ++f)
+                fields[f] = lane(from[f]);
+        }
+        const Lane density = fields[0];
         const Mask inHair = density > 0.0f;
         if (!anyOf(inHair))
             continue;
         // What the group's particles share: the hair's mean move, and the push and its direction.
-        const Lane hair = lane(here.hair);
+        const Lane hair = fields[7];
         const Mask hasHair = hair > 0.0f;
         const Lane inverseHair = select(hasHair, splat(1.0f) / hair, splat(0.0f));
-        const V3 mean = V3{ lane(here.momentumX), lane(here.momentumY), lane(here.momentumZ) } * inverseHair;
+        const V3 mean = V3{ fields[4], fields[5], fields[6] } * inverseHair;
         const Lane excess = density * inverseKeep - 1.0f;
         const Mask pushing = excess > 0.0f;
         const bool anyPushing = anyOf(pushing);
         V3 push{}, direction{};
         if (anyPushing) {
-            push = V3{ lane(here.gradX), lane(here.gradY), lane(here.gradZ) }
-                * ((-v.stiffness) * lmin(excess, splat(1.0f)) * inverseKeep);
+            push = V3{ fields[1], fields[2], fields[3] } * ((-v.stiffness) * lmin(excess, splat(1.0f)) * inverseKeep);
             const Lane length = lsqrt(dot(push, push));
             const Lane inverseLength = splat(1.0f) / length; // one division where there were four
             push = push * select(length > kVolumeMaxAcceleration, kVolumeMaxAcceleration * inverseLength, splat(1.0f));

@@ -1,0 +1,155 @@
+// A dense groom's read of the hair volume grid (HairVolumeGrid::Kernel::NearestSmoothed) for a full
+// row of 16 lanes, in registers: the solver's per-substep read (SolverVolume.cpp) calls it inline,
+// with no trip through the grid's row arrays (CellRow, SampleRow) and no second dispatch, and the
+// grid's own sampleRow (HairVolumeGrid.cpp) shares its transpose and its blend between samples. The
+// same arithmetic in either: the same bits.
+// Compiled once per SIMD target, as sim/solver/SolverLanes-inl.h.
+
+#if defined(WISP_HAIR_VOLUME_GRID_READ_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WISP_HAIR_VOLUME_GRID_READ_INL_H_
+#undef WISP_HAIR_VOLUME_GRID_READ_INL_H_
+#else
+#define WISP_HAIR_VOLUME_GRID_READ_INL_H_
+#endif
+
+#include "sim/solver/HairVolumeGrid.h"
+#include "sim/solver/SolverLanes.h"
+#include "sim/util/ShuffleLanes-inl.h"
+
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
+HWY_BEFORE_NAMESPACE();
+namespace wisp {
+namespace HWY_NAMESPACE {
+
+struct GridReadTarget { }; // this target's HairVolumeGridKernels for the read
+
+// For a row sampled every `stride` lanes and at its last lane: per lane the sampled lanes before and
+// after it and its share of the way from one to the other.
+struct LaneBlend {
+    alignas(64) int before[HairVolumeGrid::kRowLanes];
+    alignas(64) int after[HairVolumeGrid::kRowLanes];
+    alignas(64) float share[HairVolumeGrid::kRowLanes];
+};
+constexpr LaneBlend laneBlend(int stride)
+{
+    LaneBlend b{};
+    constexpr int last = HairVolumeGrid::kRowLanes - 1;
+    for (int l = 0; l < HairVolumeGrid::kRowLanes; ++l) {
+        const int before = l - l % stride, after = std::min(before + stride, last);
+        b.before[l] = before;
+        b.after[l] = after;
+        b.share[l] = after > before ? static_cast<float>(l - before) / static_cast<float>(after - before) : 0.0f;
+    }
+    return b;
+}
+inline constexpr LaneBlend kLaneBlends[5] = { laneBlend(1), laneBlend(2), laneBlend(4), laneBlend(8), laneBlend(16) };
+
+} // namespace HWY_NAMESPACE
+
+static_assert(HairVolumeGrid::kRowLanes == kLanes, "a grid row is a solver lane");
+
+template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridReadTarget> {
+    using G = HairVolumeGrid;
+    using Float8 = float __attribute__((vector_size(8 * sizeof(float))));
+
+    // The node each lane meets (Kernel::NearestSmoothed): the index of its nearest node, -1 outside
+    // the grid or not finite. `x`, `y`, `z` head space.
+    static Mask nearestNodes(const G& g, Lane x, Lane y, Lane z)
+    {
+        const float inverseCell = 1.0f / g.m_cell;
+        const Lane gx = (x - g.m_origin.x) * inverseCell, gy = (y - g.m_origin.y) * inverseCell,
+                   gz = (z - g.m_origin.z) * inverseCell;
+        const Mask inside = (gx >= 0.0f) & (gy >= 0.0f) & (gz >= 0.0f) & (gx < static_cast<float>(g.m_dims.x - 1))
+            & (gy < static_cast<float>(g.m_dims.y - 1)) & (gz < static_cast<float>(g.m_dims.z - 1));
+        const Lane zero{};
+        const Mask ix = __builtin_convertvector(inside ? gx : zero, Mask),
+                   iy = __builtin_convertvector(inside ? gy : zero, Mask),
+                   iz = __builtin_convertvector(inside ? gz : zero, Mask);
+        const Lane fx = gx - __builtin_convertvector(ix, Lane), fy = gy - __builtin_convertvector(iy, Lane),
+                   fz = gz - __builtin_convertvector(iz, Lane);
+        const Mask one = Mask{} + 1;
+        return inside ? ix + ((fx >= 0.5f) & one)
+                + g.m_dims.x * (iy + ((fy >= 0.5f) & one) + g.m_dims.y * (iz + ((fz >= 0.5f) & one)))
+                      : Mask{} - 1;
+    }
+
+    // Sixteen nodes' eight floats each (Node's order), transposed so that out[f] holds value f of
+    // nodes 0..15, in three rounds of two-register shuffles, in place of eight scalar stores a node.
+    static void transposeNodes(const float* const rows[kLanes], Lane out[8])
+    {
+        // v[k]: nodes k and k + 8. Each round swaps a bit of the register's number with a bit of the
+        // position in it (the node's with the value's), until register f holds value f in order.
+        Lane* const v = out;
+        for (int k = 0; k < 8; ++k) {
+            Float8 low, high;
+            std::memcpy(&low, rows[k], sizeof low);
+            std::memcpy(&high, rows[k + 8], sizeof high);
+            v[k] = __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+        }
+        for (int k = 0; k < 4; ++k) {
+            const Lane a = v[k], b = v[k + 4];
+            v[k] = __builtin_shufflevector(a, b, 0, 1, 2, 3, 16, 17, 18, 19, 8, 9, 10, 11, 24, 25, 26, 27);
+            v[k + 4] = __builtin_shufflevector(a, b, 4, 5, 6, 7, 20, 21, 22, 23, 12, 13, 14, 15, 28, 29, 30, 31);
+        }
+        for (int k : { 0, 1, 4, 5 }) {
+            const Lane a = v[k], b = v[k + 2];
+            v[k] = __builtin_shufflevector(a, b, 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24, 25, 12, 13, 28, 29);
+            v[k + 2] = __builtin_shufflevector(a, b, 2, 3, 18, 19, 6, 7, 22, 23, 10, 11, 26, 27, 14, 15, 30, 31);
+        }
+        for (int k : { 0, 2, 4, 6 }) {
+            const Lane a = v[k], b = v[k + 1];
+            v[k] = __builtin_shufflevector(a, b, 0, 16, 2, 18, 4, 20, 6, 22, 8, 24, 10, 26, 12, 28, 14, 30);
+            v[k + 1] = __builtin_shufflevector(a, b, 1, 17, 3, 19, 5, 21, 7, 23, 9, 25, 11, 27, 13, 29, 15, 31);
+        }
+    }
+
+    // The nodes at `nearest` read at lanes 0, stride, 2 stride, ... and 15 (a lane between, or
+    // outside the grid, reads a node of zeros), transposed into out[8] (Node's order: density,
+    // gradient x y z, momentum x y z, hair).
+    static void readSampled(const G& g, const Mask& nearest, int stride, Lane out[8])
+    {
+        static const G::Node kEmpty{};
+        const float* rows[kLanes];
+        for (int l = 0; l < kLanes; ++l)
+            rows[l] = (l % stride == 0 || l == kLanes - 1) && nearest[l] >= 0
+                ? &g.m_nodes[static_cast<std::size_t>(nearest[l])].density
+                : &kEmpty.density;
+        transposeNodes(rows, out);
+    }
+
+    // The lanes between two samples (stride > 1): the linear blend of the two around them.
+    static void blendBetweenSamples(int stride, Lane* values, int count)
+    {
+        const HWY_NAMESPACE::LaneBlend& blend
+            = HWY_NAMESPACE::kLaneBlends[std::countr_zero(static_cast<unsigned>(stride))];
+        Mask before, after;
+        Lane share;
+        std::memcpy(&before, blend.before, sizeof before);
+        std::memcpy(&after, blend.after, sizeof after);
+        std::memcpy(&share, blend.share, sizeof share);
+        for (int i = 0; i < count; ++i) {
+            const Lane from = HWY_NAMESPACE::shuffleLanes(values[i], before),
+                       to = HWY_NAMESPACE::shuffleLanes(values[i], after);
+            values[i] = from + (to - from) * share;
+        }
+    }
+
+    // A full row's read, what HairVolumeGrid::sampleRow gives for it, into out[8] (Node's order).
+    static void readNearestRow(const G& g, Lane x, Lane y, Lane z, int stride, Lane out[8])
+    {
+        stride = std::clamp(stride, 1, kLanes);
+        readSampled(g, nearestNodes(g, x, y, z), stride, out);
+        if (stride > 1)
+            blendBetweenSamples(stride, out, 8);
+    }
+};
+
+} // namespace wisp
+HWY_AFTER_NAMESPACE();
+
+#endif // per-target include guard

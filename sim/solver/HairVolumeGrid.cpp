@@ -38,7 +38,7 @@ void forRange(
 #define HWY_TARGET_INCLUDE "sim/solver/HairVolumeGrid.cpp"
 #include <hwy/foreach_target.h> // (before highway.h)
 
-#include "sim/solver/HairVolumeGridRead-inl.h"
+#include "sim/solver/HairVolumeGridNearest-inl.h"
 
 #include <hwy/highway.h>
 
@@ -58,7 +58,8 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridTarget> {
     using Sums = G::Sums;
     using Accumulator = G::Accumulator;
     using Kernel = G::Kernel;
-    using Read = HairVolumeGridKernels<HWY_NAMESPACE::GridReadTarget>; // the shared read (HairVolumeGridRead-inl.h)
+    // A dense groom's rows (HairVolumeGridNearest-inl.h), shared with the solver's splat and read.
+    using Nearest = HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget>;
     static constexpr int kBrick = G::kBrick, kRowLanes = G::kRowLanes;
     static constexpr float kMaxMoveMetres = G::kMaxMoveMetres;
     // A row of kBrick (4) nodes along x in finish(): their four sums each (Sums), one AVX-512 register
@@ -80,9 +81,6 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridTarget> {
     // The row's grid coordinates (CellRow), in one vector pass.
     static void cellsOf(const G& g, const float* x, const float* y, const float* z, int count, CellRow& out);
     static void splatRow(G& g, int slot, const float* x, const float* y, const float* z, const float* weight,
-        const float* moveX, const float* moveY, const float* moveZ, int count, int stride);
-    // splatRow for Kernel::NearestSmoothed: into slot grid `grid`, marking `touched` bricks.
-    static void splatNearest(G& g, std::int64_t* grid, std::uint8_t* touched, const CellRow& cells, const float* weight,
         const float* moveX, const float* moveY, const float* moveZ, int count, int stride);
     static void sampleRow(
         const G& g, const float* x, const float* y, const float* z, SampleRow& out, int count, int stride);
@@ -355,6 +353,16 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::splatRow(G& g, int slot, 
     int stride)
 {
     stride = count == kRowLanes ? std::clamp(stride, 1, kRowLanes) : 1;
+    if (g.m_kernel == Kernel::NearestSmoothed) { // a shorter row padded with lanes outside the grid
+        Lane row[7];
+        const float* const from[7] = { x, y, z, weight, moveX, moveY, moveZ };
+        for (int i = 0; i < 7; ++i) {
+            row[i] = Lane{} + (i < 3 ? NAN : 0.0f);
+            std::memcpy(&row[i], from[i], static_cast<std::size_t>(count) * sizeof(float));
+        }
+        Nearest::splatNearestRow(g, slot, row[0], row[1], row[2], row[3], row[4], row[5], row[6], stride);
+        return;
+    }
     CellRow cells;
     cellsOf(g, x, y, z, count, cells);
     std::int64_t* const grid = &g.m_accumulators[static_cast<std::size_t>(slot) * g.m_nodes.size()].weight;
@@ -397,10 +405,6 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::splatRow(G& g, int slot, 
                 std::memcpy(pair, &sum, sizeof sum);
             }
     };
-    if (g.m_kernel == Kernel::NearestSmoothed) {
-        splatNearest(g, grid, touched, cells, weight, moveX, moveY, moveZ, count, stride);
-        return;
-    }
     for (int l = 0; l < count; l += stride) {
         const float w = weight[l];
         if (cells.node[l] < 0 || !(w > 0.0f))
@@ -428,47 +432,6 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::splatRow(G& g, int slot, 
     flush();
 }
 
-void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::splatNearest(G& g, std::int64_t* grid, std::uint8_t* touched,
-    const CellRow& cells, const float* weight, const float* moveX, const float* moveY, const float* moveZ, int count,
-    int stride)
-{
-    using Float4 = float __attribute__((vector_size(4 * sizeof(float))));
-    using Fixed4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
-    const Float4 units{ g.m_weightUnits, g.m_moveUnits, g.m_moveUnits, g.m_moveUnits };
-    // As the trilinear splat: a run of particles at one node is summed in registers, in lane order.
-    int runNode = -1;
-    Float4 run{};
-    auto flush = [&] {
-        if (runNode < 0)
-            return;
-        const Float4 value = run * units;
-        Fixed4 sum;
-        std::int64_t* const at = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
-        std::memcpy(&sum, at, sizeof sum);
-        sum += __builtin_convertvector(value + (value < 0.0f ? Float4{} - 0.5f : Float4{} + 0.5f), Fixed4);
-        std::memcpy(at, &sum, sizeof sum);
-    };
-    for (int l = 0; l < count; l += stride) {
-        const float w = weight[l];
-        if (cells.node[l] < 0 || !(w > 0.0f))
-            continue;
-        const int node = cells.nearest[l];
-        if (node != runNode) {
-            flush();
-            runNode = node;
-            run = Float4{};
-            const int dx = cells.fx[l] >= 0.5f, dy = cells.fy[l] >= 0.5f, dz = cells.fz[l] >= 0.5f;
-            touched[g.brickIndex((cells.ix[l] + dx) / kBrick, (cells.iy[l] + dy) / kBrick, (cells.iz[l] + dz) / kBrick)]
-                = 1;
-        }
-        const float mx = std::clamp(moveX[l], -kMaxMoveMetres, kMaxMoveMetres),
-                    my = std::clamp(moveY[l], -kMaxMoveMetres, kMaxMoveMetres),
-                    mz = std::clamp(moveZ[l], -kMaxMoveMetres, kMaxMoveMetres);
-        run += w * Float4{ 1.0f, mx, my, mz };
-    }
-    flush();
-}
-
 void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::sampleRow(
     const G& g, const float* x, const float* y, const float* z, SampleRow& out, int count, int stride)
 {
@@ -477,7 +440,7 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::sampleRow(
         std::memcpy(&px, x, sizeof px);
         std::memcpy(&py, y, sizeof py);
         std::memcpy(&pz, z, sizeof pz);
-        Read::readNearestRow(g, px, py, pz, stride, v);
+        Nearest::readNearestRow(g, px, py, pz, stride, v);
         float* const fields[8] = { out.density, out.gradX, out.gradY, out.gradZ, out.momentumX, out.momentumY,
             out.momentumZ, out.hair }; // Node's order
         for (int f = 0; f < 8; ++f)
@@ -522,7 +485,7 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::sampleRow(
     Lane v[8];
     for (int f = 0; f < 8; ++f)
         std::memcpy(&v[f], fields[f], sizeof v[f]);
-    Read::blendBetweenSamples(stride, v, 8);
+    Nearest::blendBetweenSamples(stride, v, 8);
     for (int f = 0; f < 8; ++f)
         std::memcpy(fields[f], &v[f], sizeof v[f]);
 }

@@ -98,7 +98,7 @@ constexpr std::uint32_t kVolumeMaxRowsPerSample = 4;
 #define HWY_TARGET_INCLUDE "sim/solver/SolverVolume.cpp"
 #include <hwy/foreach_target.h> // (before highway.h)
 
-#include "sim/solver/HairVolumeGridRead-inl.h"
+#include "sim/solver/HairVolumeGridNearest-inl.h"
 #include "sim/util/ShuffleLanes-inl.h"
 
 #include "sim/solver/SolverLanes-inl.h"
@@ -154,9 +154,8 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
         groupWeight[s] = groupWeight[s - 1] + shuffleLanes(groupWeight[s - 1], partner);
     }
     const LaneIndex next{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 15 };
-    const float reach
-        = (grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed ? kVolumeNearestLodCellShare : kVolumeLodCellShare)
-        * grid.cellMetres();
+    const bool nearest = grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed;
+    const float reach = (nearest ? kVolumeNearestLodCellShare : kVolumeLodCellShare) * grid.cellMetres();
     b.volumeStrides.resize(groups);
     for (std::uint32_t g = 0; g < groups; ++g) {
         const std::uint32_t first = g * rows, count = std::min(rows, b.points - first);
@@ -194,10 +193,14 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
         const Lane weight = select(
             tame, count > 1 ? groupWeight[level] * static_cast<float>(count) : groupWeight[level], splat(0.0f));
         const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
-        grid.splatRow(slot, reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
-            reinterpret_cast<const float*>(&head.z), reinterpret_cast<const float*>(&weight),
-            reinterpret_cast<const float*>(&move.x), reinterpret_cast<const float*>(&move.y),
-            reinterpret_cast<const float*>(&move.z), HairVolumeGrid::kRowLanes, 1 << level);
+        if (nearest) // in registers (HairVolumeGridNearest-inl.h)
+            HairVolumeGridKernels<GridNearestTarget>::splatNearestRow(
+                grid, slot, head.x, head.y, head.z, weight, move.x, move.y, move.z, 1 << level);
+        else
+            grid.splatRow(slot, reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
+                reinterpret_cast<const float*>(&head.z), reinterpret_cast<const float*>(&weight),
+                reinterpret_cast<const float*>(&move.x), reinterpret_cast<const float*>(&move.y),
+                reinterpret_cast<const float*>(&move.z), HairVolumeGrid::kRowLanes, 1 << level);
     }
 }
 
@@ -213,7 +216,7 @@ void volumeReadOnTarget(
     const glm::mat3 toHead = glm::transpose(c.rotation);
     const float dt2 = c.dt * c.dt;
     const std::uint32_t rows = std::max<std::uint32_t>(1, b.volumeRowsPerSample);
-    // A dense groom's grid is read in registers (HairVolumeGridRead-inl.h), the trilinear one through
+    // A dense groom's grid is read in registers (HairVolumeGridNearest-inl.h), the trilinear one through
     // the grid's row arrays: the same values.
     const bool nearest = grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed;
     HairVolumeGrid::SampleRow here;
@@ -236,7 +239,7 @@ void volumeReadOnTarget(
         const int stride = g < b.volumeStrides.size() ? b.volumeStrides[g] : 1;
         Lane fields[8]; // the Node's order: density, gradient x y z, momentum x y z, hair
         if (nearest)
-            HairVolumeGridKernels<GridReadTarget>::readNearestRow(grid, head.x, head.y, head.z, stride, fields);
+            HairVolumeGridKernels<GridNearestTarget>::readNearestRow(grid, head.x, head.y, head.z, stride, fields);
         else {
             grid.sampleRow(reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
                 reinterpret_cast<const float*>(&head.z), here, HairVolumeGrid::kRowLanes, stride);

@@ -1,15 +1,15 @@
-// A dense groom's read of the hair volume grid (HairVolumeGrid::Kernel::NearestSmoothed) for a full
-// row of 16 lanes, in registers: the solver's per-substep read (SolverVolume.cpp) calls it inline,
-// with no trip through the grid's row arrays (CellRow, SampleRow) and no second dispatch, and the
-// grid's own sampleRow (HairVolumeGrid.cpp) shares its transpose and its blend between samples. The
-// same arithmetic in either: the same bits.
+// A dense groom's row of 16 lanes on the hair volume grid (HairVolumeGrid::Kernel::NearestSmoothed),
+// in registers: its splat and its read. The solver's per-substep read and its splat
+// (SolverVolume.cpp) call them inline, with no trip through the grid's row arrays (CellRow,
+// SampleRow) and no second dispatch; the grid's own splatRow and sampleRow (HairVolumeGrid.cpp) call
+// the same functions: the same bits either way.
 // Compiled once per SIMD target, as sim/solver/SolverLanes-inl.h.
 
-#if defined(WISP_HAIR_VOLUME_GRID_READ_INL_H_) == defined(HWY_TARGET_TOGGLE)
-#ifdef WISP_HAIR_VOLUME_GRID_READ_INL_H_
-#undef WISP_HAIR_VOLUME_GRID_READ_INL_H_
+#if defined(WISP_HAIR_VOLUME_GRID_NEAREST_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef WISP_HAIR_VOLUME_GRID_NEAREST_INL_H_
+#undef WISP_HAIR_VOLUME_GRID_NEAREST_INL_H_
 #else
-#define WISP_HAIR_VOLUME_GRID_READ_INL_H_
+#define WISP_HAIR_VOLUME_GRID_NEAREST_INL_H_
 #endif
 
 #include "sim/solver/HairVolumeGrid.h"
@@ -26,7 +26,7 @@ HWY_BEFORE_NAMESPACE();
 namespace wisp {
 namespace HWY_NAMESPACE {
 
-struct GridReadTarget { }; // this target's HairVolumeGridKernels for the read
+struct GridNearestTarget { }; // this target's HairVolumeGridKernels for a dense groom's rows
 
 // For a row sampled every `stride` lanes and at its last lane: per lane the sampled lanes before and
 // after it and its share of the way from one to the other.
@@ -53,13 +53,14 @@ inline constexpr LaneBlend kLaneBlends[5] = { laneBlend(1), laneBlend(2), laneBl
 
 static_assert(HairVolumeGrid::kRowLanes == kLanes, "a grid row is a solver lane");
 
-template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridReadTarget> {
+template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     using G = HairVolumeGrid;
     using Float8 = float __attribute__((vector_size(8 * sizeof(float))));
 
     // The node each lane meets (Kernel::NearestSmoothed): the index of its nearest node, -1 outside
-    // the grid or not finite. `x`, `y`, `z` head space.
-    static Mask nearestNodes(const G& g, Lane x, Lane y, Lane z)
+    // the grid or not finite; and when `brick` is given, the index of that node's brick there.
+    // `x`, `y`, `z` head space.
+    static Mask nearestNodes(const G& g, Lane x, Lane y, Lane z, Mask* brick = nullptr)
     {
         const float inverseCell = 1.0f / g.m_cell;
         const Lane gx = (x - g.m_origin.x) * inverseCell, gy = (y - g.m_origin.y) * inverseCell,
@@ -73,9 +74,57 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridReadTarget> {
         const Lane fx = gx - __builtin_convertvector(ix, Lane), fy = gy - __builtin_convertvector(iy, Lane),
                    fz = gz - __builtin_convertvector(iz, Lane);
         const Mask one = Mask{} + 1;
-        return inside ? ix + ((fx >= 0.5f) & one)
-                + g.m_dims.x * (iy + ((fy >= 0.5f) & one) + g.m_dims.y * (iz + ((fz >= 0.5f) & one)))
-                      : Mask{} - 1;
+        const Mask nx = ix + ((fx >= 0.5f) & one), ny = iy + ((fy >= 0.5f) & one), nz = iz + ((fz >= 0.5f) & one);
+        static_assert(G::kBrick == 4, "a node's brick is its coordinates shifted by two");
+        if (brick)
+            *brick = (nx >> 2) + g.m_bricks.x * ((ny >> 2) + g.m_bricks.y * (nz >> 2));
+        return inside ? nx + g.m_dims.x * (ny + g.m_dims.y * nz) : Mask{} - 1;
+    }
+
+    // Adds a row's lanes 0, stride, 2 stride, ... (weight > 0, inside the grid) at their nearest
+    // nodes into slot `slot`, marking the slot's bricks they touch: each lane its weight and its
+    // weight x move (each component clamped to kMaxMoveMetres), in fixed point. Side-by-side
+    // particles (a row's neighbouring strands) often share a node: a run of them is summed in
+    // registers and written once, in lane order (the same bits every time).
+    static void splatNearestRow(G& g, int slot, Lane x, Lane y, Lane z, const Lane& weight, const Lane& moveX,
+        const Lane& moveY, const Lane& moveZ, int stride)
+    {
+        using Float4 = float __attribute__((vector_size(4 * sizeof(float))));
+        using Fixed4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
+        stride = std::clamp(stride, 1, kLanes);
+        Mask brick;
+        const Mask node = nearestNodes(g, x, y, z, &brick);
+        std::int64_t* const grid = &g.m_accumulators[static_cast<std::size_t>(slot) * g.m_nodes.size()].weight;
+        std::uint8_t* const touched = g.m_touched.data() + static_cast<std::size_t>(slot) * g.m_live.size();
+        const Float4 units{ g.m_weightUnits, g.m_moveUnits, g.m_moveUnits, g.m_moveUnits };
+        int runNode = -1;
+        Float4 run{};
+        auto flush = [&] {
+            if (runNode < 0)
+                return;
+            const Float4 value = run * units; // rounded half away from zero: no drift toward zero
+            Fixed4 sum;
+            std::int64_t* const at = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
+            std::memcpy(&sum, at, sizeof sum);
+            sum += __builtin_convertvector(value + (value < 0.0f ? Float4{} - 0.5f : Float4{} + 0.5f), Fixed4);
+            std::memcpy(at, &sum, sizeof sum);
+        };
+        constexpr float kMax = G::kMaxMoveMetres;
+        for (int l = 0; l < kLanes; l += stride) {
+            const float w = weight[l];
+            if (node[l] < 0 || !(w > 0.0f))
+                continue;
+            if (node[l] != runNode) {
+                flush();
+                runNode = node[l];
+                run = Float4{};
+                touched[brick[l]] = 1;
+            }
+            run += w
+                * Float4{ 1.0f, std::clamp(moveX[l], -kMax, kMax), std::clamp(moveY[l], -kMax, kMax),
+                      std::clamp(moveZ[l], -kMax, kMax) };
+        }
+        flush();
     }
 
     // Sixteen nodes' eight floats each (Node's order), transposed so that out[f] holds value f of

@@ -154,6 +154,10 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
         groupWeight[s] = groupWeight[s - 1] + shuffleLanes(groupWeight[s - 1], partner);
     }
     const LaneIndex next{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 15 };
+    // Lane l's partner across halves of 16, 8, 4 and 2 lanes.
+    static constexpr LaneIndex kAcrossHalves[4] = { { 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7 },
+        { 4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11 }, { 2, 3, 0, 1, 6, 7, 4, 5, 10, 11, 8, 9, 14, 15, 12, 13 },
+        { 1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14 } };
     const bool nearest = grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed;
     const float reach = (nearest ? kVolumeNearestLodCellShare : kVolumeLodCellShare) * grid.cellMetres();
     b.volumeStrides.resize(groups);
@@ -181,10 +185,12 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
         if (full) {
             const Lane dx = shuffleLanes(x.x, next) - x.x, dy = shuffleLanes(x.y, next) - x.y,
                        dz = shuffleLanes(x.z, next) - x.z;
-            const Lane distance2 = dx * dx + dy * dy + dz * dz;
-            float spacing2 = 0.0f;
-            for (int l = 0; l < kLanes; ++l)
-                spacing2 = std::max(spacing2, distance2[l]); // skips a NaN: a broken lane is not tame, splats 0
+            // The largest, in four shuffles (a NaN counts as 0: a broken lane is not tame, splats 0).
+            Lane widest = dx * dx + dy * dy + dz * dz;
+            widest = select(widest == widest, widest, splat(0.0f));
+            for (const LaneIndex& across : kAcrossHalves)
+                widest = lmax(widest, shuffleLanes(widest, across));
+            const float spacing2 = widest[0];
             while (level < 4 && std::isfinite(spacing2)
                 && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)
                 ++level;

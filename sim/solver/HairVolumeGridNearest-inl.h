@@ -163,9 +163,10 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     static void readSampled(const G& g, const Mask& nearest, int stride, Lane out[8])
     {
         static const G::Node kEmpty{};
+        const int between = stride - 1; // stride is a power of two: no division a lane
         const float* rows[kLanes];
         for (int l = 0; l < kLanes; ++l)
-            rows[l] = (l % stride == 0 || l == kLanes - 1) && nearest[l] >= 0
+            rows[l] = ((l & between) == 0 || l == kLanes - 1) && nearest[l] >= 0
                 ? &g.m_nodes[static_cast<std::size_t>(nearest[l])].density
                 : &kEmpty.density;
         transposeNodes(rows, out);
@@ -191,7 +192,7 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     // A full row's read, what HairVolumeGrid::sampleRow gives for it, into out[8] (Node's order).
     static void readNearestRow(const G& g, Lane x, Lane y, Lane z, int stride, Lane out[8])
     {
-        stride = std::clamp(stride, 1, kLanes);
+        stride = static_cast<int>(std::bit_floor(static_cast<unsigned>(std::clamp(stride, 1, kLanes))));
         readSampled(g, nearestNodes(g, x, y, z), stride, out);
         if (stride > 1)
             blendBetweenSamples(stride, out, 8);

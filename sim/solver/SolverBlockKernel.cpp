@@ -509,10 +509,6 @@ void prefetchBlock(const Solver::Block& block)
     const char* at = reinterpret_cast<const char*>(&block);
     for (std::size_t byte = 0; byte < sizeof(Solver::Block); byte += 64)
         __builtin_prefetch(at + byte);
-    // The volume grid's level of detail, the first thing the block's volume read takes (a cache
-    // miss a block there otherwise, SolverVolume.cpp).
-    if (!block.volumeStrides.empty())
-        __builtin_prefetch(block.volumeStrides.data());
 }
 
 } // namespace wisp

@@ -19,6 +19,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstring>
 
@@ -28,26 +29,43 @@ namespace HWY_NAMESPACE {
 
 struct GridNearestTarget { }; // this target's HairVolumeGridKernels for a dense groom's rows
 
-// For a row sampled every `stride` lanes and at its last lane: per lane the sampled lanes before and
-// after it and its share of the way from one to the other.
-struct LaneBlend {
-    alignas(64) int before[HairVolumeGrid::kRowLanes];
-    alignas(64) int after[HairVolumeGrid::kRowLanes];
-    alignas(64) float share[HairVolumeGrid::kRowLanes];
-};
-constexpr LaneBlend laneBlend(int stride)
+// For a row sampled every `Stride` lanes (a power of two) and at its last lane: per lane the
+// sampled lanes before and after it (compile-time tables: constant shuffles on every target) and its
+// share of the way from one to the other.
+template <int Stride> constexpr std::array<int, kLanes> sampleBefore()
 {
-    LaneBlend b{};
-    constexpr int last = HairVolumeGrid::kRowLanes - 1;
-    for (int l = 0; l < HairVolumeGrid::kRowLanes; ++l) {
-        const int before = l - l % stride, after = std::min(before + stride, last);
-        b.before[l] = before;
-        b.after[l] = after;
-        b.share[l] = after > before ? static_cast<float>(l - before) / static_cast<float>(after - before) : 0.0f;
-    }
-    return b;
+    std::array<int, kLanes> lanes{};
+    for (int l = 0; l < kLanes; ++l)
+        lanes[l] = l - l % Stride;
+    return lanes;
 }
-inline constexpr LaneBlend kLaneBlends[5] = { laneBlend(1), laneBlend(2), laneBlend(4), laneBlend(8), laneBlend(16) };
+template <int Stride> constexpr std::array<int, kLanes> sampleAfter()
+{
+    std::array<int, kLanes> lanes{};
+    for (int l = 0; l < kLanes; ++l)
+        lanes[l] = std::min(l - l % Stride + Stride, kLanes - 1);
+    return lanes;
+}
+template <int Stride> struct LaneBlend {
+    static constexpr std::array<int, kLanes> before = sampleBefore<Stride>(), after = sampleAfter<Stride>();
+    static constexpr std::array<float, kLanes> share = [] {
+        std::array<float, kLanes> s{};
+        for (int l = 0; l < kLanes; ++l)
+            s[l] = after[l] > before[l]
+                ? static_cast<float>(l - before[l]) / static_cast<float>(after[l] - before[l])
+                : 0.0f;
+        return s;
+    }();
+    static void apply(Lane* values, int count)
+    {
+        Lane shares;
+        std::memcpy(&shares, share.data(), sizeof shares);
+        for (int i = 0; i < count; ++i) {
+            const Lane from = shuffleLanesBy<before>(values[i]), to = shuffleLanesBy<after>(values[i]);
+            values[i] = from + (to - from) * shares;
+        }
+    }
+};
 
 } // namespace HWY_NAMESPACE
 
@@ -172,20 +190,24 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
         transposeNodes(rows, out);
     }
 
-    // The lanes between two samples (stride > 1): the linear blend of the two around them.
+    // The lanes between two samples (stride > 1, a power of two): the linear blend of the two around them.
     static void blendBetweenSamples(int stride, Lane* values, int count)
     {
-        const HWY_NAMESPACE::LaneBlend& blend
-            = HWY_NAMESPACE::kLaneBlends[std::countr_zero(static_cast<unsigned>(stride))];
-        Mask before, after;
-        Lane share;
-        std::memcpy(&before, blend.before, sizeof before);
-        std::memcpy(&after, blend.after, sizeof after);
-        std::memcpy(&share, blend.share, sizeof share);
-        for (int i = 0; i < count; ++i) {
-            const Lane from = HWY_NAMESPACE::shuffleLanes(values[i], before),
-                       to = HWY_NAMESPACE::shuffleLanes(values[i], after);
-            values[i] = from + (to - from) * share;
+        switch (stride) {
+        case 2:
+            HWY_NAMESPACE::LaneBlend<2>::apply(values, count);
+            break;
+        case 4:
+            HWY_NAMESPACE::LaneBlend<4>::apply(values, count);
+            break;
+        case 8:
+            HWY_NAMESPACE::LaneBlend<8>::apply(values, count);
+            break;
+        case 16:
+            HWY_NAMESPACE::LaneBlend<16>::apply(values, count);
+            break;
+        default:
+            break;
         }
     }
 

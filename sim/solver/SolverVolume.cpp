@@ -13,6 +13,7 @@
 #include <glm/vector_relational.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <span>
@@ -111,6 +112,25 @@ namespace wisp::HWY_NAMESPACE {
 using namespace lanes;
 
 namespace {
+// Lane l's neighbour `Ahead` lanes on (the last lane its own), and its partner across halves of
+// 2 x `Half` lanes: compile-time tables (shuffleLanesBy).
+template <int Ahead> constexpr std::array<int, kLanes> laneAhead()
+{
+    std::array<int, kLanes> lanes{};
+    for (int l = 0; l < kLanes; ++l)
+        lanes[l] = std::min(l + Ahead, kLanes - 1);
+    return lanes;
+}
+template <int Half> constexpr std::array<int, kLanes> laneAcross()
+{
+    std::array<int, kLanes> lanes{};
+    for (int l = 0; l < kLanes; ++l)
+        lanes[l] = l ^ Half;
+    return lanes;
+}
+template <int Ahead> constexpr std::array<int, kLanes> kLaneAhead = laneAhead<Ahead>();
+template <int Half> constexpr std::array<int, kLanes> kLaneAcross = laneAcross<Half>();
+
 std::uint32_t volumeRowsPerSample(const Solver::Block& b, const HairVolumeGrid& grid)
 {
     if (grid.kernel() != HairVolumeGrid::Kernel::NearestSmoothed)
@@ -143,21 +163,12 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
     const std::uint32_t groups = (b.points + rows - 1) / rows;
     // At each group's first lane, the weight of its lanes, for strides 1, 2, 4, 8 and 16: a group
     // of 2s lanes is two of s (the other lanes hold partial sums that nothing reads).
-    using LaneIndex = int __attribute__((vector_size(kLanes * sizeof(int))));
     Lane groupWeight[5];
     groupWeight[0] = b.volumeWeight;
-    for (int s = 1; s < 5; ++s) {
-        const int half = 1 << (s - 1);
-        LaneIndex partner;
-        for (int l = 0; l < kLanes; ++l)
-            partner[l] = std::min(l + half, kLanes - 1);
-        groupWeight[s] = groupWeight[s - 1] + shuffleLanes(groupWeight[s - 1], partner);
-    }
-    const LaneIndex next{ 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 15 };
-    // Lane l's partner across halves of 16, 8, 4 and 2 lanes.
-    static constexpr LaneIndex kAcrossHalves[4] = { { 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7 },
-        { 4, 5, 6, 7, 0, 1, 2, 3, 12, 13, 14, 15, 8, 9, 10, 11 }, { 2, 3, 0, 1, 6, 7, 4, 5, 10, 11, 8, 9, 14, 15, 12, 13 },
-        { 1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14 } };
+    groupWeight[1] = groupWeight[0] + shuffleLanesBy<kLaneAhead<1>>(groupWeight[0]);
+    groupWeight[2] = groupWeight[1] + shuffleLanesBy<kLaneAhead<2>>(groupWeight[1]);
+    groupWeight[3] = groupWeight[2] + shuffleLanesBy<kLaneAhead<4>>(groupWeight[2]);
+    groupWeight[4] = groupWeight[3] + shuffleLanesBy<kLaneAhead<8>>(groupWeight[3]);
     const bool nearest = grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed;
     const float reach = (nearest ? kVolumeNearestLodCellShare : kVolumeLodCellShare) * grid.cellMetres();
     b.volumeStrides.resize(groups);
@@ -183,13 +194,15 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
         }
         int level = 0; // log2 of the stride
         if (full) {
-            const Lane dx = shuffleLanes(x.x, next) - x.x, dy = shuffleLanes(x.y, next) - x.y,
-                       dz = shuffleLanes(x.z, next) - x.z;
+            const Lane dx = shuffleLanesBy<kLaneAhead<1>>(x.x) - x.x, dy = shuffleLanesBy<kLaneAhead<1>>(x.y) - x.y,
+                       dz = shuffleLanesBy<kLaneAhead<1>>(x.z) - x.z;
             // The largest, in four shuffles (a NaN counts as 0: a broken lane is not tame, splats 0).
             Lane widest = dx * dx + dy * dy + dz * dz;
             widest = select(widest == widest, widest, splat(0.0f));
-            for (const LaneIndex& across : kAcrossHalves)
-                widest = lmax(widest, shuffleLanes(widest, across));
+            widest = lmax(widest, shuffleLanesBy<kLaneAcross<8>>(widest));
+            widest = lmax(widest, shuffleLanesBy<kLaneAcross<4>>(widest));
+            widest = lmax(widest, shuffleLanesBy<kLaneAcross<2>>(widest));
+            widest = lmax(widest, shuffleLanesBy<kLaneAcross<1>>(widest));
             const float spacing2 = widest[0];
             while (level < 4 && std::isfinite(spacing2)
                 && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)

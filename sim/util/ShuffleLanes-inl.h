@@ -13,6 +13,9 @@
 
 #include <hwy/highway.h>
 
+#include <cstddef>
+#include <utility>
+
 HWY_BEFORE_NAMESPACE();
 namespace wisp::HWY_NAMESPACE {
 
@@ -27,6 +30,18 @@ template <class Vector, class IndexVector> inline Vector shuffleLanes(Vector v, 
 #else
     return __builtin_shuffle(v, index);
 #endif
+}
+
+// The same for an index table known at compile time (a constexpr std::array<int, lanes> with static
+// storage): a permute or two on any target, where a run-time index on a vector of two registers
+// (16 lanes on AVX2) goes lane by lane through memory.
+template <const auto& Index, class Vector> inline Vector shuffleLanesBy(Vector v)
+{
+    constexpr int lanes = static_cast<int>(sizeof(Vector) / sizeof(v[0]));
+    static_assert(static_cast<int>(Index.size()) == lanes);
+    return [&]<std::size_t... I>(std::index_sequence<I...>) {
+        return __builtin_shufflevector(v, v, (Index[I] & (lanes - 1))...);
+    }(std::make_index_sequence<lanes>{});
 }
 
 } // namespace wisp::HWY_NAMESPACE

@@ -13,7 +13,7 @@
 #endif
 
 #include "sim/solver/HairVolumeGrid.h"
-#include "sim/solver/SolverLanes.h"
+#include "sim/solver/SolverLanes-inl.h"
 #include "sim/util/ShuffleLanes-inl.h"
 
 #include <hwy/highway.h>
@@ -51,9 +51,8 @@ template <int Stride> struct LaneBlend {
     static constexpr std::array<float, kLanes> share = [] {
         std::array<float, kLanes> s{};
         for (int l = 0; l < kLanes; ++l)
-            s[l] = after[l] > before[l]
-                ? static_cast<float>(l - before[l]) / static_cast<float>(after[l] - before[l])
-                : 0.0f;
+            s[l] = after[l] > before[l] ? static_cast<float>(l - before[l]) / static_cast<float>(after[l] - before[l])
+                                        : 0.0f;
         return s;
     }();
     static void apply(Lane* values, int count)
@@ -211,13 +210,86 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
         }
     }
 
+#if !WISP_LANES_AVX512
+    // Eight nodes' eight floats (one AVX register each) transposed: out[f] holds value f of the
+    // eight (the classic unpack, shuffle and 128-bit permute rounds, all within two registers).
+    static void transpose8(const Float8 in[8], Float8 out[8])
+    {
+        Float8 t[8], u[8];
+        for (int k = 0; k < 4; ++k) {
+            t[2 * k] = __builtin_shufflevector(in[2 * k], in[2 * k + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+            t[2 * k + 1] = __builtin_shufflevector(in[2 * k], in[2 * k + 1], 2, 10, 3, 11, 6, 14, 7, 15);
+        }
+        for (int k : { 0, 1, 4, 5 }) { // t[k] with t[k + 2]
+            const int o = k < 4 ? 2 * k : 2 * (k - 4) + 4;
+            u[o] = __builtin_shufflevector(t[k], t[k + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+            u[o + 1] = __builtin_shufflevector(t[k], t[k + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+        }
+        for (int f = 0; f < 4; ++f) {
+            out[f] = __builtin_shufflevector(u[f], u[f + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+            out[f + 4] = __builtin_shufflevector(u[f], u[f + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+        }
+    }
+
+    // Each lane's eight floats blended between the samples around it (LaneBlend<Stride>): the same
+    // arithmetic as blending the transposed fields, a node's eight floats in one register.
+    template <int Stride> static void blendRows(const float* const rows[kLanes], Float8 out[kLanes])
+    {
+        using B = HWY_NAMESPACE::LaneBlend<Stride>;
+        for (int l = 0; l < kLanes; ++l) {
+            Float8 from, to;
+            std::memcpy(&from, rows[B::before[l]], sizeof from);
+            std::memcpy(&to, rows[B::after[l]], sizeof to);
+            out[l] = from + (to - from) * B::share[l];
+        }
+    }
+#endif
+
     // A full row's read, what HairVolumeGrid::sampleRow gives for it, into out[8] (Node's order).
     static void readNearestRow(const G& g, Lane x, Lane y, Lane z, int stride, Lane out[8])
     {
         stride = static_cast<int>(std::bit_floor(static_cast<unsigned>(std::clamp(stride, 1, kLanes))));
-        readSampled(g, nearestNodes(g, x, y, z), stride, out);
+        const Mask nearest = nearestNodes(g, x, y, z);
+#if WISP_LANES_AVX512
+        // Sixteen nodes in a 16 x 8 transpose of 512-bit registers, then the blend: a permute a field.
+        readSampled(g, nearest, stride, out);
         if (stride > 1)
             blendBetweenSamples(stride, out, 8);
+#else
+        // Two registers a lane: the blend first, a node's eight floats at a time, then two 8 x 8
+        // transposes (16-lane shuffles across two registers go through memory on AVX2).
+        static const G::Node kEmpty{};
+        const int between = stride - 1;
+        const float* rows[kLanes];
+        for (int l = 0; l < kLanes; ++l)
+            rows[l] = ((l & between) == 0 || l == kLanes - 1) && nearest[l] >= 0
+                ? &g.m_nodes[static_cast<std::size_t>(nearest[l])].density
+                : &kEmpty.density;
+        Float8 blended[kLanes];
+        switch (stride) {
+        case 2:
+            blendRows<2>(rows, blended);
+            break;
+        case 4:
+            blendRows<4>(rows, blended);
+            break;
+        case 8:
+            blendRows<8>(rows, blended);
+            break;
+        case 16:
+            blendRows<16>(rows, blended);
+            break;
+        default:
+            for (int l = 0; l < kLanes; ++l)
+                std::memcpy(&blended[l], rows[l], sizeof blended[l]);
+            break;
+        }
+        Float8 low[8], high[8];
+        transpose8(blended, low);
+        transpose8(blended + 8, high);
+        for (int f = 0; f < 8; ++f)
+            out[f] = __builtin_shufflevector(low[f], high[f], 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+#endif
     }
 };
 

@@ -39,9 +39,11 @@ template <const auto& Index, class Vector> inline Vector shuffleLanesBy(Vector v
 {
     constexpr int lanes = static_cast<int>(sizeof(Vector) / sizeof(v[0]));
     static_assert(static_cast<int>(Index.size()) == lanes);
-    return [&]<std::size_t... I>(std::index_sequence<I...>) {
+    return [&]<std::size_t... I>(std::index_sequence<I...>)
+    {
         return __builtin_shufflevector(v, v, (Index[I] & (lanes - 1))...);
-    }(std::make_index_sequence<lanes>{});
+    }
+    (std::make_index_sequence<lanes>{});
 }
 
 } // namespace wisp::HWY_NAMESPACE

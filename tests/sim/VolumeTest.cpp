@@ -5,6 +5,7 @@
 
 #include "sim/geometry/MeshBvh.h"
 #include "sim/solver/HairVolumeGrid.h"
+#include "sim/util/SimdTarget.h"
 #include "sim/util/ThreadPool.h"
 
 #include <gtest/gtest.h>
@@ -652,6 +653,24 @@ TEST(Volume, ADenseGroomMeetsItsNearestNodeWithTheSameBitsOnAnyThreads)
         1e3 * spread);
     EXPECT_NEAR(hanging, 0.127f, 0.002f);
     EXPECT_GT(spread, 1.05f * hanging);
+}
+
+// A dense groom's splat and read run in registers, per SIMD target, with another transpose and
+// blend on targets without AVX-512 (HairVolumeGridNearest-inl.h): every target this CPU runs gives
+// the best target's bits.
+TEST(Volume, ADenseGroomGivesTheSameBitsOnEverySimdTarget)
+{
+    const std::vector<std::string> targets = availableSimdTargets();
+    const PatchRun best = denseDrape(1.0f, 2);
+    EXPECT_EQ(best.kernel, HairVolumeGrid::Kernel::NearestSmoothed);
+    for (std::size_t k = 1; k < targets.size(); ++k) {
+        ASSERT_EQ(forceSimdTarget(targets[k]), "");
+        const PatchRun run = denseDrape(1.0f, 2);
+        ASSERT_EQ(forceSimdTarget(""), "");
+        ASSERT_EQ(run.positions.size(), best.positions.size());
+        EXPECT_EQ(std::memcmp(run.positions.data(), best.positions.data(), run.positions.size() * sizeof(glm::vec3)), 0)
+            << targets[k];
+    }
 }
 
 // The dense patch (Kernel::NearestSmoothed, its grid laid every other step at 60 Hz,

@@ -10,6 +10,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -68,9 +69,28 @@ struct Solver::Block {
     Lane volumeTargetScale{}; // per lane: multiplies the density the hair keeps (wet hair)
     // The grid's level of detail at the block's last splat (Solver::volumeSplat): the rows are taken
     // volumeRowsPerSample at a time (their centroid splats and is sampled for all of them), and
-    // every volumeStrides[g]-th lane of group g splats the weight of the lanes it stands for.
-    std::vector<std::uint8_t> volumeStrides;
+    // every volumeStride(g)-th lane of group g splats the weight of the lanes it stands for.
+    // In the block itself, four bits a group (log2 of the stride), so the read before each substep
+    // finds it in the block's own cache lines (a separate array cost a cache miss a block); the
+    // groups beyond the first kVolumeLevelGroups (a strand of more than 128 points) take stride 1.
+    static constexpr std::uint32_t kVolumeLevelGroups = 128;
+    std::array<std::uint8_t, kVolumeLevelGroups / 2> volumeLevels{};
+    std::uint32_t volumeGroups = 0; // groups at the last splat (0: none yet)
     std::uint32_t volumeRowsPerSample = 1;
+    int volumeStride(std::uint32_t group) const
+    {
+        return group < std::min(volumeGroups, kVolumeLevelGroups)
+            ? 1 << ((volumeLevels[group / 2] >> (4 * (group % 2))) & 0xF)
+            : 1;
+    }
+    void setVolumeLevel(std::uint32_t group, int level)
+    {
+        if (group >= kVolumeLevelGroups)
+            return;
+        std::uint8_t& pair = volumeLevels[group / 2];
+        const int shift = 4 * static_cast<int>(group % 2);
+        pair = static_cast<std::uint8_t>((pair & ~(0xF << shift)) | ((level & 0xF) << shift));
+    }
     // Views into the solver's two row arrays: every block's rows follow the previous block's, so
     // a thread streams through memory in one sequential run that the prefetcher can follow.
     std::span<ParticleRow> state;

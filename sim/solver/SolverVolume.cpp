@@ -171,7 +171,7 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
     groupWeight[4] = groupWeight[3] + shuffleLanesBy<kLaneAhead<8>>(groupWeight[3]);
     const bool nearest = grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed;
     const float reach = (nearest ? kVolumeNearestLodCellShare : kVolumeLodCellShare) * grid.cellMetres();
-    b.volumeStrides.resize(groups);
+    b.volumeGroups = groups;
     for (std::uint32_t g = 0; g < groups; ++g) {
         const std::uint32_t first = g * rows, count = std::min(rows, b.points - first);
         const ParticleRow& r = b.state[first];
@@ -208,7 +208,9 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
                 && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)
                 ++level;
         }
-        b.volumeStrides[g] = static_cast<std::uint8_t>(1 << level);
+        if (g >= Solver::Block::kVolumeLevelGroups)
+            level = 0; // (a very long strand's far groups: see Block::volumeLevels)
+        b.setVolumeLevel(g, level);
         const Lane weight = select(
             tame, count > 1 ? groupWeight[level] * static_cast<float>(count) : groupWeight[level], splat(0.0f));
         const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
@@ -255,7 +257,7 @@ void volumeReadOnTarget(
             x = x * splat(1.0f / static_cast<float>(count));
         }
         const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
-        const int stride = g < b.volumeStrides.size() ? b.volumeStrides[g] : 1;
+        const int stride = b.volumeStride(g);
         Lane fields[8]; // the Node's order: density, gradient x y z, momentum x y z, hair
         if (nearest)
             HairVolumeGridKernels<GridNearestTarget>::readNearestRow(grid, head.x, head.y, head.z, stride, fields);
@@ -460,8 +462,11 @@ int Solver::volumeStrideOfStrand(std::size_t strand) const
 {
     if (strand >= m_slotOfStrand.size())
         return 0;
-    const std::vector<std::uint8_t>& strides = m_blocks[m_slotOfStrand[strand].block].volumeStrides;
-    return strides.empty() ? 1 : *std::min_element(strides.begin(), strides.end());
+    const Block& b = m_blocks[m_slotOfStrand[strand].block];
+    int finest = b.volumeStride(0);
+    for (std::uint32_t g = 1; g < b.volumeGroups; ++g)
+        finest = std::min(finest, b.volumeStride(g));
+    return finest;
 }
 
 bool Solver::volumeDense() const

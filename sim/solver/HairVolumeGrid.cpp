@@ -306,38 +306,24 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::cellsOf(
     const G& g, const float* x, const float* y, const float* z, int count, CellRow& out)
 {
     // A whole row in a few vector instructions; a shorter one is padded with NaN (outside).
-    using Floats = float __attribute__((vector_size(kRowLanes * sizeof(float))));
-    using Ints = int __attribute__((vector_size(kRowLanes * sizeof(int))));
-    Floats px, py, pz;
+    Lane px, py, pz;
     if (count == kRowLanes) {
         std::memcpy(&px, x, sizeof px);
         std::memcpy(&py, y, sizeof py);
         std::memcpy(&pz, z, sizeof pz);
     } else {
-        px = py = pz = Floats{} + NAN;
+        px = py = pz = Lane{} + NAN;
         for (int l = 0; l < count; ++l) {
             px[l] = x[l];
             py[l] = y[l];
             pz[l] = z[l];
         }
     }
-    const float inverseCell = 1.0f / g.m_cell;
-    const Floats gx = (px - g.m_origin.x) * inverseCell, gy = (py - g.m_origin.y) * inverseCell,
-                 gz = (pz - g.m_origin.z) * inverseCell;
-    const Ints inside = (gx >= 0.0f) & (gy >= 0.0f) & (gz >= 0.0f) & (gx < static_cast<float>(g.m_dims.x - 1))
-        & (gy < static_cast<float>(g.m_dims.y - 1)) & (gz < static_cast<float>(g.m_dims.z - 1));
-    const Floats zero{};
-    const Ints ix = __builtin_convertvector(inside ? gx : zero, Ints),
-               iy = __builtin_convertvector(inside ? gy : zero, Ints),
-               iz = __builtin_convertvector(inside ? gz : zero, Ints);
-    const Floats fx = inside ? gx - __builtin_convertvector(ix, Floats) : zero,
-                 fy = inside ? gy - __builtin_convertvector(iy, Floats) : zero,
-                 fz = inside ? gz - __builtin_convertvector(iz, Floats) : zero;
-    const Ints node = inside ? ix + g.m_dims.x * (iy + g.m_dims.y * iz) : Ints{} - 1;
-    const Ints one = Ints{} + 1;
-    const Ints nearest = inside
-        ? node + ((fx >= 0.5f) & one) + g.m_dims.x * (((fy >= 0.5f) & one) + g.m_dims.y * ((fz >= 0.5f) & one))
-        : Ints{} - 1;
+    const Nearest::Coordinates c = Nearest::coordinatesOf(g, px, py, pz);
+    const Mask ix = c.ix, iy = c.iy, iz = c.iz;
+    const Lane fx = c.fx, fy = c.fy, fz = c.fz;
+    const Mask node = c.inside ? ix + g.m_dims.x * (iy + g.m_dims.y * iz) : Mask{} - 1;
+    const Mask nearest = Nearest::nearestNodes(g, c);
     std::memcpy(out.nearest, &nearest, sizeof nearest);
     std::memcpy(out.ix, &ix, sizeof ix);
     std::memcpy(out.iy, &iy, sizeof iy);

@@ -22,6 +22,7 @@
 #include <array>
 #include <bit>
 #include <cstring>
+#include <type_traits>
 
 HWY_BEFORE_NAMESPACE();
 namespace wisp {
@@ -74,28 +75,63 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     using G = HairVolumeGrid;
     using Float8 = float __attribute__((vector_size(8 * sizeof(float))));
 
-    // The node each lane meets (Kernel::NearestSmoothed): the index of its nearest node, -1 outside
-    // the grid or not finite; and when `brick` is given, the index of that node's brick there.
-    // `x`, `y`, `z` head space.
-    static Mask nearestNodes(const G& g, Lane x, Lane y, Lane z, Mask* brick = nullptr)
+    // Each lane's grid coordinates: the cell's low node along each axis and the position in the
+    // cell (0..1), for lanes inside the grid (`inside`); 0 for the others, outside or not finite.
+    // `x`, `y`, `z` head space. (HairVolumeGrid::cellsOf takes its CellRow from these too.)
+    struct Coordinates {
+        Mask inside, ix, iy, iz;
+        Lane fx, fy, fz;
+    };
+    static Coordinates coordinatesOf(const G& g, Lane x, Lane y, Lane z)
     {
         const float inverseCell = 1.0f / g.m_cell;
         const Lane gx = (x - g.m_origin.x) * inverseCell, gy = (y - g.m_origin.y) * inverseCell,
                    gz = (z - g.m_origin.z) * inverseCell;
-        const Mask inside = (gx >= 0.0f) & (gy >= 0.0f) & (gz >= 0.0f) & (gx < static_cast<float>(g.m_dims.x - 1))
+        Coordinates c;
+        c.inside = (gx >= 0.0f) & (gy >= 0.0f) & (gz >= 0.0f) & (gx < static_cast<float>(g.m_dims.x - 1))
             & (gy < static_cast<float>(g.m_dims.y - 1)) & (gz < static_cast<float>(g.m_dims.z - 1));
         const Lane zero{};
-        const Mask ix = __builtin_convertvector(inside ? gx : zero, Mask),
-                   iy = __builtin_convertvector(inside ? gy : zero, Mask),
-                   iz = __builtin_convertvector(inside ? gz : zero, Mask);
-        const Lane fx = gx - __builtin_convertvector(ix, Lane), fy = gy - __builtin_convertvector(iy, Lane),
-                   fz = gz - __builtin_convertvector(iz, Lane);
+        c.ix = __builtin_convertvector(c.inside ? gx : zero, Mask);
+        c.iy = __builtin_convertvector(c.inside ? gy : zero, Mask);
+        c.iz = __builtin_convertvector(c.inside ? gz : zero, Mask);
+        c.fx = c.inside ? gx - __builtin_convertvector(c.ix, Lane) : zero;
+        c.fy = c.inside ? gy - __builtin_convertvector(c.iy, Lane) : zero;
+        c.fz = c.inside ? gz - __builtin_convertvector(c.iz, Lane) : zero;
+        return c;
+    }
+
+    // The node each lane meets (Kernel::NearestSmoothed): the index of its nearest node, -1 outside
+    // the grid or not finite; and when `brick` is given, the index of that node's brick there.
+    static Mask nearestNodes(const G& g, const Coordinates& c, Mask* brick = nullptr)
+    {
         const Mask one = Mask{} + 1;
-        const Mask nx = ix + ((fx >= 0.5f) & one), ny = iy + ((fy >= 0.5f) & one), nz = iz + ((fz >= 0.5f) & one);
+        const Mask nx = c.ix + ((c.fx >= 0.5f) & one), ny = c.iy + ((c.fy >= 0.5f) & one),
+                   nz = c.iz + ((c.fz >= 0.5f) & one);
         static_assert(G::kBrick == 4, "a node's brick is its coordinates shifted by two");
         if (brick)
             *brick = (nx >> 2) + g.m_bricks.x * ((ny >> 2) + g.m_bricks.y * (nz >> 2));
-        return inside ? nx + g.m_dims.x * (ny + g.m_dims.y * nz) : Mask{} - 1;
+        return c.inside ? nx + g.m_dims.x * (ny + g.m_dims.y * nz) : Mask{} - 1;
+    }
+
+    // fn(std::integral_constant<int, stride>) for a stride of 2, 4, 8 or 16; false for any other.
+    template <class Fn> static bool withStride(int stride, Fn&& fn)
+    {
+        switch (stride) {
+        case 2:
+            fn(std::integral_constant<int, 2>{});
+            return true;
+        case 4:
+            fn(std::integral_constant<int, 4>{});
+            return true;
+        case 8:
+            fn(std::integral_constant<int, 8>{});
+            return true;
+        case 16:
+            fn(std::integral_constant<int, 16>{});
+            return true;
+        default:
+            return false;
+        }
     }
 
     // Adds a row's lanes 0, stride, 2 stride, ... (weight > 0, inside the grid) at their nearest
@@ -110,7 +146,7 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
         using Fixed4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
         stride = std::clamp(stride, 1, kLanes);
         Mask brick;
-        const Mask node = nearestNodes(g, x, y, z, &brick);
+        const Mask node = nearestNodes(g, coordinatesOf(g, x, y, z), &brick);
         std::int64_t* const grid = &g.m_accumulators[static_cast<std::size_t>(slot) * g.m_nodes.size()].weight;
         std::uint8_t* const touched = g.m_touched.data() + static_cast<std::size_t>(slot) * g.m_live.size();
         const Float4 units{ g.m_weightUnits, g.m_moveUnits, g.m_moveUnits, g.m_moveUnits };
@@ -192,22 +228,7 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     // The lanes between two samples (stride > 1, a power of two): the linear blend of the two around them.
     static void blendBetweenSamples(int stride, Lane* values, int count)
     {
-        switch (stride) {
-        case 2:
-            HWY_NAMESPACE::LaneBlend<2>::apply(values, count);
-            break;
-        case 4:
-            HWY_NAMESPACE::LaneBlend<4>::apply(values, count);
-            break;
-        case 8:
-            HWY_NAMESPACE::LaneBlend<8>::apply(values, count);
-            break;
-        case 16:
-            HWY_NAMESPACE::LaneBlend<16>::apply(values, count);
-            break;
-        default:
-            break;
-        }
+        withStride(stride, [&](auto s) { HWY_NAMESPACE::LaneBlend<decltype(s)::value>::apply(values, count); });
     }
 
 #if !WISP_LANES_AVX512
@@ -249,7 +270,7 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     static void readNearestRow(const G& g, Lane x, Lane y, Lane z, int stride, Lane out[8])
     {
         stride = static_cast<int>(std::bit_floor(static_cast<unsigned>(std::clamp(stride, 1, kLanes))));
-        const Mask nearest = nearestNodes(g, x, y, z);
+        const Mask nearest = nearestNodes(g, coordinatesOf(g, x, y, z));
 #if WISP_LANES_AVX512
         // Sixteen nodes in a 16 x 8 transpose of 512-bit registers, then the blend: a permute a field.
         readSampled(g, nearest, stride, out);
@@ -266,24 +287,9 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
                 ? &g.m_nodes[static_cast<std::size_t>(nearest[l])].density
                 : &kEmpty.density;
         Float8 blended[kLanes];
-        switch (stride) {
-        case 2:
-            blendRows<2>(rows, blended);
-            break;
-        case 4:
-            blendRows<4>(rows, blended);
-            break;
-        case 8:
-            blendRows<8>(rows, blended);
-            break;
-        case 16:
-            blendRows<16>(rows, blended);
-            break;
-        default:
+        if (!withStride(stride, [&](auto s) { blendRows<decltype(s)::value>(rows, blended); }))
             for (int l = 0; l < kLanes; ++l)
                 std::memcpy(&blended[l], rows[l], sizeof blended[l]);
-            break;
-        }
         Float8 low[8], high[8];
         transpose8(blended, low);
         transpose8(blended + 8, high);

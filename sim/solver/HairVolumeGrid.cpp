@@ -321,7 +321,8 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::cellsOf(
     }
     const Nearest::Coordinates c = Nearest::coordinatesOf(g, px, py, pz);
     const Mask ix = c.ix, iy = c.iy, iz = c.iz;
-    const Lane fx = c.fx, fy = c.fy, fz = c.fz;
+    const Lane zero{};
+    const Lane fx = c.inside ? c.fx : zero, fy = c.inside ? c.fy : zero, fz = c.inside ? c.fz : zero;
     const Mask node = c.inside ? ix + g.m_dims.x * (iy + g.m_dims.y * iz) : Mask{} - 1;
     const Mask nearest = Nearest::nearestNodes(g, c);
     std::memcpy(out.nearest, &nearest, sizeof nearest);

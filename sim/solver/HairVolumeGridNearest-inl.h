@@ -22,7 +22,6 @@
 #include <array>
 #include <bit>
 #include <cstring>
-#include <type_traits>
 
 HWY_BEFORE_NAMESPACE();
 namespace wisp {
@@ -76,7 +75,8 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     using Float8 = float __attribute__((vector_size(8 * sizeof(float))));
 
     // Each lane's grid coordinates: the cell's low node along each axis and the position in the
-    // cell (0..1), for lanes inside the grid (`inside`); 0 for the others, outside or not finite.
+    // cell (0..1), for lanes inside the grid (`inside`); for the others, outside or not finite, the
+    // node 0 and a position that means nothing.
     // `x`, `y`, `z` head space. (HairVolumeGrid::cellsOf takes its CellRow from these too.)
     struct Coordinates {
         Mask inside, ix, iy, iz;
@@ -94,9 +94,9 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
         c.ix = __builtin_convertvector(c.inside ? gx : zero, Mask);
         c.iy = __builtin_convertvector(c.inside ? gy : zero, Mask);
         c.iz = __builtin_convertvector(c.inside ? gz : zero, Mask);
-        c.fx = c.inside ? gx - __builtin_convertvector(c.ix, Lane) : zero;
-        c.fy = c.inside ? gy - __builtin_convertvector(c.iy, Lane) : zero;
-        c.fz = c.inside ? gz - __builtin_convertvector(c.iz, Lane) : zero;
+        c.fx = gx - __builtin_convertvector(c.ix, Lane);
+        c.fy = gy - __builtin_convertvector(c.iy, Lane);
+        c.fz = gz - __builtin_convertvector(c.iz, Lane);
         return c;
     }
 
@@ -111,27 +111,6 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
         if (brick)
             *brick = (nx >> 2) + g.m_bricks.x * ((ny >> 2) + g.m_bricks.y * (nz >> 2));
         return c.inside ? nx + g.m_dims.x * (ny + g.m_dims.y * nz) : Mask{} - 1;
-    }
-
-    // fn(std::integral_constant<int, stride>) for a stride of 2, 4, 8 or 16; false for any other.
-    template <class Fn> static bool withStride(int stride, Fn&& fn)
-    {
-        switch (stride) {
-        case 2:
-            fn(std::integral_constant<int, 2>{});
-            return true;
-        case 4:
-            fn(std::integral_constant<int, 4>{});
-            return true;
-        case 8:
-            fn(std::integral_constant<int, 8>{});
-            return true;
-        case 16:
-            fn(std::integral_constant<int, 16>{});
-            return true;
-        default:
-            return false;
-        }
     }
 
     // Adds a row's lanes 0, stride, 2 stride, ... (weight > 0, inside the grid) at their nearest
@@ -228,7 +207,24 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     // The lanes between two samples (stride > 1, a power of two): the linear blend of the two around them.
     static void blendBetweenSamples(int stride, Lane* values, int count)
     {
-        withStride(stride, [&](auto s) { HWY_NAMESPACE::LaneBlend<decltype(s)::value>::apply(values, count); });
+        // (A switch, not a generic lambda: with the values captured by reference GCC kept the
+        // eight fields on the stack, 40 more stores a read.)
+        switch (stride) {
+        case 2:
+            HWY_NAMESPACE::LaneBlend<2>::apply(values, count);
+            break;
+        case 4:
+            HWY_NAMESPACE::LaneBlend<4>::apply(values, count);
+            break;
+        case 8:
+            HWY_NAMESPACE::LaneBlend<8>::apply(values, count);
+            break;
+        case 16:
+            HWY_NAMESPACE::LaneBlend<16>::apply(values, count);
+            break;
+        default:
+            break;
+        }
     }
 
 #if !WISP_LANES_AVX512
@@ -287,9 +283,24 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
                 ? &g.m_nodes[static_cast<std::size_t>(nearest[l])].density
                 : &kEmpty.density;
         Float8 blended[kLanes];
-        if (!withStride(stride, [&](auto s) { blendRows<decltype(s)::value>(rows, blended); }))
+        switch (stride) {
+        case 2:
+            blendRows<2>(rows, blended);
+            break;
+        case 4:
+            blendRows<4>(rows, blended);
+            break;
+        case 8:
+            blendRows<8>(rows, blended);
+            break;
+        case 16:
+            blendRows<16>(rows, blended);
+            break;
+        default:
             for (int l = 0; l < kLanes; ++l)
                 std::memcpy(&blended[l], rows[l], sizeof blended[l]);
+            break;
+        }
         Float8 low[8], high[8];
         transpose8(blended, low);
         transpose8(blended + 8, high);

@@ -24,7 +24,7 @@
 HWY_BEFORE_NAMESPACE();
 namespace wisp::HWY_NAMESPACE {
 
-using namespace lanes;
+using namespace kernel;
 
 namespace {
 
@@ -86,24 +86,72 @@ inline void prefetchNextShape(const Solver::Block& block)
 
 // Substeps [firstSubstep, endSubstep) of the step; the last call of a step (endSubstep ==
 // c.substeps) also puts back strands that went non-finite or flew away.
+// The capsules any particle of a block can reach this step: none farther from its root than its
+// strand is long (with a margin for what contact may have stretched), so a capsule beyond that
+// from every root is left out for the whole step, as the head is by its clearance bound. Taken
+// over the block's 16 lanes, whatever the slice: a lane then checks the same capsules on every
+// target (a capsule one lane reaches is checked for all, and can touch only those it reaches).
+struct CapsulesInReach {
+    std::array<const Capsule*, 16> at{};
+    std::size_t count = 0;
+    bool filtered = false; // false: too many capsules to list, every one is checked
+};
+template <bool Transformed> CapsulesInReach capsulesInReach(const Solver::Block& block, const StepConstants& c)
+{
+    CapsulesInReach list;
+    list.filtered = c.capsulesWorld.size() <= list.at.size();
+    if (!list.filtered)
+        return list;
+    const lanes::V3 rootHead{ block.shape[0].x, block.shape[0].y, block.shape[0].z };
+    const lanes::V3 rootEnd
+        = Transformed ? lanes::transform(c.rotation, rootHead) + lanes::splat(c.translation) : rootHead;
+    for (const Capsule& capsule : c.capsulesWorld) {
+        const lanes::V3 a = lanes::splat(capsule.a);
+        const glm::vec3 abv = capsule.b - capsule.a;
+        const float ab2 = glm::dot(abv, abv);
+        const lanes::V3 ab = lanes::splat(abv);
+        const wisp::Lane u = ab2 > 0.0f
+            ? lanes::lmin(
+                lanes::lmax(lanes::dot(rootEnd - a, ab) * (1.0f / ab2), lanes::splat(0.0f)), lanes::splat(1.0f))
+            : lanes::splat(0.0f);
+        const lanes::V3 away = rootEnd - (a + ab * u);
+        const wisp::Lane reach = block.strandLength * 1.25f + (capsule.radiusMetres + c.offset + 0.02f);
+        if (lanes::anyOf(lanes::dot(away, away) < reach * reach))
+            list.at[list.count++] = &capsule;
+    }
+    return list;
+}
+
+// How far a particle moved, for its clearance bound: its length, rounded up a little (the bound
+// must never shrink by less than the true move), so the bound lasts as long as the move allows.
+[[gnu::always_inline]] inline Lane moveLength(const V3& d)
+{
+    return lsqrt(dot(d, d)) * 1.0001f + 1e-9f;
+}
+
+// The block's lanes [slice x kVecLanes, (slice + 1) x kVecLanes) (kernel::Lane: one register).
 template <bool Transformed, bool GlobalShape>
-void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep)
+void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, int slice,
+    const CapsulesInReach& capsules)
 {
     const std::uint32_t n = block.points;
-    ParticleRow* row = block.state.data();
-    const RestRow* rest = block.rest.data();
-    const GlobalShapeRow* globalShape = block.globalShape.data(); // null while it is off
-    prefetchNextShape(block);
+    ParticleSlice* row = sliceOf<ParticleSlice>(block.state.data(), slice);
+    const RestSlice* rest = sliceOf<const RestSlice>(block.rest.data(), slice);
+    const ShapeSlice* shape = sliceOf<const ShapeSlice>(block.shape.data(), slice);
+    // (null while it is off)
+    const GlobalShapeSlice* globalShape = sliceOf<const GlobalShapeSlice>(block.globalShape.data(), slice);
+    const Lane strandLength = sliceOf(block.strandLength, slice);
 
     // Roots in world space at the start and the end of this step; substeps interpolate between them.
-    const V3 rootHead{ block.shape[0].x, block.shape[0].y, block.shape[0].z };
+    const V3 rootHead{ shape[0].x, shape[0].y, shape[0].z };
     const V3 rootEnd = Transformed ? transform(c.rotation, rootHead) + splat(c.translation) : rootHead;
     const V3 rootStart
         = Transformed ? transform(c.previousRotation, rootHead) + splat(c.previousTranslation) : rootHead;
 
     // Wind (eq. 1 and 2 of the force-driven hair paper) with gusts sampled at each particle, so
     // they vary along a strand (turbulence is ours).
-    const V3 baseWind = splat(c.wind) + V3{ block.windX, block.windY, block.windZ };
+    const V3 baseWind
+        = splat(c.wind) + V3{ sliceOf(block.windX, slice), sliceOf(block.windY, slice), sliceOf(block.windZ, slice) };
     const float windSpeed = glm::length(c.wind);
     const bool gusty = c.turbulence > 0.0f && windSpeed > 0.0f;
     const Lane gustAmplitude = splat(c.turbulence * windSpeed);
@@ -111,7 +159,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
 
     const V3 gravityStep = splat(c.gravity * (c.dt * c.dt));
     const Lane dt = splat(c.dt), keep = splat(c.keep);
-    const Lane drag = splat(c.drag) * block.dragScale;
+    const Lane drag = splat(c.drag) * sliceOf(block.dragScale, slice);
     const Lane velocityCorrection = splat(c.velocityCorrection);
     // The bend's reaction on the parent (below) carries force up the strand through the parent's
     // Verlet velocity, which the next substep's predict damps (keep) and drags (1 / (1 + k dt)) as
@@ -123,29 +171,9 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     const Lane kickGain = lmin((splat(1.0f) + drag * dt) * splat(1.0f / c.keep), splat(kMaxKickGain));
     const ContactFriction mu{ splat(c.friction), splat(c.friction * kStaticOverKineticFriction) };
 
-    // The capsules any particle of this block can reach this step: none farther from its root than
-    // its strand is long (with a margin for what contact may have stretched), so a capsule beyond
-    // that from every root is left out for the whole step, as the head is by its clearance bound.
-    std::array<const Capsule*, 16> capsules{};
-    std::size_t capsuleCount = 0;
-    const bool filterCapsules = c.capsulesWorld.size() <= capsules.size();
-    for (const Capsule& capsule : c.capsulesWorld) {
-        if (!filterCapsules)
-            break;
-        const V3 a = splat(capsule.a);
-        const glm::vec3 abv = capsule.b - capsule.a;
-        const float ab2 = glm::dot(abv, abv);
-        const V3 ab = splat(abv);
-        const Lane u
-            = ab2 > 0.0f ? lmin(lmax(dot(rootEnd - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f)) : splat(0.0f);
-        const V3 away = rootEnd - (a + ab * u);
-        const Lane reach = block.strandLength * 1.25f + (capsule.radiusMetres + c.offset + 0.02f);
-        if (anyOf(dot(away, away) < reach * reach))
-            capsules[capsuleCount++] = &capsule;
-    }
     auto capsuleAt
-        = [&](std::size_t k) -> const Capsule& { return filterCapsules ? *capsules[k] : c.capsulesWorld[k]; };
-    const std::size_t capsulesToCheck = filterCapsules ? capsuleCount : c.capsulesWorld.size();
+        = [&](std::size_t k) -> const Capsule& { return capsules.filtered ? *capsules.at[k] : c.capsulesWorld[k]; };
+    const std::size_t capsulesToCheck = capsules.filtered ? capsules.count : c.capsulesWorld.size();
 
     // Verlet (eq. 3) with drag toward the wind taken implicitly: v' = (keep v + k dt w) / (1 + k dt)
     // + g dt, which only ever moves v toward w, so any drag at any step is stable, and leaves
@@ -179,7 +207,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     // DFTL correction, one write). Returns its final position.
     auto finish = [&](std::uint32_t i, const V3& before, const V3& reach, const V3& parent, const V3& kick,
                       Lane inverseLength) {
-        ParticleRow& p = row[i];
+        ParticleSlice& p = row[i];
         V3 previous = before;
         const Lane length = rest[i].length;
         const LengthCorrection ftl = followTheLeader(parent, reach, length);
@@ -194,19 +222,24 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         // clearance bound says no lane can touch: the bound shrinks by each move's L1 length,
         // which is never less than its true length.
         const V3 checked = position;
-        Lane clearance = p.clearance - l1Length(position - before);
-        if (c.field && (Transformed || anyOf(clearance < splat(0.0f)))) {
+        Lane clearance = p.clearance - moveLength(position - before);
+        // Only the lanes whose bound ran out meet the head: a lane's own bound decides, never its
+        // neighbours' (whose lookup would otherwise have given it contact too, where the field's
+        // first-order extension reads a hair's breadth inside), so a lane ends alike however many
+        // lanes run together (a slice of the block on each SIMD target).
+        const Mask needsLook = Transformed ? Mask{} == 0 : clearance < splat(0.0f);
+        if (c.field && anyOf(needsLook)) {
             // The head's distance and normal at a world-space position.
             auto sampleHead = [&](const V3& at) {
-                SdfSample sample = sampleField(
-                    *c.field, Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at);
+                SdfSample sample = sampleField(*c.field,
+                    Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at, needsLook);
                 if (Transformed)
                     sample.normal = transform(c.rotation, sample.normal);
                 return sample;
             };
             const SdfSample sample = sampleHead(position);
             const Lane depth = splat(c.offset) - sample.distance;
-            const Mask inside = depth > splat(0.0f);
+            const Mask inside = (depth > splat(0.0f)) & needsLook;
             if (anyOf(inside)) {
                 // A curved surface is not its tangent plane: turn onto the plane, look again from
                 // there, and only then push what the segment cannot reach. Friction comes once, after
@@ -220,11 +253,15 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 // What is left within half the offset (still clear of the skin) stays: turning it
                 // far along the arc below for that little would shake stiff hair lying on the head.
                 const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
+                // The last pass only for lanes still deep before it (below): a lane's own state
+                // decides, never its neighbours', so it ends alike however many lanes run together
+                // (a slice of the block on each SIMD target).
+                Mask wantsLastPass = Mask{} == 0;
                 for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
                     const SdfSample next = sampleHead(position);
                     const Lane nextDepth = splat(c.offset) - next.distance;
-                    const Mask stillInside = nextDepth > splat(kContactResidualMetres);
-                    const Mask stuck = stillInside & (nextDepth > slack);
+                    const Mask stillInside = (nextDepth > splat(kContactResidualMetres)) & needsLook;
+                    const Mask stuck = stillInside & (nextDepth > slack) & wantsLastPass;
                     if (!anyOf(pass < kHeadContactPasses ? stillInside : stuck))
                         break;
                     const Mask turns = pass < kHeadContactPasses ? stillInside : stuck;
@@ -236,8 +273,11 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                         // Turning converges fast on a smooth surface: look once more only where a
                         // lane was still a quarter of the offset deep before this last turn (in a
                         // crevice the last turn may put it deeper on the other wall).
-                        if (pass + 1 == kHeadContactPasses && !anyOf(stillInside & (nextDepth > slack * 0.5f)))
-                            break;
+                        if (pass + 1 == kHeadContactPasses) {
+                            wantsLastPass = stillInside & (nextDepth > slack * 0.5f);
+                            if (!anyOf(wantsLastPass))
+                                break;
+                        }
                         continue;
                     }
                     // Turning did not converge (a crevice by an ear, where the normal flips from
@@ -268,7 +308,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                     splat(c.offset));
             }
             // A moving head moves the field under the particles: no bound survives that.
-            clearance = Transformed ? splat(-1e30f) : lmax(-depth, splat(0.0f));
+            clearance = Transformed ? splat(-1e30f) : select(needsLook, lmax(-depth, splat(0.0f)), clearance);
             looked = true;
         }
         for (std::size_t k = 0; k < capsulesToCheck; ++k) {
@@ -291,13 +331,13 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             }
         }
         if (i > 1) {
-            ParticleRow& q = row[i - 1];
+            ParticleSlice& q = row[i - 1];
             q.px += kick.x + velocityCorrection * correction.x;
             q.py += kick.y + velocityCorrection * correction.y;
             q.pz += kick.z + velocityCorrection * correction.z;
         }
         // (Where nothing looked, position is `checked` and the bound stands as it is.)
-        p.clearance = looked ? clearance - l1Length(position - checked) : clearance;
+        p.clearance = looked ? clearance - moveLength(position - checked) : clearance;
         p.x = position.x;
         p.y = position.y;
         p.z = position.z;
@@ -335,8 +375,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         V3 parentStart = parentBefore; // particle j-1 at the start of the substep
         V3 gustFrom{}, gustTo{}; // gusts at the samples either side of particle j
         Lane gustSpan = splat(1.0f);
-        V3 frameD{ block.shape[1].x, block.shape[1].y,
-            block.shape[1].z }; // the follicle's frame: the root segment's rest
+        V3 frameD{ shape[1].x, shape[1].y, shape[1].z }; // the follicle's frame: the root segment's rest
         V3 frameE{ rest[0].lx, rest[0].ly, rest[0].lz }; // direction and a normal to it
         if (Transformed) {
             frameD = transform(c.rotation, frameD);
@@ -347,20 +386,22 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         // frame, laid on the parent's frame now.
         V3 turned = frameD * rest[1].lx + frameE * rest[1].ly + frameB * rest[1].lz;
         for (std::uint32_t j = 1; j < n; ++j) {
-            ParticleRow& p = row[j];
-            const RestRow& r = rest[j];
-            if (s
-                == firstSubstep) // the next block's rows (the next in memory, which this thread most likely runs next)
+            ParticleSlice& p = row[j];
+            const RestSlice& r = rest[j];
+            // The next block's rows (the next in memory, which this thread most likely runs next).
+            if (s == firstSubstep && slice == 0)
                 prefetchRows(block, j);
             const V3 x{ p.x, p.y, p.z };
             // The next particle's field nodes, where it was at the start of the substep, while this
             // one is worked on, if its clearance bound is near running out (its lookup is likely).
             if (c.field && j + 1 < n) {
-                const ParticleRow& q = row[j + 1];
-                if (Transformed || anyOf(q.clearance < splat(kPrefetchClearanceMetres))) {
+                const ParticleSlice& q = row[j + 1];
+                const Mask likely = Transformed ? Mask{} == 0 : q.clearance < splat(kPrefetchClearanceMetres);
+                if (anyOf(likely)) {
                     const V3 ahead{ q.x, q.y, q.z };
                     prefetchField(*c.field,
-                        Transformed ? transform(glm::transpose(c.rotation), ahead - splat(c.translation)) : ahead);
+                        Transformed ? transform(glm::transpose(c.rotation), ahead - splat(c.translation)) : ahead,
+                        likely);
                 }
             }
             // Gusts are smooth over tens of centimetres: sampled at every kGustStride-th particle
@@ -396,7 +437,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 // such vectors. So the next target d lx + w - (d.w) / (1 + D.d) (D + d) waits only
                 // for d, not for the new frame. (The reciprocal estimate is one Newton step from
                 // exact; no renormalisation on the chain.)
-                const RestRow& next = rest[j + 1];
+                const RestSlice& next = rest[j + 1];
                 const V3 w = frameE * next.ly + frameB * next.lz;
                 const V3 d = (position - parent) * inverseLength;
                 const Lane inverse = lrcp(lmax(splat(1.0f) + dot(frameD, d), splat(1e-2f)));
@@ -424,17 +465,28 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         const V3 m = x - pv;
         finite &= dot(m, m) < splat(1e12f); // false for NaN
     }
-    const Lane limit = block.strandLength * 1.5f + 0.05f;
+    const Lane limit = strandLength * 1.5f + 0.05f;
     const Mask bad = ~((farthest < limit * limit) & finite);
     if (anyOf(bad)) {
-        for (int l = 0; l < kLanes; ++l) {
+        for (int l = 0; l < kVecLanes; ++l) {
             if (!bad[l])
                 continue;
-            placeLaneAtRest(block, l, c.rotation, c.translation);
-            if (block.strand[l] >= 0)
+            const int lane = slice * kVecLanes + l; // the block's
+            placeLaneAtRest(block, lane, c.rotation, c.translation);
+            if (block.strand[lane] >= 0)
                 __atomic_fetch_add(c.resetCounter, 1, __ATOMIC_RELAXED);
         }
     }
+}
+
+// The block, a slice at a time (one on AVX-512).
+template <bool Transformed, bool GlobalShape>
+void advanceBlockSlices(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep)
+{
+    prefetchNextShape(block);
+    const CapsulesInReach capsules = capsulesInReach<Transformed>(block, c);
+    for (int slice = 0; slice < kLanes / kVecLanes; ++slice)
+        advanceBlockAs<Transformed, GlobalShape>(block, c, firstSubstep, endSubstep, slice, capsules);
 }
 
 } // namespace
@@ -444,11 +496,11 @@ void advanceBlockOnTarget(
     Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, bool globalShape)
 {
     if (c.transformed)
-        globalShape ? advanceBlockAs<true, true>(block, c, firstSubstep, endSubstep)
-                    : advanceBlockAs<true, false>(block, c, firstSubstep, endSubstep);
+        globalShape ? advanceBlockSlices<true, true>(block, c, firstSubstep, endSubstep)
+                    : advanceBlockSlices<true, false>(block, c, firstSubstep, endSubstep);
     else
-        globalShape ? advanceBlockAs<false, true>(block, c, firstSubstep, endSubstep)
-                    : advanceBlockAs<false, false>(block, c, firstSubstep, endSubstep);
+        globalShape ? advanceBlockSlices<false, true>(block, c, firstSubstep, endSubstep)
+                    : advanceBlockSlices<false, false>(block, c, firstSubstep, endSubstep);
 }
 
 } // namespace wisp::HWY_NAMESPACE

@@ -19,8 +19,79 @@
 
 #include <glm/mat3x3.hpp>
 
+#include <cstddef>
+#include <type_traits>
+
 HWY_BEFORE_NAMESPACE();
-namespace wisp::HWY_NAMESPACE::lanes {
+namespace wisp::HWY_NAMESPACE::kernel {
+
+// The block's rows as the kernel reads them, one slice of kVecLanes lanes at a time (its vector is
+// one register wide, lanes::Vec): the same layout as the rows (SolverRows.h), each field this
+// slice's floats and then the rest of the row's lanes, so rows + slice x sizeof(Lane) bytes is
+// the slice's row array. On AVX-512 a slice is the whole row.
+#if WISP_LANES_AVX512
+using ParticleSlice = ParticleRow;
+using RestSlice = RestRow;
+using ShapeSlice = ShapeRow;
+using GlobalShapeSlice = GlobalShapeRow;
+#else
+template <int Bytes> struct OtherLanes {
+    char bytes[Bytes];
+};
+#define WISP_SLICE_FIELD(name)                                                                                         \
+    Lane name;                                                                                                         \
+    OtherLanes<sizeof(wisp::Lane) - sizeof(Lane)> name##Others
+struct ParticleSlice {
+    WISP_SLICE_FIELD(x);
+    WISP_SLICE_FIELD(y);
+    WISP_SLICE_FIELD(z);
+    WISP_SLICE_FIELD(px);
+    WISP_SLICE_FIELD(py);
+    WISP_SLICE_FIELD(pz);
+    WISP_SLICE_FIELD(clearance);
+};
+struct RestSlice {
+    WISP_SLICE_FIELD(length);
+    WISP_SLICE_FIELD(bendChild);
+    WISP_SLICE_FIELD(bendDamping);
+    WISP_SLICE_FIELD(bendParentRatio);
+    WISP_SLICE_FIELD(lx);
+    WISP_SLICE_FIELD(ly);
+    WISP_SLICE_FIELD(lz);
+};
+struct ShapeSlice {
+    WISP_SLICE_FIELD(x);
+    WISP_SLICE_FIELD(y);
+    WISP_SLICE_FIELD(z);
+};
+struct GlobalShapeSlice {
+    WISP_SLICE_FIELD(x);
+    WISP_SLICE_FIELD(y);
+    WISP_SLICE_FIELD(z);
+    WISP_SLICE_FIELD(share);
+};
+#undef WISP_SLICE_FIELD
+static_assert(sizeof(ParticleSlice) == sizeof(ParticleRow)
+    && offsetof(ParticleSlice, clearance) == offsetof(ParticleRow, clearance)
+    && offsetof(ParticleSlice, pz) == offsetof(ParticleRow, pz));
+static_assert(sizeof(RestSlice) == sizeof(RestRow) && offsetof(RestSlice, lz) == offsetof(RestRow, lz)
+    && offsetof(RestSlice, bendParentRatio) == offsetof(RestRow, bendParentRatio));
+static_assert(sizeof(ShapeSlice) == sizeof(ShapeRow) && offsetof(ShapeSlice, z) == offsetof(ShapeRow, z));
+static_assert(sizeof(GlobalShapeSlice) == sizeof(GlobalShapeRow)
+    && offsetof(GlobalShapeSlice, share) == offsetof(GlobalShapeRow, share));
+#endif
+// Slice `slice` of a row array, and of one of the block's per-lane fields. (Vector types alias
+// their element type: the floats are read as they were written.)
+template <class Slice, class Row> inline Slice* sliceOf(Row* rows, int slice)
+{
+    using Byte = std::conditional_t<std::is_const_v<Row>, const char, char>;
+    return reinterpret_cast<Slice*>(reinterpret_cast<Byte*>(rows) + static_cast<std::ptrdiff_t>(slice) * sizeof(Lane));
+}
+inline const Lane& sliceOf(const wisp::Lane& lanes, int slice)
+{
+    return *reinterpret_cast<const Lane*>(
+        reinterpret_cast<const char*>(&lanes) + static_cast<std::ptrdiff_t>(slice) * sizeof(Lane));
+}
 
 // (Internal linkage, as the rest of the kernel's lane code: see SolverContact.h.)
 namespace {
@@ -59,7 +130,7 @@ namespace {
 // substep count.
 template <bool Transformed>
 [[gnu::always_inline]] inline V3 pullTowardGlobalShape(
-    const V3& bent, const GlobalShapeRow& g, const V3& root, const V3& rootHead, const glm::mat3& rotation)
+    const V3& bent, const GlobalShapeSlice& g, const V3& root, const V3& rootHead, const glm::mat3& rotation)
 {
     const V3 restHead{ g.x, g.y, g.z };
     const V3 target = Transformed ? root + transform(rotation, restHead - rootHead) : restHead;
@@ -82,7 +153,7 @@ struct LengthCorrection {
 
 } // namespace
 
-} // namespace wisp::HWY_NAMESPACE::lanes
+} // namespace wisp::HWY_NAMESPACE::kernel
 HWY_AFTER_NAMESPACE();
 
 #endif // per-target include guard

@@ -19,7 +19,7 @@
 #include <cstring>
 
 HWY_BEFORE_NAMESPACE();
-namespace wisp::HWY_NAMESPACE::lanes {
+namespace wisp::HWY_NAMESPACE::kernel {
 
 // (Internal linkage, as when this lived in one file: each kernel file inlines these as it sees fit.)
 namespace {
@@ -56,7 +56,7 @@ struct FieldNode {
 // micro-ops), and perf annotate put a fifth of the kernel's samples on those extracts. The same
 // nodes are read either way.
 struct NodeIndices {
-    alignas(64) std::int32_t at[kLanes];
+    alignas(64) std::int32_t at[kVecLanes];
     [[gnu::always_inline]] explicit NodeIndices(const Mask& index)
     {
         std::memcpy(at, &index, sizeof at);
@@ -71,18 +71,21 @@ struct NodeIndices {
 // Asks the cache for the nodes sampleField will read near `p` (head space): the field is tens of
 // megabytes, and its read was a quarter of groom-1m's step, waiting on memory. A hint only: what is
 // computed does not change.
-[[gnu::always_inline]] inline void prefetchField(const Solver::CollisionField& field, const V3& p)
+// Only the lanes in `use`.
+[[gnu::always_inline]] inline void prefetchField(const Solver::CollisionField& field, const V3& p, const Mask& use)
 {
-    const NodeIndices index(nearestNode(field, p).index);
-    for (int l = 0; l < kLanes; ++l)
+    const NodeIndices index(select(use, nearestNode(field, p).index, Mask{}));
+    for (int l = 0; l < kVecLanes; ++l)
         __builtin_prefetch(index.node(field, l));
 }
 
-[[gnu::always_inline]] inline SdfSample sampleField(const Solver::CollisionField& field, const V3& p)
+// The field at each lane of `use`; the other lanes read the first node (cached, and meaningless
+// there): a lane nobody asked about costs no cache miss.
+[[gnu::always_inline]] inline SdfSample sampleField(const Solver::CollisionField& field, const V3& p, const Mask& use)
 {
     const FieldNode node = nearestNode(field, p);
     const Mask ix = node.ix, iy = node.iy, iz = node.iz;
-    const NodeIndices index(node.index);
+    const NodeIndices index(select(use, node.index, Mask{}));
     SdfSample s;
     Lane d;
 #if WISP_LANES_AVX512
@@ -107,7 +110,7 @@ struct NodeIndices {
 #elif WISP_LANES_AVX
     // The same transposes, eight nodes to a pair of 128-bit blocks per register.
     auto load = [&](int l) { return _mm_loadu_ps(&index.node(field, l)->x); };
-    for (int half = 0; half < kLanes; half += 8) {
+    for (int half = 0; half < kVecLanes; half += 8) {
         auto gather2 = [&](int first) {
             return _mm256_insertf128_ps(_mm256_castps128_ps256(load(half + first)), load(half + first + 4), 1);
         };
@@ -122,7 +125,7 @@ struct NodeIndices {
         std::memcpy(reinterpret_cast<float*>(&s.normal.z) + half, &parts[3], sizeof parts[3]);
     }
 #else
-    for (int l = 0; l < kLanes; ++l) {
+    for (int l = 0; l < kVecLanes; ++l) {
         const glm::vec4 node = *index.node(field, l);
         d[l] = node.x;
         s.normal.x[l] = node.y;
@@ -254,7 +257,7 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
 
 } // namespace
 
-} // namespace wisp::HWY_NAMESPACE::lanes
+} // namespace wisp::HWY_NAMESPACE::kernel
 HWY_AFTER_NAMESPACE();
 
 #endif // per-target include guard

@@ -47,11 +47,34 @@ namespace lanes {
 // (Internal linkage: each kernel file inlines these as it sees fit.)
 namespace {
 
+// The kernel's own vector (SolverBlockKernel.cpp): as many floats as one register of this target
+// holds (16 on AVX-512, 8 on AVX2, 4 on SSE4 and NEON). A block's 16 lanes are run a slice of
+// kVectorLanes at a time, so no value spans two registers (a 16-lane vector on AVX2 is two, and
+// the kernel's many live values spilled). Everything else (the volume grid's rows, which shuffle
+// across all 16 lanes) keeps Lane.
+#if WISP_LANES_AVX512
+constexpr int kVectorLanes = 16;
+using Vec = Lane;
+using VecMask = Mask;
+#else
+constexpr int kVectorLanes = WISP_LANES_AVX ? 8 : 4;
+using Vec = float __attribute__((vector_size(kVectorLanes * sizeof(float)), aligned(kVectorLanes * sizeof(float))));
+using VecMask = int __attribute__((vector_size(kVectorLanes * sizeof(int)), aligned(kVectorLanes * sizeof(int))));
+#endif
+static_assert(kLanes % kVectorLanes == 0, "a block's lanes are whole slices");
+
+// The integer vector of a float vector's comparisons.
+template <class L> using MaskOf = decltype(L{} < L{});
+
 inline Lane splat(float v)
 {
     return Lane{} + v;
 }
-inline Lane select(Mask m, Lane a, Lane b)
+template <class L> inline L splatAs(float v)
+{
+    return L{} + v;
+}
+template <class M, class L> inline L select(M m, L a, L b)
 {
     return m ? a : b;
 }
@@ -60,6 +83,21 @@ inline Lane select(Mask m, Lane a, Lane b)
 // forms (a < b ? a : b, a reduction loop) to compare-and-blend, or, for a 16-lane vector on an
 // AVX2 machine, to scalar code lane by lane. minps/maxps return their second operand when the
 // first comparison fails (NaN included), exactly as a < b ? a : b does, so results are unchanged.
+template <class L> inline L lmin(L a, L b)
+{
+    return a < b ? a : b;
+}
+template <class L> inline L lmax(L a, L b)
+{
+    return a > b ? a : b;
+}
+template <class M> inline bool anyOf(M m)
+{
+    int any = 0;
+    for (int i = 0; i < static_cast<int>(sizeof(M) / sizeof(int)); ++i)
+        any |= m[i];
+    return any != 0;
+}
 #if WISP_LANES_AVX512
 static_assert(sizeof(Lane) == sizeof(__m512));
 // (The zero-masked forms: the plain ones start from an undefined register GCC 12 warns about.)
@@ -106,27 +144,39 @@ inline bool anyOf(Mask m)
     std::memcpy(&hi, reinterpret_cast<const int*>(&m) + 8, sizeof hi);
     return !_mm256_testz_ps(_mm256_or_ps(lo, hi), _mm256_or_ps(lo, hi));
 }
-#else
-inline Lane lmin(Lane a, Lane b)
+static_assert(sizeof(Vec) == sizeof(__m256));
+inline Vec lmin(Vec a, Vec b)
 {
-    return a < b ? a : b;
+    return reinterpret_cast<Vec>(_mm256_min_ps(reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b)));
 }
-inline Lane lmax(Lane a, Lane b)
+inline Vec lmax(Vec a, Vec b)
 {
-    return a > b ? a : b;
+    return reinterpret_cast<Vec>(_mm256_max_ps(reinterpret_cast<__m256>(a), reinterpret_cast<__m256>(b)));
 }
-inline bool anyOf(Mask m)
+inline bool anyOf(VecMask m)
 {
-    int any = 0;
-    for (int i = 0; i < kLanes; ++i)
-        any |= m[i];
-    return any != 0;
+    const __m256 v = reinterpret_cast<__m256>(m);
+    return !_mm256_testz_ps(v, v);
+}
+#elif HWY_ARCH_X86
+static_assert(sizeof(Vec) == sizeof(__m128));
+inline Vec lmin(Vec a, Vec b)
+{
+    return reinterpret_cast<Vec>(_mm_min_ps(reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b)));
+}
+inline Vec lmax(Vec a, Vec b)
+{
+    return reinterpret_cast<Vec>(_mm_max_ps(reinterpret_cast<__m128>(a), reinterpret_cast<__m128>(b)));
+}
+inline bool anyOf(VecMask m)
+{
+    return _mm_movemask_ps(reinterpret_cast<__m128>(m)) != 0;
 }
 #endif
-inline Lane lsqrt(Lane a)
+template <class L> inline L lsqrt(L a)
 {
-    Lane r;
-    for (int i = 0; i < kLanes; ++i)
+    L r;
+    for (int i = 0; i < static_cast<int>(sizeof(L) / sizeof(float)); ++i)
         r[i] = __builtin_sqrtf(a[i]);
     return r;
 }
@@ -136,48 +186,49 @@ inline Lane lsqrt(Lane a)
 // between CPU makers, and a default scene's 240 steps took those last bits to 0.26 mm (AVX2 against
 // AVX-512) and 14 mm (SSE4): with these, and no contraction into FMA (-ffp-contract=off,
 // CMakeLists.txt), every target gives the same bits (SimdTargetTest.cpp).
-inline Lane lrsqrt(Lane a)
+template <class L> inline L lrsqrt(L a)
 {
-    return splat(1.0f) / lsqrt(a);
+    return splatAs<L>(1.0f) / lsqrt(a);
 }
-inline Lane lrcp(Lane a)
+template <class L> inline L lrcp(L a)
 {
-    return splat(1.0f) / a;
+    return splatAs<L>(1.0f) / a;
 }
 
-struct V3 {
-    Lane x, y, z;
+template <class L> struct V3T {
+    L x, y, z;
 };
-inline V3 operator+(const V3& a, const V3& b)
+using V3 = V3T<Lane>;
+template <class L> inline V3T<L> operator+(const V3T<L>& a, const V3T<L>& b)
 {
     return { a.x + b.x, a.y + b.y, a.z + b.z };
 }
-inline V3 operator-(const V3& a, const V3& b)
+template <class L> inline V3T<L> operator-(const V3T<L>& a, const V3T<L>& b)
 {
     return { a.x - b.x, a.y - b.y, a.z - b.z };
 }
-inline V3 operator*(const V3& a, Lane s)
+template <class L> inline V3T<L> operator*(const V3T<L>& a, L s)
 {
     return { a.x * s, a.y * s, a.z * s };
 }
-inline Lane dot(const V3& a, const V3& b)
+template <class L> inline L dot(const V3T<L>& a, const V3T<L>& b)
 {
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 // |a| by clearing the sign bit (one and; -0 becomes +0, which no comparison tells apart).
-inline Lane labs(Lane a)
+template <class L> inline L labs(L a)
 {
-    return reinterpret_cast<Lane>(reinterpret_cast<Mask>(a) & 0x7fffffff);
+    return reinterpret_cast<L>(reinterpret_cast<MaskOf<L>>(a) & 0x7fffffff);
 }
-inline Lane l1Length(const V3& a)
+template <class L> inline L l1Length(const V3T<L>& a)
 {
     return labs(a.x) + labs(a.y) + labs(a.z);
 }
-inline V3 cross(const V3& a, const V3& b)
+template <class L> inline V3T<L> cross(const V3T<L>& a, const V3T<L>& b)
 {
     return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
 }
-inline V3 select(Mask m, const V3& a, const V3& b)
+template <class M, class L> inline V3T<L> select(M m, const V3T<L>& a, const V3T<L>& b)
 {
     return { m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z };
 }
@@ -185,7 +236,11 @@ inline V3 splat(const glm::vec3& v)
 {
     return { splat(v.x), splat(v.y), splat(v.z) };
 }
-inline V3 transform(const glm::mat3& m, const V3& v) // m * v, glm is column-major
+template <class L> inline V3T<L> splatAs(const glm::vec3& v)
+{
+    return { splatAs<L>(v.x), splatAs<L>(v.y), splatAs<L>(v.z) };
+}
+template <class L> inline V3T<L> transform(const glm::mat3& m, const V3T<L>& v) // m * v, glm is column-major
 {
     return { v.x * m[0][0] + v.y * m[1][0] + v.z * m[2][0], v.x * m[0][1] + v.y * m[1][1] + v.z * m[2][1],
         v.x * m[0][2] + v.y * m[1][2] + v.z * m[2][2] };
@@ -193,13 +248,13 @@ inline V3 transform(const glm::mat3& m, const V3& v) // m * v, glm is column-maj
 
 // sin(x) for the gusts: x reduced to [-pi, pi], then an odd polynomial (Taylor to x^11, error
 // below 1e-3). Vectorised so that turbulence costs a few instructions per strand, not six libm calls.
-inline Lane lsin(Lane x)
+template <class L> inline L lsin(L x)
 {
     constexpr float kInvTwoPi = 0.15915494f, kTwoPi = 6.2831853f;
-    const Lane turns = x * kInvTwoPi;
-    const Lane rounded = (turns + 12582912.0f) - 12582912.0f; // round to nearest (|turns| < 2^22)
-    const Lane r = x - rounded * kTwoPi;
-    const Lane r2 = r * r;
+    const L turns = x * kInvTwoPi;
+    const L rounded = (turns + 12582912.0f) - 12582912.0f; // round to nearest (|turns| < 2^22)
+    const L r = x - rounded * kTwoPi;
+    const L r2 = r * r;
     return r
         * (1.0f
             + r2
@@ -207,12 +262,44 @@ inline Lane lsin(Lane x)
                     + r2 * (1.0f / 120 + r2 * (-1.0f / 5040 + r2 * (1.0f / 362880 + r2 * (-1.0f / 39916800))))));
 }
 
-// Gusts: a few travelling sine waves in space and time per axis, evaluated at the strand's root;
-// smooth, cheap, deterministic, and different across the head. Amplitude about 1.
-
 } // namespace
 
 } // namespace lanes
+
+// The names the block kernel and its pure lane functions (SolverConstraints.h, SolverContact.h)
+// use: the same as lanes', for the kernel's vector, one register wide (lanes::Vec).
+namespace kernel {
+namespace {
+using Lane = lanes::Vec;
+using Mask = lanes::VecMask;
+using V3 = lanes::V3T<Lane>;
+constexpr int kVecLanes = lanes::kVectorLanes;
+inline Lane splat(float v)
+{
+    return Lane{} + v;
+}
+inline V3 splat(const glm::vec3& v)
+{
+    return { splat(v.x), splat(v.y), splat(v.z) };
+}
+using lanes::anyOf;
+using lanes::cross;
+using lanes::dot;
+using lanes::l1Length;
+using lanes::labs;
+using lanes::lmax;
+using lanes::lmin;
+using lanes::lrcp;
+using lanes::lrsqrt;
+using lanes::lsin;
+using lanes::lsqrt;
+using lanes::select;
+using lanes::transform;
+using lanes::operator+;
+using lanes::operator-;
+using lanes::operator*;
+} // namespace
+} // namespace kernel
 
 } // namespace wisp::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();

@@ -138,8 +138,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     ParticleSlice* row = sliceOf<ParticleSlice>(block.state.data(), slice);
     const RestSlice* rest = sliceOf<const RestSlice>(block.rest.data(), slice);
     const ShapeSlice* shape = sliceOf<const ShapeSlice>(block.shape.data(), slice);
-    // (null while it is off)
-    const GlobalShapeSlice* globalShape = sliceOf<const GlobalShapeSlice>(block.globalShape.data(), slice);
+    const GlobalShapeSlice* globalShape // (null while it is off: no offset on a null pointer)
+        = GlobalShape ? sliceOf<const GlobalShapeSlice>(block.globalShape.data(), slice) : nullptr;
     const Lane strandLength = sliceOf(block.strandLength, slice);
 
     // Roots in world space at the start and the end of this step; substeps interpolate between them.

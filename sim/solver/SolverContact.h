@@ -1,8 +1,8 @@
 // Contact with the head and the body and its friction, as pure functions of the lanes (after
 // PositionBasedDynamics' solve_*Constraint): the head's distance and normal at a point, the
 // push-out that keeps a segment's length, and Coulomb friction. Called by the block kernel
-// (SolverBlockKernel.cpp). Internal to sim/solver.
-// Compiled once per SIMD target, as SolverLanes-inl.h.
+// (SolverBlockKernel.cpp) on its slice of a block: kernel::Lane is one register of the target.
+// Internal to sim/solver. Compiled once per SIMD target, as SolverLanes-inl.h.
 
 #if defined(WISP_SOLVER_CONTACT_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef WISP_SOLVER_CONTACT_INL_H_
@@ -50,7 +50,7 @@ struct FieldNode {
     return n;
 }
 
-// The 16 lanes' node indices as the scalar code that loads the nodes reads them: stored once and
+// The lanes' node indices as the scalar code that loads the nodes reads them: stored once and
 // read back as integers. Taken lane by lane from the register instead, each took an extract
 // (vmovd, vpextrd, vextracti32x4: about 20 instructions for 16 lanes, several of them two
 // micro-ops), and perf annotate put a fifth of the kernel's samples on those extracts. The same

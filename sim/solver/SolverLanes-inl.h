@@ -195,10 +195,17 @@ template <class L> inline L lrcp(L a)
     return splatAs<L>(1.0f) / a;
 }
 
+// (A vector type's aligned attribute does not pass through a template argument, GCC says so: the
+// members are aligned to their size here instead.)
 template <class L> struct V3T {
-    L x, y, z;
+    alignas(sizeof(L)) L x;
+    alignas(sizeof(L)) L y;
+    alignas(sizeof(L)) L z;
 };
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes"
 using V3 = V3T<Lane>;
+#pragma GCC diagnostic pop
 template <class L> inline V3T<L> operator+(const V3T<L>& a, const V3T<L>& b)
 {
     return { a.x + b.x, a.y + b.y, a.z + b.z };
@@ -272,7 +279,10 @@ namespace kernel {
 namespace {
 using Lane = lanes::Vec;
 using Mask = lanes::VecMask;
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes"
 using V3 = lanes::V3T<Lane>;
+#pragma GCC diagnostic pop
 constexpr int kVecLanes = lanes::kVectorLanes;
 inline Lane splat(float v)
 {

@@ -102,6 +102,7 @@ constexpr std::uint32_t kVolumeMaxRowsPerSample = 4;
 #include "sim/solver/HairVolumeGridNearest-inl.h"
 #include "sim/util/ShuffleLanes-inl.h"
 
+#include "sim/solver/SolverConstraints.h"
 #include "sim/solver/SolverLanes-inl.h"
 
 #include <hwy/highway.h>
@@ -225,6 +226,63 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
     }
 }
 
+// What volumeReadOnTarget does with a group's fields (the Node's order, all 16 lanes) for the
+// lanes of one slice: each particle's velocity is blended toward the hair's mean velocity there by
+// the hair friction, and where the density is above the target it is accelerated down the density
+// gradient. Rows first .. first + count - 1 of the block.
+void readSlice(const Solver::VolumeRead& v, Solver::Block& b, const StepConstants& c, const Lane fields[8],
+    const Lane& inverseKeepAll, std::uint32_t first, std::uint32_t count, int slice)
+{
+    using VLane = kernel::Lane;
+    using VMask = kernel::Mask;
+    using VV3 = kernel::V3;
+    auto part = [&](const Lane& l) { return kernel::sliceOf(l, slice); };
+    const VLane density = part(fields[0]);
+    const VMask inHair = density > 0.0f;
+    if (!anyOf(inHair))
+        return;
+    // What the group's particles share: the hair's mean move, and the push and its direction.
+    const VLane inverseKeep = part(inverseKeepAll);
+    const VLane hair = part(fields[7]);
+    const VMask hasHair = hair > 0.0f;
+    const VLane inverseHair = select(hasHair, kernel::splat(1.0f) / hair, kernel::splat(0.0f));
+    const VV3 mean = VV3{ part(fields[4]), part(fields[5]), part(fields[6]) } * inverseHair;
+    const VLane excess = density * inverseKeep - 1.0f;
+    const VMask pushing = excess > 0.0f;
+    const bool anyPushing = anyOf(pushing);
+    VV3 push{}, direction{};
+    if (anyPushing) {
+        push = VV3{ part(fields[1]), part(fields[2]), part(fields[3]) }
+            * ((-v.stiffness) * lmin(excess, kernel::splat(1.0f)) * inverseKeep);
+        const VLane length = lsqrt(dot(push, push));
+        const VLane inverseLength = kernel::splat(1.0f) / length; // one division where there were four
+        push = push
+            * select(length > kVolumeMaxAcceleration, kVolumeMaxAcceleration * inverseLength, kernel::splat(1.0f));
+        if (c.transformed)
+            push = transform(c.rotation, push);
+        // Pressure alone makes hair bounce on the hair beneath it (a stiff spring taken
+        // explicitly): the motion along the push is damped where it pushes.
+        const VMask along = pushing & (length > 0.0f);
+        direction = select(along, push * inverseLength, VV3{});
+        push = push * kernel::splat(c.dt * c.dt);
+    }
+    kernel::ParticleSlice* const rows = kernel::sliceOf<kernel::ParticleSlice>(b.state.data(), slice);
+    for (std::uint32_t j = std::max<std::uint32_t>(first, 1); j < first + count; ++j) {
+        kernel::ParticleSlice& r = rows[j];
+        const VV3 at{ r.x, r.y, r.z };
+        VV3 move = at - VV3{ r.px, r.py, r.pz };
+        move = select(hasHair, move + (mean - move) * kernel::splat(v.blend), move);
+        if (anyPushing) {
+            const VV3 damped = move - direction * (v.pushDamping * dot(move, direction));
+            move = select(pushing, damped + push, move);
+        }
+        const VV3 now = select(inHair, at - move, VV3{ r.px, r.py, r.pz });
+        r.px = now.x;
+        r.py = now.y;
+        r.pz = now.z;
+    }
+}
+
 // The read of volumePass's grid for one block, all 16 lanes at once, a group of the splat's rows at
 // a time (sampled at their centroid): each particle's velocity is blended toward the hair's mean
 // velocity there by the hair friction, and where the density is above the target it is
@@ -235,7 +293,6 @@ void volumeReadOnTarget(
     const Lane keep = v.target * b.volumeTargetScale;
     const Lane inverseKeep = splat(1.0f) / keep;
     const glm::mat3 toHead = glm::transpose(c.rotation);
-    const float dt2 = c.dt * c.dt;
     const std::uint32_t rows = std::max<std::uint32_t>(1, b.volumeRowsPerSample);
     // A dense groom's grid is read in registers (HairVolumeGridNearest-inl.h), the trilinear one through
     // the grid's row arrays: the same values.
@@ -269,46 +326,11 @@ void volumeReadOnTarget(
             for (int f = 0; f < 8; ++f)
                 fields[f] = lane(from[f]);
         }
-        const Lane density = fields[0];
-        const Mask inHair = density > 0.0f;
-        if (!anyOf(inHair))
-            continue;
-        // What the group's particles share: the hair's mean move, and the push and its direction.
-        const Lane hair = fields[7];
-        const Mask hasHair = hair > 0.0f;
-        const Lane inverseHair = select(hasHair, splat(1.0f) / hair, splat(0.0f));
-        const V3 mean = V3{ fields[4], fields[5], fields[6] } * inverseHair;
-        const Lane excess = density * inverseKeep - 1.0f;
-        const Mask pushing = excess > 0.0f;
-        const bool anyPushing = anyOf(pushing);
-        V3 push{}, direction{};
-        if (anyPushing) {
-            push = V3{ fields[1], fields[2], fields[3] } * ((-v.stiffness) * lmin(excess, splat(1.0f)) * inverseKeep);
-            const Lane length = lsqrt(dot(push, push));
-            const Lane inverseLength = splat(1.0f) / length; // one division where there were four
-            push = push * select(length > kVolumeMaxAcceleration, kVolumeMaxAcceleration * inverseLength, splat(1.0f));
-            if (c.transformed)
-                push = transform(c.rotation, push);
-            // Pressure alone makes hair bounce on the hair beneath it (a stiff spring taken
-            // explicitly): the motion along the push is damped where it pushes.
-            const Mask along = pushing & (length > 0.0f);
-            direction = select(along, push * inverseLength, V3{});
-            push = push * splat(dt2);
-        }
-        for (std::uint32_t j = std::max<std::uint32_t>(first, 1); j < first + count; ++j) {
-            ParticleRow& r = b.state[j];
-            const V3 at{ r.x, r.y, r.z };
-            V3 move = at - V3{ r.px, r.py, r.pz };
-            move = select(hasHair, move + (mean - move) * splat(v.blend), move);
-            if (anyPushing) {
-                const V3 damped = move - direction * (v.pushDamping * dot(move, direction));
-                move = select(pushing, damped + push, move);
-            }
-            const V3 now = select(inHair, at - move, V3{ r.px, r.py, r.pz });
-            r.px = now.x;
-            r.py = now.y;
-            r.pz = now.z;
-        }
+        // The rest is each lane's own: run a register's width of lanes at a time, as the block
+        // kernel does (kernel::Lane; on AVX2 a 16-lane value is two registers, and this part
+        // spilled), with the same arithmetic lane by lane.
+        for (int slice = 0; slice < kLanes / kernel::kVecLanes; ++slice)
+            readSlice(v, b, c, fields, inverseKeep, first, count, slice);
     }
 }
 

@@ -132,6 +132,43 @@ template <int Half> constexpr std::array<int, kLanes> laneAcross()
 template <int Ahead> constexpr std::array<int, kLanes> kLaneAhead = laneAhead<Ahead>();
 template <int Half> constexpr std::array<int, kLanes> kLaneAcross = laneAcross<Half>();
 
+// r[l] = v[min(l + Ahead, 15)]. A permute on AVX-512; on targets whose registers hold fewer lanes,
+// through memory (GCC moved a 16-lane shuffle across AVX2's two registers lane by lane).
+template <int Ahead> inline Lane lanesAhead(const Lane& v)
+{
+#if WISP_LANES_AVX512
+    return shuffleLanesBy<kLaneAhead<Ahead>>(v);
+#else
+    alignas(64) float f[2 * kLanes];
+    std::memcpy(f, &v, sizeof v);
+    for (int l = kLanes; l < kLanes + Ahead; ++l)
+        f[l] = f[kLanes - 1];
+    Lane r;
+    std::memcpy(&r, f + Ahead, sizeof r);
+    return r;
+#endif
+}
+
+// The largest of the 16 lanes (none a NaN).
+inline float largestLane(Lane v)
+{
+#if WISP_LANES_AVX512
+    v = lmax(v, shuffleLanesBy<kLaneAcross<8>>(v));
+    v = lmax(v, shuffleLanesBy<kLaneAcross<4>>(v));
+    v = lmax(v, shuffleLanesBy<kLaneAcross<2>>(v));
+    v = lmax(v, shuffleLanesBy<kLaneAcross<1>>(v));
+    return v[0];
+#else
+    kernel::Lane m = kernel::sliceOf(v, 0); // the slices' largest, then within one register
+    for (int slice = 1; slice < kLanes / kernel::kVecLanes; ++slice)
+        m = lmax(m, kernel::sliceOf(v, slice));
+    float largest = m[0];
+    for (int l = 1; l < kernel::kVecLanes; ++l)
+        largest = std::max(largest, m[l]);
+    return largest;
+#endif
+}
+
 std::uint32_t volumeRowsPerSample(const Solver::Block& b, const HairVolumeGrid& grid)
 {
     if (grid.kernel() != HairVolumeGrid::Kernel::NearestSmoothed)
@@ -166,10 +203,10 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
     // of 2s lanes is two of s (the other lanes hold partial sums that nothing reads).
     Lane groupWeight[5];
     groupWeight[0] = b.volumeWeight;
-    groupWeight[1] = groupWeight[0] + shuffleLanesBy<kLaneAhead<1>>(groupWeight[0]);
-    groupWeight[2] = groupWeight[1] + shuffleLanesBy<kLaneAhead<2>>(groupWeight[1]);
-    groupWeight[3] = groupWeight[2] + shuffleLanesBy<kLaneAhead<4>>(groupWeight[2]);
-    groupWeight[4] = groupWeight[3] + shuffleLanesBy<kLaneAhead<8>>(groupWeight[3]);
+    groupWeight[1] = groupWeight[0] + lanesAhead<1>(groupWeight[0]);
+    groupWeight[2] = groupWeight[1] + lanesAhead<2>(groupWeight[1]);
+    groupWeight[3] = groupWeight[2] + lanesAhead<4>(groupWeight[2]);
+    groupWeight[4] = groupWeight[3] + lanesAhead<8>(groupWeight[3]);
     const bool nearest = grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed;
     const float reach = (nearest ? kVolumeNearestLodCellShare : kVolumeLodCellShare) * grid.cellMetres();
     b.volumeGroups = groups;
@@ -195,16 +232,11 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
         }
         int level = 0; // log2 of the stride
         if (full) {
-            const Lane dx = shuffleLanesBy<kLaneAhead<1>>(x.x) - x.x, dy = shuffleLanesBy<kLaneAhead<1>>(x.y) - x.y,
-                       dz = shuffleLanesBy<kLaneAhead<1>>(x.z) - x.z;
-            // The largest, in four shuffles (a NaN counts as 0: a broken lane is not tame, splats 0).
+            const Lane dx = lanesAhead<1>(x.x) - x.x, dy = lanesAhead<1>(x.y) - x.y, dz = lanesAhead<1>(x.z) - x.z;
+            // The largest (a NaN counts as 0: a broken lane is not tame, splats 0).
             Lane widest = dx * dx + dy * dy + dz * dz;
             widest = select(widest == widest, widest, splat(0.0f));
-            widest = lmax(widest, shuffleLanesBy<kLaneAcross<8>>(widest));
-            widest = lmax(widest, shuffleLanesBy<kLaneAcross<4>>(widest));
-            widest = lmax(widest, shuffleLanesBy<kLaneAcross<2>>(widest));
-            widest = lmax(widest, shuffleLanesBy<kLaneAcross<1>>(widest));
-            const float spacing2 = widest[0];
+            const float spacing2 = largestLane(widest);
             while (level < 4 && std::isfinite(spacing2)
                 && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)
                 ++level;

@@ -113,6 +113,7 @@ namespace wisp::HWY_NAMESPACE {
 using namespace lanes;
 
 namespace {
+#if WISP_LANES_AVX512 // (the tables of the permutes below)
 // Lane l's neighbour `Ahead` lanes on (the last lane its own), and its partner across halves of
 // 2 x `Half` lanes: compile-time tables (shuffleLanesBy).
 template <int Ahead> constexpr std::array<int, kLanes> laneAhead()
@@ -131,6 +132,7 @@ template <int Half> constexpr std::array<int, kLanes> laneAcross()
 }
 template <int Ahead> constexpr std::array<int, kLanes> kLaneAhead = laneAhead<Ahead>();
 template <int Half> constexpr std::array<int, kLanes> kLaneAcross = laneAcross<Half>();
+#endif
 
 // r[l] = v[min(l + Ahead, 15)]. A permute on AVX-512; on targets whose registers hold fewer lanes,
 // through memory (GCC moved a 16-lane shuffle across AVX2's two registers lane by lane).

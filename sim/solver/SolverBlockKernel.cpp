@@ -84,8 +84,6 @@ inline void prefetchNextShape(const Solver::Block& block)
         asm volatile("prefetcht0 %0" : : "m"(*(at + byte)));
 }
 
-// Substeps [firstSubstep, endSubstep) of the step; the last call of a step (endSubstep ==
-// c.substeps) also puts back strands that went non-finite or flew away.
 // The capsules any particle of a block can reach this step: none farther from its root than its
 // strand is long (with a margin for what contact may have stretched), so a capsule beyond that
 // from every root is left out for the whole step, as the head is by its clearance bound. Taken
@@ -129,7 +127,9 @@ template <bool Transformed> CapsulesInReach capsulesInReach(const Solver::Block&
     return lsqrt(dot(d, d)) * 1.0001f + 1e-9f;
 }
 
-// The block's lanes [slice x kVecLanes, (slice + 1) x kVecLanes) (kernel::Lane: one register).
+// Substeps [firstSubstep, endSubstep) of the step for the block's lanes [slice x kVecLanes,
+// (slice + 1) x kVecLanes) (kernel::Lane: one register); the last call of a step (endSubstep ==
+// c.substeps) also puts back strands that went non-finite or flew away.
 template <bool Transformed, bool GlobalShape>
 void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, int slice,
     const CapsulesInReach& capsules)
@@ -219,8 +219,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         const V3 headMove = Transformed ? transform(c.headMoveLinear, position) + splat(c.headMoveOffset) : V3{};
 
         // The field lookup is most of a step's cost (memory latency), so it is skipped while the
-        // clearance bound says no lane can touch: the bound shrinks by each move's L1 length,
-        // which is never less than its true length.
+        // clearance bound says no lane can touch: the bound shrinks by each move's length, rounded
+        // up (moveLength).
         const V3 checked = position;
         Lane clearance = p.clearance - moveLength(position - before);
         // Only the lanes whose bound ran out meet the head: a lane's own bound decides, never its

@@ -1,6 +1,7 @@
-// r[i] = v[index[i]] for GCC/Clang vector-extension vectors (indices taken modulo the lane count):
-// GCC's __builtin_shuffle, which Clang (the fuzz build, scripts/fuzz.sh) lacks for a run-time
-// index vector, so Clang gets the same result lane by lane.
+// r[i] = v[Index[i]] for GCC/Clang vector-extension vectors and an index table known at compile
+// time (indices taken modulo the lane count): a permute or two on any target. (A run-time index
+// vector, GCC's __builtin_shuffle, went lane by lane through memory for a 16-lane vector on AVX2,
+// and Clang, the fuzz build, lacks it.)
 // Compiled once per SIMD target, as sim/solver/SolverLanes-inl.h: a 64-byte vector passed to a
 // function compiled for another target changes the call's ABI (Clang refuses it).
 
@@ -19,22 +20,7 @@
 HWY_BEFORE_NAMESPACE();
 namespace wisp::HWY_NAMESPACE {
 
-template <class Vector, class IndexVector> inline Vector shuffleLanes(Vector v, IndexVector index)
-{
-#if defined(__clang__)
-    constexpr int lanes = static_cast<int>(sizeof(Vector) / sizeof(v[0]));
-    Vector r;
-    for (int i = 0; i < lanes; ++i)
-        r[i] = v[index[i] & (lanes - 1)];
-    return r;
-#else
-    return __builtin_shuffle(v, index);
-#endif
-}
-
-// The same for an index table known at compile time (a constexpr std::array<int, lanes> with static
-// storage): a permute or two on any target, where a run-time index on a vector of two registers
-// (16 lanes on AVX2) goes lane by lane through memory.
+// The table: a constexpr std::array<int, lanes> with static storage.
 template <const auto& Index, class Vector> inline Vector shuffleLanesBy(Vector v)
 {
     constexpr int lanes = static_cast<int>(sizeof(Vector) / sizeof(v[0]));

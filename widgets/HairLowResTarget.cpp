@@ -57,7 +57,7 @@ QSize HairLowResTarget::sizeFor(QSize framePixels)
     return QSize((framePixels.width() + 1) / 2, (framePixels.height() + 1) / 2).expandedTo(QSize(1, 1));
 }
 
-bool HairLowResTarget::begin(QSize framePixels, GLuint frameDepthTexture)
+bool HairLowResTarget::begin(QSize framePixels, GLuint frameDepthTexture, const ClipRect& region)
 {
     if (!m_gl || !m_depthProgram || framePixels.isEmpty())
         return false;
@@ -103,7 +103,9 @@ bool HairLowResTarget::begin(QSize framePixels, GLuint frameDepthTexture)
     // An ivec2: glUniform2i (QOpenGLShaderProgram's two-number setter is glUniform2f, which GL
     // refuses for an integer uniform, leaving it 0: the depth fetch then clamped to texel -1).
     gl->glUniform2i(m_depthProgram->uniformLocation("u_framePixels"), framePixels.width(), framePixels.height());
-    m_depthProgram->setUniformValue("u_rect", -1.0f, -1.0f, 1.0f, 1.0f);
+    // Only the region: outside it the target keeps old texels that nothing reads (composite()
+    // covers less than this, and its bilinear reads reach one texel beyond what it covers).
+    m_depthProgram->setUniformValue("u_rect", region.x, region.y, region.z, region.w);
     gl->glActiveTexture(GL_TEXTURE0);
     gl->glBindTexture(GL_TEXTURE_2D, frameDepthTexture);
     gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
@@ -115,9 +117,10 @@ bool HairLowResTarget::begin(QSize framePixels, GLuint frameDepthTexture)
     return true;
 }
 
-void HairLowResTarget::composite(QSize framePixels, GLuint frameDepthTexture, const glm::mat4& projection)
+void HairLowResTarget::composite(
+    QSize framePixels, GLuint frameDepthTexture, const glm::mat4& projection, const ClipRect& region)
 {
-    if (!m_gl || !m_compositeProgram || !m_framebuffer)
+    if (!m_gl || !m_compositeProgram || !m_framebuffer || clipRectEmpty(region))
         return;
     GlFunctions* gl = m_gl;
     gl->glViewport(0, 0, framePixels.width(), framePixels.height());
@@ -128,7 +131,7 @@ void HairLowResTarget::composite(QSize framePixels, GLuint frameDepthTexture, co
     gl->glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     gl->glBindVertexArray(m_vao);
     m_compositeProgram->bind();
-    m_compositeProgram->setUniformValue("u_rect", -1.0f, -1.0f, 1.0f, 1.0f);
+    m_compositeProgram->setUniformValue("u_rect", region.x, region.y, region.z, region.w);
     m_compositeProgram->setUniformValue(
         "u_framePixels", static_cast<float>(framePixels.width()), static_cast<float>(framePixels.height()));
     m_compositeProgram->setUniformValue(

@@ -21,6 +21,7 @@
 // Thread: GUI, with the viewport's context current (every member function).
 
 #include "widgets/GlSupport.h"
+#include "widgets/ScreenRect.h"
 
 #include <glm/mat4x4.hpp>
 
@@ -47,13 +48,16 @@ public:
     // The target's size for a frame `framePixels` big: half of it, rounded up.
     static QSize sizeFor(QSize framePixels);
     // Binds the target (made or remade at sizeFor(framePixels)), its colour cleared transparent and
-    // its depth the farthest of each 2x2 block of `frameDepthTexture` (GL_TEXTURE_2D, the frame's),
+    // its depth the farthest of each 2x2 block of `frameDepthTexture` (GL_TEXTURE_2D, the frame's)
+    // inside `region` (clip space; at least composite()'s region widened by two target texels),
     // with the viewport set to it. False (nothing bound) when it cannot be made.
-    bool begin(QSize framePixels, GLuint frameDepthTexture);
+    bool begin(QSize framePixels, GLuint frameDepthTexture, const ClipRect& region = kWholeViewport);
     // Lays the hair drawn since begin() over the bound framebuffer (the frame, `framePixels` big,
-    // whose depth is `frameDepthTexture`; read, not written), premultiplied "over". `projection`:
-    // the view's, to compare depths in metres.
-    void composite(QSize framePixels, GLuint frameDepthTexture, const glm::mat4& projection);
+    // whose depth is `frameDepthTexture`; read, not written), premultiplied "over", inside `region`
+    // (clip space: where the hair can be; a full-screen pass costs a software rasteriser a few
+    // milliseconds). `projection`: the view's, to compare depths in metres.
+    void composite(QSize framePixels, GLuint frameDepthTexture, const glm::mat4& projection,
+        const ClipRect& region = kWholeViewport);
     QSize size() const { return m_size; }
 
 private:

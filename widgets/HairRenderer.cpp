@@ -253,6 +253,7 @@ void HairRenderer::upload(
     m_skippedStrands = 0;
     glm::vec3 low(std::numeric_limits<float>::max());
     glm::vec3 high(-std::numeric_limits<float>::max());
+    float longestSquared = 0.0f;
     const glm::vec3* points = strands.positions.data();
     const bool withLooks = lookOfStrand.size() == strands.strandCount() && !m_looks.empty();
     for (std::size_t s = 0; s < strands.strandCount(); ++s) {
@@ -276,9 +277,14 @@ void HairRenderer::upload(
             out[i] = glm::vec4(points[i], tag);
             low = glm::min(low, points[i]);
             high = glm::max(high, points[i]);
+            if (i > begin) {
+                const glm::vec3 segment = points[i] - points[i - 1];
+                longestSquared = std::max(longestSquared, glm::dot(segment, segment));
+            }
         }
     }
     m_bounds = low.x <= high.x ? Aabb{ low, high } : Aabb{};
+    m_longestSegmentMetres = std::sqrt(longestSquared);
     m_gl->glUnmapBuffer(GL_TEXTURE_BUFFER);
     // A typical segment length (from up to 256 strands' first segments) and turn at a joint, to pick
     // how finely the curves are sampled for the zoom.
@@ -307,14 +313,7 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     if (!m_program || m_vertexCount == 0 || m_layout.drawnStrands == 0)
         return;
 
-    const std::size_t total = m_layout.drawnStrands;
-    const float wanted = std::isfinite(fraction) ? std::clamp(fraction, 0.0f, 1.0f) : 1.0f;
-    const std::size_t drawn = std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(wanted * total)), 1, total);
-    // Each drawn strand stands for total / drawn strands and is widened by as much, so a preview
-    // (or a display density below 1) covers the head as the whole hair does: the same coverage,
-    // never a balding subset (issue 14; the square root used before left 13-17 % of the strands
-    // covering about half of what the whole hair covers).
-    const float widthScale = static_cast<float>(total) / static_cast<float>(drawn);
+    const auto [drawn, widthScale] = drawnShare(fraction);
 
     // Lines while even the nearest hair is at most about a pixel wide (a line is one pixel wide;
     // half a pixel more is not worth twice the primitives). The nearest hair is at most a head's
@@ -389,6 +388,30 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     m_lastSamplesPerSegment
         = static_cast<int>(HairStripLayout::kSamplesPerSegment / HairStripLayout::kSampleSteps[stepIndex]);
     checkGlErrors(gl, "HairRenderer::draw");
+}
+
+HairRenderer::DrawnShare HairRenderer::drawnShare(float fraction) const
+{
+    const std::size_t total = m_layout.drawnStrands;
+    if (total == 0)
+        return {};
+    const float wanted = std::isfinite(fraction) ? std::clamp(fraction, 0.0f, 1.0f) : 1.0f;
+    const std::size_t drawn = std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(wanted * total)), 1, total);
+    // Each drawn strand stands for total / drawn strands and is widened by as much, so a preview
+    // (or a display density below 1) covers the head as the whole hair does: the same coverage,
+    // never a balding subset (issue 14; the square root used before left 13-17 % of the strands
+    // covering about half of what the whole hair covers).
+    return { drawn, static_cast<float>(total) / static_cast<float>(drawn) };
+}
+
+Aabb HairRenderer::drawnBounds(const HairStyle& style, float fraction) const
+{
+    const float thickest = std::max(style.hairThicknessMetres, m_thickestLookMetres);
+    const float halfWidth = 0.5f * thickest * std::max(style.lockWidthScale, 0.0f) * drawnShare(fraction).widthScale;
+    // A Catmull-Rom segment leaves its points' box by at most 4/27 of its two end tangents, each
+    // at most a segment long (the Hermite basis h10 peaks at 4/27): 0.3 of the longest segment.
+    const float reach = (std::isfinite(halfWidth) ? halfWidth : 0.0f) + 0.3f * m_longestSegmentMetres;
+    return Aabb{ m_bounds.min - glm::vec3(reach), m_bounds.max + glm::vec3(reach) };
 }
 
 void HairRenderer::setStrandUniforms(

@@ -88,6 +88,9 @@ public:
     void drawPoints(QOpenGLShaderProgram& program);
     // The box around the last upload's finite points (empty before any).
     const Aabb& bounds() const { return m_bounds; }
+    // bounds() widened by half the widest strand that draw(view, style, fraction) would draw,
+    // metres: the space its ribbons can reach (lines and the antialiasing skirt add pixels).
+    Aabb drawnBounds(const HairStyle& style, float fraction) const;
 
     QString error() const { return m_error; }
     std::size_t strandCount() const { return m_vertexCount > 0 ? m_layout.drawnStrands : 0; } // drawable
@@ -98,6 +101,13 @@ public:
     int lastSamplesPerSegment() const { return m_lastSamplesPerSegment; }
 
 private:
+    // How many strands draw() draws for `fraction`, and how much wider each is for those it leaves out.
+    struct DrawnShare {
+        std::size_t strands = 0;
+        float widthScale = 1.0f;
+    };
+    DrawnShare drawnShare(float fraction) const;
+
     void rebuildLayout(std::span<const std::uint32_t> offsets);
     void uploadLooks();
     // The uniforms hair_strand.glsl reads, on a bound program.
@@ -134,6 +144,7 @@ private:
     std::array<std::array<std::size_t, 3>, 2> m_indexOffsets{};
     Aabb m_bounds;
     float m_segmentMetres = 0.0f; // typical segment length of the last frame
+    float m_longestSegmentMetres = 0.0f; // of the last upload's finite strands
     float m_turnRadians = 0.0f; // typical turn at a joint of the last frame (typicalTurnRadians)
     GLsizei m_vertexCount = 0; // 0: nothing to draw
     std::size_t m_skippedStrands = 0;

@@ -459,7 +459,14 @@ void Viewport::paintImage(const RenderView& view)
 void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution)
 {
     const QSize pixels = m_canvas.size();
-    m_lastHairAtHalfResolution = halfResolution && m_lowRes.begin(pixels, m_canvas.frameDepthTexture());
+    // Only where the hair can be: the half-resolution target's passes cover the whole frame
+    // otherwise (measured: a fifth of a paused orbit's hair pass). Its strands reach half a width
+    // beyond their points (drawnBounds), lines and the antialiasing skirt a pixel or two more, and
+    // the target's texels are two pixels: four pixels of margin, two more where begin() clears.
+    const ClipRect hairRegion = clipRectOfBox(m_hair.drawnBounds(drawnStyle(), fraction), view.viewProjection,
+        view.viewportPixels, std::max(drawnStyle().minWidthPixels, 1.0f) + 4.0f);
+    m_lastHairAtHalfResolution = halfResolution
+        && m_lowRes.begin(pixels, m_canvas.frameDepthTexture(), widenClipRect(hairRegion, view.viewportPixels, 4.0f));
     if (!m_lastHairAtHalfResolution) {
         m_hair.draw(view, drawnStyle(), fraction, preview);
         return;
@@ -475,7 +482,7 @@ void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bo
     m_hair.draw(half, drawnStyle(), fraction, preview);
     m_hair.setDepthWrites(true);
     m_canvas.bindFrame();
-    m_lowRes.composite(pixels, m_canvas.frameDepthTexture(), view.projection);
+    m_lowRes.composite(pixels, m_canvas.frameDepthTexture(), view.projection, hairRegion);
     m_gl->glEnable(GL_DEPTH_TEST); // as HairRenderer::draw leaves it
 }
 

@@ -24,12 +24,22 @@ float distanceMetres(float windowDepth)
 
 void main()
 {
-    float backdrop = distanceMetres(texelFetch(u_frameDepth, ivec2(gl_FragCoord.xy), 0).r);
     // This pixel's centre in target texels, less half a texel: the four around it and its weights.
     vec2 at = gl_FragCoord.xy * (u_hairPixels / u_framePixels) - 0.5;
     vec2 base = floor(at);
     vec2 f = at - base;
     ivec2 last = ivec2(u_hairPixels) - 1;
+    vec4 texels[4];
+    vec4 any = vec4(0.0);
+    for (int k = 0; k < 4; ++k) {
+        texels[k] = texelFetch(u_hair, clamp(ivec2(base) + ivec2(k & 1, k >> 1), ivec2(0), last), 0);
+        any += texels[k];
+    }
+    // No hair around this pixel (most of the frame): nothing to lay, and no depths to read. A
+    // software rasteriser skips the rest of a block whose fragments all end here.
+    if (dot(any, vec4(1.0)) <= 0.0)
+        discard;
+    float backdrop = distanceMetres(texelFetch(u_frameDepth, ivec2(gl_FragCoord.xy), 0).r);
     vec4 sum = vec4(0.0);
     float weights = 0.0;
     for (int k = 0; k < 4; ++k) {
@@ -38,7 +48,7 @@ void main()
         vec2 w2 = mix(1.0 - f, f, vec2(offset));
         float blockDistance = distanceMetres(texelFetch(u_hairDepth, texel, 0).r);
         float weight = blockDistance <= backdrop * 1.01 ? w2.x * w2.y : 0.0;
-        sum += weight * texelFetch(u_hair, texel, 0);
+        sum += weight * texels[k];
         weights += weight;
     }
     // Renormalised over the texels that count: at a silhouette the hair in front of the head keeps

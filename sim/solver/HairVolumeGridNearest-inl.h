@@ -73,44 +73,69 @@ static_assert(HairVolumeGrid::kRowLanes == kLanes, "a grid row is a solver lane"
 template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     using G = HairVolumeGrid;
     using Float8 = float __attribute__((vector_size(8 * sizeof(float))));
+    template <class L> using MaskOf = HWY_NAMESPACE::lanes::MaskOf<L>;
 
     // Each lane's grid coordinates: the cell's low node along each axis and the position in the
     // cell (0..1), for lanes inside the grid (`inside`); for the others, outside or not finite, the
-    // node 0 and a position that means nothing.
+    // node 0 and a position that means nothing. For a whole row (Lane) or one register's width of
+    // it (kernel::Lane): the same arithmetic lane by lane.
     // `x`, `y`, `z` head space. (HairVolumeGrid::cellsOf takes its CellRow from these too.)
-    struct Coordinates {
-        Mask inside, ix, iy, iz;
-        Lane fx, fy, fz;
+    template <class L> struct CoordinatesOf {
+        using M = MaskOf<L>;
+        M inside, ix, iy, iz;
+        L fx, fy, fz;
     };
-    static Coordinates coordinatesOf(const G& g, Lane x, Lane y, Lane z)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes" // (Lane's alignment: its size's anyway)
+    using Coordinates = CoordinatesOf<Lane>;
+#pragma GCC diagnostic pop
+    template <class L> static CoordinatesOf<L> coordinatesOf(const G& g, L x, L y, L z)
     {
+        using M = MaskOf<L>;
         const float inverseCell = 1.0f / g.m_cell;
-        const Lane gx = (x - g.m_origin.x) * inverseCell, gy = (y - g.m_origin.y) * inverseCell,
-                   gz = (z - g.m_origin.z) * inverseCell;
-        Coordinates c;
+        const L gx = (x - g.m_origin.x) * inverseCell, gy = (y - g.m_origin.y) * inverseCell,
+                gz = (z - g.m_origin.z) * inverseCell;
+        CoordinatesOf<L> c;
         c.inside = (gx >= 0.0f) & (gy >= 0.0f) & (gz >= 0.0f) & (gx < static_cast<float>(g.m_dims.x - 1))
             & (gy < static_cast<float>(g.m_dims.y - 1)) & (gz < static_cast<float>(g.m_dims.z - 1));
-        const Lane zero{};
-        c.ix = __builtin_convertvector(c.inside ? gx : zero, Mask);
-        c.iy = __builtin_convertvector(c.inside ? gy : zero, Mask);
-        c.iz = __builtin_convertvector(c.inside ? gz : zero, Mask);
-        c.fx = gx - __builtin_convertvector(c.ix, Lane);
-        c.fy = gy - __builtin_convertvector(c.iy, Lane);
-        c.fz = gz - __builtin_convertvector(c.iz, Lane);
+        const L zero{};
+        c.ix = __builtin_convertvector(c.inside ? gx : zero, M);
+        c.iy = __builtin_convertvector(c.inside ? gy : zero, M);
+        c.iz = __builtin_convertvector(c.inside ? gz : zero, M);
+        c.fx = gx - __builtin_convertvector(c.ix, L);
+        c.fy = gy - __builtin_convertvector(c.iy, L);
+        c.fz = gz - __builtin_convertvector(c.iz, L);
         return c;
     }
 
     // The node each lane meets (Kernel::NearestSmoothed): the index of its nearest node, -1 outside
     // the grid or not finite; and when `brick` is given, the index of that node's brick there.
-    static Mask nearestNodes(const G& g, const Coordinates& c, Mask* brick = nullptr)
+    template <class L> static MaskOf<L> nearestNodes(const G& g, const CoordinatesOf<L>& c, MaskOf<L>* brick = nullptr)
     {
-        const Mask one = Mask{} + 1;
-        const Mask nx = c.ix + ((c.fx >= 0.5f) & one), ny = c.iy + ((c.fy >= 0.5f) & one),
-                   nz = c.iz + ((c.fz >= 0.5f) & one);
+        using M = MaskOf<L>;
+        const M one = M{} + 1;
+        const M nx = c.ix + ((c.fx >= 0.5f) & one), ny = c.iy + ((c.fy >= 0.5f) & one),
+                nz = c.iz + ((c.fz >= 0.5f) & one);
         static_assert(G::kBrick == 4, "a node's brick is its coordinates shifted by two");
         if (brick)
             *brick = (nx >> 2) + g.m_bricks.x * ((ny >> 2) + g.m_bricks.y * (nz >> 2));
-        return c.inside ? nx + g.m_dims.x * (ny + g.m_dims.y * nz) : Mask{} - 1;
+        return c.inside ? nx + g.m_dims.x * (ny + g.m_dims.y * nz) : M{} - 1;
+    }
+
+    // A row's nearest nodes and their bricks, lane by lane (nearestNodes), as the splat and the read
+    // take them: the lanes' own work is done a register's width at a time (on AVX2 a 16-lane value
+    // is two registers, and the row's arithmetic spilled), the nodes' work lane by lane.
+    struct NearestRow {
+        alignas(64) std::int32_t node[kLanes];
+        alignas(64) std::int32_t brick[kLanes];
+    };
+    // Lanes `first` .. first + width - 1 of `row` from one register's width of head-space positions.
+    template <class L> static void nearestInto(const G& g, L x, L y, L z, NearestRow& row, int first)
+    {
+        MaskOf<L> brick;
+        const MaskOf<L> node = nearestNodes(g, coordinatesOf(g, x, y, z), &brick);
+        std::memcpy(row.node + first, &node, sizeof node);
+        std::memcpy(row.brick + first, &brick, sizeof brick);
     }
 
     // Adds a row's lanes 0, stride, 2 stride, ... (weight > 0, inside the grid) at their nearest
@@ -121,11 +146,22 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     static void splatNearestRow(G& g, int slot, Lane x, Lane y, Lane z, const Lane& weight, const Lane& moveX,
         const Lane& moveY, const Lane& moveZ, int stride)
     {
+        NearestRow nearest;
+        nearestInto(g, x, y, z, nearest, 0);
+        alignas(64) float lanes[4][kLanes];
+        std::memcpy(lanes[0], &weight, sizeof weight);
+        std::memcpy(lanes[1], &moveX, sizeof moveX);
+        std::memcpy(lanes[2], &moveY, sizeof moveY);
+        std::memcpy(lanes[3], &moveZ, sizeof moveZ);
+        splatNearest(g, slot, nearest, lanes[0], lanes[1], lanes[2], lanes[3], stride);
+    }
+    // The same from the row's nodes (nearestInto) and its lanes' weights and moves.
+    static void splatNearest(G& g, int slot, const NearestRow& nearest, const float* weight, const float* moveX,
+        const float* moveY, const float* moveZ, int stride)
+    {
         using Float4 = float __attribute__((vector_size(4 * sizeof(float))));
         using Fixed4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
         stride = std::clamp(stride, 1, kLanes);
-        Mask brick;
-        const Mask node = nearestNodes(g, coordinatesOf(g, x, y, z), &brick);
         std::int64_t* const grid = &g.m_accumulators[static_cast<std::size_t>(slot) * g.m_nodes.size()].weight;
         std::uint8_t* const touched = g.m_touched.data() + static_cast<std::size_t>(slot) * g.m_live.size();
         const Float4 units{ g.m_weightUnits, g.m_moveUnits, g.m_moveUnits, g.m_moveUnits };
@@ -144,13 +180,14 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
         constexpr float kMax = G::kMaxMoveMetres;
         for (int l = 0; l < kLanes; l += stride) {
             const float w = weight[l];
-            if (node[l] < 0 || !(w > 0.0f))
+            const int node = nearest.node[l];
+            if (node < 0 || !(w > 0.0f))
                 continue;
-            if (node[l] != runNode) {
+            if (node != runNode) {
                 flush();
-                runNode = node[l];
+                runNode = node;
                 run = Float4{};
-                touched[brick[l]] = 1;
+                touched[nearest.brick[l]] = 1;
             }
             run += w
                 * Float4{ 1.0f, std::clamp(moveX[l], -kMax, kMax), std::clamp(moveY[l], -kMax, kMax),
@@ -192,16 +229,22 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     // The nodes at `nearest` read at lanes 0, stride, 2 stride, ... and 15 (a lane between, or
     // outside the grid, reads a node of zeros), transposed into out[8] (Node's order: density,
     // gradient x y z, momentum x y z, hair).
-    static void readSampled(const G& g, const Mask& nearest, int stride, Lane out[8])
+    static void readSampled(const G& g, const std::int32_t* nearest, int stride, Lane out[8])
+    {
+        const float* rows[kLanes];
+        sampledRows(g, nearest, stride, rows);
+        transposeNodes(rows, out);
+    }
+    // Where lanes 0, stride, 2 stride, ... and 15 read their node's eight floats (the others, and
+    // lanes outside the grid, a node of zeros).
+    static void sampledRows(const G& g, const std::int32_t* nearest, int stride, const float* rows[kLanes])
     {
         static const G::Node kEmpty{};
         const int between = stride - 1; // stride is a power of two: no division a lane
-        const float* rows[kLanes];
         for (int l = 0; l < kLanes; ++l)
             rows[l] = ((l & between) == 0 || l == kLanes - 1) && nearest[l] >= 0
                 ? &g.m_nodes[static_cast<std::size_t>(nearest[l])].density
                 : &kEmpty.density;
-        transposeNodes(rows, out);
     }
 
     // The lanes between two samples (stride > 1, a power of two): the linear blend of the two around them.
@@ -265,23 +308,24 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
     // A full row's read, what HairVolumeGrid::sampleRow gives for it, into out[8] (Node's order).
     static void readNearestRow(const G& g, Lane x, Lane y, Lane z, int stride, Lane out[8])
     {
+        NearestRow nearest;
+        nearestInto(g, x, y, z, nearest, 0);
+        readNearest(g, nearest, stride, out);
+    }
+    // The same from the row's nodes (nearestInto).
+    static void readNearest(const G& g, const NearestRow& nearest, int stride, Lane out[8])
+    {
         stride = static_cast<int>(std::bit_floor(static_cast<unsigned>(std::clamp(stride, 1, kLanes))));
-        const Mask nearest = nearestNodes(g, coordinatesOf(g, x, y, z));
 #if WISP_LANES_AVX512
         // Sixteen nodes in a 16 x 8 transpose of 512-bit registers, then the blend: a permute a field.
-        readSampled(g, nearest, stride, out);
+        readSampled(g, nearest.node, stride, out);
         if (stride > 1)
             blendBetweenSamples(stride, out, 8);
 #else
         // Two registers a lane: the blend first, a node's eight floats at a time, then two 8 x 8
         // transposes (16-lane shuffles across two registers go through memory on AVX2).
-        static const G::Node kEmpty{};
-        const int between = stride - 1;
         const float* rows[kLanes];
-        for (int l = 0; l < kLanes; ++l)
-            rows[l] = ((l & between) == 0 || l == kLanes - 1) && nearest[l] >= 0
-                ? &g.m_nodes[static_cast<std::size_t>(nearest[l])].density
-                : &kEmpty.density;
+        sampledRows(g, nearest.node, stride, rows);
         Float8 blended[kLanes];
         switch (stride) {
         case 2:

@@ -114,8 +114,7 @@ using namespace lanes;
 
 namespace {
 #if WISP_LANES_AVX512 // (the tables of the permutes below)
-// Lane l's neighbour `Ahead` lanes on (the last lane its own), and its partner across halves of
-// 2 x `Half` lanes: compile-time tables (shuffleLanesBy).
+// Lane l's neighbour `Ahead` lanes on (the last lane its own): compile-time tables (shuffleLanesBy).
 template <int Ahead> constexpr std::array<int, kLanes> laneAhead()
 {
     std::array<int, kLanes> lanes{};
@@ -123,15 +122,7 @@ template <int Ahead> constexpr std::array<int, kLanes> laneAhead()
         lanes[l] = std::min(l + Ahead, kLanes - 1);
     return lanes;
 }
-template <int Half> constexpr std::array<int, kLanes> laneAcross()
-{
-    std::array<int, kLanes> lanes{};
-    for (int l = 0; l < kLanes; ++l)
-        lanes[l] = l ^ Half;
-    return lanes;
-}
 template <int Ahead> constexpr std::array<int, kLanes> kLaneAhead = laneAhead<Ahead>();
-template <int Half> constexpr std::array<int, kLanes> kLaneAcross = laneAcross<Half>();
 #endif
 
 // r[l] = v[min(l + Ahead, 15)]. A permute on AVX-512; on targets whose registers hold fewer lanes,
@@ -151,26 +142,6 @@ template <int Ahead> inline Lane lanesAhead(const Lane& v)
 #endif
 }
 
-// The largest of the 16 lanes (none a NaN).
-inline float largestLane(Lane v)
-{
-#if WISP_LANES_AVX512
-    v = lmax(v, shuffleLanesBy<kLaneAcross<8>>(v));
-    v = lmax(v, shuffleLanesBy<kLaneAcross<4>>(v));
-    v = lmax(v, shuffleLanesBy<kLaneAcross<2>>(v));
-    v = lmax(v, shuffleLanesBy<kLaneAcross<1>>(v));
-    return v[0];
-#else
-    kernel::Lane m = kernel::sliceOf(v, 0); // the slices' largest, then within one register
-    for (int slice = 1; slice < kLanes / kernel::kVecLanes; ++slice)
-        m = lmax(m, kernel::sliceOf(v, slice));
-    float largest = m[0];
-    for (int l = 1; l < kernel::kVecLanes; ++l)
-        largest = std::max(largest, m[l]);
-    return largest;
-#endif
-}
-
 std::uint32_t volumeRowsPerSample(const Solver::Block& b, const HairVolumeGrid& grid)
 {
     if (grid.kernel() != HairVolumeGrid::Kernel::NearestSmoothed)
@@ -186,6 +157,103 @@ std::uint32_t volumeRowsPerSample(const Solver::Block& b, const HairVolumeGrid& 
         && static_cast<float>(2 * rows) * segment <= kVolumeRowGroupCells * grid.cellMetres())
         rows *= 2;
     return rows;
+}
+} // namespace
+
+namespace {
+using Nearest = HairVolumeGridKernels<GridNearestTarget>;
+
+// A group's sixteen lanes as the splat and the read take them. The lanes' own arithmetic (the
+// centroid, the move, the grid's node) runs a register's width at a time, as the block kernel does
+// (kernel::Lane: on AVX2 a 16-lane value is two registers, and this part spilled), with the same
+// arithmetic lane by lane; what spans lanes (the spacing, the nodes' sums) reads these arrays.
+struct GroupLanes {
+    alignas(64) float x[kLanes + 1], y[kLanes + 1], z[kLanes + 1]; // the centroid (its last lane again after it)
+    alignas(64) float headX[kLanes], headY[kLanes], headZ[kLanes]; // the centroid in head space
+    alignas(64) float moveX[kLanes], moveY[kLanes], moveZ[kLanes]; // the mean move over the last substep
+    alignas(64) std::int32_t tame[kLanes]; // -1: no particle of the lane gone wild in the group
+    alignas(64) float weight[kLanes];
+    Nearest::NearestRow nearest; // a dense groom's nodes (Kernel::NearestSmoothed)
+};
+
+template <class T> inline void storeLanes(T* to, const auto& value)
+{
+    std::memcpy(to, &value, sizeof value);
+}
+inline kernel::Lane loadLanes(const float* from)
+{
+    kernel::Lane v;
+    std::memcpy(&v, from, sizeof v);
+    return v;
+}
+
+// Rows first .. first + count - 1 of the block's slice `slice`: their centroid in head space and
+// its grid node (`nearest`) into `out`, with (`withMoves`) their mean move and whether all are tame.
+void groupSlice(const HairVolumeGrid& grid, const Solver::Block& b, const StepConstants& c, const glm::mat3& toHead,
+    std::uint32_t first, std::uint32_t count, int slice, bool nearest, bool withMoves, GroupLanes& out)
+{
+    using VV3 = kernel::V3;
+    const int at = slice * kernel::kVecLanes;
+    const kernel::ParticleSlice* const rows = kernel::sliceOf<const kernel::ParticleSlice>(b.state.data(), slice);
+    const kernel::ParticleSlice& r = rows[first];
+    VV3 x{ r.x, r.y, r.z };
+    VV3 move = x - VV3{ r.px, r.py, r.pz };
+    // A particle gone non-finite or flying off (its strand is put back at rest at the end of
+    // the step) must not spread through the grid.
+    kernel::Mask tame = l1Length(move) < kVolumeMaxMoveMetres;
+    if (count > 1) {
+        for (std::uint32_t j = first + 1; j < first + count; ++j) {
+            const kernel::ParticleSlice& q = rows[j];
+            const VV3 p{ q.x, q.y, q.z };
+            x = x + p;
+            if (withMoves) {
+                const VV3 moved = p - VV3{ q.px, q.py, q.pz };
+                tame = tame & (l1Length(moved) < kVolumeMaxMoveMetres);
+                move = move + moved;
+            }
+        }
+        const float share = 1.0f / static_cast<float>(count);
+        x = x * kernel::splat(share);
+        move = move * kernel::splat(share);
+    }
+    if (withMoves) {
+        storeLanes(out.x + at, x.x);
+        storeLanes(out.y + at, x.y);
+        storeLanes(out.z + at, x.z);
+        storeLanes(out.moveX + at, move.x);
+        storeLanes(out.moveY + at, move.y);
+        storeLanes(out.moveZ + at, move.z);
+        storeLanes(out.tame + at, tame);
+    }
+    const VV3 head = c.transformed ? transform(toHead, x - kernel::splat(c.translation)) : x;
+    if (nearest) {
+        Nearest::nearestInto(grid, head.x, head.y, head.z, out.nearest, at);
+    } else {
+        storeLanes(out.headX + at, head.x);
+        storeLanes(out.headY + at, head.y);
+        storeLanes(out.headZ + at, head.z);
+    }
+}
+
+// The largest squared distance between neighbouring lanes of a group's centroids (groupSlice);
+// a NaN counts as 0 (a broken lane is not tame, splats 0).
+float widestSpacingSquared(GroupLanes& lanes)
+{
+    lanes.x[kLanes] = lanes.x[kLanes - 1];
+    lanes.y[kLanes] = lanes.y[kLanes - 1];
+    lanes.z[kLanes] = lanes.z[kLanes - 1];
+    kernel::Lane widest = kernel::splat(0.0f);
+    for (int at = 0; at < kLanes; at += kernel::kVecLanes) {
+        const kernel::Lane dx = loadLanes(lanes.x + at + 1) - loadLanes(lanes.x + at),
+                           dy = loadLanes(lanes.y + at + 1) - loadLanes(lanes.y + at),
+                           dz = loadLanes(lanes.z + at + 1) - loadLanes(lanes.z + at);
+        const kernel::Lane w = dx * dx + dy * dy + dz * dz;
+        widest = lmax(widest, select(w == w, w, kernel::splat(0.0f)));
+    }
+    float largest = widest[0];
+    for (int l = 1; l < kernel::kVecLanes; ++l)
+        largest = std::max(largest, widest[l]);
+    return largest;
 }
 } // namespace
 
@@ -212,33 +280,14 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
     const bool nearest = grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed;
     const float reach = (nearest ? kVolumeNearestLodCellShare : kVolumeLodCellShare) * grid.cellMetres();
     b.volumeGroups = groups;
+    GroupLanes lanes;
     for (std::uint32_t g = 0; g < groups; ++g) {
         const std::uint32_t first = g * rows, count = std::min(rows, b.points - first);
-        const ParticleRow& r = b.state[first];
-        V3 x{ r.x, r.y, r.z };
-        V3 move = x - V3{ r.px, r.py, r.pz };
-        // A particle gone non-finite or flying off (its strand is put back at rest at the end of
-        // the step) must not spread through the grid.
-        Mask tame = l1Length(move) < kVolumeMaxMoveMetres;
-        if (count > 1) {
-            for (std::uint32_t j = first + 1; j < first + count; ++j) {
-                const ParticleRow& q = b.state[j];
-                const V3 at{ q.x, q.y, q.z }, moved = at - V3{ q.px, q.py, q.pz };
-                tame = tame & (l1Length(moved) < kVolumeMaxMoveMetres);
-                x = x + at;
-                move = move + moved;
-            }
-            const float share = 1.0f / static_cast<float>(count);
-            x = x * splat(share);
-            move = move * splat(share);
-        }
+        for (int slice = 0; slice < kLanes / kernel::kVecLanes; ++slice)
+            groupSlice(grid, b, c, toHead, first, count, slice, nearest, true, lanes);
         int level = 0; // log2 of the stride
         if (full) {
-            const Lane dx = lanesAhead<1>(x.x) - x.x, dy = lanesAhead<1>(x.y) - x.y, dz = lanesAhead<1>(x.z) - x.z;
-            // The largest (a NaN counts as 0: a broken lane is not tame, splats 0).
-            Lane widest = dx * dx + dy * dy + dz * dz;
-            widest = select(widest == widest, widest, splat(0.0f));
-            const float spacing2 = largestLane(widest);
+            const float spacing2 = widestSpacingSquared(lanes);
             while (level < 4 && std::isfinite(spacing2)
                 && 4.0f * static_cast<float>(1 << (2 * level)) * spacing2 <= reach * reach)
                 ++level;
@@ -246,17 +295,20 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
         if (g >= Solver::Block::kVolumeLevelGroups)
             level = 0; // (a very long strand's far groups: see Block::volumeLevels)
         b.setVolumeLevel(g, level);
-        const Lane weight = select(
-            tame, count > 1 ? groupWeight[level] * static_cast<float>(count) : groupWeight[level], splat(0.0f));
-        const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
-        if (nearest) // in registers (HairVolumeGridNearest-inl.h)
-            HairVolumeGridKernels<GridNearestTarget>::splatNearestRow(
-                grid, slot, head.x, head.y, head.z, weight, move.x, move.y, move.z, 1 << level);
+        for (int slice = 0; slice < kLanes / kernel::kVecLanes; ++slice) {
+            const int at = slice * kernel::kVecLanes;
+            const kernel::Lane share = kernel::sliceOf(groupWeight[level], slice);
+            kernel::Mask tame;
+            std::memcpy(&tame, lanes.tame + at, sizeof tame);
+            storeLanes(lanes.weight + at,
+                select(tame, count > 1 ? share * static_cast<float>(count) : share, kernel::splat(0.0f)));
+        }
+        if (nearest) // the nodes' sums (HairVolumeGridNearest-inl.h)
+            Nearest::splatNearest(
+                grid, slot, lanes.nearest, lanes.weight, lanes.moveX, lanes.moveY, lanes.moveZ, 1 << level);
         else
-            grid.splatRow(slot, reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
-                reinterpret_cast<const float*>(&head.z), reinterpret_cast<const float*>(&weight),
-                reinterpret_cast<const float*>(&move.x), reinterpret_cast<const float*>(&move.y),
-                reinterpret_cast<const float*>(&move.z), HairVolumeGrid::kRowLanes, 1 << level);
+            grid.splatRow(slot, lanes.headX, lanes.headY, lanes.headZ, lanes.weight, lanes.moveX, lanes.moveY,
+                lanes.moveZ, HairVolumeGrid::kRowLanes, 1 << level);
     }
 }
 
@@ -332,6 +384,7 @@ void volumeReadOnTarget(
     // the grid's row arrays: the same values.
     const bool nearest = grid.kernel() == HairVolumeGrid::Kernel::NearestSmoothed;
     HairVolumeGrid::SampleRow here;
+    GroupLanes lanes;
     auto lane = [](const float* p) {
         Lane l;
         std::memcpy(&l, p, sizeof l);
@@ -341,28 +394,20 @@ void volumeReadOnTarget(
         const std::uint32_t count = std::min(rows, b.points - first);
         if (first + count <= 1)
             continue; // roots are pinned
-        V3 x{ b.state[first].x, b.state[first].y, b.state[first].z };
-        if (count > 1) {
-            for (std::uint32_t j = first + 1; j < first + count; ++j)
-                x = x + V3{ b.state[j].x, b.state[j].y, b.state[j].z };
-            x = x * splat(1.0f / static_cast<float>(count));
-        }
-        const V3 head = c.transformed ? transform(toHead, x - splat(c.translation)) : x;
+        for (int slice = 0; slice < kLanes / kernel::kVecLanes; ++slice)
+            groupSlice(grid, b, c, toHead, first, count, slice, nearest, false, lanes);
         const int stride = b.volumeStride(g);
         Lane fields[8]; // the Node's order: density, gradient x y z, momentum x y z, hair
         if (nearest)
-            HairVolumeGridKernels<GridNearestTarget>::readNearestRow(grid, head.x, head.y, head.z, stride, fields);
+            Nearest::readNearest(grid, lanes.nearest, stride, fields);
         else {
-            grid.sampleRow(reinterpret_cast<const float*>(&head.x), reinterpret_cast<const float*>(&head.y),
-                reinterpret_cast<const float*>(&head.z), here, HairVolumeGrid::kRowLanes, stride);
+            grid.sampleRow(lanes.headX, lanes.headY, lanes.headZ, here, HairVolumeGrid::kRowLanes, stride);
             const float* const from[8] = { here.density, here.gradX, here.gradY, here.gradZ, here.momentumX,
                 here.momentumY, here.momentumZ, here.hair };
             for (int f = 0; f < 8; ++f)
                 fields[f] = lane(from[f]);
         }
-        // The rest is each lane's own: run a register's width of lanes at a time, as the block
-        // kernel does (kernel::Lane; on AVX2 a 16-lane value is two registers, and this part
-        // spilled), with the same arithmetic lane by lane.
+        // The rest is each lane's own, a register's width at a time again.
         for (int slice = 0; slice < kLanes / kernel::kVecLanes; ++slice)
             readSlice(v, b, c, fields, inverseKeep, first, count, slice);
     }

@@ -53,12 +53,15 @@ std::string Solver::setStrands(const HairCurves& rest)
         byCount[static_cast<std::uint32_t>(s.size())].push_back(static_cast<std::uint32_t>(i));
     }
 
-    std::size_t rows = 0;
-    for (const auto& [count, strands] : byCount)
+    std::size_t rows = 0, blockCount = 0;
+    for (const auto& [count, strands] : byCount) {
         rows += count * ((strands.size() + kLanes - 1) / kLanes);
+        blockCount += (strands.size() + kLanes - 1) / kLanes;
+    }
     std::vector<ParticleRow> stateRows(rows);
     std::vector<RestRow> restRows(rows);
-    std::vector<ShapeRow> shapeRows(rows);
+    std::vector<ShapeRow> shapeRows(blockCount * Block::kShapeRows);
+    std::vector<glm::vec3> directions;
     std::vector<Block> blocks;
     std::size_t particles = 0;
     std::size_t nextRow = 0;
@@ -68,8 +71,9 @@ std::string Solver::setStrands(const HairCurves& rest)
             b.points = count;
             b.state = std::span<ParticleRow>(stateRows.data() + nextRow, count);
             b.rest = std::span<RestRow>(restRows.data() + nextRow, count);
-            b.shape = std::span<ShapeRow>(shapeRows.data() + nextRow, count);
+            b.shape = std::span<ShapeRow>(shapeRows.data() + blocks.size() * Block::kShapeRows, Block::kShapeRows);
             nextRow += count;
+            directions.assign(count, glm::vec3(0.0f));
             for (int l = 0; l < kLanes; ++l) {
                 // Padding lanes repeat the block's first strand and are never copied out.
                 const bool real = first + static_cast<std::size_t>(l) < strands.size();
@@ -77,26 +81,19 @@ std::string Solver::setStrands(const HairCurves& rest)
                 b.strand[l] = real ? static_cast<std::int64_t>(strand) : -1;
                 const std::span<const glm::vec3> s = rest.strand(strand);
                 float total = 0.0f;
-                for (std::uint32_t j = 0; j < count; ++j) {
-                    RestRow& r = b.rest[j];
-                    ShapeRow& q = b.shape[j];
-                    if (j == 0) {
-                        q.x[l] = s[0].x;
-                        q.y[l] = s[0].y;
-                        q.z[l] = s[0].z;
-                        r.length[l] = 0.0f;
-                    } else {
-                        const glm::vec3 d = s[j] - s[j - 1];
-                        const float len = glm::length(d);
-                        q.x[l] = d.x / len;
-                        q.y[l] = d.y / len;
-                        q.z[l] = d.z / len;
-                        r.length[l] = len;
-                        total += len;
-                    }
+                b.shape[0].x[l] = s[0].x;
+                b.shape[0].y[l] = s[0].y;
+                b.shape[0].z[l] = s[0].z;
+                b.rest[0].length[l] = 0.0f;
+                for (std::uint32_t j = 1; j < count; ++j) {
+                    const glm::vec3 d = s[j] - s[j - 1];
+                    const float len = glm::length(d);
+                    directions[j] = d / len;
+                    b.rest[j].length[l] = len;
+                    total += len;
                 }
                 b.strandLength[l] = total;
-                storeRestFrames(b, l);
+                storeRestFrames(b, l, directions);
                 b.stiffnessScale[l] = 1.0f;
                 b.dragScale[l] = 1.0f;
                 b.volumeWeight[l] = real ? total / static_cast<float>(count - 1) : 0.0f;
@@ -231,12 +228,12 @@ void Solver::updateGlobalShape(float substepSeconds)
             b.globalShape = std::span<const GlobalShapeRow>(rows, b.points);
             for (int l = 0; l < kLanes; ++l) {
                 glm::vec3 p(b.shape[0].x[l], b.shape[0].y[l], b.shape[0].z[l]);
+                RestDirections directions(b, l);
                 float arc = 0.0f;
                 for (std::uint32_t j = 0; j < b.points; ++j) {
                     if (j > 0) {
-                        const ShapeRow& d = b.shape[j];
                         const float length = b.rest[j].length[l];
-                        p += glm::vec3(d.x[l], d.y[l], d.z[l]) * length;
+                        p += directions.next() * length;
                         arc += length;
                     }
                     const float fade = std::max(0.0f, 1.0f - arc / (kGlobalShapeReach * b.strandLength[l]));

@@ -79,7 +79,7 @@ inline void prefetchRows(const Solver::Block& block, std::uint32_t j)
 // other prefetches with it), so that the binary had none of them. A hint only.
 inline void prefetchNextShape(const Solver::Block& block)
 {
-    const char* at = reinterpret_cast<const char*>(block.shape.data() + block.points);
+    const char* at = reinterpret_cast<const char*>(block.shape.data() + Solver::Block::kShapeRows);
     for (std::size_t byte = 0; byte < 2 * sizeof(ShapeRow); byte += 64)
         asm volatile("prefetcht0 %0" : : "m"(*(at + byte)));
 }
@@ -517,18 +517,19 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
     HWY_DYNAMIC_DISPATCH(advanceBlockOnTarget)(block, c, firstSubstep, endSubstep, globalShape);
 }
 
-void storeRestFrames(Solver::Block& block, int lane)
+void storeRestFrames(Solver::Block& block, int lane, std::span<const glm::vec3> directions)
 {
     RestRow* rest = block.rest.data();
-    const ShapeRow* shape = block.shape.data();
-    auto dir = [&](std::uint32_t j) { return glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]); };
-    glm::vec3 d = dir(1);
+    glm::vec3 d = directions[1];
+    block.shape[1].x[lane] = d.x;
+    block.shape[1].y[lane] = d.y;
+    block.shape[1].z[lane] = d.z;
     glm::vec3 e = anyPerpendicular(d);
     rest[0].lx[lane] = e.x;
     rest[0].ly[lane] = e.y;
     rest[0].lz[lane] = e.z;
     for (std::uint32_t j = 1; j < block.points; ++j) {
-        const glm::vec3 r = dir(j);
+        const glm::vec3 r = directions[j];
         const glm::vec3 b = glm::cross(d, e);
         rest[j].lx[lane] = glm::dot(r, d);
         rest[j].ly[lane] = glm::dot(r, e);
@@ -540,15 +541,42 @@ void storeRestFrames(Solver::Block& block, int lane)
     }
 }
 
+RestDirections::RestDirections(const Solver::Block& block, int lane)
+    : m_block(block)
+    , m_lane(lane)
+{
+    const ShapeRow& root = block.shape[1];
+    m_direction = glm::vec3(root.x[lane], root.y[lane], root.z[lane]);
+    const RestRow& follicle = block.rest[0];
+    m_normal = glm::vec3(follicle.lx[lane], follicle.ly[lane], follicle.lz[lane]);
+}
+
+glm::vec3 RestDirections::next()
+{
+    // storeRestFrames' walk, each direction from its coordinates in the frame before it.
+    const std::uint32_t j = m_next++;
+    const glm::vec3 d = m_direction, e = m_normal;
+    glm::vec3 r = d; // the root segment's, as stored
+    if (j > 1) {
+        const RestRow& q = m_block.rest[j];
+        r = glm::normalize(q.lx[m_lane] * d + q.ly[m_lane] * e + q.lz[m_lane] * glm::cross(d, e));
+    }
+    const glm::vec3 transported = rotateShortestArc(d, r, e);
+    m_normal = glm::normalize(transported - r * glm::dot(transported, r));
+    m_direction = r;
+    return r;
+}
+
 void placeLaneAtRest(Solver::Block& block, int lane, const glm::mat3& rotation, const glm::vec3& translation)
 {
     const RestRow* rest = block.rest.data();
-    const ShapeRow* shape = block.shape.data();
     ParticleRow* row = block.state.data();
-    glm::vec3 p = rotation * glm::vec3(shape[0].x[lane], shape[0].y[lane], shape[0].z[lane]) + translation;
+    RestDirections directions(block, lane);
+    glm::vec3 p
+        = rotation * glm::vec3(block.shape[0].x[lane], block.shape[0].y[lane], block.shape[0].z[lane]) + translation;
     for (std::uint32_t j = 0; j < block.points; ++j) {
         if (j > 0)
-            p += rotation * glm::vec3(shape[j].x[lane], shape[j].y[lane], shape[j].z[lane]) * rest[j].length[lane];
+            p += rotation * directions.next() * rest[j].length[lane];
         row[j].x[lane] = row[j].px[lane] = p.x;
         row[j].y[lane] = row[j].py[lane] = p.y;
         row[j].z[lane] = row[j].pz[lane] = p.z;

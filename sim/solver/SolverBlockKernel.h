@@ -8,6 +8,9 @@
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
+#include <cstdint>
+#include <span>
+
 namespace wisp {
 
 // Global shape (pullTowardGlobalShape): its share is given per step of this length, and fades from
@@ -30,8 +33,28 @@ void prefetchBlock(const Solver::Block& block);
 
 // The rest shape's parallel-transported frames: the follicle's normal (any unit vector across the
 // root segment, chosen the same way every time) into row 0, and each rest direction's
-// coordinates in its parent segment's frame into rows j > 0.
-void storeRestFrames(Solver::Block& block, int lane);
+// coordinates in its parent segment's frame into rows j > 0; and the root segment's direction into
+// the block's shape row 1. `directions[j]`: the unit direction from rest point j - 1 to j, head
+// space, for j = 1 .. block.points - 1 (directions[0] is not read).
+void storeRestFrames(Solver::Block& block, int lane, std::span<const glm::vec3> directions);
+
+// A lane's rest directions, root to tip, rebuilt from the root segment's (shape row 1) and the rest
+// frames (storeRestFrames): the block keeps no row of directions beyond the root's, which only a
+// reset and the global shape read (12 bytes a particle less). Rebuilt, a direction is within a few
+// float roundings of the one stored (each is renormalised).
+class RestDirections {
+public:
+    RestDirections(const Solver::Block& block, int lane);
+    // The direction of segment j (from particle j - 1 to j), for j = 1, 2, ... in turn.
+    glm::vec3 next();
+
+private:
+    const Solver::Block& m_block;
+    int m_lane;
+    std::uint32_t m_next = 1;
+    glm::vec3 m_direction{ 0.0f };
+    glm::vec3 m_normal{ 0.0f };
+};
 
 // Puts one lane's strand at its rest shape, at rest, in world space; its clearance becomes unknown.
 void placeLaneAtRest(Solver::Block& block, int lane, const glm::mat3& rotation, const glm::vec3& translation);

@@ -41,7 +41,9 @@ struct Solver::RestRow {
     // binormal; see advanceBlock). Row 0: the follicle frame's normal, head space.
     Lane lx, ly, lz;
 };
-// Row 0: the root position. Row j > 0: unit direction from particle j-1 to j. Head space.
+// A block keeps two (Block::kShapeRows): row 0 the root position, row 1 the unit direction from
+// particle 0 to 1, head space; the directions beyond are in the rest frames (RestRow l, rebuilt by
+// RestDirections in SolverBlockKernel.h), as only a reset and the global shape need them.
 struct Solver::ShapeRow {
     Lane x, y, z;
 };
@@ -95,7 +97,8 @@ struct Solver::Block {
     // a thread streams through memory in one sequential run that the prefetcher can follow.
     std::span<ParticleRow> state;
     std::span<RestRow> rest;
-    std::span<ShapeRow> shape;
+    std::span<ShapeRow> shape; // kShapeRows rows (ShapeRow)
+    static constexpr std::uint32_t kShapeRows = 2;
     std::span<const GlobalShapeRow> globalShape; // empty while the global shape is off
 };
 

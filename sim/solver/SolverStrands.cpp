@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace wisp {
 
@@ -135,13 +136,10 @@ bool Solver::setStrandRestDirections(std::size_t strand, std::span<const glm::ve
         if (!(std::abs(length - b.rest[j].length[l]) <= 1e-3f * b.rest[j].length[l]))
             return false;
     }
-    for (std::uint32_t j = 1; j < b.points; ++j) {
-        const glm::vec3 d = glm::normalize(restShape[j] - restShape[j - 1]);
-        b.shape[j].x[l] = d.x;
-        b.shape[j].y[l] = d.y;
-        b.shape[j].z[l] = d.z;
-    }
-    storeRestFrames(b, l);
+    std::vector<glm::vec3> directions(b.points, glm::vec3(0.0f));
+    for (std::uint32_t j = 1; j < b.points; ++j)
+        directions[j] = glm::normalize(restShape[j] - restShape[j - 1]);
+    storeRestFrames(b, l, directions);
     m_globalShapeStale = true;
     return true;
 }

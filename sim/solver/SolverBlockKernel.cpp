@@ -376,7 +376,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         V3 gustFrom{}, gustTo{}; // gusts at the samples either side of particle j
         Lane gustSpan = splat(1.0f);
         V3 frameD{ shape[1].x, shape[1].y, shape[1].z }; // the follicle's frame: the root segment's rest
-        V3 frameE{ rest[0].lx, rest[0].ly, rest[0].lz }; // direction and a normal to it
+        V3 frameE = anyPerpendicularOf(frameD); // direction and a normal to it (storeRestFrames)
         if (Transformed) {
             frameD = transform(c.rotation, frameD);
             frameE = transform(c.rotation, frameE);
@@ -384,7 +384,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         V3 frameB = cross(frameD, frameE);
         // The target direction of segment j: its rest direction's coordinates in the parent's rest
         // frame, laid on the parent's frame now.
-        V3 turned = frameD * rest[1].lx + frameE * rest[1].ly + frameB * rest[1].lz;
+        const V3 first = restCoordinates(rest[1].u, rest[1].v);
+        V3 turned = frameD * first.x + frameE * first.y + frameB * first.z;
         for (std::uint32_t j = 1; j < n; ++j) {
             ParticleSlice& p = row[j];
             const RestSlice& r = rest[j];
@@ -437,12 +438,12 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 // such vectors. So the next target d lx + w - (d.w) / (1 + D.d) (D + d) waits only
                 // for d, not for the new frame. (The reciprocal estimate is one Newton step from
                 // exact; no renormalisation on the chain.)
-                const RestSlice& next = rest[j + 1];
-                const V3 w = frameE * next.ly + frameB * next.lz;
+                const V3 next = restCoordinates(rest[j + 1].u, rest[j + 1].v);
+                const V3 w = frameE * next.y + frameB * next.z;
                 const V3 d = (position - parent) * inverseLength;
                 const Lane inverse = lrcp(lmax(splat(1.0f) + dot(frameD, d), splat(1e-2f)));
                 const V3 sum = frameD + d;
-                turned = d * next.lx + w - sum * (dot(d, w) * inverse);
+                turned = d * next.x + w - sum * (dot(d, w) * inverse);
                 frameE = frameE - sum * (dot(d, frameE) * inverse);
                 frameB = frameB - sum * (dot(d, frameB) * inverse);
                 frameD = d;
@@ -525,15 +526,15 @@ void storeRestFrames(Solver::Block& block, int lane, std::span<const glm::vec3> 
     block.shape[1].y[lane] = d.y;
     block.shape[1].z[lane] = d.z;
     glm::vec3 e = anyPerpendicular(d);
-    rest[0].lx[lane] = e.x;
-    rest[0].ly[lane] = e.y;
-    rest[0].lz[lane] = e.z;
+    rest[0].u[lane] = rest[0].v[lane] = 0.0f;
     for (std::uint32_t j = 1; j < block.points; ++j) {
         const glm::vec3 r = directions[j];
         const glm::vec3 b = glm::cross(d, e);
-        rest[j].lx[lane] = glm::dot(r, d);
-        rest[j].ly[lane] = glm::dot(r, e);
-        rest[j].lz[lane] = glm::dot(r, b);
+        // Stereographic from the -d pole; a segment folded straight back onto its parent (which no
+        // hair has) lands far out but finite.
+        const float fromPole = std::max(1.0f + glm::dot(r, d), 1e-6f);
+        rest[j].u[lane] = glm::dot(r, e) / fromPole;
+        rest[j].v[lane] = glm::dot(r, b) / fromPole;
         // Transport (d, e) onto r: the shortest rotation taking d to r.
         e = rotateShortestArc(d, r, e);
         e = glm::normalize(e - r * glm::dot(e, r));
@@ -547,8 +548,7 @@ RestDirections::RestDirections(const Solver::Block& block, int lane)
 {
     const ShapeRow& root = block.shape[1];
     m_direction = glm::vec3(root.x[lane], root.y[lane], root.z[lane]);
-    const RestRow& follicle = block.rest[0];
-    m_normal = glm::vec3(follicle.lx[lane], follicle.ly[lane], follicle.lz[lane]);
+    m_normal = anyPerpendicular(m_direction); // as storeRestFrames takes it
 }
 
 glm::vec3 RestDirections::next()
@@ -559,7 +559,8 @@ glm::vec3 RestDirections::next()
     glm::vec3 r = d; // the root segment's, as stored
     if (j > 1) {
         const RestRow& q = m_block.rest[j];
-        r = glm::normalize(q.lx[m_lane] * d + q.ly[m_lane] * e + q.lz[m_lane] * glm::cross(d, e));
+        const float u = q.u[m_lane], v = q.v[m_lane], s = u * u + v * v, k = 1.0f / (1.0f + s);
+        r = glm::normalize((1.0f - s) * k * d + (u + u) * k * e + (v + v) * k * glm::cross(d, e));
     }
     const glm::vec3 transported = rotateShortestArc(d, r, e);
     m_normal = glm::normalize(transported - r * glm::dot(transported, r));

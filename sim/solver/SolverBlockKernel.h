@@ -31,11 +31,10 @@ void advanceBlock(Solver::Block& block, const StepConstants& c, int firstSubstep
 // changes.
 void prefetchBlock(const Solver::Block& block);
 
-// The rest shape's parallel-transported frames: the follicle's normal (any unit vector across the
-// root segment, chosen the same way every time) into row 0, and each rest direction's
-// coordinates in its parent segment's frame into rows j > 0; and the root segment's direction into
-// the block's shape row 1. `directions[j]`: the unit direction from rest point j - 1 to j, head
-// space, for j = 1 .. block.points - 1 (directions[0] is not read).
+// The rest shape's parallel-transported frames, from the follicle's (the root segment's direction
+// and anyPerpendicular of it): each rest direction's coordinates in its parent segment's frame
+// into rows j > 0 (as RestRow u, v), and the root segment's direction into the block's shape row 1. `directions[j]`:
+// the unit direction from rest point j - 1 to j, head space, for j = 1 .. block.points - 1 (directions[0] is not read).
 void storeRestFrames(Solver::Block& block, int lane, std::span<const glm::vec3> directions);
 
 // A lane's rest directions, root to tip, rebuilt from the root segment's (shape row 1) and the rest

@@ -55,9 +55,8 @@ struct RestSlice {
     WISP_SLICE_FIELD(bendChild);
     WISP_SLICE_FIELD(bendDamping);
     WISP_SLICE_FIELD(bendParentRatio);
-    WISP_SLICE_FIELD(lx);
-    WISP_SLICE_FIELD(ly);
-    WISP_SLICE_FIELD(lz);
+    WISP_SLICE_FIELD(u);
+    WISP_SLICE_FIELD(v);
 };
 struct ShapeSlice {
     WISP_SLICE_FIELD(x);
@@ -74,7 +73,7 @@ struct GlobalShapeSlice {
 static_assert(sizeof(ParticleSlice) == sizeof(ParticleRow)
     && offsetof(ParticleSlice, clearance) == offsetof(ParticleRow, clearance)
     && offsetof(ParticleSlice, pz) == offsetof(ParticleRow, pz));
-static_assert(sizeof(RestSlice) == sizeof(RestRow) && offsetof(RestSlice, lz) == offsetof(RestRow, lz)
+static_assert(sizeof(RestSlice) == sizeof(RestRow) && offsetof(RestSlice, v) == offsetof(RestRow, v)
     && offsetof(RestSlice, bendParentRatio) == offsetof(RestRow, bendParentRatio));
 static_assert(sizeof(ShapeSlice) == sizeof(ShapeRow) && offsetof(ShapeSlice, z) == offsetof(ShapeRow, z));
 static_assert(sizeof(GlobalShapeSlice) == sizeof(GlobalShapeRow)
@@ -141,6 +140,27 @@ struct LengthCorrection {
     V3 position; // at rest length from the parent
     V3 correction; // position less the unconstrained position, for the DFTL velocity correction
 };
+
+// A rest direction's coordinates in its parent's rest frame from their stereographic projection
+// (RestRow u, v): s = u² + v², l = ((1 - s), 2u, 2v) / (1 + s), a unit vector. Off the strand's
+// serial chain (rest data only): its division costs throughput, not latency.
+[[gnu::always_inline]] inline V3 restCoordinates(Lane u, Lane v)
+{
+    const Lane s = u * u + v * v;
+    const Lane k = splat(1.0f) / (splat(1.0f) + s);
+    return { (splat(1.0f) - s) * k, (u + u) * k, (v + v) * k };
+}
+
+// The follicle's normal: anyPerpendicular (sim/geometry/ShortestArc.h) of the root segment's rest
+// direction `d`, lane by lane, with the same arithmetic (so the same bits as the scalar one).
+[[gnu::always_inline]] inline V3 anyPerpendicularOf(const V3& d)
+{
+    const Mask upright = labs(d.y) < splat(0.9f);
+    const V3 helper{ select(upright, splat(0.0f), splat(1.0f)), select(upright, splat(1.0f), splat(0.0f)),
+        splat(0.0f) };
+    const V3 e = cross(d, helper);
+    return e * (splat(1.0f) / lsqrt(dot(e, e)));
+}
 
 // Follow the leader (Müller, Kim & Chentanez 2012, "Fast Simulation of Inextensible Hair and
 // Fur", sec. 4): the particle at parent + reach is put back at rest length from its parent,

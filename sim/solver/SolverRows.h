@@ -38,12 +38,15 @@ struct Solver::RestRow {
     Lane bendDamping; // share of its move relative to its parent taken away this substep
     Lane bendParentRatio; // m_j / m_{j-1}
     // Row j > 0: the rest direction in the parent segment's rest frame (direction, normal,
-    // binormal; see advanceBlock). Row 0: the follicle frame's normal, head space.
-    Lane lx, ly, lz;
+    // binormal; see advanceBlock), as its stereographic projection from the frame's -direction
+    // pole, (u, v) = (l_y, l_z) / (1 + l_x): two floats for a unit vector, with no sign to keep
+    // (restCoordinates in SolverConstraints.h turns them back). Row 0: zeros (the follicle's normal
+    // is anyPerpendicular of the root segment's rest direction, worked out where it is needed).
+    Lane u, v;
 };
 // A block keeps two (Block::kShapeRows): row 0 the root position, row 1 the unit direction from
-// particle 0 to 1, head space; the directions beyond are in the rest frames (RestRow l, rebuilt by
-// RestDirections in SolverBlockKernel.h), as only a reset and the global shape need them.
+// particle 0 to 1, head space; the directions beyond are in the rest frames (RestRow u, v, rebuilt
+// by RestDirections in SolverBlockKernel.h), as only a reset and the global shape need them.
 struct Solver::ShapeRow {
     Lane x, y, z;
 };

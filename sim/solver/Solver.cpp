@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <span>
 
@@ -36,7 +37,12 @@ std::string Solver::setStrands(const HairCurves& rest)
 {
     if (rest.offsets.empty() || rest.offsets.front() != 0 || rest.offsets.back() != rest.positions.size())
         return "strands: the offsets do not match the points";
-    // Group strands by particle count: a block's 8 lanes must run the same loop.
+    // A block names its strands in 32 bits (Block::strand), and the strands' slots pack the block's
+    // index beside the lane (Slot).
+    if (rest.strandCount() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+        return "strands: " + std::to_string(rest.strandCount()) + " is more than the solver can hold ("
+            + std::to_string(std::numeric_limits<std::int32_t>::max()) + ")";
+    // Group strands by particle count: a block's 16 lanes must run the same loop.
     std::map<std::uint32_t, std::vector<std::uint32_t>> byCount;
     for (std::size_t i = 0; i < rest.strandCount(); ++i) {
         const std::span<const glm::vec3> s = rest.strand(i);
@@ -78,7 +84,7 @@ std::string Solver::setStrands(const HairCurves& rest)
                 // Padding lanes repeat the block's first strand and are never copied out.
                 const bool real = first + static_cast<std::size_t>(l) < strands.size();
                 const std::uint32_t strand = strands[real ? first + static_cast<std::size_t>(l) : first];
-                b.strand[l] = real ? static_cast<std::int64_t>(strand) : -1;
+                b.strand[l] = real ? static_cast<std::int32_t>(strand) : -1;
                 const std::span<const glm::vec3> s = rest.strand(strand);
                 float total = 0.0f;
                 b.shape[0].x[l] = s[0].x;
@@ -112,6 +118,7 @@ std::string Solver::setStrands(const HairCurves& rest)
         for (std::uint32_t l = 0; l < kLanes; ++l)
             if (m_blocks[i].strand[l] >= 0)
                 m_slotOfStrand[static_cast<std::size_t>(m_blocks[i].strand[l])] = { i, l };
+    m_blockWinds.clear(); // no strand has a wind of its own (setStrandAir)
     m_restOffsets = rest.offsets;
     m_bendSharesStale = true;
     m_globalShapeStale = true;

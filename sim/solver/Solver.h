@@ -137,6 +137,7 @@ public:
     struct ShapeRow;
     struct Block; // 16 strands of equal particle count, interleaved (defined in SolverRows.h)
     struct GlobalShapeRow; // a particle's rest position and its global shape share (SolverRows.h)
+    struct BlockWind; // a block's strands' winds of their own (SolverRows.h)
     struct VolumeRead {
         float target = 0.0f; // density the hair keeps, metres of hair per m³
         float blend = 0.0f; // share of the difference from the hair's mean move lost this substep
@@ -175,13 +176,16 @@ private:
     std::vector<ParticleRow> m_stateRows;
     std::vector<RestRow> m_restRows;
     std::vector<ShapeRow> m_shapeRows;
+    // Per block, the strands' winds of their own (a hair dryer; Block::wind points here), only
+    // while some strand has one: most scenes have none, and every block would carry 192 bytes.
+    std::vector<BlockWind> m_blockWinds;
     // In the layout of m_restRows, only while settings().globalShape > 0 (empty otherwise, so the
     // step reads nothing more when it is off).
     std::vector<GlobalShapeRow> m_globalShapeRows;
     std::vector<std::uint32_t> m_restOffsets; // layout of the caller's curves
-    struct Slot {
-        std::uint32_t block;
-        std::uint32_t lane;
+    struct Slot { // where a strand is: a block and its lane in it, in four bytes
+        std::uint32_t block : 28;
+        std::uint32_t lane : 4;
     };
     std::vector<Slot> m_slotOfStrand;
     std::unique_ptr<HairVolumeGrid> m_volumeGrid; // made on the first step with volume on

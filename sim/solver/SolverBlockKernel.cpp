@@ -150,8 +150,10 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
 
     // Wind (eq. 1 and 2 of the force-driven hair paper) with gusts sampled at each particle, so
     // they vary along a strand (turbulence is ours).
-    const V3 baseWind
-        = splat(c.wind) + V3{ sliceOf(block.windX, slice), sliceOf(block.windY, slice), sliceOf(block.windZ, slice) };
+    const V3 ownWind = block.wind
+        ? V3{ sliceOf(block.wind->x, slice), sliceOf(block.wind->y, slice), sliceOf(block.wind->z, slice) }
+        : V3{};
+    const V3 baseWind = splat(c.wind) + ownWind;
     const float windSpeed = glm::length(c.wind);
     const bool gusty = c.turbulence > 0.0f && windSpeed > 0.0f;
     const Lane gustAmplitude = splat(c.turbulence * windSpeed);

@@ -58,6 +58,13 @@ struct Solver::GlobalShapeRow {
     Lane share;
 };
 
+static_assert(kLanes <= 16, "Solver::Slot keeps a strand's lane in four bits");
+
+// A block's strands' winds of their own, m/s world, per lane (Solver::setStrandAir).
+struct Solver::BlockWind {
+    Lane x, y, z;
+};
+
 using ParticleRow = Solver::ParticleRow;
 using RestRow = Solver::RestRow;
 using ShapeRow = Solver::ShapeRow;
@@ -65,11 +72,11 @@ using GlobalShapeRow = Solver::GlobalShapeRow;
 
 struct Solver::Block {
     std::uint32_t points = 0;
-    std::array<std::int64_t, kLanes> strand{}; // index into the caller's curves, -1 for padding
+    std::array<std::int32_t, kLanes> strand{}; // index into the caller's curves, -1 for padding
     Lane strandLength{}; // rest arc length per lane, metres
     Lane stiffnessScale{}; // per lane: multiplies the settings' stiffness
     Lane dragScale{}; // per lane: multiplies the drag toward the wind (wet hair)
-    Lane windX{}, windY{}, windZ{}; // per lane: wind of its own, m/s world (a hair dryer)
+    const BlockWind* wind = nullptr; // per lane: wind of its own (a hair dryer); null: none
     Lane volumeWeight{}; // per lane: metres of drawn hair one particle stands for (0: padding)
     Lane volumeTargetScale{}; // per lane: multiplies the density the hair keeps (wet hair)
     // The grid's level of detail at the block's last splat (Solver::volumeSplat): the rows are taken

@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -67,14 +68,20 @@ std::string Solver::setStrandAir(std::span<const float> dragScale, std::span<con
     for (std::size_t i = 0; i < extraWind.size(); ++i)
         if (!(std::abs(extraWind[i].x) <= 1e3f && std::abs(extraWind[i].y) <= 1e3f && std::abs(extraWind[i].z) <= 1e3f))
             return "wind of strand " + std::to_string(i) + " is not a finite speed below 1000 m/s";
+    const bool windy = std::ranges::any_of(extraWind, [](const glm::vec3& w) { return w != glm::vec3(0.0f); });
+    m_blockWinds.assign(windy ? m_blocks.size() : 0, BlockWind{});
+    for (std::size_t i = 0; i < m_blocks.size(); ++i)
+        m_blocks[i].wind = windy ? &m_blockWinds[i] : nullptr;
     for (std::size_t i = 0; i < m_strandCount; ++i) {
         const Slot slot = m_slotOfStrand[i];
         Block& b = m_blocks[slot.block];
         b.dragScale[slot.lane] = dragScale.empty() ? 1.0f : dragScale[i];
-        const glm::vec3 w = extraWind.empty() ? glm::vec3(0.0f) : extraWind[i];
-        b.windX[slot.lane] = w.x;
-        b.windY[slot.lane] = w.y;
-        b.windZ[slot.lane] = w.z;
+        if (windy) {
+            BlockWind& w = m_blockWinds[slot.block];
+            w.x[slot.lane] = extraWind[i].x;
+            w.y[slot.lane] = extraWind[i].y;
+            w.z[slot.lane] = extraWind[i].z;
+        }
     }
     return {};
 }
@@ -164,9 +171,10 @@ void Solver::copyPositions(std::vector<glm::vec3>& out) const
 std::size_t Solver::memoryBytes() const
 {
     return m_restOffsets.capacity() * sizeof(std::uint32_t) + m_blocks.capacity() * sizeof(Block)
-        + m_slotOfStrand.capacity() * sizeof(Slot) + m_stateRows.capacity() * sizeof(ParticleRow)
-        + m_restRows.capacity() * sizeof(RestRow) + m_shapeRows.capacity() * sizeof(ShapeRow)
-        + m_globalShapeRows.capacity() * sizeof(GlobalShapeRow) + (m_volumeGrid ? m_volumeGrid->memoryBytes() : 0);
+        + m_slotOfStrand.capacity() * sizeof(Slot) + m_blockWinds.capacity() * sizeof(BlockWind)
+        + m_stateRows.capacity() * sizeof(ParticleRow) + m_restRows.capacity() * sizeof(RestRow)
+        + m_shapeRows.capacity() * sizeof(ShapeRow) + m_globalShapeRows.capacity() * sizeof(GlobalShapeRow)
+        + (m_volumeGrid ? m_volumeGrid->memoryBytes() : 0);
 }
 
 } // namespace wisp

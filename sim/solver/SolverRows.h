@@ -70,15 +70,14 @@ using RestRow = Solver::RestRow;
 using ShapeRow = Solver::ShapeRow;
 using GlobalShapeRow = Solver::GlobalShapeRow;
 
+// (The 64-byte lanes first, then the rest largest first: no padding between, 576 bytes.)
 struct Solver::Block {
-    std::uint32_t points = 0;
-    std::array<std::int32_t, kLanes> strand{}; // index into the caller's curves, -1 for padding
     Lane strandLength{}; // rest arc length per lane, metres
     Lane stiffnessScale{}; // per lane: multiplies the settings' stiffness
     Lane dragScale{}; // per lane: multiplies the drag toward the wind (wet hair)
-    const BlockWind* wind = nullptr; // per lane: wind of its own (a hair dryer); null: none
     Lane volumeWeight{}; // per lane: metres of drawn hair one particle stands for (0: padding)
     Lane volumeTargetScale{}; // per lane: multiplies the density the hair keeps (wet hair)
+    std::array<std::int32_t, kLanes> strand{}; // index into the caller's curves, -1 for padding
     // The grid's level of detail at the block's last splat (Solver::volumeSplat): the rows are taken
     // volumeRowsPerSample at a time (their centroid splats and is sampled for all of them), and
     // every volumeStride(g)-th lane of group g splats the weight of the lanes it stands for.
@@ -110,6 +109,8 @@ struct Solver::Block {
     std::span<ShapeRow> shape; // kShapeRows rows (ShapeRow)
     static constexpr std::uint32_t kShapeRows = 2;
     std::span<const GlobalShapeRow> globalShape; // empty while the global shape is off
+    const BlockWind* wind = nullptr; // per lane: wind of its own (a hair dryer); null: none
+    std::uint32_t points = 0;
 };
 
 struct StepConstants {

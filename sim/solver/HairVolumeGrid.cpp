@@ -130,7 +130,7 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::finish(G& g, ThreadPool* 
                 g.m_nodes[n] = Node{};
                 g.m_hairDensity[n] = 0.0f;
                 if (!g.m_sums.empty())
-                    g.m_sums[n] = g.m_smoothed[n] = Sums{};
+                    g.m_sums[n] = Sums{};
             });
     g.m_liveList = std::move(now);
     g.m_solidDensity = solidDensity;
@@ -179,11 +179,14 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::finish(G& g, ThreadPool* 
             s[3] = static_cast<float>(sum.moveZ * perMove);
         }
     };
-    // [1 2 1]/4 of `from` along `axis` over a row, into `out` (as Sums). At the grid's faces the
-    // missing neighbour is the node itself, so the smoothing keeps the total weight. Nodes outside
-    // the live bricks hold zeros (emptied above), and no sum reaches them.
+    // [1 2 1]/4 of `from` along `axis` over a row, into `out` (as Sums); node n of the grid is
+    // from[n - fromBase]. At the grid's faces the missing neighbour is the node itself, so the
+    // smoothing keeps the total weight. Nodes outside the live bricks hold zeros (emptied above),
+    // and no sum reaches them.
     const std::ptrdiff_t steps[3] = { 1, g.m_dims.x, static_cast<std::ptrdiff_t>(g.m_dims.x) * g.m_dims.y };
-    auto smoothRow = [&](const Sums* from, int axis, int i0, int j, int k, std::size_t n0, int nodes, float* out) {
+    auto smoothRow = [&](const Sums* grid, std::size_t fromBase, int axis, int i0, int j, int k, std::size_t n0,
+                         int nodes, float* out) {
+        const Sums* const from = grid - fromBase; // (only ever indexed at n >= fromBase)
         const std::ptrdiff_t step = steps[axis];
         const int size = g.m_dims[axis];
         if (nodes == kBrick && (axis != 0 || (i0 > 0 && i0 + kBrick < size))) {
@@ -239,21 +242,30 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::finish(G& g, ThreadPool* 
             if (l == 0 || g.m_liveList[l] / g.brickLayerSize() != g.m_liveList[l - 1] / g.brickLayerSize())
                 layers.push_back(l);
         layers.push_back(g.m_liveList.size());
+        // The smoothing along x goes into a scratch of one layer's planes (zeros outside its live
+        // bricks, as the grid's are), which the smoothing along y reads back into the sums: the
+        // grid keeps no second array of sums (16 bytes a node).
+        const std::size_t plane = static_cast<std::size_t>(steps[2]);
         forRange(pool, layers.size() - 1, 1, [&](std::size_t begin, std::size_t end) {
-            const std::size_t first = layers[begin], last = layers[end];
-            rowsOfLive(first, last,
-                [&](int, int, int, std::size_t n0, int nodes) { sumRow(n0, nodes, &g.m_sums[n0].weight); });
-            rowsOfLive(first, last, [&](int i0, int j, int k, std::size_t n0, int nodes) {
-                smoothRow(g.m_sums.data(), 0, i0, j, k, n0, nodes, &g.m_smoothed[n0].weight);
-            });
-            rowsOfLive(first, last, [&](int i0, int j, int k, std::size_t n0, int nodes) {
-                smoothRow(g.m_smoothed.data(), 1, i0, j, k, n0, nodes, &g.m_sums[n0].weight);
-            });
+            std::vector<Sums> scratch(plane * kBrick);
+            for (std::size_t layer = begin; layer < end; ++layer) {
+                const std::size_t first = layers[layer], last = layers[layer + 1];
+                const std::size_t base = g.m_liveList[first] / g.brickLayerSize() * kBrick * plane;
+                std::fill(scratch.begin(), scratch.end(), Sums{});
+                rowsOfLive(first, last,
+                    [&](int, int, int, std::size_t n0, int nodes) { sumRow(n0, nodes, &g.m_sums[n0].weight); });
+                rowsOfLive(first, last, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+                    smoothRow(g.m_sums.data(), 0, 0, i0, j, k, n0, nodes, &scratch[n0 - base].weight);
+                });
+                rowsOfLive(first, last, [&](int i0, int j, int k, std::size_t n0, int nodes) {
+                    smoothRow(scratch.data(), base, 1, i0, j, k, n0, nodes, &g.m_sums[n0].weight);
+                });
+            }
         });
         forRange(pool, g.m_liveList.size(), 4, [&](std::size_t begin, std::size_t end) {
             rowsOfLive(begin, end, [&](int i0, int j, int k, std::size_t n0, int nodes) {
                 alignas(64) float sums[4 * kBrick];
-                smoothRow(g.m_sums.data(), 2, i0, j, k, n0, nodes, sums);
+                smoothRow(g.m_sums.data(), 0, 2, i0, j, k, n0, nodes, sums);
                 storeRow(n0, nodes, sums);
             });
         });
@@ -514,7 +526,6 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi, int slo
     m_slots = std::clamp(slots, 1, kMaxSlots);
     m_kernel = kernel;
     m_sums.clear();
-    m_smoothed.clear();
     m_nodes.clear();
     m_hairDensity.clear();
     m_solid.clear();
@@ -548,7 +559,6 @@ bool HairVolumeGrid::setBounds(const glm::vec3& lo, const glm::vec3& hi, int slo
     m_accumulators.assign(count * static_cast<std::size_t>(m_slots), Accumulator{});
     if (kernel == Kernel::NearestSmoothed) {
         m_sums.assign(count, Sums{});
-        m_smoothed.assign(count, Sums{});
     }
     m_bricks = (dims + kBrick - 1) / kBrick;
     const std::size_t bricks = static_cast<std::size_t>(m_bricks.x) * m_bricks.y * m_bricks.z;
@@ -593,7 +603,7 @@ std::size_t HairVolumeGrid::memoryBytes() const
 {
     return m_nodes.capacity() * sizeof(Node) + (m_hairDensity.capacity() + m_solid.capacity()) * sizeof(float)
         + m_accumulators.capacity() * sizeof(Accumulator) + m_touched.capacity() + m_live.capacity()
-        + m_liveList.capacity() * sizeof(std::uint32_t) + (m_sums.capacity() + m_smoothed.capacity()) * sizeof(Sums);
+        + m_liveList.capacity() * sizeof(std::uint32_t) + m_sums.capacity() * sizeof(Sums);
 }
 
 void HairVolumeGrid::setSolid(const std::function<float(const glm::vec3&)>& signedDistance)

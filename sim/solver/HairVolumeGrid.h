@@ -189,8 +189,9 @@ private:
         float weight, moveX, moveY, moveZ;
     };
     // Per node (Kernel::NearestSmoothed only): the sums, smoothed along one axis after another
-    // ([1 2 1]/4 along x into m_smoothed, along y back into m_sums, along z into the nodes).
-    std::vector<Sums> m_sums, m_smoothed;
+    // ([1 2 1]/4 along x into a scratch of one brick layer, along y back into m_sums, along z into
+    // the nodes).
+    std::vector<Sums> m_sums;
 
     glm::ivec3 m_dims{ 0 };
     glm::vec3 m_origin{ 0.0f };

@@ -459,16 +459,18 @@ void Viewport::paintImage(const RenderView& view)
 void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution)
 {
     const QSize pixels = m_canvas.size();
+    const HairStyle style = drawnStyle();
     // Only where the hair can be: the half-resolution target's passes cover the whole frame
     // otherwise (measured: a fifth of a paused orbit's hair pass). Its strands reach half a width
     // beyond their points (drawnBounds), lines and the antialiasing skirt a pixel or two more, and
     // the target's texels are two pixels: four pixels of margin, two more where begin() clears.
-    const ClipRect hairRegion = clipRectOfBox(m_hair.drawnBounds(drawnStyle(), fraction), view.viewProjection,
-        view.viewportPixels, std::max(drawnStyle().minWidthPixels, 1.0f) + 4.0f);
+    const ClipRect hairRegion = halfResolution ? clipRectOfBox(m_hair.drawnBounds(style, fraction), view.viewProjection,
+                                    view.viewportPixels, std::max(style.minWidthPixels, 1.0f) + 4.0f)
+                                               : kWholeViewport;
     m_lastHairAtHalfResolution = halfResolution
         && m_lowRes.begin(pixels, m_canvas.frameDepthTexture(), widenClipRect(hairRegion, view.viewportPixels, 4.0f));
     if (!m_lastHairAtHalfResolution) {
-        m_hair.draw(view, drawnStyle(), fraction, preview);
+        m_hair.draw(view, style, fraction, preview);
         return;
     }
     // The same view over half the pixels: each strand's width in them, its coverage, and how finely
@@ -479,7 +481,7 @@ void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bo
     // No depth writes: its texels are four pixels, and a partly covering strand would hide the
     // strands beside it (measured on the default groom: 11 % of the hair's ink lost with them).
     m_hair.setDepthWrites(false);
-    m_hair.draw(half, drawnStyle(), fraction, preview);
+    m_hair.draw(half, style, fraction, preview);
     m_hair.setDepthWrites(true);
     m_canvas.bindFrame();
     m_lowRes.composite(pixels, m_canvas.frameDepthTexture(), view.projection, hairRegion);

@@ -158,9 +158,7 @@ std::uint32_t volumeRowsPerSample(const Solver::Block& b, const HairVolumeGrid& 
         rows *= 2;
     return rows;
 }
-} // namespace
 
-namespace {
 using Nearest = HairVolumeGridKernels<GridNearestTarget>;
 
 // A group's sixteen lanes as the splat and the read take them. The lanes' own arithmetic (the
@@ -188,25 +186,31 @@ inline kernel::Lane loadLanes(const float* from)
 }
 
 // Rows first .. first + count - 1 of the block's slice `slice`: their centroid in head space and
-// its grid node (`nearest`) into `out`, with (`withMoves`) their mean move and whether all are tame.
+// its grid node (`nearest`) into `out`, with (`WithMoves`: the splat; the read, every substep,
+// needs only the centroid) their mean move and whether all are tame.
+template <bool WithMoves>
 void groupSlice(const HairVolumeGrid& grid, const Solver::Block& b, const StepConstants& c, const glm::mat3& toHead,
-    std::uint32_t first, std::uint32_t count, int slice, bool nearest, bool withMoves, GroupLanes& out)
+    std::uint32_t first, std::uint32_t count, int slice, bool nearest, GroupLanes& out)
 {
     using VV3 = kernel::V3;
     const int at = slice * kernel::kVecLanes;
     const kernel::ParticleSlice* const rows = kernel::sliceOf<const kernel::ParticleSlice>(b.state.data(), slice);
     const kernel::ParticleSlice& r = rows[first];
     VV3 x{ r.x, r.y, r.z };
-    VV3 move = x - VV3{ r.px, r.py, r.pz };
-    // A particle gone non-finite or flying off (its strand is put back at rest at the end of
-    // the step) must not spread through the grid.
-    kernel::Mask tame = l1Length(move) < kVolumeMaxMoveMetres;
+    VV3 move{};
+    kernel::Mask tame{};
+    if constexpr (WithMoves) {
+        move = x - VV3{ r.px, r.py, r.pz };
+        // A particle gone non-finite or flying off (its strand is put back at rest at the end of
+        // the step) must not spread through the grid.
+        tame = l1Length(move) < kVolumeMaxMoveMetres;
+    }
     if (count > 1) {
         for (std::uint32_t j = first + 1; j < first + count; ++j) {
             const kernel::ParticleSlice& q = rows[j];
             const VV3 p{ q.x, q.y, q.z };
             x = x + p;
-            if (withMoves) {
+            if constexpr (WithMoves) {
                 const VV3 moved = p - VV3{ q.px, q.py, q.pz };
                 tame = tame & (l1Length(moved) < kVolumeMaxMoveMetres);
                 move = move + moved;
@@ -214,9 +218,10 @@ void groupSlice(const HairVolumeGrid& grid, const Solver::Block& b, const StepCo
         }
         const float share = 1.0f / static_cast<float>(count);
         x = x * kernel::splat(share);
-        move = move * kernel::splat(share);
+        if constexpr (WithMoves)
+            move = move * kernel::splat(share);
     }
-    if (withMoves) {
+    if constexpr (WithMoves) {
         storeLanes(out.x + at, x.x);
         storeLanes(out.y + at, x.y);
         storeLanes(out.z + at, x.z);
@@ -284,7 +289,7 @@ void volumeSplatOnTarget(HairVolumeGrid& grid, Solver::Block& b, const StepConst
     for (std::uint32_t g = 0; g < groups; ++g) {
         const std::uint32_t first = g * rows, count = std::min(rows, b.points - first);
         for (int slice = 0; slice < kLanes / kernel::kVecLanes; ++slice)
-            groupSlice(grid, b, c, toHead, first, count, slice, nearest, true, lanes);
+            groupSlice<true>(grid, b, c, toHead, first, count, slice, nearest, lanes);
         int level = 0; // log2 of the stride
         if (full) {
             const float spacing2 = widestSpacingSquared(lanes);
@@ -395,7 +400,7 @@ void volumeReadOnTarget(
         if (first + count <= 1)
             continue; // roots are pinned
         for (int slice = 0; slice < kLanes / kernel::kVecLanes; ++slice)
-            groupSlice(grid, b, c, toHead, first, count, slice, nearest, false, lanes);
+            groupSlice<false>(grid, b, c, toHead, first, count, slice, nearest, lanes);
         const int stride = b.volumeStride(g);
         Lane fields[8]; // the Node's order: density, gradient x y z, momentum x y z, hair
         if (nearest)

@@ -182,6 +182,7 @@ ShadowLookup HairShadowMap::lookup() const
     out.depthTexture = m_depthTexture;
     out.opacityTexture = m_opacityTexture;
     out.layerMetres = glm::vec4(kLayerMetres[0], kLayerMetres[1], kLayerMetres[2], kLayerMetres[3]);
+    out.revision = m_passes;
     return out;
 }
 

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include <glm/common.hpp>
+#include <glm/vec2.hpp>
 
 namespace wisp {
 
@@ -21,11 +22,16 @@ bool HeadRenderer::initialize(GlFunctions* gl)
     m_program = loadShaderProgram(QStringLiteral("head"), &m_error);
     if (!m_program)
         return false;
+    QString lightError;
+    m_lightProgram = loadTransformFeedbackProgram(gl, QStringLiteral("head_light"), { "t_light" }, &lightError);
+    if (!m_lightProgram)
+        qWarning("HeadRenderer: the head is drawn without the hair's shadow: %s", qPrintable(lightError));
     gl->glGenVertexArrays(1, &m_vao);
     gl->glGenBuffers(1, &m_vertexBuffer);
     gl->glGenBuffers(1, &m_weightBuffer);
     gl->glGenBuffers(1, &m_coverageBuffer);
     gl->glGenBuffers(1, &m_indexBuffer);
+    gl->glGenBuffers(1, &m_lightBuffer);
     gl->glBindVertexArray(m_vao);
     gl->glBindBuffer(GL_ARRAY_BUFFER, m_vertexBuffer);
     gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer); // recorded in the VAO
@@ -41,6 +47,9 @@ bool HeadRenderer::initialize(GlFunctions* gl)
     gl->glBindBuffer(GL_ARRAY_BUFFER, m_coverageBuffer);
     gl->glEnableVertexAttribArray(3);
     gl->glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(glm::vec4), nullptr);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, m_lightBuffer);
+    gl->glEnableVertexAttribArray(4);
+    gl->glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, sizeof(glm::vec2), nullptr);
     gl->glBindVertexArray(0);
     gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
     m_indexCount = 0;
@@ -54,6 +63,10 @@ void HeadRenderer::release()
     if (!m_gl)
         return;
     m_gl->glDeleteBuffers(1, &m_indexBuffer);
+    m_gl->glDeleteBuffers(1, &m_lightBuffer);
+    m_lightBuffer = 0;
+    m_lightKey.reset();
+    m_lightProgram.reset();
     m_gl->glDeleteBuffers(1, &m_weightBuffer);
     m_gl->glDeleteBuffers(1, &m_coverageBuffer);
     m_coverageBuffer = 0;
@@ -104,6 +117,12 @@ void HeadRenderer::uploadPending()
     m_gl->glBufferData(
         GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_DRAW);
     m_coverageDirty = true;
+    // Fully lit until updateLight() looks the shadows up (and for good, without its program).
+    const std::vector<glm::vec2> lit(m_vertices.size(), glm::vec2(1.0f));
+    m_gl->glBindBuffer(GL_ARRAY_BUFFER, m_lightBuffer);
+    m_gl->glBufferData(
+        GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(lit.size() * sizeof(glm::vec2)), lit.data(), GL_DYNAMIC_COPY);
+    m_lightKey.reset();
     m_gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
     // The element buffer binding is VAO state: bind the VAO to touch it.
     m_gl->glBindVertexArray(m_vao);
@@ -151,6 +170,33 @@ void HeadRenderer::uploadWeights()
     checkGlErrors(m_gl, "HeadRenderer::uploadWeights");
 }
 
+void HeadRenderer::updateLight(const ShadowLookup& shadow, const glm::mat4& modelToWorld)
+{
+    if (!m_lightProgram || m_vertices.empty())
+        return;
+    if (m_lightKey && m_lightKey->shadow.sameAs(shadow) && m_lightKey->modelToWorld == modelToWorld)
+        return;
+    GlFunctions* gl = m_gl;
+    QOpenGLShaderProgram& program = *m_lightProgram;
+    program.bind();
+    setUniform(program, "u_modelToWorld", modelToWorld);
+    bindShadowLookup(gl, program, shadow);
+    gl->glEnable(GL_RASTERIZER_DISCARD);
+    gl->glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, m_lightBuffer);
+    gl->glBindVertexArray(m_vao);
+    gl->glBeginTransformFeedback(GL_POINTS);
+    gl->glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(m_vertices.size()));
+    gl->glEndTransformFeedback();
+    gl->glBindVertexArray(0);
+    gl->glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    gl->glDisable(GL_RASTERIZER_DISCARD);
+    unbindShadowLookup(gl);
+    program.release();
+    m_lightKey = LightKey{ shadow, modelToWorld };
+    ++m_lightUpdates;
+    checkGlErrors(gl, "HeadRenderer::updateLight");
+}
+
 void HeadRenderer::draw(const RenderView& view, bool showGrowthOverlay)
 {
     if (!m_program)
@@ -163,6 +209,7 @@ void HeadRenderer::draw(const RenderView& view, bool showGrowthOverlay)
         uploadCoverage();
     if (m_indexCount == 0)
         return;
+    updateLight(view.shadow, view.modelToWorld);
 
     GlFunctions* gl = m_gl;
     gl->glEnable(GL_DEPTH_TEST);
@@ -177,16 +224,13 @@ void HeadRenderer::draw(const RenderView& view, bool showGrowthOverlay)
     program.bind();
     setUniform(program, "u_view", view.view);
     setUniform(program, "u_viewProjection", view.viewProjection);
-    setUniform(program, "u_modelToWorld", view.modelToWorld);
     setUniform(program, "u_skinColour", linearFromSrgb(m_colourSrgb));
     setUniform(program, "u_keyLightView", view.keyLightView);
     setUniform(program, "u_fillLightView", view.fillLightView);
     setUniform(program, "u_growthOverlay", showGrowthOverlay && hasGrowthOverlay() ? 1.0f : 0.0f);
-    bindShadowLookup(gl, program, view.shadow);
     gl->glBindVertexArray(m_vao);
     gl->glDrawElements(GL_TRIANGLES, m_indexCount, GL_UNSIGNED_INT, nullptr);
     gl->glBindVertexArray(0);
-    unbindShadowLookup(gl);
     program.release();
     gl->glDisable(GL_CULL_FACE);
     checkGlErrors(gl, "HeadRenderer::draw");

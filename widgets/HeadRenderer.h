@@ -6,6 +6,9 @@
 // the next draw, with the context current, so the head can be set before the widget is shown.
 // The weights live in a buffer of their own: a brush stroke changes them many times a second, and
 // then only they are sent again (glBufferSubData), never the positions and normals.
+// The hair's shadow and ambient at each vertex are looked up once per shadow map (and placement of
+// the head), captured by transform feedback into a buffer the drawing reads (head_light.vert): an
+// orbit of a paused scene, whose key light is fixed to the head, reads no shadow texels at all.
 //
 // Thread: GUI. initialize(), release() and draw() need the viewport's context current.
 
@@ -16,7 +19,9 @@
 #include <QOpenGLShaderProgram>
 #include <QString>
 
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace wisp {
@@ -53,6 +58,8 @@ public:
     void setColour(const glm::vec3& srgb) { m_colourSrgb = srgb; }
 
     QString error() const { return m_error; }
+    // How many times the light per vertex was looked up so far (tests: once per shadow map).
+    std::uint64_t lightUpdates() const { return m_lightUpdates; }
     static constexpr float kSkinSrgb[3] = { 0.87f, 0.68f, 0.58f };
 
 private:
@@ -63,15 +70,26 @@ private:
     void uploadPending();
     void uploadWeights();
     void uploadCoverage();
+    // m_lightBuffer for this shadow map and placement, unless it already holds them.
+    void updateLight(const ShadowLookup& shadow, const glm::mat4& modelToWorld);
 
     GlFunctions* m_gl = nullptr;
     std::unique_ptr<QOpenGLShaderProgram> m_program;
+    std::unique_ptr<QOpenGLShaderProgram> m_lightProgram; // head_light.vert (null: the head unshadowed)
     GLuint m_vao = 0;
     GLuint m_vertexBuffer = 0;
     GLuint m_weightBuffer = 0; // one float per vertex, sized with the mesh
     GLuint m_coverageBuffer = 0; // one vec4 per vertex (linear RGB, weight), sized with the mesh
     GLuint m_indexBuffer = 0;
+    GLuint m_lightBuffer = 0; // vec2 per vertex: key light, hair ambient (head_light.vert)
     GLsizei m_indexCount = 0;
+    // What m_lightBuffer was looked up for (valid: it holds that, for the mesh as uploaded).
+    struct LightKey {
+        ShadowLookup shadow;
+        glm::mat4 modelToWorld{ 1.0f };
+    };
+    std::optional<LightKey> m_lightKey;
+    std::uint64_t m_lightUpdates = 0;
     // Kept after uploading: a new context (the widget moved to another window) needs them again.
     std::vector<Vertex> m_vertices;
     std::vector<glm::uvec3> m_triangles;

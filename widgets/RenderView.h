@@ -7,6 +7,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <cstdint>
+
 namespace wisp {
 
 // The key light's deep opacity map (HairShadowMap), as receivers read it.
@@ -17,6 +19,15 @@ struct ShadowLookup {
     unsigned depthTexture = 0; // r: nearest hair or head, g: nearest head (metres from the light)
     unsigned opacityTexture = 0; // opacity in front of the end of each of the four layers
     glm::vec4 layerMetres{ 0.0f }; // where the layers end, behind the depth in r
+    // Counts the map's renders: the same revision (and matrix and textures) reads the same shadows,
+    // so a receiver may keep what it looked up (HeadRenderer's light per vertex).
+    std::uint64_t revision = 0;
+
+    bool sameAs(const ShadowLookup& o) const
+    {
+        return enabled == o.enabled && revision == o.revision && worldToShadow == o.worldToShadow
+            && depthTexture == o.depthTexture && opacityTexture == o.opacityTexture && layerMetres == o.layerMetres;
+    }
 };
 
 struct RenderView {

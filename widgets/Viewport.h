@@ -210,6 +210,9 @@ public:
     double framesPerSecond() const { return m_fps; }
     std::uint64_t paintCount() const { return m_paintCount; } // paintGL calls so far
     std::uint64_t shadowPassCount() const { return m_shadowMap.passCount(); } // shadow maps rendered so far
+    // Times the head's shadow and ambient per vertex were looked up so far: once per shadow map and
+    // placement of the head, not once per paint (HeadRenderer).
+    std::uint64_t headLightLookups() const { return m_head.lightUpdates(); }
     // The background at a height of the view: 0 is the top edge, 1 the bottom.
     static QColor backgroundColour(double heightFraction);
     // Empty when GL is ready; otherwise why nothing 3D is drawn (no 3.3 context, a shader error).

@@ -1,4 +1,4 @@
-// The key light's deep opacity map (widgets/HairShadowMap.h), read by hair.vert and head.frag.
+// The key light's deep opacity map (widgets/HairShadowMap.h), read by hair.vert and head_light.vert.
 uniform float u_shadows;            // 1: read the maps; 0: everything fully lit
 uniform mat4 u_worldToShadow;       // world -> (u, v, metres from the light)
 uniform sampler2D u_shadowDepth;    // r: nearest hair or head; g: nearest head (metres from the light)

@@ -154,26 +154,37 @@ TEST_F(ViewportTest, OrbitingAPausedSceneReusesTheShadowsAndMovingHairRendersThe
     grab();
     const std::uint64_t passes = viewport->shadowPassCount();
     EXPECT_GE(passes, 1u);
+    // The head's light per vertex is looked up once for these shadows, not once a paint.
+    const std::uint64_t lookups = viewport->headLightLookups();
+    EXPECT_GE(lookups, 1u);
     for (int k = 0; k < 4; ++k) {
         drag(viewport.get(), Qt::MiddleButton, Qt::NoModifier, { 300, 240 }, { 320, 240 });
         grab();
     }
     EXPECT_EQ(viewport->shadowPassCount(), passes); // the key light stays with the head
+    EXPECT_EQ(viewport->headLightLookups(), lookups);
     viewport->setFrame(scalpFrame(head, 600, 16, 1.0f));
     grab();
     EXPECT_EQ(viewport->shadowPassCount(), passes + 1);
+    EXPECT_EQ(viewport->headLightLookups(), lookups + 1); // the head takes the new shadow
     // A light that follows the camera renders them again as the camera turns.
     viewport->setLightFollowsCamera(true);
     grab();
     const std::uint64_t following = viewport->shadowPassCount();
+    const std::uint64_t followingLookups = viewport->headLightLookups();
     drag(viewport.get(), Qt::MiddleButton, Qt::NoModifier, { 300, 240 }, { 340, 240 });
     grab();
     EXPECT_EQ(viewport->shadowPassCount(), following + 1);
-    // Off: none rendered.
+    EXPECT_EQ(viewport->headLightLookups(), followingLookups + 1);
+    // Off: none rendered, and the head is lit fully once, then left alone.
     viewport->setShadowsEnabled(false);
     viewport->setFrame(scalpFrame(head, 600, 16, 2.0f));
     grab();
     EXPECT_EQ(viewport->shadowPassCount(), following + 1);
+    EXPECT_EQ(viewport->headLightLookups(), followingLookups + 2);
+    drag(viewport.get(), Qt::MiddleButton, Qt::NoModifier, { 300, 240 }, { 340, 240 });
+    grab();
+    EXPECT_EQ(viewport->headLightLookups(), followingLookups + 2);
 }
 
 // While the hair moves (frames streaming in, not grabbed), the shadow maps are rendered every third

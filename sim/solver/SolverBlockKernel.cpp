@@ -189,11 +189,11 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         const Mask calm = windSpeed2 < splat(1e-12f);
         const V3 tangent = x - parentBefore;
         const Lane wt = dot(wind, tangent);
-        const Lane invTangent = lrsqrt(lmax(dot(tangent, tangent), splat(1e-20f)));
-        const Lane across2
-            = splat(1.0f) - (wt * wt) * (invTangent * invTangent) * lrcp(select(calm, splat(1.0f), windSpeed2));
-        const Lane across2Safe = lmax(across2, splat(1e-20f));
-        const Lane across = select(calm, splat(1.0f), across2Safe * lrsqrt(across2Safe));
+        // s² = 1 - (w.t)² / (|t|² |w|²): one division and one square root (the divider is what a
+        // particle's step is short of on a wide target, most of all Intel's 512-bit one).
+        const Lane across2 = splat(1.0f)
+            - (wt * wt) / (lmax(dot(tangent, tangent), splat(1e-20f)) * select(calm, splat(1.0f), windSpeed2));
+        const Lane across = select(calm, splat(1.0f), lsqrt(lmax(across2, splat(1e-20f))));
         const Lane kdt = drag * across * dt;
         const V3 move = (x - previous) * keep + wind * (kdt * dt);
         return x + move * lrcp(splat(1.0f) + kdt) + gravityStep;
@@ -206,9 +206,14 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     // previous position moves by s d_i) damps what the length projection added. `reach` is the
     // bent position less the parent's, `before` the particle's position at the start of the
     // substep, `kick` the bend's reaction on the parent (added to its previous position with the
-    // DFTL correction, one write). Returns its final position.
-    auto finish = [&](std::uint32_t i, const V3& before, const V3& reach, const V3& parent, const V3& kick,
-                      Lane inverseLength) {
+    // DFTL correction, one write). Returns its final position and the unit direction from the parent
+    // to it: follow the leader's where contact left the particle where that put it, else worked out
+    // again (so 1 / length, a division, only where contact looked).
+    struct Finished {
+        V3 position;
+        V3 direction;
+    };
+    auto finish = [&](std::uint32_t i, const V3& before, const V3& reach, const V3& parent, const V3& kick) {
         ParticleSlice& p = row[i];
         V3 previous = before;
         const Lane length = rest[i].length;
@@ -230,6 +235,13 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         // first-order extension reads a hair's breadth inside), so a lane ends alike however many
         // lanes run together (a slice of the block on each SIMD target).
         const Mask needsLook = Transformed ? Mask{} == 0 : clearance < splat(0.0f);
+        Lane inverseLength{}; // 1 / length, once contact needs it
+        bool haveInverseLength = false;
+        auto needInverseLength = [&] {
+            if (!haveInverseLength)
+                inverseLength = splat(1.0f) / length;
+            haveInverseLength = true;
+        };
         if (c.field && anyOf(needsLook)) {
             // The head's distance and normal at a world-space position.
             auto sampleHead = [&](const V3& at) {
@@ -243,6 +255,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             const Lane depth = splat(c.offset) - sample.distance;
             const Mask inside = (depth > splat(0.0f)) & needsLook;
             if (anyOf(inside)) {
+                needInverseLength();
                 // A curved surface is not its tangent plane: turn onto the plane, look again from
                 // there, and only then push what the segment cannot reach. Friction comes once, after
                 // the last look: its normal correction is what all the looks moved the particle out
@@ -326,6 +339,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             const Lane depth = splat(capsule.radiusMetres + c.offset) - dist;
             const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
             if (anyOf(inside)) {
+                needInverseLength();
                 const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
                 resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, headMove, position,
                     previous, true, splat(c.offset));
@@ -346,7 +360,13 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         p.px = previous.x;
         p.py = previous.y;
         p.pz = previous.z;
-        return position;
+        V3 direction = ftl.direction;
+        if (haveInverseLength) {
+            const Mask moved
+                = (position.x != ftl.position.x) | (position.y != ftl.position.y) | (position.z != ftl.position.z);
+            direction = select(moved, (position - parent) * inverseLength, direction);
+        }
+        return Finished{ position, direction };
     };
 
     for (int s = firstSubstep; s < endSubstep; ++s) {
@@ -431,8 +451,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 reach = pullTowardGlobalShape<Transformed>(parent + reach, globalShape[j], root, rootHead, c.rotation)
                     - parent;
             parentStart = x;
-            const Lane inverseLength = 1.0f / r.length;
-            const V3 position = finish(j, x, reach, parent, kick, inverseLength);
+            const auto [position, d] = finish(j, x, reach, parent, kick);
             if (j + 1 < n) {
                 // Transport the frame onto this segment's direction d now: the shortest rotation
                 // from D to d takes a vector v across D to v - (d.v) / (1 + D.d) (D + d), which
@@ -442,7 +461,6 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 // exact; no renormalisation on the chain.)
                 const V3 next = restCoordinates(rest[j + 1].u, rest[j + 1].v);
                 const V3 w = frameE * next.y + frameB * next.z;
-                const V3 d = (position - parent) * inverseLength;
                 const Lane inverse = lrcp(lmax(splat(1.0f) + dot(frameD, d), splat(1e-2f)));
                 const V3 sum = frameD + d;
                 turned = d * next.x + w - sum * (dot(d, w) * inverse);

@@ -139,6 +139,7 @@ template <bool Transformed>
 struct LengthCorrection {
     V3 position; // at rest length from the parent
     V3 correction; // position less the unconstrained position, for the DFTL velocity correction
+    V3 direction; // the segment's unit direction, parent to position
 };
 
 // A rest direction's coordinates in its parent's rest frame from their stereographic projection
@@ -167,8 +168,9 @@ struct LengthCorrection {
 // final, along the same direction.
 [[gnu::always_inline]] inline LengthCorrection followTheLeader(const V3& parent, const V3& reach, Lane length)
 {
-    const Lane scale = length * lrsqrt(lmax(dot(reach, reach), splat(1e-24f)));
-    return { parent + reach * scale, reach * (scale - 1.0f) };
+    const Lane inverseReach = lrsqrt(lmax(dot(reach, reach), splat(1e-24f)));
+    const Lane scale = length * inverseReach;
+    return { parent + reach * scale, reach * (scale - 1.0f), reach * inverseReach };
 }
 
 } // namespace

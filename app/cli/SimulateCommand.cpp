@@ -15,6 +15,7 @@
 #include "sim/geometry/DefaultHead.h"
 #include "sim/groom/GrowthMap.h"
 #include "sim/solver/HairSimulation.h"
+#include "sim/util/SimdTarget.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -51,6 +52,9 @@ std::vector<OptionSpec> simulateOptions()
             "take them as they are in Wisp's frame" },
         { "steps", "N", "time steps to simulate (default 120)" },
         { "threads", "N", "solver threads (default: one per core)" },
+        { "target", "NAME",
+            "run the solver's kernels on this SIMD target instead of the best this CPU has (AVX-512, AVX2, SSE4, "
+            "...: see wisp-cli bench); every target gives the same positions, bit for bit" },
         { "grid", "WxHxP", "the first paper's layout: W x H strands of P particles on the scalp" },
         { "out", "FILE", "write the strands there (wisp-strands text format, see the README)" },
         { "export", "FILE", "write the strands as .hair, .data, .obj, .gltf or .glb (the last three with the head)" },
@@ -105,6 +109,10 @@ int runSimulate(int argc, char** argv)
     args.applyParameters(values); // options win over the file
     const auto steps = static_cast<int>(args.integer("steps", 120, 0, 10'000'000));
     const auto threads = static_cast<int>(args.integer("threads", 0, 0, 1024));
+    if (const auto target = args.text("target")) {
+        if (std::string why = forceSimdTarget(*target); !why.empty())
+            throw CliError{ kBadInput, "--target: " + why };
+    }
 
     std::optional<io::Axis> up;
     if (const auto text = args.text("up")) {

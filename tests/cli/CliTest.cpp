@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <sys/wait.h>
 
@@ -234,6 +235,34 @@ TEST(Cli, BenchRunsOnTheTargetItIsToldAndRefusesOneItLacks)
     EXPECT_EQ(bad.status, 1) << bad.output;
     EXPECT_NE(bad.output.find("--target: no SIMD target 'MMX'"), std::string::npos) << bad.output;
     EXPECT_NE(bad.output.find(wisp::availableSimdTargets().front()), std::string::npos) << bad.output;
+}
+
+// simulate --target runs the solver on the target it is told, and every target writes the same
+// file, byte for byte (the README's rule: the same bits on every target), wind and volume on.
+TEST(Cli, SimulateOnEveryTargetWritesTheSameFile)
+{
+    const fs::path dir = tempDir();
+    auto bytesOf = [](const fs::path& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    };
+    const std::string run = "simulate --steps 40 --threads 2 --wind_speed 6 --volume 0.5 --export ";
+    const CliRun best = cli(run + (dir / "best.hair").string());
+    ASSERT_EQ(best.status, 0) << best.output;
+    const std::string expected = bytesOf(dir / "best.hair");
+    ASSERT_GT(expected.size(), 10'000u);
+    const std::vector<std::string> targets = wisp::availableSimdTargets();
+    for (const std::string& t : targets) {
+        const fs::path out = dir / (t + ".hair");
+        const CliRun r = cli(run + out.string() + " --target " + t);
+        ASSERT_EQ(r.status, 0) << r.output;
+        EXPECT_TRUE(bytesOf(out) == expected) << t << " wrote other positions than the best target";
+    }
+    const CliRun bad = cli("simulate --steps 1 --target MMX --out " + (dir / "x.txt").string());
+    EXPECT_EQ(bad.status, 1) << bad.output;
+    EXPECT_NE(bad.output.find("--target: no SIMD target 'MMX'"), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(dir / "x.txt"));
+    fs::remove_all(dir);
 }
 
 TEST(Cli, BenchGivesNoFloorToTheBrushAndCombWorkloads)

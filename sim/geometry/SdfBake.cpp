@@ -1,6 +1,7 @@
 #include "sim/geometry/SdfBake.h"
 
 #include "sim/geometry/MeshBvh.h" // closestPointOnTriangle
+#include "sim/geometry/SdfBandRow.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -149,12 +150,18 @@ bool bakeBand(ThreadPool* pool, const std::vector<BakeTriangle>& triangles, cons
     const int slabs = static_cast<int>(bins.offsets.size()) - 1;
     // A hair of slack keeps float rounding from dropping a sample that is exactly `band` away.
     const double reach = static_cast<double>(band) * 1.0001 + 1e-7;
-    const double h = grid.h;
+    const double h = grid.h, inverseH = 1.0 / h;
     return parallelFor(pool, slabs, [&](int s) {
         const int k0 = s * kSlabPlanes, k1 = std::min(grid.dims.z - 1, k0 + kSlabPlanes - 1);
+        std::vector<float> xs, ys, zs; // one triangle's samples in this slab (BandSamples)
+        std::vector<std::uint32_t> indices;
         for (std::uint32_t n = bins.offsets[static_cast<std::size_t>(s)];
              n < bins.offsets[static_cast<std::size_t>(s) + 1]; ++n) {
             const BakeTriangle& t = triangles[bins.items[n]];
+            xs.clear();
+            ys.clear();
+            zs.clear();
+            indices.clear();
             int i0, i1, j0, j1, kk0, kk1;
             grid.range(0, t.lo.x - band, t.hi.x + band, i0, i1);
             grid.range(1, t.lo.y - band, t.hi.y + band, j0, j1);
@@ -171,6 +178,11 @@ bool bakeBand(ThreadPool* pool, const std::vector<BakeTriangle>& triangles, cons
                                       glm::dot(glm::dvec3(t.c) - centre, glm::dvec3(t.c) - centre) }))
                 + reach;
             const glm::dvec3 normal(t.unitNormal);
+            // (Reciprocals once a triangle: the rows' bounds are rounded outward by a thousandth of
+            // a cell, so the last bits these change move no bound.)
+            const double slope = h * normal.x;
+            const bool steep = std::abs(slope) > 1e-12 * h;
+            const double inverseSlope = steep ? 1.0 / slope : 0.0;
             for (int k = kk0; k <= kk1; ++k)
                 for (int j = j0; j <= j1; ++j) {
                     const glm::dvec3 rowStart(grid.origin.x, grid.origin.y + j * h, grid.origin.z + k * h);
@@ -179,12 +191,12 @@ bool bakeBand(ThreadPool* pool, const std::vector<BakeTriangle>& triangles, cons
                     if (across2 < 0.0)
                         continue;
                     const double across = std::sqrt(across2);
-                    double lo = (centre.x - across - grid.origin.x) / h, hi = (centre.x + across - grid.origin.x) / h;
+                    double lo = (centre.x - across - grid.origin.x) * inverseH,
+                           hi = (centre.x + across - grid.origin.x) * inverseH;
                     // Plane distance along the row: c0 + i * h * normal.x.
                     const double c0 = glm::dot(rowStart - glm::dvec3(t.a), normal);
-                    const double slope = h * normal.x;
-                    if (std::abs(slope) > 1e-12 * h) {
-                        const double p = (-reach - c0) / slope, q = (reach - c0) / slope;
+                    if (steep) {
+                        const double p = (-reach - c0) * inverseSlope, q = (reach - c0) * inverseSlope;
                         lo = std::max(lo, std::min(p, q));
                         hi = std::min(hi, std::max(p, q));
                     } else if (std::abs(c0) > reach) {
@@ -192,15 +204,23 @@ bool bakeBand(ThreadPool* pool, const std::vector<BakeTriangle>& triangles, cons
                     }
                     const int first = std::max(i0, static_cast<int>(std::clamp(std::ceil(lo - 1e-3), -1.0, 1e9)));
                     const int last = std::min(i1, static_cast<int>(std::clamp(std::floor(hi + 1e-3), -1.0, 1e9)));
-                    float* row = &dist2[grid.index(0, j, k)];
+                    // The row's samples join the triangle's list, at their positions as
+                    // Grid::position computes them.
                     for (int i = first; i <= last; ++i) {
                         const glm::vec3 p = grid.position(i, j, k);
-                        const glm::vec3 d = closestPointOnTriangle(p, t.a, t.b, t.c).point - p;
-                        const float d2 = glm::dot(d, d);
-                        if (d2 < row[i])
-                            row[i] = d2;
+                        xs.push_back(p.x);
+                        ys.push_back(p.y);
+                        zs.push_back(p.z);
+                        indices.push_back(static_cast<std::uint32_t>(grid.index(i, j, k)));
                     }
                 }
+            // Their exact distances, a register of samples at a time across the rows (SdfBandRow.h).
+            const std::size_t count = xs.size();
+            const std::size_t padded = (count + kBandSamplePadding - 1) / kBandSamplePadding * kBandSamplePadding;
+            xs.resize(padded, 0.0f);
+            ys.resize(padded, 0.0f);
+            zs.resize(padded, 0.0f);
+            bandSamples(t, BandSamples{ xs.data(), ys.data(), zs.data(), indices.data(), count }, dist2.data());
         }
     });
 }

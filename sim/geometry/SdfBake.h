@@ -5,7 +5,8 @@
 // How the bake works, and why.
 //
 // 1. Exact narrow band. Every triangle visits the samples inside its box grown by B = kBandCells
-//    cells and keeps the minimum exact point-triangle distance per sample. A sample whose true
+//    cells and keeps the minimum exact point-triangle distance per sample (a register of samples
+//    at a time on the SIMD target: SdfBandRow.h). A sample whose true
 //    distance is <= B lies in the grown box of its nearest triangle, so every sample that ends
 //    up <= B holds its exact distance (to float precision). Cost is proportional to the surface
 //    area in cells, not to the volume, which is what makes a 20k-triangle head take milliseconds

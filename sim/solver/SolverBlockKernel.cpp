@@ -189,14 +189,17 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         const Mask calm = windSpeed2 < splat(1e-12f);
         const V3 tangent = x - parentBefore;
         const Lane wt = dot(wind, tangent);
-        // s² = 1 - (w.t)² / (|t|² |w|²): one division and one square root (the divider is what a
-        // particle's step is short of on a wide target, most of all Intel's 512-bit one).
-        const Lane across2 = splat(1.0f)
-            - (wt * wt) / (lmax(dot(tangent, tangent), splat(1e-20f)) * select(calm, splat(1.0f), windSpeed2));
-        const Lane across = select(calm, splat(1.0f), lsqrt(lmax(across2, splat(1e-20f))));
-        const Lane kdt = drag * across * dt;
-        const V3 move = (x - previous) * keep + wind * (kdt * dt);
-        return x + move * lrcp(splat(1.0f) + kdt) + gravityStep;
+        // With D = |t|² |w|² and N = D - (w.t)² = |w x t|², s = sqrt(N / D); writing c = k dt / s
+        // (the drag times dt) and R = sqrt(N D) = s D, the update is
+        //   v' dt = (keep v dt D + w dt c R) / (D + c R),
+        // one square root and one division a particle (the divider is what a particle's step is
+        // short of on a wide target, most of all Intel's 512-bit one). In calm air s = 1: D = N = 1,
+        // the same arithmetic as (keep v dt + w dt c) / (1 + c). s stays at least 1e-10.
+        const Lane d = select(calm, splat(1.0f), lmax(dot(tangent, tangent), splat(1e-20f)) * windSpeed2);
+        const Lane n = select(calm, splat(1.0f), lmax(d - wt * wt, d * 1e-20f));
+        const Lane cr = drag * dt * lsqrt(n * d);
+        const V3 move = (x - previous) * keep * d + wind * (cr * dt);
+        return x + move * lrcp(d + cr) + gravityStep;
     };
 
     // Length, then contact, for particle i whose bent position is `bent` and whose parent is final

@@ -6,6 +6,7 @@
 #include "app/editor/FileMenu.h"
 #include "app/editor/MainWindow.h"
 #include "app/editor/RenderCommand.h"
+#include "widgets/HeapPolicy.h"
 
 #include <QApplication>
 #include <QCommandLineParser>
@@ -14,6 +15,7 @@
 
 int main(int argc, char** argv)
 {
+    wisp::keepFreedHeapForReuse(); // the software rasteriser's per-paint memory (widgets/HeapPolicy.h)
     QApplication app(argc, argv);
     QApplication::setOrganizationName(QStringLiteral("Wisp"));
     QApplication::setApplicationName(QStringLiteral("Wisp"));

@@ -3,6 +3,8 @@
 // CMake's gtest_discover_tests runs this binary with --gtest_list_tests at build time, where there
 // may be no display: listing tests needs no QApplication, so none is made for it.
 
+#include "widgets/HeapPolicy.h"
+
 #include <QApplication>
 
 #include <gtest/gtest.h>
@@ -18,6 +20,7 @@ int main(int argc, char** argv)
         testing::InitGoogleTest(&argc, argv);
         return RUN_ALL_TESTS();
     }
+    wisp::keepFreedHeapForReuse(); // as the editor does (widgets/HeapPolicy.h)
     QApplication app(argc, argv);
     testing::InitGoogleTest(&argc, argv);
     return RUN_ALL_TESTS();

@@ -75,6 +75,10 @@ bool HairRenderer::initialize(GlFunctions* gl)
     gl->glGenVertexArrays(1, &m_vao);
     gl->glGenBuffers(1, &m_layoutBuffer);
     gl->glGenBuffers(1, &m_indexBuffer);
+    gl->glGenBuffers(1, &m_decimatedIndexBuffer);
+    m_decimatedToleranceMetres = -1.0f;
+    if (qEnvironmentVariableIsSet("WISP_NO_LINE_DECIMATION"))
+        m_lineDecimation = false;
     gl->glGenBuffers(1, &m_pointBuffer);
     gl->glGenTextures(1, &m_pointTexture);
     gl->glGenBuffers(1, &m_lookBuffer);
@@ -136,6 +140,9 @@ void HairRenderer::release()
     m_gl->glDeleteTextures(1, &m_pointTexture);
     m_gl->glDeleteBuffers(1, &m_pointBuffer);
     m_gl->glDeleteBuffers(1, &m_indexBuffer);
+    m_gl->glDeleteBuffers(1, &m_decimatedIndexBuffer);
+    m_decimatedIndexBuffer = 0;
+    m_decimatedToleranceMetres = -1.0f;
     m_gl->glDeleteBuffers(1, &m_layoutBuffer);
     m_gl->glDeleteVertexArrays(1, &m_vao);
     m_lookTexture = m_lookBuffer = m_pointTexture = m_pointBuffer = m_indexBuffer = m_layoutBuffer = m_vao = 0;
@@ -303,6 +310,8 @@ void HairRenderer::upload(
     }
     m_segmentMetres = counted > 0 ? static_cast<float>(length / counted) : 0.0f;
     m_turnRadians = typicalTurnRadians(strands);
+    m_chordDeviations = chordDeviations(strands);
+    m_decimatedToleranceMetres = -1.0f;
     m_gl->glBindBuffer(GL_TEXTURE_BUFFER, 0);
     checkGlErrors(m_gl, "HairRenderer::upload");
 }
@@ -349,8 +358,23 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     // The first step's ribbons (the strands' full detail) in two passes, each sample evaluated
     // once; coarser steps skip samples the first pass would evaluate anyway, and lines have one
     // vertex per sample already.
-    const std::size_t byteOffset = m_indexOffsets[lines ? 0 : 1][stepIndex];
-    const auto indexCount = static_cast<GLsizei>(list.prefix[drawn]);
+    std::size_t byteOffset = m_indexOffsets[lines ? 0 : 1][stepIndex];
+    auto indexCount = static_cast<GLsizei>(list.prefix[drawn]);
+    // Lines at one sample a segment leave out the points of straight runs: no chord strays more than
+    // maxDeviationPixels from the points at the nearest hair's depth (HairLineDecimation.h).
+    GLuint elementBuffer = m_indexBuffer;
+    if (lines && stepIndex == kOneSampleStep && m_lineDecimation && pixelsPerMetre > 0.0f) {
+        const float tolerance = style.maxDeviationPixels / pixelsPerMetre;
+        if (m_decimatedToleranceMetres < 0.0f || tolerance < m_decimatedToleranceMetres
+            || tolerance > 1.5f * m_decimatedToleranceMetres)
+            rebuildDecimatedLines(tolerance);
+        if (m_decimatedToleranceMetres >= 0.0f) {
+            elementBuffer = m_decimatedIndexBuffer;
+            byteOffset = 0;
+            indexCount = static_cast<GLsizei>(m_decimatedLines.prefix[drawn]);
+        }
+    }
+    m_lastDrawnLineSegments = lines ? static_cast<std::size_t>(indexCount) - 2 * drawn : 0;
     // Ribbon strips hold two indices per sample and a restart per strand, in vertex order.
     const std::size_t samples = (m_layout.ribbons[0].prefix[drawn] - drawn) / 2;
     bool drawnInTwoPasses = false;
@@ -366,11 +390,15 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
         gl->glActiveTexture(GL_TEXTURE0);
         gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
         gl->glBindVertexArray(m_vao);
+        if (elementBuffer != m_indexBuffer)
+            gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, elementBuffer); // VAO state: put back below
         gl->glEnable(GL_PRIMITIVE_RESTART);
         gl->glPrimitiveRestartIndex(HairStripLayout::kRestart);
         gl->glDrawElements(lines ? GL_LINE_STRIP : GL_TRIANGLE_STRIP, indexCount, GL_UNSIGNED_INT,
             reinterpret_cast<const void*>(byteOffset));
         gl->glDisable(GL_PRIMITIVE_RESTART);
+        if (elementBuffer != m_indexBuffer)
+            gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
         gl->glBindVertexArray(0);
         gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
         gl->glActiveTexture(GL_TEXTURE1);
@@ -388,6 +416,23 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     m_lastSamplesPerSegment
         = static_cast<int>(HairStripLayout::kSamplesPerSegment / HairStripLayout::kSampleSteps[stepIndex]);
     checkGlErrors(gl, "HairRenderer::draw");
+}
+
+void HairRenderer::rebuildDecimatedLines(float toleranceMetres)
+{
+    m_decimatedLines = decimatedLines(m_layout, m_chordDeviations, toleranceMetres);
+    if (m_decimatedLines.prefix.size() != m_layout.drawnStrands + 1) {
+        m_decimatedToleranceMetres = -1.0f;
+        return;
+    }
+    // Through the copy target: the element array binding belongs to whichever VAO is bound.
+    m_gl->glBindBuffer(GL_COPY_WRITE_BUFFER, m_decimatedIndexBuffer);
+    m_gl->glBufferData(GL_COPY_WRITE_BUFFER,
+        static_cast<GLsizeiptr>(m_decimatedLines.indices.size() * sizeof(std::uint32_t)),
+        m_decimatedLines.indices.data(), GL_STATIC_DRAW);
+    m_gl->glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    m_decimatedToleranceMetres = toleranceMetres;
+    checkGlErrors(m_gl, "HairRenderer::rebuildDecimatedLines");
 }
 
 HairRenderer::DrawnShare HairRenderer::drawnShare(float fraction) const

@@ -13,7 +13,8 @@
 //
 // Strands at most a pixel wide on screen are drawn as line strips, wider ones (close-ups) as
 // camera-facing ribbons; both carry the strand's true width as coverage in alpha, so the switch
-// does not show. draw() can draw an even sample of the strands (level of detail, see HairDetail).
+// does not show. draw() can draw an even sample of the strands (level of detail, see HairDetail);
+// lines at one sample a segment leave out the points of straight runs (HairLineDecimation).
 //
 // Thread: GUI, with the viewport's GL context current (every member function).
 
@@ -21,6 +22,7 @@
 #include "sim/geometry/TriangleMesh.h"
 #include "sim/solver/Frame.h"
 #include "widgets/GlSupport.h"
+#include "widgets/HairLineDecimation.h"
 #include "widgets/HairStripLayout.h"
 #include "widgets/RenderView.h"
 
@@ -98,6 +100,12 @@ public:
     std::size_t lastDrawnStrands() const { return m_lastDrawnStrands; }
     bool lastDrewLines() const { return m_lastDrewLines; }
     bool lastDrewTwoPasses() const { return m_lastDrewTwoPasses; } // ribbons from captured samples
+    // Line segments the last draw() drew (0 for ribbons): fewer than the points' segments where
+    // straight runs were drawn with fewer (HairLineDecimation.h).
+    std::size_t lastDrawnLineSegments() const { return m_lastDrawnLineSegments; }
+    // Leaving out points on straight runs of lines (on by default; WISP_NO_LINE_DECIMATION=1 in the
+    // environment turns it off to compare).
+    void setLineDecimation(bool on) { m_lineDecimation = on; }
     int lastSamplesPerSegment() const { return m_lastSamplesPerSegment; }
 
 private:
@@ -109,6 +117,7 @@ private:
     DrawnShare drawnShare(float fraction) const;
 
     void rebuildLayout(std::span<const std::uint32_t> offsets);
+    void rebuildDecimatedLines(float toleranceMetres);
     void uploadLooks();
     // The uniforms hair_strand.glsl reads, on a bound program.
     void setStrandUniforms(QOpenGLShaderProgram& program, const RenderView& view, const HairStyle& style,
@@ -131,6 +140,14 @@ private:
     GLuint m_vao = 0;
     GLuint m_layoutBuffer = 0; // HairStripLayout::vertices
     GLuint m_indexBuffer = 0; // every index list of m_layout, one after another (element buffer of m_vao)
+    // Lines with the straight runs' points left out (HairLineDecimation.h), for a tolerance: rebuilt
+    // when the frame changes or the zoom asks for a finer one (or a much coarser one).
+    GLuint m_decimatedIndexBuffer = 0;
+    std::vector<float> m_chordDeviations; // per point of the last upload, metres
+    HairStripLayout::IndexList m_decimatedLines;
+    float m_decimatedToleranceMetres = -1.0f; // what m_decimatedLines was built for; < 0: none
+    bool m_lineDecimation = true;
+    std::size_t m_lastDrawnLineSegments = 0;
     GLuint m_pointBuffer = 0; // vec4 per point, read through m_pointTexture
     GLuint m_pointTexture = 0;
     GLuint m_lookBuffer = 0; // two linear-RGBA texels per look: root, tip

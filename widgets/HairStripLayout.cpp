@@ -52,6 +52,8 @@ HairStripLayout buildHairStripLayout(std::span<const std::uint32_t> strandOffset
         return ha != hb ? ha < hb : a < b;
     });
     layout.drawnStrands = order.size();
+    layout.strandOrder = order;
+    layout.firstVertex.reserve(order.size());
 
     layout.vertices.reserve(2 * samples);
     for (std::size_t i = 0; i < Layout::kSampleSteps.size(); ++i) {
@@ -65,6 +67,7 @@ HairStripLayout buildHairStripLayout(std::span<const std::uint32_t> strandOffset
         const std::uint32_t segments = strandOffsets[s + 1] - strandOffsets[s] - 1;
         const std::uint32_t segmentBits = segments << Layout::kSegmentBits;
         const auto first = static_cast<std::uint32_t>(layout.vertices.size());
+        layout.firstVertex.push_back(first);
         for (std::uint32_t seg = 0; seg < segments; ++seg) {
             // The tip sample belongs to the last segment (sample == kSamplesPerSegment); elsewhere a
             // segment's end is the next one's start, so it is emitted once.

@@ -50,6 +50,10 @@ struct HairStripLayout {
     std::array<IndexList, 3> ribbons; // by step
     std::vector<std::uint32_t> offsets{ 0 }; // the strand layout this was built for
     std::size_t drawnStrands = 0; // strands with at least one segment and at most kMaxSegments
+    // Per drawn strand, in drawing order: its index in `offsets`, and its first vertex (sample j of
+    // the strand is vertices[firstVertex + 2 j], its point k's sample is j = k kSamplesPerSegment).
+    std::vector<std::uint32_t> strandOrder;
+    std::vector<std::uint32_t> firstVertex;
 
     const IndexList& indices(Primitive primitive, std::size_t stepIndex) const
     {

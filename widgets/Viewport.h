@@ -184,6 +184,7 @@ public:
     bool singleSampledBackdropWhileMoving() const { return m_singleSampledBackdropWhileMoving.value_or(m_softwareGl); }
     bool lastPaintBackdropSingleSampled() const { return m_lastBackdropSingleSampled; }
     std::size_t lastDrawnStrands() const { return m_hair.lastDrawnStrands(); } // parents and children
+    std::size_t lastDrawnLineSegments() const { return m_hair.lastDrawnLineSegments(); } // 0: ribbons
 
     // Drawn density (HairChildren): `density` times the frame's strands are drawn, 0.25..4. Above 1
     // render-time children are interpolated between neighbouring strands, each drawn thinner by the

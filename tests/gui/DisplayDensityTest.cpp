@@ -215,7 +215,8 @@ TEST_F(DisplayDensityTest, PausedOrbitRateAtFourTimesTheDensity)
             density, viewport->lastDrawnStrands(), viewport->width(), viewport->height(),
             viewport->softwareRenderer() ? "software GL" : "hardware GL", kPaints / seconds,
             viewport->lastPaintMilliseconds(), cpuMsPerPaint);
-        std::printf("[ density ] %.0fx per pass: %s\n", density, qPrintable(passes.describe()));
+        std::printf("[ density ] %.0fx per pass: %s; %zu line segments\n", density, qPrintable(passes.describe()),
+            viewport->lastDrawnLineSegments());
     }
 }
 

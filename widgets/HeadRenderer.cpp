@@ -50,6 +50,15 @@ bool HeadRenderer::initialize(GlFunctions* gl)
     gl->glBindBuffer(GL_ARRAY_BUFFER, m_lightBuffer);
     gl->glEnableVertexAttribArray(4);
     gl->glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, sizeof(glm::vec2), nullptr);
+    gl->glGenVertexArrays(1, &m_lightVao);
+    gl->glBindVertexArray(m_lightVao);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, m_vertexBuffer);
+    gl->glEnableVertexAttribArray(0);
+    gl->glVertexAttribPointer(
+        0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, position)));
+    gl->glEnableVertexAttribArray(1);
+    gl->glVertexAttribPointer(
+        1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, normal)));
     gl->glBindVertexArray(0);
     gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
     m_indexCount = 0;
@@ -67,6 +76,8 @@ void HeadRenderer::release()
     m_lightBuffer = 0;
     m_lightKey.reset();
     m_lightProgram.reset();
+    m_gl->glDeleteVertexArrays(1, &m_lightVao);
+    m_lightVao = 0;
     m_gl->glDeleteBuffers(1, &m_weightBuffer);
     m_gl->glDeleteBuffers(1, &m_coverageBuffer);
     m_coverageBuffer = 0;
@@ -183,7 +194,7 @@ void HeadRenderer::updateLight(const ShadowLookup& shadow, const glm::mat4& mode
     bindShadowLookup(gl, program, shadow);
     gl->glEnable(GL_RASTERIZER_DISCARD);
     gl->glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, m_lightBuffer);
-    gl->glBindVertexArray(m_vao);
+    gl->glBindVertexArray(m_lightVao);
     gl->glBeginTransformFeedback(GL_POINTS);
     gl->glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(m_vertices.size()));
     gl->glEndTransformFeedback();

@@ -82,6 +82,9 @@ private:
     GLuint m_coverageBuffer = 0; // one vec4 per vertex (linear RGB, weight), sized with the mesh
     GLuint m_indexBuffer = 0;
     GLuint m_lightBuffer = 0; // vec2 per vertex: key light, hair ambient (head_light.vert)
+    // Positions and normals only, for the lookup's pass: m_vao also reads m_lightBuffer, which that
+    // pass writes (a buffer written by transform feedback must not be bound as an attribute too).
+    GLuint m_lightVao = 0;
     GLsizei m_indexCount = 0;
     // What m_lightBuffer was looked up for (valid: it holds that, for the mesh as uploaded).
     struct LightKey {

@@ -460,8 +460,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 // from D to d takes a vector v across D to v - (d.v) / (1 + D.d) (D + d), which
                 // keeps it unit and across d; E, B and the next target's part across D, w, are
                 // such vectors. So the next target d lx + w - (d.w) / (1 + D.d) (D + d) waits only
-                // for d, not for the new frame. (The reciprocal estimate is one Newton step from
-                // exact; no renormalisation on the chain.)
+                // for d, not for the new frame. (No renormalisation on the chain.)
                 const V3 next = restCoordinates(rest[j + 1].u, rest[j + 1].v);
                 const V3 w = frameE * next.y + frameB * next.z;
                 const Lane inverse = lrcp(lmax(splat(1.0f) + dot(frameD, d), splat(1e-2f)));

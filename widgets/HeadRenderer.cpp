@@ -32,15 +32,19 @@ bool HeadRenderer::initialize(GlFunctions* gl)
     gl->glGenBuffers(1, &m_coverageBuffer);
     gl->glGenBuffers(1, &m_indexBuffer);
     gl->glGenBuffers(1, &m_lightBuffer);
+    // Attributes 0 and 1, positions and normals, of the bound vertex array: both arrays read them.
+    const auto positionsAndNormals = [&] {
+        gl->glBindBuffer(GL_ARRAY_BUFFER, m_vertexBuffer);
+        gl->glEnableVertexAttribArray(0);
+        gl->glVertexAttribPointer(
+            0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, position)));
+        gl->glEnableVertexAttribArray(1);
+        gl->glVertexAttribPointer(
+            1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, normal)));
+    };
     gl->glBindVertexArray(m_vao);
-    gl->glBindBuffer(GL_ARRAY_BUFFER, m_vertexBuffer);
     gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer); // recorded in the VAO
-    gl->glEnableVertexAttribArray(0);
-    gl->glVertexAttribPointer(
-        0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, position)));
-    gl->glEnableVertexAttribArray(1);
-    gl->glVertexAttribPointer(
-        1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, normal)));
+    positionsAndNormals();
     gl->glBindBuffer(GL_ARRAY_BUFFER, m_weightBuffer);
     gl->glEnableVertexAttribArray(2);
     gl->glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, sizeof(float), nullptr);
@@ -52,13 +56,7 @@ bool HeadRenderer::initialize(GlFunctions* gl)
     gl->glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, sizeof(glm::vec2), nullptr);
     gl->glGenVertexArrays(1, &m_lightVao);
     gl->glBindVertexArray(m_lightVao);
-    gl->glBindBuffer(GL_ARRAY_BUFFER, m_vertexBuffer);
-    gl->glEnableVertexAttribArray(0);
-    gl->glVertexAttribPointer(
-        0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, position)));
-    gl->glEnableVertexAttribArray(1);
-    gl->glVertexAttribPointer(
-        1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, normal)));
+    positionsAndNormals();
     gl->glBindVertexArray(0);
     gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
     m_indexCount = 0;

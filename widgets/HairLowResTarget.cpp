@@ -117,6 +117,34 @@ bool HairLowResTarget::begin(QSize framePixels, GLuint frameDepthTexture, const 
     return true;
 }
 
+void HairLowResTarget::readDepth(const PixelRect& rect, std::vector<float>& depth)
+{
+    depth.resize(static_cast<std::size_t>(rect.width()) * static_cast<std::size_t>(rect.height()));
+    if (!m_gl || !m_framebuffer || depth.empty())
+        return;
+    GlFunctions* gl = m_gl;
+    gl->glBindFramebuffer(GL_READ_FRAMEBUFFER, m_framebuffer);
+    gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    gl->glReadPixels(rect.x0, rect.y0, rect.width(), rect.height(), GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    checkGlErrors(gl, "HairLowResTarget::readDepth");
+}
+
+void HairLowResTarget::writeColour(const PixelRect& rect, std::span<const std::uint8_t> rgba)
+{
+    if (!m_gl || !m_colour || rect.width() == 0 || rect.height() == 0
+        || rgba.size() != 4 * static_cast<std::size_t>(rect.width()) * static_cast<std::size_t>(rect.height()))
+        return;
+    GlFunctions* gl = m_gl;
+    gl->glBindTexture(GL_TEXTURE_2D, m_colour);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    gl->glTexSubImage2D(
+        GL_TEXTURE_2D, 0, rect.x0, rect.y0, rect.width(), rect.height(), GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    gl->glBindTexture(GL_TEXTURE_2D, 0);
+    checkGlErrors(gl, "HairLowResTarget::writeColour");
+}
+
 void HairLowResTarget::composite(
     QSize framePixels, GLuint frameDepthTexture, const glm::mat4& projection, const ClipRect& region)
 {

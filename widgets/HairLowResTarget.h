@@ -21,6 +21,7 @@
 // Thread: GUI, with the viewport's context current (every member function).
 
 #include "widgets/GlSupport.h"
+#include "widgets/HairSoftwareRaster.h"
 #include "widgets/ScreenRect.h"
 
 #include <glm/mat4x4.hpp>
@@ -29,7 +30,10 @@
 #include <QSize>
 #include <QString>
 
+#include <cstdint>
 #include <memory>
+#include <span>
+#include <vector>
 
 namespace wisp {
 
@@ -56,6 +60,11 @@ public:
     // whose depth is `frameDepthTexture`; read, not written), premultiplied "over", inside `region`
     // (clip space: where the hair can be; a full-screen pass costs a software rasteriser a few
     // milliseconds). `projection`: the view's, to compare depths in metres.
+    // The software path (HairSoftwareRaster.h): the target's depth over `rect` (window depths, rows
+    // bottom up) after begin(), and the hair's colour written straight into the target over `rect`
+    // (premultiplied RGBA8, rows bottom up), in place of drawing it. The target stays bound.
+    void readDepth(const PixelRect& rect, std::vector<float>& depth);
+    void writeColour(const PixelRect& rect, std::span<const std::uint8_t> rgba);
     void composite(QSize framePixels, GLuint frameDepthTexture, const glm::mat4& projection,
         const ClipRect& region = kWholeViewport);
     QSize size() const { return m_size; }

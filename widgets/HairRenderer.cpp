@@ -1,6 +1,7 @@
 #include "widgets/HairRenderer.h"
 
 #include "widgets/HairSampling.h"
+#include "widgets/HairShading.h"
 #include "widgets/HairShadowMap.h"
 
 #include <glm/common.hpp>
@@ -63,6 +64,12 @@ bool HairRenderer::initialize(GlFunctions* gl)
     m_sampleProgram = loadTransformFeedbackProgram(
         gl, QStringLiteral("hair_samples"), { "t_clip", "t_colour", "t_side" }, &twoPassError);
     m_ribbonProgram = loadShaderProgram(QStringLiteral("hair_ribbon"), QStringLiteral("hair"), &twoPassError);
+    // Optional too: without it, the viewport keeps GL's lines on a software rasteriser.
+    QString worldError;
+    m_worldProgram = loadTransformFeedbackProgram(
+        gl, QStringLiteral("hair_sample_world"), { "t_position", "t_derivative", "t_root", "t_tip" }, &worldError);
+    if (!m_worldProgram)
+        qWarning("HairRenderer: no software path: %s", qPrintable(worldError));
     // WISP_ONE_PASS_RIBBONS: the one-pass path, to compare with (ViewportTest.RibbonsInTwoPasses...).
     if (qEnvironmentVariableIsSet("WISP_ONE_PASS_RIBBONS")) {
         m_sampleProgram.reset();
@@ -98,10 +105,16 @@ bool HairRenderer::initialize(GlFunctions* gl)
     gl->glGenBuffers(1, &m_sampleBuffer);
     gl->glGenTextures(1, &m_sampleTexture);
     m_sampleCapacity = 0;
+    gl->glGenBuffers(1, &m_captureBuffer);
+    m_captureCapacity = 0;
+    gl->glGenBuffers(1, &m_worldBuffer);
+    m_worldCapacity = 0;
+    m_worldKey.reset();
+    m_softwareSamples = 0;
     gl->glBindVertexArray(0);
     gl->glBindBuffer(GL_ARRAY_BUFFER, 0);
 
-    for (QOpenGLShaderProgram* program : { m_program.get(), m_sampleProgram.get() }) {
+    for (QOpenGLShaderProgram* program : { m_program.get(), m_sampleProgram.get(), m_worldProgram.get() }) {
         if (!program)
             continue;
         program->bind();
@@ -133,6 +146,15 @@ void HairRenderer::release()
     m_gl->glDeleteVertexArrays(1, &m_sampleVao);
     m_sampleTexture = m_sampleBuffer = m_sampleVao = 0;
     m_sampleCapacity = 0;
+    m_gl->glDeleteBuffers(1, &m_captureBuffer);
+    m_captureBuffer = 0;
+    m_captureCapacity = 0;
+    m_gl->glDeleteBuffers(1, &m_worldBuffer);
+    m_worldBuffer = 0;
+    m_worldCapacity = 0;
+    m_worldKey.reset();
+    m_softwareSamples = 0;
+    m_worldProgram.reset();
     m_sampleProgram.reset();
     m_ribbonProgram.reset();
     m_gl->glDeleteTextures(1, &m_lookTexture);
@@ -163,6 +185,7 @@ void HairRenderer::clear()
 void HairRenderer::rebuildLayout(std::span<const std::uint32_t> offsets)
 {
     m_layout = buildHairStripLayout(offsets);
+    ++m_worldRevision;
     m_gl->glBindBuffer(GL_ARRAY_BUFFER, m_layoutBuffer);
     m_gl->glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_layout.vertices.size() * sizeof(glm::uvec2)),
         m_layout.vertices.data(), GL_STATIC_DRAW);
@@ -198,6 +221,7 @@ void HairRenderer::setLooks(std::span<const StrandLook> looks)
 
 void HairRenderer::uploadLooks()
 {
+    ++m_worldRevision;
     // At least one look's worth of texels, so the texture always has storage.
     // The root texel's alpha carries the look's hair thickness (0: the style's).
     std::vector<glm::vec4> texels(2 * std::max<std::size_t>(m_looks.size(), 1), glm::vec4(0.0f));
@@ -223,6 +247,7 @@ void HairRenderer::uploadLooks()
 void HairRenderer::upload(
     const HairCurves& strands, std::span<const std::uint16_t> lookOfStrand, std::span<const float> wetness)
 {
+    ++m_worldRevision;
     if (!m_program)
         return;
     const std::size_t pointCount = strands.positions.size();
@@ -316,13 +341,13 @@ void HairRenderer::upload(
     checkGlErrors(m_gl, "HairRenderer::upload");
 }
 
-void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fraction, bool coarse)
+HairRenderer::DrawPlan HairRenderer::planDraw(
+    const RenderView& view, const HairStyle& style, float fraction, bool coarse)
 {
-    m_lastDrawnStrands = 0;
-    if (!m_program || m_vertexCount == 0 || m_layout.drawnStrands == 0)
-        return;
-
+    DrawPlan plan;
     const auto [drawn, widthScale] = drawnShare(fraction);
+    plan.drawn = drawn;
+    plan.widthScale = widthScale;
 
     // Lines while even the nearest hair is at most about a pixel wide (a line is one pixel wide;
     // half a pixel more is not worth twice the primitives). The nearest hair is at most a head's
@@ -334,14 +359,48 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     // keeps the look's coverage; DisplayDensityTest checks it).
     const float thickest = std::max(style.hairThicknessMetres, m_thickestLookMetres);
     const float rootPixels = thickest * style.lockWidthScale * widthScale * pixelsPerMetre;
-    const bool lines = rootPixels <= style.minWidthPixels + 0.5f;
+    plan.lines = rootPixels <= style.minWidthPixels + 0.5f;
     // Samples per segment: the fewest that keep chords within maxDeviationPixels of the curve at the
     // head's depth, for the hair's typical turn (HairSampling.h).
     const float centreDepth = std::max(-view.headCentreView.z, 1e-3f);
     const float segmentPixels = m_segmentMetres * view.projection[1][1] * 0.5f * view.viewportPixels.y / centreDepth;
-    const std::size_t stepIndex = coarse ? 2 : sampleStepIndex(segmentPixels, m_turnRadians, style.maxDeviationPixels);
-    const auto primitive = lines ? HairStripLayout::Primitive::Lines : HairStripLayout::Primitive::Ribbons;
-    const HairStripLayout::IndexList& list = m_layout.indices(primitive, stepIndex);
+    plan.stepIndex = coarse ? 2 : sampleStepIndex(segmentPixels, m_turnRadians, style.maxDeviationPixels);
+    const auto primitive = plan.lines ? HairStripLayout::Primitive::Lines : HairStripLayout::Primitive::Ribbons;
+    plan.list = &m_layout.indices(primitive, plan.stepIndex);
+    plan.centreLine = &m_layout.lines[plan.stepIndex];
+    plan.byteOffset = m_indexOffsets[plan.lines ? 0 : 1][plan.stepIndex];
+    plan.centreLineByteOffset = m_indexOffsets[0][plan.stepIndex];
+    plan.elementBuffer = m_indexBuffer;
+    plan.indexCount = static_cast<GLsizei>(plan.list->prefix[drawn]);
+    // Lines at one sample a segment leave out the points of straight runs: no chord strays more than
+    // maxDeviationPixels from the points at the nearest hair's depth (HairLineDecimation.h).
+    if (plan.lines && plan.stepIndex == kOneSampleStep && m_lineDecimation && pixelsPerMetre > 0.0f) {
+        const float tolerance = style.maxDeviationPixels / pixelsPerMetre;
+        if (m_decimatedToleranceMetres < 0.0f || tolerance < m_decimatedToleranceMetres
+            || tolerance > 1.5f * m_decimatedToleranceMetres)
+            rebuildDecimatedLines(tolerance);
+        if (m_decimatedToleranceMetres >= 0.0f) {
+            plan.elementBuffer = m_decimatedIndexBuffer;
+            plan.byteOffset = 0;
+            plan.centreLineByteOffset = 0;
+            plan.list = &m_decimatedLines;
+            plan.centreLine = &m_decimatedLines;
+            plan.indexCount = static_cast<GLsizei>(m_decimatedLines.prefix[drawn]);
+        }
+    }
+    return plan;
+}
+
+void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fraction, bool coarse)
+{
+    m_lastDrawnStrands = 0;
+    if (!m_program || m_vertexCount == 0 || m_layout.drawnStrands == 0)
+        return;
+    const DrawPlan plan = planDraw(view, style, fraction, coarse);
+    const std::size_t drawn = plan.drawn;
+    const float widthScale = plan.widthScale;
+    const bool lines = plan.lines;
+    const std::size_t stepIndex = plan.stepIndex;
 
     GlFunctions* gl = m_gl;
     gl->glEnable(GL_DEPTH_TEST);
@@ -358,22 +417,9 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     // The first step's ribbons (the strands' full detail) in two passes, each sample evaluated
     // once; coarser steps skip samples the first pass would evaluate anyway, and lines have one
     // vertex per sample already.
-    std::size_t byteOffset = m_indexOffsets[lines ? 0 : 1][stepIndex];
-    auto indexCount = static_cast<GLsizei>(list.prefix[drawn]);
-    // Lines at one sample a segment leave out the points of straight runs: no chord strays more than
-    // maxDeviationPixels from the points at the nearest hair's depth (HairLineDecimation.h).
-    GLuint elementBuffer = m_indexBuffer;
-    if (lines && stepIndex == kOneSampleStep && m_lineDecimation && pixelsPerMetre > 0.0f) {
-        const float tolerance = style.maxDeviationPixels / pixelsPerMetre;
-        if (m_decimatedToleranceMetres < 0.0f || tolerance < m_decimatedToleranceMetres
-            || tolerance > 1.5f * m_decimatedToleranceMetres)
-            rebuildDecimatedLines(tolerance);
-        if (m_decimatedToleranceMetres >= 0.0f) {
-            elementBuffer = m_decimatedIndexBuffer;
-            byteOffset = 0;
-            indexCount = static_cast<GLsizei>(m_decimatedLines.prefix[drawn]);
-        }
-    }
+    const std::size_t byteOffset = plan.byteOffset;
+    const GLsizei indexCount = plan.indexCount;
+    const GLuint elementBuffer = plan.elementBuffer;
     m_lastDrawnLineSegments = lines ? static_cast<std::size_t>(indexCount) - 2 * drawn : 0;
     // Ribbon strips hold two indices per sample and a restart per strand, in vertex order.
     const std::size_t samples = (m_layout.ribbons[0].prefix[drawn] - drawn) / 2;
@@ -418,9 +464,178 @@ void HairRenderer::draw(const RenderView& view, const HairStyle& style, float fr
     checkGlErrors(gl, "HairRenderer::draw");
 }
 
+bool HairRenderer::captureWithProgram(QOpenGLShaderProgram& program, const DrawPlan& plan, const RenderView& view,
+    const HairStyle& style, GLuint buffer, std::size_t bytesPerSample, std::size_t& capacity)
+{
+    const HairStripLayout::IndexList& list = *plan.centreLine;
+    const std::size_t indexCount = list.prefix[plan.drawn];
+    // One restart ends each strand's strip; a point is captured for each other index, in order.
+    const std::size_t samples = indexCount - plan.drawn;
+    if (samples == 0 || samples > static_cast<std::size_t>(std::numeric_limits<GLsizeiptr>::max()) / bytesPerSample)
+        return false;
+    GlFunctions* gl = m_gl;
+    const auto bytes = static_cast<GLsizeiptr>(samples * bytesPerSample);
+    if (samples > capacity) {
+        gl->glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffer);
+        gl->glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, bytes, nullptr, GL_STREAM_READ);
+        gl->glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, 0);
+        capacity = samples;
+    }
+    setStrandUniforms(program, view, style, plan.widthScale, plan.lines);
+    gl->glActiveTexture(GL_TEXTURE1);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, m_lookTexture);
+    gl->glActiveTexture(GL_TEXTURE0);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
+    gl->glEnable(GL_RASTERIZER_DISCARD);
+    gl->glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer, 0, bytes);
+    gl->glBindVertexArray(m_vao);
+    if (plan.elementBuffer != m_indexBuffer)
+        gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, plan.elementBuffer); // VAO state: put back below
+    gl->glEnable(GL_PRIMITIVE_RESTART);
+    gl->glPrimitiveRestartIndex(HairStripLayout::kRestart);
+    gl->glBeginTransformFeedback(GL_POINTS);
+    gl->glDrawElements(GL_POINTS, static_cast<GLsizei>(indexCount), GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(plan.centreLineByteOffset));
+    gl->glEndTransformFeedback();
+    gl->glDisable(GL_PRIMITIVE_RESTART);
+    if (plan.elementBuffer != m_indexBuffer)
+        gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m_indexBuffer);
+    gl->glBindVertexArray(0);
+    gl->glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    gl->glDisable(GL_RASTERIZER_DISCARD);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    gl->glActiveTexture(GL_TEXTURE1);
+    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    gl->glActiveTexture(GL_TEXTURE0);
+    unbindShadowLookup(gl);
+    program.release();
+    checkGlErrors(gl, "HairRenderer::captureWithProgram");
+    return true;
+}
+
+HairShadingView HairRenderer::shadingView(const RenderView& view, const HairStyle& style, const DrawPlan& plan) const
+{
+    // What setStrandUniforms gives the shaders.
+    HairShadingView shading;
+    shading.view = view.view;
+    shading.projection = view.projection;
+    shading.viewportPixels = view.viewportPixels;
+    shading.ribbon = !plan.lines;
+    shading.widthScale = style.lockWidthScale * plan.widthScale;
+    shading.tipThicknessRatio = std::clamp(style.tipThicknessRatio, 0.0f, 1.0f);
+    shading.minWidthPixels = std::max(style.minWidthPixels, 0.01f);
+    shading.tipFade = std::clamp(style.tipFade, 0.0f, 1.0f);
+    shading.shadows = view.shadow.enabled;
+    shading.keyLightView = view.keyLightView;
+    shading.fillLightView = view.fillLightView;
+    shading.headCentreView = view.headCentreView;
+    return shading;
+}
+
+bool HairRenderer::prepareSoftware(const RenderView& view, const HairStyle& style, float fraction, bool coarse)
+{
+    m_softwareSamples = 0;
+    m_lastDrawnStrands = 0;
+    if (!m_worldProgram || m_vertexCount == 0 || m_layout.drawnStrands == 0)
+        return false;
+    const DrawPlan plan = planDraw(view, style, fraction, coarse);
+    const HairStripLayout::IndexList& list = *plan.centreLine;
+    const std::size_t drawn = plan.drawn;
+    const std::size_t samples = list.prefix[drawn] - drawn;
+    // What the world capture depends on; a paused orbit keeps all of it.
+    const WorldKey key{ m_worldRevision, plan.centreLine, drawn, view.shadow, linearFromSrgb(style.rootColour),
+        linearFromSrgb(style.tipColour), style.hairThicknessMetres };
+    if (!m_worldKey || !(*m_worldKey == key)) {
+        m_worldKey.reset();
+        if (!captureWithProgram(
+                *m_worldProgram, plan, view, style, m_worldBuffer, sizeof(HairWorldSample), m_worldCapacity))
+            return false;
+        m_worldKey = key;
+        ++m_worldCaptures;
+        m_softwareStrandEnds.resize(drawn);
+        for (std::size_t s = 0; s < drawn; ++s)
+            m_softwareStrandEnds[s] = list.prefix[s + 1] - static_cast<std::uint32_t>(s + 1);
+    }
+    m_softwareSamples = samples;
+    m_softwareView = shadingView(view, style, plan);
+    m_lastDrawnStrands = drawn;
+    m_lastDrewLines = plan.lines;
+    m_lastDrewTwoPasses = false;
+    m_lastDrawnLineSegments = plan.lines ? samples - drawn : 0;
+    m_lastSamplesPerSegment
+        = static_cast<int>(HairStripLayout::kSamplesPerSegment / HairStripLayout::kSampleSteps[plan.stepIndex]);
+    return true;
+}
+
+bool HairRenderer::withWorldSamples(const std::function<void(std::span<const HairWorldSample>)>& use)
+{
+    if (m_softwareSamples == 0 || !m_gl)
+        return false;
+    GlFunctions* gl = m_gl;
+    const auto bytes = static_cast<GLsizeiptr>(m_softwareSamples * sizeof(HairWorldSample));
+    gl->glBindBuffer(GL_COPY_READ_BUFFER, m_worldBuffer);
+    const void* mapped = gl->glMapBufferRange(GL_COPY_READ_BUFFER, 0, bytes, GL_MAP_READ_BIT);
+    if (mapped) {
+        use({ static_cast<const HairWorldSample*>(mapped), m_softwareSamples });
+        gl->glUnmapBuffer(GL_COPY_READ_BUFFER);
+    }
+    gl->glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    checkGlErrors(gl, "HairRenderer::withWorldSamples");
+    return mapped != nullptr;
+}
+
+std::span<const std::uint8_t> HairRenderer::drawSoftware(
+    const PixelRect& region, std::span<const float> depth, ThreadPool* pool)
+{
+    m_shaded.resize(m_softwareSamples);
+    if (!withWorldSamples(
+            [&](std::span<const HairWorldSample> world) { shadeHairSamples(world, m_softwareView, m_shaded, pool); }))
+        return {};
+    HairRasterInput input;
+    input.samples = m_shaded;
+    input.strandEnds = m_softwareStrandEnds;
+    input.width = static_cast<int>(std::lround(m_softwareView.viewportPixels.x));
+    input.height = static_cast<int>(std::lround(m_softwareView.viewportPixels.y));
+    input.region = region;
+    input.depth = depth;
+    return m_raster.draw(input, pool);
+}
+
+std::vector<HairRasterSample> HairRenderer::shadedSamples(
+    const RenderView& view, const HairStyle& style, float fraction, bool coarse, bool onCpu)
+{
+    std::vector<HairRasterSample> result;
+    if (onCpu) {
+        if (prepareSoftware(view, style, fraction, coarse)) {
+            result.resize(m_softwareSamples);
+            withWorldSamples(
+                [&](std::span<const HairWorldSample> world) { shadeHairSamples(world, m_softwareView, result); });
+        }
+        return result;
+    }
+    if (!m_sampleProgram || m_vertexCount == 0 || m_layout.drawnStrands == 0)
+        return result;
+    const DrawPlan plan = planDraw(view, style, fraction, coarse);
+    const std::size_t samples = plan.centreLine->prefix[plan.drawn] - plan.drawn;
+    if (!captureWithProgram(
+            *m_sampleProgram, plan, view, style, m_captureBuffer, sizeof(HairRasterSample), m_captureCapacity))
+        return result;
+    GlFunctions* gl = m_gl;
+    gl->glBindBuffer(GL_COPY_READ_BUFFER, m_captureBuffer);
+    const auto* mapped = static_cast<const HairRasterSample*>(gl->glMapBufferRange(
+        GL_COPY_READ_BUFFER, 0, static_cast<GLsizeiptr>(samples * sizeof(HairRasterSample)), GL_MAP_READ_BIT));
+    if (mapped) {
+        result.assign(mapped, mapped + samples);
+        gl->glUnmapBuffer(GL_COPY_READ_BUFFER);
+    }
+    gl->glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    return result;
+}
+
 void HairRenderer::rebuildDecimatedLines(float toleranceMetres)
 {
     m_decimatedLines = decimatedLines(m_layout, m_chordDeviations, toleranceMetres);
+    ++m_worldRevision;
     if (m_decimatedLines.prefix.size() != m_layout.drawnStrands + 1) {
         m_decimatedToleranceMetres = -1.0f;
         return;

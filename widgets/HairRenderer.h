@@ -23,6 +23,8 @@
 #include "sim/solver/Frame.h"
 #include "widgets/GlSupport.h"
 #include "widgets/HairLineDecimation.h"
+#include "widgets/HairShading.h"
+#include "widgets/HairSoftwareRaster.h"
 #include "widgets/HairStripLayout.h"
 #include "widgets/RenderView.h"
 
@@ -32,7 +34,9 @@
 #include <QString>
 
 #include <array>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -79,6 +83,23 @@ public:
     // Draws `fraction` (0..1) of the strands, an even sample, each made wider to make up for the
     // rest; `coarse` draws one sample per segment (the points themselves) whatever the zoom.
     void draw(const RenderView& view, const HairStyle& style, float fraction = 1.0f, bool coarse = false);
+    // The software path (widgets/HairSoftwareRaster.h, HairShading.h; the viewport takes it on a
+    // software OpenGL while the view moves): draw()'s strands, with draw()'s choices (share, lines or
+    // ribbons, samples a segment, straight runs thinned), for a target view.viewportPixels big.
+    // prepareSoftware() captures what their centre lines' samples are whatever the view, by
+    // transform feedback, only when that changed (the frame, the looks, the shadow map, the level of
+    // detail); drawSoftware() shades them for the view and draws them on the CPU: the target's pixels
+    // inside `region`, premultiplied RGBA8, rows bottom up, `depth` the backdrop's over the region
+    // (empty: none); the span lives until the next call. prepareSoftware() is false (and
+    // drawSoftware() empty) where the capture program did not build or the frame is empty.
+    bool prepareSoftware(const RenderView& view, const HairStyle& style, float fraction = 1.0f, bool coarse = false);
+    std::span<const std::uint8_t> drawSoftware(const PixelRect& region, std::span<const float> depth, ThreadPool* pool);
+    std::uint64_t worldCaptures() const { return m_worldCaptures; } // prepareSoftware()'s GL passes
+    // The centre lines' samples for a view as GL's vertex shader shades them (hair_samples.vert) or
+    // as the CPU does (HairShading.h): the two paths must agree (ViewportTest checks).
+    std::vector<HairRasterSample> shadedSamples(
+        const RenderView& view, const HairStyle& style, float fraction, bool coarse, bool onCpu);
+
     // Whether draw() writes the strands' depth (it always tests it). Into a target whose pixels are
     // larger than the frame's (HairLowResTarget), not: a partly covering strand in front would hide
     // the strands beside it that share its pixel there but not in the frame.
@@ -109,6 +130,42 @@ public:
     int lastSamplesPerSegment() const { return m_lastSamplesPerSegment; }
 
 private:
+    // What draw() and captureSamples() draw for a view, style and share.
+    struct DrawPlan {
+        std::size_t drawn = 0; // the first `drawn` strands in drawing order
+        float widthScale = 1.0f;
+        bool lines = true;
+        std::size_t stepIndex = 0; // in HairStripLayout::kSampleSteps
+        const HairStripLayout::IndexList* list = nullptr; // the strips draw() draws
+        const HairStripLayout::IndexList* centreLine = nullptr; // their centre lines (left vertices)
+        GLuint elementBuffer = 0; // holding both lists
+        std::size_t byteOffset = 0; // of `list` in elementBuffer
+        std::size_t centreLineByteOffset = 0;
+        GLsizei indexCount = 0; // of `list`, for `drawn` strands
+    };
+    DrawPlan planDraw(const RenderView& view, const HairStyle& style, float fraction, bool coarse);
+    // Transform feedback of `program` (one of the sample programs) over the plan's centre lines,
+    // one sample each, into `buffer` (grown to `capacity` samples as needed).
+    bool captureWithProgram(QOpenGLShaderProgram& program, const DrawPlan& plan, const RenderView& view,
+        const HairStyle& style, GLuint buffer, std::size_t bytesPerSample, std::size_t& capacity);
+    HairShadingView shadingView(const RenderView& view, const HairStyle& style, const DrawPlan& plan) const;
+    // Calls `use` with the captured world samples (mapped); false if none or the map failed.
+    bool withWorldSamples(const std::function<void(std::span<const HairWorldSample>)>& use);
+    // What the world capture was made from.
+    struct WorldKey {
+        std::uint64_t revision = 0; // m_worldRevision: points, looks, layout, thinned lines
+        const HairStripLayout::IndexList* list = nullptr;
+        std::size_t drawn = 0;
+        ShadowLookup shadow;
+        glm::vec3 rootColour{ 0.0f };
+        glm::vec3 tipColour{ 0.0f };
+        float thicknessMetres = 0.0f;
+        bool operator==(const WorldKey& o) const
+        {
+            return revision == o.revision && list == o.list && drawn == o.drawn && shadow.sameAs(o.shadow)
+                && rootColour == o.rootColour && tipColour == o.tipColour && thicknessMetres == o.thicknessMetres;
+        }
+    };
     // How many strands draw() draws for `fraction`, and how much wider each is for those it leaves out.
     struct DrawnShare {
         std::size_t strands = 0;
@@ -137,6 +194,19 @@ private:
     GLuint m_sampleBuffer = 0; // three vec4 per sample, read through m_sampleTexture
     GLuint m_sampleTexture = 0;
     std::size_t m_sampleCapacity = 0; // samples m_sampleBuffer can hold
+    GLuint m_captureBuffer = 0; // shadedSamples() from GL: HairRasterSample per sample
+    std::size_t m_captureCapacity = 0; // samples it can hold
+    std::unique_ptr<QOpenGLShaderProgram> m_worldProgram; // hair_sample_world.vert
+    GLuint m_worldBuffer = 0; // HairWorldSample per sample of the software path
+    std::size_t m_worldCapacity = 0;
+    std::uint64_t m_worldRevision = 0;
+    std::optional<WorldKey> m_worldKey; // what m_worldBuffer holds; none: nothing
+    std::uint64_t m_worldCaptures = 0;
+    std::size_t m_softwareSamples = 0;
+    std::vector<std::uint32_t> m_softwareStrandEnds;
+    HairShadingView m_softwareView;
+    std::vector<HairRasterSample> m_shaded;
+    HairSoftwareRaster m_raster;
     GLuint m_vao = 0;
     GLuint m_layoutBuffer = 0; // HairStripLayout::vertices
     GLuint m_indexBuffer = 0; // every index list of m_layout, one after another (element buffer of m_vao)

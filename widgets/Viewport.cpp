@@ -96,6 +96,8 @@ Viewport::Viewport(QWidget* parent)
     // WISP_MULTISAMPLED_BACKDROP: the backdrop multisampled in every paint, to compare with.
     if (qEnvironmentVariableIsSet("WISP_MULTISAMPLED_BACKDROP"))
         m_singleSampledBackdropWhileMoving = false;
+    // WISP_GL_HAIR: the half-resolution hair drawn by GL's lines, to compare with.
+    m_glHairWanted = qEnvironmentVariableIsSet("WISP_GL_HAIR");
     m_refineTimer.setSingleShot(true);
     m_refineTimer.setInterval(300);
     connect(&m_refineTimer, &QTimer::timeout, this, [this] {

@@ -26,6 +26,7 @@
 #include "sim/geometry/TriangleMesh.h"
 #include "sim/solver/Frame.h"
 #include "sim/solver/Solver.h"
+#include "sim/util/ThreadPool.h"
 #include "widgets/BackgroundRenderer.h"
 #include "widgets/FrameCompositor.h"
 #include "widgets/GlCanvas.h"
@@ -174,6 +175,21 @@ public:
     void setHalfResolutionWhileMoving(bool enabled);
     bool halfResolutionWhileMoving() const { return m_halfResolutionWhileMoving.value_or(m_softwareGl); }
     bool lastPaintHairAtHalfResolution() const { return m_lastHairAtHalfResolution; }
+    // The half-resolution hair drawn by our own rasteriser on the CPU (HairSoftwareRaster), the
+    // strands' shaded samples captured from GL: on llvmpipe a thin line costs a triangle's setup and
+    // a 4x4 block's shading per few pixels, and our code pays only for the pixels. On by default
+    // where GL is a software rasteriser; WISP_GL_HAIR=1 in the environment keeps GL's lines there.
+    void setSoftwareHairWhileMoving(bool enabled) { m_softwareHairWhileMoving = enabled; }
+    bool softwareHairWhileMoving() const { return m_softwareHairWhileMoving.value_or(m_softwareGl && !m_glHairWanted); }
+    bool lastPaintHairOnCpu() const { return m_lastHairOnCpu; }
+    // The hair's samples for the current view at half resolution as a moving view draws them,
+    // shaded by GL's vertex shader or by the software path's CPU (HairShading.h): the two must agree
+    // (ViewportTest). Empty without a context or hair. Paint first: it reads what the last paint
+    // uploaded.
+    std::vector<HairRasterSample> shadedHairSamples(bool onCpu);
+    // GL passes that captured the hair's samples for the software path (HairRenderer::prepareSoftware):
+    // one per frame, shadow map or level of detail, none per orbiting paint.
+    std::uint64_t hairWorldCaptures() const { return m_hair.worldCaptures(); }
     // While the backdrop (background, head, body, grid) changes from paint to paint (the camera
     // moves, or the hair's shadow on the head moves with the hair), it is drawn single-sampled
     // straight into the frame rather than multisampled and resolved: on llvmpipe the 4x pass and its
@@ -264,6 +280,10 @@ private:
     // resolved into the backdrop cache or the frame (GlCanvas).
     void drawResolvedBackdrop(const RenderView& view, bool intoCache, bool multisample = true);
     void paintImage(const RenderView& view); // paintGL's work for renderImage()
+    // The half-resolution hair by HairSoftwareRaster into m_lowRes (begun over lowResRegion); false
+    // (nothing drawn) where the samples cannot be captured.
+    bool drawHairOnCpu(
+        const RenderView& half, const HairStyle& style, float fraction, bool preview, const ClipRect& lowResRegion);
     // The hair into the bound frame, at full resolution or through m_lowRes.
     void drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution);
     void uploadFrameIfChanged(); // streams m_frame's strands to the hair renderer once per frame
@@ -340,6 +360,11 @@ private:
     HairLowResTarget m_lowRes;
     std::optional<bool> m_halfResolutionWhileMoving; // unset: m_softwareGl
     bool m_lastHairAtHalfResolution = false;
+    std::optional<bool> m_softwareHairWhileMoving; // unset: m_softwareGl unless WISP_GL_HAIR
+    bool m_glHairWanted = false; // WISP_GL_HAIR was set at construction
+    bool m_lastHairOnCpu = false;
+    std::unique_ptr<ThreadPool> m_rasterPool; // HairSoftwareRaster's threads, made on first use
+    std::vector<float> m_lowResDepth; // the half-resolution target's depth, read for the CPU's hair
     std::optional<bool> m_singleSampledBackdropWhileMoving; // unset: m_softwareGl
     bool m_lastBackdropSingleSampled = false;
     bool m_hairMoved = false; // points uploaded since the shadow map was rendered

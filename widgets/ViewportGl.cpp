@@ -467,8 +467,9 @@ void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bo
     const ClipRect hairRegion = halfResolution ? clipRectOfBox(m_hair.drawnBounds(style, fraction), view.viewProjection,
                                     view.viewportPixels, std::max(style.minWidthPixels, 1.0f) + 4.0f)
                                                : kWholeViewport;
-    m_lastHairAtHalfResolution = halfResolution
-        && m_lowRes.begin(pixels, m_canvas.frameDepthTexture(), widenClipRect(hairRegion, view.viewportPixels, 4.0f));
+    const ClipRect lowResRegion = widenClipRect(hairRegion, view.viewportPixels, 4.0f);
+    m_lastHairOnCpu = false;
+    m_lastHairAtHalfResolution = halfResolution && m_lowRes.begin(pixels, m_canvas.frameDepthTexture(), lowResRegion);
     if (!m_lastHairAtHalfResolution) {
         m_hair.draw(view, style, fraction, preview);
         return;
@@ -478,14 +479,46 @@ void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bo
     RenderView half = view;
     half.viewportPixels
         = glm::vec2(static_cast<float>(m_lowRes.size().width()), static_cast<float>(m_lowRes.size().height()));
-    // No depth writes: its texels are four pixels, and a partly covering strand would hide the
-    // strands beside it (measured on the default groom: 11 % of the hair's ink lost with them).
-    m_hair.setDepthWrites(false);
-    m_hair.draw(half, style, fraction, preview);
-    m_hair.setDepthWrites(true);
+    m_lastHairOnCpu = softwareHairWhileMoving() && drawHairOnCpu(half, style, fraction, preview, lowResRegion);
+    if (!m_lastHairOnCpu) {
+        // No depth writes: its texels are four pixels, and a partly covering strand would hide the
+        // strands beside it (measured on the default groom: 11 % of the hair's ink lost with them).
+        m_hair.setDepthWrites(false);
+        m_hair.draw(half, style, fraction, preview);
+        m_hair.setDepthWrites(true);
+    }
     m_canvas.bindFrame();
     m_lowRes.composite(pixels, m_canvas.frameDepthTexture(), view.projection, hairRegion);
     m_gl->glEnable(GL_DEPTH_TEST); // as HairRenderer::draw leaves it
+}
+
+bool Viewport::drawHairOnCpu(
+    const RenderView& half, const HairStyle& style, float fraction, bool preview, const ClipRect& lowResRegion)
+{
+    // The samples first: llvmpipe runs their vertex shader on this thread, while its own threads
+    // rasterise the backdrop and the target's depth, flushed to them here.
+    m_gl->glFlush();
+    if (!m_hair.prepareSoftware(half, style, fraction, preview))
+        return false;
+    const PixelRect rect = pixelRectOfClipRect(lowResRegion, m_lowRes.size().width(), m_lowRes.size().height());
+    m_lowRes.readDepth(rect, m_lowResDepth);
+    if (!m_rasterPool)
+        m_rasterPool = std::make_unique<ThreadPool>(0);
+    const std::span<const std::uint8_t> rgba = m_hair.drawSoftware(rect, m_lowResDepth, m_rasterPool.get());
+    if (rgba.empty())
+        return rect.width() == 0 || rect.height() == 0; // the samples could not be read: GL draws them
+    m_lowRes.writeColour(rect, rgba);
+    return true;
+}
+
+std::vector<HairRasterSample> Viewport::shadedHairSamples(bool onCpu)
+{
+    if (!m_gl || !makeCurrent())
+        return {};
+    RenderView half = renderView();
+    const QSize lowRes = HairLowResTarget::sizeFor(m_canvas.size());
+    half.viewportPixels = glm::vec2(static_cast<float>(lowRes.width()), static_cast<float>(lowRes.height()));
+    return m_hair.shadedSamples(half, drawnStyle(), std::min(m_displayDensity, 1.0f), false, onCpu);
 }
 
 void Viewport::updateOverlays(const RenderView& view)

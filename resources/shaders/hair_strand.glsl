@@ -76,6 +76,75 @@ vec3 shadeHair(vec3 positionView, vec3 T, float along, vec3 rootColour, vec3 tip
     return pow(clamp(colour, 0.0, 1.0), vec3(1.0 / 2.2));
 }
 
+// What a spline sample of a strand is whatever the view: where it lies, which way the strand runs,
+// how far along it, its colours and thickness, and the key light reaching it. The software path
+// captures this once per frame and shadow map (hair_sample_world.vert) and does the view's part on
+// the CPU (widgets/HairShading.h, which follows strandSample below line for line).
+struct StrandWorld {
+    bool valid;          // false: the strand has a non-finite point
+    vec3 position;       // world, metres
+    vec3 derivative;     // world, d position / d u (u: 0..1 over the segment)
+    float along;         // 0 at the root, 1 at the tip
+    vec3 rootColour;     // linear RGB, darkened by the strand's wetness
+    vec3 tipColour;
+    float rootThicknessMetres;  // one hair at the root: the look's, or u_hairThicknessMetres
+    float keyShadow;     // keyLight(): 1 without shadows
+    float ambient;
+};
+
+StrandWorld strandWorld(uvec2 ref)
+{
+    StrandWorld w;
+    int segment = int(ref.y & 0xFFFu);
+    int segments = int((ref.y >> 12) & 0xFFFu);
+    float sampleIndex = float((ref.y >> 24) & 0x1Fu);
+    int i = int(ref.x);
+
+    vec4 q1 = texelFetch(u_points, i);
+    vec4 q2 = texelFetch(u_points, i + 1);
+    w.valid = q1.w >= 0.5;
+    if (!w.valid) {
+        w.position = vec3(0.0);
+        w.derivative = vec3(0.0, 1.0, 0.0);
+        w.along = 0.0;
+        w.rootColour = vec3(0.0);
+        w.tipColour = vec3(0.0);
+        w.rootThicknessMetres = 0.0;
+        w.keyShadow = 1.0;
+        w.ambient = 1.0;
+        return w;
+    }
+    vec3 p1 = q1.xyz;
+    vec3 p2 = q2.xyz;
+    // At the ends, mirror the neighbour (a phantom point), which makes the end tangent follow the
+    // first or last segment instead of curling.
+    vec3 p0 = segment > 0 ? texelFetch(u_points, i - 1).xyz : 2.0 * p1 - p2;
+    vec3 p3 = segment + 1 < segments ? texelFetch(u_points, i + 2).xyz : 2.0 * p2 - p1;
+
+    float u = sampleIndex / u_samplesPerSegment;
+    vec3 c1 = p2 - p0;
+    vec3 c2 = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3;
+    vec3 c3 = -p0 + 3.0 * p1 - 3.0 * p2 + p3;
+    w.position = p1 + 0.5 * u * (c1 + u * (c2 + u * c3));
+    w.derivative = 0.5 * (c1 + u * (2.0 * c2 + u * 3.0 * c3));
+    if (dot(w.derivative, w.derivative) < 1e-16)
+        w.derivative = p2 - p1;
+    w.along = (float(segment) + u) / float(max(segments, 1));
+
+    int look = int(q1.w + 0.5) - 2;
+    vec4 lookRoot = look >= 0 ? texelFetch(u_looks, 2 * look) : vec4(u_rootColour, 0.0);
+    w.rootThicknessMetres = lookRoot.a > 0.0 ? lookRoot.a : u_hairThicknessMetres;
+    vec3 rootColour = lookRoot.rgb;
+    vec3 tipColour = look >= 0 ? texelFetch(u_looks, 2 * look + 1).rgb : u_tipColour;
+    // Water fills the gaps between the cuticle scales: wet hair reflects less diffusely and looks
+    // darker (about half as bright soaked).
+    float wetness = clamp((q1.w - float(look + 2)) / 0.45, 0.0, 1.0);
+    w.rootColour = rootColour * (1.0 - 0.5 * wetness);
+    w.tipColour = tipColour * (1.0 - 0.5 * wetness);
+    w.keyShadow = keyLight(w.position, 0.002, w.ambient);
+    return w;
+}
+
 // One spline sample of a strand, both edges of a ribbon at once (the vertex shader runs per edge
 // or, through hair_samples.vert, once per sample): `clip` the centre line's clip position;
 // `sideClip` what one edge adds to clip.xy per unit of clip.w (the other edge subtracts it; zero for
@@ -91,15 +160,8 @@ struct StrandSample {
 StrandSample strandSample(uvec2 ref)
 {
     StrandSample result;
-
-    int segment = int(ref.y & 0xFFFu);
-    int segments = int((ref.y >> 12) & 0xFFFu);
-    float sampleIndex = float((ref.y >> 24) & 0x1Fu);
-    int i = int(ref.x);
-
-    vec4 q1 = texelFetch(u_points, i);
-    vec4 q2 = texelFetch(u_points, i + 1);
-    if (q1.w < 0.5) {
+    StrandWorld w = strandWorld(ref);
+    if (!w.valid) {
         // A strand with a non-finite point: put every vertex of it outside the clip volume, so all
         // its primitives are clipped away.
         result.clip = vec4(2.0, 2.0, 2.0, 1.0);
@@ -108,32 +170,14 @@ StrandSample strandSample(uvec2 ref)
         result.colour = vec4(0.0);
         return result;
     }
-    vec3 p1 = q1.xyz;
-    vec3 p2 = q2.xyz;
-    // At the ends, mirror the neighbour (a phantom point), which makes the end tangent follow the
-    // first or last segment instead of curling.
-    vec3 p0 = segment > 0 ? texelFetch(u_points, i - 1).xyz : 2.0 * p1 - p2;
-    vec3 p3 = segment + 1 < segments ? texelFetch(u_points, i + 2).xyz : 2.0 * p2 - p1;
-
-    float u = sampleIndex / u_samplesPerSegment;
-    vec3 c1 = p2 - p0;
-    vec3 c2 = 2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3;
-    vec3 c3 = -p0 + 3.0 * p1 - 3.0 * p2 + p3;
-    vec3 position = p1 + 0.5 * u * (c1 + u * (c2 + u * c3));
-    vec3 derivative = 0.5 * (c1 + u * (2.0 * c2 + u * 3.0 * c3));
-    if (dot(derivative, derivative) < 1e-16)
-        derivative = p2 - p1;
-
-    vec4 positionView = u_view * vec4(position, 1.0);
-    vec3 tangentView = mat3(u_view) * derivative;
+    vec4 positionView = u_view * vec4(w.position, 1.0);
+    vec3 tangentView = mat3(u_view) * w.derivative;
     float tangentLength = length(tangentView);
     tangentView = tangentLength > 1e-12 ? tangentView / tangentLength : vec3(0.0, 1.0, 0.0);
 
-    float along = (float(segment) + u) / float(max(segments, 1));
+    float along = w.along;
     float depth = max(-positionView.z, 1e-4);
-    int look = int(q1.w + 0.5) - 2;
-    vec4 lookRoot = look >= 0 ? texelFetch(u_looks, 2 * look) : vec4(u_rootColour, 0.0);
-    float rootWidthMetres = (lookRoot.a > 0.0 ? lookRoot.a : u_hairThicknessMetres) * u_widthScale;
+    float rootWidthMetres = w.rootThicknessMetres * u_widthScale;
     float widthMetres = rootWidthMetres * mix(1.0, u_tipThicknessRatio, along);
     // Pixels per metre at this depth: projection[1][1] = 1 / tan(fovY / 2).
     float widthPixels = widthMetres * u_projection[1][1] * 0.5 * u_viewportPixels.y / depth;
@@ -164,15 +208,6 @@ StrandSample strandSample(uvec2 ref)
 
     float coverage = min(widthPixels / drawnPixels, 1.0);
     float alpha = coverage * (1.0 - u_tipFade * smoothstep(0.55, 1.0, along));
-    vec3 rootColour = lookRoot.rgb;
-    vec3 tipColour = look >= 0 ? texelFetch(u_looks, 2 * look + 1).rgb : u_tipColour;
-    // Water fills the gaps between the cuticle scales: wet hair reflects less diffusely and looks
-    // darker (about half as bright soaked).
-    float wetness = clamp((q1.w - float(look + 2)) / 0.45, 0.0, 1.0);
-    rootColour *= 1.0 - 0.5 * wetness;
-    tipColour *= 1.0 - 0.5 * wetness;
-    float ambient;
-    float keyShadow = keyLight(position, 0.002, ambient);
-    result.colour = vec4(shadeHair(positionView.xyz, tangentView, along, rootColour, tipColour, keyShadow, ambient), alpha);
+    result.colour = vec4(shadeHair(positionView.xyz, tangentView, along, w.rootColour, w.tipColour, w.keyShadow, w.ambient), alpha);
     return result;
 }

@@ -217,5 +217,121 @@ TEST_F(HairLowResTest, ASingleSampledBackdropKeepsTheImageAndTheHeadInFront)
     EXPECT_LT(static_cast<double>(bareSkinChanged), 0.005 * static_cast<double>(bareSkin));
 }
 
+// The software path (HairSoftwareRaster, HairShading; on by default on llvmpipe while the view
+// moves): the CPU shades every sample as GL's vertex shader does, and its half-resolution hair has
+// the ink and colour of GL's lines.
+TEST_F(HairLowResTest, TheSoftwarePathShadesAndDrawsWhatGlDoes)
+{
+    viewport->show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(viewport.get()));
+    viewport->setLevelOfDetail(false);
+    viewport->repaint();
+    const std::vector<HairRasterSample> gl = viewport->shadedHairSamples(false);
+    const std::vector<HairRasterSample> cpu = viewport->shadedHairSamples(true);
+    ASSERT_GT(gl.size(), 10000u);
+    ASSERT_EQ(cpu.size(), gl.size());
+    float clipError = 0.0f;
+    float colourError = 0.0f;
+    float alphaError = 0.0f;
+    float extentError = 0.0f;
+    for (std::size_t i = 0; i < gl.size(); ++i) {
+        for (int k = 0; k < 4; ++k)
+            clipError = std::max(clipError, std::abs(gl[i].clip[k] - cpu[i].clip[k]) / std::abs(gl[i].clip.w));
+        for (int k = 0; k < 3; ++k)
+            colourError = std::max(colourError, std::abs(gl[i].colour[k] - cpu[i].colour[k]));
+        alphaError = std::max(alphaError, std::abs(gl[i].colour.w - cpu[i].colour.w));
+        extentError = std::max(extentError, std::abs(gl[i].side.z - cpu[i].side.z));
+    }
+    std::printf("[ software ] %zu samples: largest difference GL - CPU: clip %.2g (of w), colour %.2g, coverage %.2g, "
+                "half extent %.2g pixels\n",
+        gl.size(), clipError, colourError, alphaError, extentError);
+    EXPECT_LT(clipError, 1e-5f);
+    EXPECT_LT(colourError, 1.0f / 255.0f); // under one level of the 8-bit target
+    EXPECT_LT(alphaError, 1e-4f);
+    EXPECT_LT(extentError, 1e-4f);
+
+    Viewport::ImageOptions halfOptions;
+    halfOptions.hairAtHalfResolution = true;
+    viewport->setFrame(nullptr);
+    const QImage bare = viewport->renderImage(kSize);
+    viewport->setFrame(settled->frame);
+    const QImage onCpu = viewport->renderImage(kSize, halfOptions);
+    viewport->setSoftwareHairWhileMoving(false);
+    const QImage byGl = viewport->renderImage(kSize, halfOptions);
+    viewport->setSoftwareHairWhileMoving(true);
+    if (const QString shots = qEnvironmentVariable("WISP_SCREENSHOT_DIR"); !shots.isEmpty()) {
+        onCpu.save(shots + QStringLiteral("/hair-half-resolution-cpu.png"));
+        byGl.save(shots + QStringLiteral("/hair-half-resolution-gl.png"));
+    }
+    double cpuInk = 0.0;
+    double glInk = 0.0;
+    double cpuSum[3] = {};
+    double glSum[3] = {};
+    qint64 cpuCovered = 0;
+    qint64 glCovered = 0;
+    for (int y = 0; y < kSize.height(); ++y)
+        for (int x = 0; x < kSize.width(); ++x) {
+            const QRgb b = bare.pixel(x, y);
+            const QRgb c = onCpu.pixel(x, y);
+            const QRgb g = byGl.pixel(x, y);
+            cpuInk += difference(c, b);
+            glInk += difference(g, b);
+            if (difference(c, b) > 24) {
+                ++cpuCovered;
+                cpuSum[0] += qRed(c);
+                cpuSum[1] += qGreen(c);
+                cpuSum[2] += qBlue(c);
+            }
+            if (difference(g, b) > 24) {
+                ++glCovered;
+                glSum[0] += qRed(g);
+                glSum[1] += qGreen(g);
+                glSum[2] += qBlue(g);
+            }
+        }
+    ASSERT_GT(glCovered, 10000);
+    ASSERT_GT(cpuCovered, 0);
+    std::printf("[ software ] half-resolution hair: ink %.0f CPU, %.0f GL (%.3f); covered %lld CPU, %lld GL; mean "
+                "colour (%.1f %.1f %.1f) CPU, (%.1f %.1f %.1f) GL\n",
+        cpuInk, glInk, cpuInk / glInk, static_cast<long long>(cpuCovered), static_cast<long long>(glCovered),
+        cpuSum[0] / cpuCovered, cpuSum[1] / cpuCovered, cpuSum[2] / cpuCovered, glSum[0] / glCovered,
+        glSum[1] / glCovered, glSum[2] / glCovered);
+    EXPECT_NEAR(cpuInk / glInk, 1.0, 0.1);
+    EXPECT_NEAR(static_cast<double>(cpuCovered) / static_cast<double>(glCovered), 1.0, 0.1);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(cpuSum[c] / cpuCovered, glSum[c] / glCovered, 6.0) << c;
+}
+
+// Orbiting a paused scene shades the same captured samples from each new view: GL captures them
+// once, not once a paint (the capture is the vertex shader's cost on llvmpipe's one vertex thread).
+TEST_F(HairLowResTest, APausedOrbitCapturesTheHairOnceAndDrawsItOnTheCpu)
+{
+    viewport->show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(viewport.get()));
+    viewport->setLevelOfDetail(false);
+    viewport->setHalfResolutionWhileMoving(true);
+    viewport->setSoftwareHairWhileMoving(true);
+    viewport->repaint();
+    viewport->camera().orbit(6.0f, 0.0f);
+    viewport->repaint();
+    ASSERT_TRUE(viewport->lastPaintHairOnCpu());
+    const std::uint64_t captures = viewport->hairWorldCaptures();
+    EXPECT_GE(captures, 1u);
+    for (int i = 0; i < 5; ++i) {
+        viewport->camera().orbit(6.0f, 0.0f);
+        viewport->repaint();
+        EXPECT_TRUE(viewport->lastPaintHairAtHalfResolution()) << i;
+        EXPECT_TRUE(viewport->lastPaintHairOnCpu()) << i;
+        EXPECT_GT(viewport->lastDrawnStrands(), 1000u) << i;
+    }
+    EXPECT_EQ(viewport->hairWorldCaptures(), captures);
+    // Off, GL's lines draw it.
+    viewport->setSoftwareHairWhileMoving(false);
+    viewport->camera().orbit(6.0f, 0.0f);
+    viewport->repaint();
+    EXPECT_TRUE(viewport->lastPaintHairAtHalfResolution());
+    EXPECT_FALSE(viewport->lastPaintHairOnCpu());
+}
+
 } // namespace
 } // namespace wisp

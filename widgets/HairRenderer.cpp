@@ -272,16 +272,19 @@ void HairRenderer::upload(
     }
     // Invalidating the buffer lets the driver hand out fresh memory instead of waiting for the
     // previous frame's draw to finish reading it (orphaning).
-    auto* out = static_cast<glm::vec4*>(
+    auto* mapped = static_cast<glm::vec4*>(
         m_gl->glMapBufferRange(GL_TEXTURE_BUFFER, 0, bytes, GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT));
-    if (!out) {
+    if (!mapped) {
         m_gl->glBindBuffer(GL_TEXTURE_BUFFER, 0);
         clear();
         checkGlErrors(m_gl, "HairRenderer::upload (map)");
         return;
     }
     // One pass per strand: first find out whether it is finite, then copy it with the verdict (and
-    // its look) in w.
+    // its look) in w. Into a copy kept here (the shadow map's hair passes on a software GL read it:
+    // HairShadowRaster), then into the mapped buffer (which may be write-combined: never read).
+    m_points.resize(pointCount);
+    glm::vec4* out = m_points.data();
     m_skippedStrands = 0;
     glm::vec3 low(std::numeric_limits<float>::max());
     glm::vec3 high(-std::numeric_limits<float>::max());
@@ -317,6 +320,7 @@ void HairRenderer::upload(
     }
     m_bounds = low.x <= high.x ? Aabb{ low, high } : Aabb{};
     m_longestSegmentMetres = std::sqrt(longestSquared);
+    std::copy(m_points.begin(), m_points.end(), mapped);
     m_gl->glUnmapBuffer(GL_TEXTURE_BUFFER);
     // A typical segment length (from up to 256 strands' first segments) and turn at a joint, to pick
     // how finely the curves are sampled for the zoom.

@@ -109,6 +109,13 @@ public:
     // already bound, that reads the points as hair.vert does (unit 0) from attribute 0 (the shadow
     // map's passes).
     void drawPoints(QOpenGLShaderProgram& program);
+    // The last upload's points as the shaders read them (xyz world metres; w: the strand's tag, below
+    // 0.5 for a strand with a non-finite point, not drawn), and its strands' offsets into them.
+    std::span<const glm::vec4> points() const
+    {
+        return m_vertexCount > 0 ? std::span<const glm::vec4>(m_points) : std::span<const glm::vec4>();
+    }
+    std::span<const std::uint32_t> strandOffsets() const { return m_layout.offsets; }
     // The box around the last upload's finite points (empty before any).
     const Aabb& bounds() const { return m_bounds; }
     // bounds() widened by half the widest strand that draw(view, style, fraction) would draw,
@@ -219,6 +226,7 @@ private:
     bool m_lineDecimation = true;
     std::size_t m_lastDrawnLineSegments = 0;
     GLuint m_pointBuffer = 0; // vec4 per point, read through m_pointTexture
+    std::vector<glm::vec4> m_points; // what m_pointBuffer holds
     GLuint m_pointTexture = 0;
     GLuint m_lookBuffer = 0; // two linear-RGBA texels per look: root, tip
     GLuint m_lookTexture = 0;

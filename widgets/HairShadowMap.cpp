@@ -1,6 +1,7 @@
 #include "widgets/HairShadowMap.h"
 
 #include "widgets/HairRenderer.h"
+#include "widgets/HairShadowRaster.h"
 #include "widgets/HeadRenderer.h"
 
 #include <glm/geometric.hpp>
@@ -135,6 +136,16 @@ void HairShadowMap::render(HairRenderer& hair, HeadRenderer& head, HeadRenderer&
     head.drawWith(*m_headProgram);
     body.drawWith(*m_headProgram);
     m_headProgram->release();
+    if (m_softwareHair && drawHairOnCpu(hair, strandOpacity)) {
+        gl->glDisable(GL_BLEND);
+        gl->glBlendEquation(GL_FUNC_ADD);
+        gl->glDepthMask(GL_TRUE);
+        gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        m_valid = true;
+        ++m_passes;
+        checkGlErrors(gl, "HairShadowMap::render (software)");
+        return;
+    }
     m_hairProgram->bind();
     setUniform(*m_hairProgram, "u_lightViewProjection", m_lightViewProjection);
     setUniform(*m_hairProgram, "u_worldToShadow", m_worldToShadow);
@@ -172,6 +183,37 @@ void HairShadowMap::render(HairRenderer& hair, HeadRenderer& head, HeadRenderer&
     m_valid = true;
     ++m_passes;
     checkGlErrors(gl, "HairShadowMap::render");
+}
+
+bool HairShadowMap::drawHairOnCpu(HairRenderer& hair, float strandOpacity)
+{
+    GlFunctions* gl = m_gl;
+    constexpr std::size_t kTexels = static_cast<std::size_t>(kPixels) * kPixels;
+    m_cpuDepth.resize(kTexels);
+    m_cpuOpacity.resize(kTexels);
+    // The head's pass, as drawn above (the depth framebuffer is bound).
+    gl->glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl->glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+    gl->glReadPixels(0, 0, kPixels, kPixels, GL_RG, GL_FLOAT, m_cpuDepth.data());
+    ShadowRasterInput input;
+    input.points = hair.points();
+    input.strandOffsets = hair.strandOffsets();
+    input.lightViewProjection = m_lightViewProjection;
+    input.worldToShadow = m_worldToShadow;
+    input.pixels = kPixels;
+    input.layerMetres = glm::vec4(kLayerMetres[0], kLayerMetres[1], kLayerMetres[2], kLayerMetres[3]);
+    input.strandOpacity = strandOpacity;
+    drawShadowHair(input, m_cpuDepth, m_cpuOpacity, m_softwarePool);
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    gl->glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    gl->glBindTexture(GL_TEXTURE_2D, m_depthTexture);
+    gl->glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kPixels, kPixels, GL_RG, GL_FLOAT, m_cpuDepth.data());
+    gl->glBindTexture(GL_TEXTURE_2D, m_opacityTexture);
+    gl->glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, kPixels, kPixels, GL_RGBA, GL_FLOAT, m_cpuOpacity.data());
+    // The blurred levels stand for the hair's density around a point (the ambient term).
+    gl->glGenerateMipmap(GL_TEXTURE_2D);
+    gl->glBindTexture(GL_TEXTURE_2D, 0);
+    return true;
 }
 
 ShadowLookup HairShadowMap::lookup() const

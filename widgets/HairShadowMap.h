@@ -19,6 +19,7 @@
 #include "widgets/RenderView.h"
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -27,11 +28,13 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace wisp {
 
 class HairRenderer;
 class HeadRenderer;
+class ThreadPool;
 
 class HairShadowMap {
 public:
@@ -60,10 +63,25 @@ public:
     bool valid() const { return m_valid; }
     void invalidate() { m_valid = false; }
     std::uint64_t passCount() const { return m_passes; } // render() calls that drew, so far
+    // The hair's two passes drawn on the CPU (HairShadowRaster.h) over the head's pass read back
+    // from GL, on `pool`'s threads (null: the calling thread); for a software OpenGL, where the
+    // strands' lines are most of the passes' cost. Off: GL draws them.
+    void setSoftwareHair(bool on, ThreadPool* pool)
+    {
+        m_softwareHair = on;
+        m_softwarePool = pool;
+    }
+    bool softwareHair() const { return m_softwareHair; }
     QString error() const { return m_error; }
 
 private:
+    bool drawHairOnCpu(HairRenderer& hair, float strandOpacity);
+
     GlFunctions* m_gl = nullptr;
+    bool m_softwareHair = false;
+    ThreadPool* m_softwarePool = nullptr;
+    std::vector<glm::vec2> m_cpuDepth; // the software passes' maps, read back and handed back
+    std::vector<glm::vec4> m_cpuOpacity;
     std::unique_ptr<QOpenGLShaderProgram> m_hairProgram; // shadow_hair.*: both passes
     std::unique_ptr<QOpenGLShaderProgram> m_headProgram; // shadow_head.*: pass 1
     GLuint m_depthTexture = 0; // RG32F

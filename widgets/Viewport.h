@@ -182,6 +182,11 @@ public:
     void setSoftwareHairWhileMoving(bool enabled) { m_softwareHairWhileMoving = enabled; }
     bool softwareHairWhileMoving() const { return m_softwareHairWhileMoving.value_or(m_softwareGl && !m_glHairWanted); }
     bool lastPaintHairOnCpu() const { return m_lastHairOnCpu; }
+    // The shadow map's hair passes drawn on the CPU (HairShadowRaster.h), the head's pass still by GL.
+    // On by default where GL is a software rasteriser (unless WISP_GL_HAIR); needs the GL context
+    // (call after the first paint), and the next paint makes the map again.
+    void setSoftwareShadowHair(bool enabled);
+    bool softwareShadowHair() const { return m_shadowMap.softwareHair(); }
     // The hair's samples for the current view at half resolution as a moving view draws them,
     // shaded by GL's vertex shader or by the software path's CPU (HairShading.h): the two must agree
     // (ViewportTest). Empty without a context or hair. Paint first: it reads what the last paint
@@ -284,6 +289,7 @@ private:
     // (nothing drawn) where the samples cannot be captured.
     bool drawHairOnCpu(
         const RenderView& half, const HairStyle& style, float fraction, bool preview, const ClipRect& lowResRegion);
+    ThreadPool* rasterPool(); // m_rasterPool, made on first use
     // The hair into the bound frame, at full resolution or through m_lowRes.
     void drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution);
     void uploadFrameIfChanged(); // streams m_frame's strands to the hair renderer once per frame
@@ -367,6 +373,7 @@ private:
     std::vector<float> m_lowResDepth; // the half-resolution target's depth, read for the CPU's hair
     std::optional<bool> m_singleSampledBackdropWhileMoving; // unset: m_softwareGl
     bool m_lastBackdropSingleSampled = false;
+    bool m_backdropCacheSingleSampled = false; // the cache was made single-sampled (frames streaming)
     bool m_hairMoved = false; // points uploaded since the shadow map was rendered
     glm::vec3 m_shadowLight{ 0.0f }; // the light the shadow map was rendered for
     std::uint64_t m_shadowPaint = 0; // m_paintCount when it was rendered

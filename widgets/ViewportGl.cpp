@@ -99,6 +99,8 @@ void Viewport::initializeGL()
     // Without shadows (a driver without float framebuffers) the hair is still drawn, lit.
     if (!m_shadowMap.initialize(m_gl))
         qWarning("Viewport: %s", qPrintable(m_shadowMap.error()));
+    // On a software rasteriser the shadow map's hair passes too are ours (HairShadowRaster.h).
+    m_shadowMap.setSoftwareHair(m_softwareGl && !m_glHairWanted, rasterPool());
     // Without it (a shader that does not build) the hair is always drawn at full resolution.
     if (!m_lowRes.initialize(m_gl))
         qWarning("Viewport: %s", qPrintable(m_lowRes.error()));
@@ -342,16 +344,21 @@ void Viewport::paintGL(bool framebuffersRemade)
         m_backdropKey.reset();
     const bool settled = m_lastBackdropKey == key;
     m_lastBackdropKey = key;
-    // While it changes every paint, single-sampled (setSingleSampledBackdropWhileMoving).
-    const bool singleSampled
-        = !settled && singleSampledBackdropWhileMoving() && !m_grabbing && !m_refining && m_canvas.samples() > 0;
-    if (m_backdropKey != key) {
+    // While it changes every paint, single-sampled (setSingleSampledBackdropWhileMoving); while frames
+    // stream in too, where the head takes a new shadow every few paints and a multisampled backdrop
+    // would be made for a paint or two (measured between docks: 29 ms against 12 every third paint).
+    // A single-sampled backdrop kept in the cache is made again multisampled once things hold.
+    const bool singleSampled = (!settled || hairIsNew) && singleSampledBackdropWhileMoving() && !m_grabbing
+        && !m_refining && m_canvas.samples() > 0;
+    if (m_backdropKey != key || (m_backdropCacheSingleSampled && !singleSampled)) {
         m_backdropKey.reset();
         drawResolvedBackdrop(view, settled, !singleSampled);
-        if (settled)
+        if (settled) {
             m_backdropKey = key;
+            m_backdropCacheSingleSampled = singleSampled;
+        }
     }
-    m_lastBackdropSingleSampled = singleSampled && !m_backdropKey;
+    m_lastBackdropSingleSampled = singleSampled;
     if (m_backdropKey)
         m_canvas.copyBackdropCacheToFrame();
     m_canvas.bindFrame();
@@ -502,13 +509,26 @@ bool Viewport::drawHairOnCpu(
         return false;
     const PixelRect rect = pixelRectOfClipRect(lowResRegion, m_lowRes.size().width(), m_lowRes.size().height());
     m_lowRes.readDepth(rect, m_lowResDepth);
-    if (!m_rasterPool)
-        m_rasterPool = std::make_unique<ThreadPool>(0);
-    const std::span<const std::uint8_t> rgba = m_hair.drawSoftware(rect, m_lowResDepth, m_rasterPool.get());
+    const std::span<const std::uint8_t> rgba = m_hair.drawSoftware(rect, m_lowResDepth, rasterPool());
     if (rgba.empty())
         return rect.width() == 0 || rect.height() == 0; // the samples could not be read: GL draws them
     m_lowRes.writeColour(rect, rgba);
     return true;
+}
+
+void Viewport::setSoftwareShadowHair(bool enabled)
+{
+    m_shadowMap.setSoftwareHair(enabled, rasterPool());
+    m_shadowMap.invalidate();
+    ++m_backdropRevision;
+    scheduleFrame();
+}
+
+ThreadPool* Viewport::rasterPool()
+{
+    if (!m_rasterPool)
+        m_rasterPool = std::make_unique<ThreadPool>(0);
+    return m_rasterPool.get();
 }
 
 std::vector<HairRasterSample> Viewport::shadedHairSamples(bool onCpu)

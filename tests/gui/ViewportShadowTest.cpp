@@ -148,6 +148,44 @@ TEST_F(ViewportTest, ShadowsDarkenTheHairAndTheSkinUnderIt)
     EXPECT_GE(underHairDarker, 500);
 }
 
+// On a software GL the shadow map's hair passes are drawn on the CPU (HairShadowRaster.h): the
+// default scene's image with them is the image with GL's passes, to a level or two at the
+// shadows' edges.
+TEST_F(ViewportTest, TheShadowMapsHairDrawnOnTheCpuShadesAsGlsDoes)
+{
+    viewport->resize(640, 640);
+    viewport->frameHead();
+    viewport->setLevelOfDetail(false);
+    viewport->setHairColours(QColor(60, 40, 25), QColor(130, 90, 50));
+    viewport->setFrame(defaultSceneFrame());
+    grab();
+    viewport->setSoftwareShadowHair(true);
+    const std::uint64_t passes = viewport->shadowPassCount();
+    const QImage onCpu = grab();
+    EXPECT_EQ(viewport->shadowPassCount(), passes + 1);
+    viewport->setSoftwareShadowHair(false);
+    const QImage byGl = grab();
+    viewport->setShadowsEnabled(false);
+    const QImage unshaded = grab();
+    ASSERT_EQ(onCpu.size(), byGl.size());
+    double difference = 0.0; // mean over the pixels, luminance 0..1
+    double shading = 0.0; // how much the shadows change the image, the same way
+    int apart = 0; // pixels more than 8 levels apart
+    for (int y = 0; y < onCpu.height(); ++y)
+        for (int x = 0; x < onCpu.width(); ++x) {
+            difference += std::abs(luminance(onCpu.pixelColor(x, y)) - luminance(byGl.pixelColor(x, y)));
+            shading += std::abs(luminance(byGl.pixelColor(x, y)) - luminance(unshaded.pixelColor(x, y)));
+            apart += std::abs(qGray(onCpu.pixel(x, y)) - qGray(byGl.pixel(x, y))) > 8 ? 1 : 0;
+        }
+    const double pixels = static_cast<double>(onCpu.width()) * onCpu.height();
+    std::printf("[ viewport ] shadow map's hair on the CPU against GL: mean difference %.4f (the shadows themselves "
+                "%.4f), %d pixels more than 8 levels apart\n",
+        difference / pixels, shading / pixels, apart);
+    EXPECT_GT(shading / pixels, 0.01); // there are shadows to compare
+    EXPECT_LT(difference, 0.1 * shading);
+    EXPECT_LT(apart, static_cast<int>(pixels / 100));
+}
+
 TEST_F(ViewportTest, OrbitingAPausedSceneReusesTheShadowsAndMovingHairRendersThem)
 {
     viewport->setFrame(scalpFrame(head, 600, 16, 0.0f));

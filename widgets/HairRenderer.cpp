@@ -486,10 +486,7 @@ bool HairRenderer::captureWithProgram(QOpenGLShaderProgram& program, const DrawP
         capacity = samples;
     }
     setStrandUniforms(program, view, style, plan.widthScale, plan.lines);
-    gl->glActiveTexture(GL_TEXTURE1);
-    gl->glBindTexture(GL_TEXTURE_BUFFER, m_lookTexture);
-    gl->glActiveTexture(GL_TEXTURE0);
-    gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
+    bindStrandTextures();
     gl->glEnable(GL_RASTERIZER_DISCARD);
     gl->glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer, 0, bytes);
     gl->glBindVertexArray(m_vao);
@@ -507,14 +504,27 @@ bool HairRenderer::captureWithProgram(QOpenGLShaderProgram& program, const DrawP
     gl->glBindVertexArray(0);
     gl->glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     gl->glDisable(GL_RASTERIZER_DISCARD);
-    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
-    gl->glActiveTexture(GL_TEXTURE1);
-    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
-    gl->glActiveTexture(GL_TEXTURE0);
+    unbindStrandTextures();
     unbindShadowLookup(gl);
     program.release();
     checkGlErrors(gl, "HairRenderer::captureWithProgram");
     return true;
+}
+
+void HairRenderer::bindStrandTextures()
+{
+    m_gl->glActiveTexture(GL_TEXTURE1);
+    m_gl->glBindTexture(GL_TEXTURE_BUFFER, m_lookTexture);
+    m_gl->glActiveTexture(GL_TEXTURE0);
+    m_gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
+}
+
+void HairRenderer::unbindStrandTextures()
+{
+    m_gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    m_gl->glActiveTexture(GL_TEXTURE1);
+    m_gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
+    m_gl->glActiveTexture(GL_TEXTURE0);
 }
 
 HairShadingView HairRenderer::shadingView(const RenderView& view, const HairStyle& style, const DrawPlan& plan) const
@@ -720,10 +730,7 @@ bool HairRenderer::drawRibbonsFromSamples(std::size_t samples, GLsizei indexCoun
         gl->glBindBuffer(GL_TEXTURE_BUFFER, 0);
     }
     // Pass 1 (m_sampleProgram is bound with its uniforms): every sample once, nothing rasterised.
-    gl->glActiveTexture(GL_TEXTURE1);
-    gl->glBindTexture(GL_TEXTURE_BUFFER, m_lookTexture);
-    gl->glActiveTexture(GL_TEXTURE0);
-    gl->glBindTexture(GL_TEXTURE_BUFFER, m_pointTexture);
+    bindStrandTextures();
     gl->glEnable(GL_RASTERIZER_DISCARD);
     gl->glBindBufferRange(
         GL_TRANSFORM_FEEDBACK_BUFFER, 0, m_sampleBuffer, 0, static_cast<GLsizeiptr>(samples * kSampleBytes));
@@ -733,10 +740,7 @@ bool HairRenderer::drawRibbonsFromSamples(std::size_t samples, GLsizei indexCoun
     gl->glEndTransformFeedback();
     gl->glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     gl->glDisable(GL_RASTERIZER_DISCARD);
-    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
-    gl->glActiveTexture(GL_TEXTURE1);
-    gl->glBindTexture(GL_TEXTURE_BUFFER, 0);
-    gl->glActiveTexture(GL_TEXTURE0);
+    unbindStrandTextures();
     unbindShadowLookup(gl);
     m_sampleProgram->release();
 

@@ -156,6 +156,9 @@ private:
     bool captureWithProgram(QOpenGLShaderProgram& program, const DrawPlan& plan, const RenderView& view,
         const HairStyle& style, GLuint buffer, std::size_t bytesPerSample, std::size_t& capacity);
     HairShadingView shadingView(const RenderView& view, const HairStyle& style, const DrawPlan& plan) const;
+    // The strands' points (unit 0) and looks (unit 1), as hair_strand.glsl reads them; and off again.
+    void bindStrandTextures();
+    void unbindStrandTextures();
     // Calls `use` with the captured world samples (mapped); false if none or the map failed.
     bool withWorldSamples(const std::function<void(std::span<const HairWorldSample>)>& use);
     // What the world capture was made from.

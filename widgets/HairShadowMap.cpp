@@ -136,16 +136,21 @@ void HairShadowMap::render(HairRenderer& hair, HeadRenderer& head, HeadRenderer&
     head.drawWith(*m_headProgram);
     body.drawWith(*m_headProgram);
     m_headProgram->release();
-    if (m_softwareHair && drawHairOnCpu(hair, strandOpacity)) {
-        gl->glDisable(GL_BLEND);
-        gl->glBlendEquation(GL_FUNC_ADD);
-        gl->glDepthMask(GL_TRUE);
-        gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        m_valid = true;
-        ++m_passes;
-        checkGlErrors(gl, "HairShadowMap::render (software)");
-        return;
-    }
+    if (!m_softwareHair || !drawHairOnCpu(hair, strandOpacity))
+        drawHairOnGl(hair, strandOpacity);
+
+    gl->glDisable(GL_BLEND);
+    gl->glBlendEquation(GL_FUNC_ADD);
+    gl->glDepthMask(GL_TRUE);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    m_valid = true;
+    ++m_passes;
+    checkGlErrors(gl, "HairShadowMap::render");
+}
+
+void HairShadowMap::drawHairOnGl(HairRenderer& hair, float strandOpacity)
+{
+    GlFunctions* gl = m_gl;
     m_hairProgram->bind();
     setUniform(*m_hairProgram, "u_lightViewProjection", m_lightViewProjection);
     setUniform(*m_hairProgram, "u_worldToShadow", m_worldToShadow);
@@ -175,14 +180,6 @@ void HairShadowMap::render(HairRenderer& hair, HeadRenderer& head, HeadRenderer&
     gl->glBindTexture(GL_TEXTURE_2D, m_opacityTexture);
     gl->glGenerateMipmap(GL_TEXTURE_2D);
     gl->glBindTexture(GL_TEXTURE_2D, 0);
-
-    gl->glDisable(GL_BLEND);
-    gl->glBlendEquation(GL_FUNC_ADD);
-    gl->glDepthMask(GL_TRUE);
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    m_valid = true;
-    ++m_passes;
-    checkGlErrors(gl, "HairShadowMap::render");
 }
 
 bool HairShadowMap::drawHairOnCpu(HairRenderer& hair, float strandOpacity)

@@ -75,6 +75,8 @@ public:
     QString error() const { return m_error; }
 
 private:
+    // The hair's passes and the blurred levels, after the head's pass (the depth framebuffer bound).
+    void drawHairOnGl(HairRenderer& hair, float strandOpacity);
     bool drawHairOnCpu(HairRenderer& hair, float strandOpacity);
 
     GlFunctions* m_gl = nullptr;

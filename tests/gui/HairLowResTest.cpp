@@ -26,6 +26,31 @@ protected:
         return std::abs(qRed(a) - qRed(b)) + std::abs(qGreen(a) - qGreen(b)) + std::abs(qBlue(a) - qBlue(b));
     }
     static constexpr QSize kSize{ 585, 710 };
+    // What the hair adds to the bare view: its ink (how far it moves each pixel from the bare head,
+    // summed, R+G+B levels), the pixels it changes by more than 24 levels, and their mean colour.
+    struct Ink {
+        double ink = 0.0;
+        qint64 covered = 0;
+        double sum[3] = {};
+        double mean(int channel) const { return covered > 0 ? sum[channel] / static_cast<double>(covered) : 0.0; }
+    };
+    static Ink inkOver(const QImage& image, const QImage& bare)
+    {
+        Ink result;
+        for (int y = 0; y < image.height(); ++y)
+            for (int x = 0; x < image.width(); ++x) {
+                const QRgb b = bare.pixel(x, y);
+                const QRgb c = image.pixel(x, y);
+                result.ink += difference(c, b);
+                if (difference(c, b) > 24) {
+                    ++result.covered;
+                    result.sum[0] += qRed(c);
+                    result.sum[1] += qGreen(c);
+                    result.sum[2] += qBlue(c);
+                }
+            }
+        return result;
+    }
     // The default view without hair, with it, and with it drawn as `options` ask.
     struct Images {
         QImage bare, full, variant;
@@ -263,43 +288,19 @@ TEST_F(HairLowResTest, TheSoftwarePathShadesAndDrawsWhatGlDoes)
         onCpu.save(shots + QStringLiteral("/hair-half-resolution-cpu.png"));
         byGl.save(shots + QStringLiteral("/hair-half-resolution-gl.png"));
     }
-    double cpuInk = 0.0;
-    double glInk = 0.0;
-    double cpuSum[3] = {};
-    double glSum[3] = {};
-    qint64 cpuCovered = 0;
-    qint64 glCovered = 0;
-    for (int y = 0; y < kSize.height(); ++y)
-        for (int x = 0; x < kSize.width(); ++x) {
-            const QRgb b = bare.pixel(x, y);
-            const QRgb c = onCpu.pixel(x, y);
-            const QRgb g = byGl.pixel(x, y);
-            cpuInk += difference(c, b);
-            glInk += difference(g, b);
-            if (difference(c, b) > 24) {
-                ++cpuCovered;
-                cpuSum[0] += qRed(c);
-                cpuSum[1] += qGreen(c);
-                cpuSum[2] += qBlue(c);
-            }
-            if (difference(g, b) > 24) {
-                ++glCovered;
-                glSum[0] += qRed(g);
-                glSum[1] += qGreen(g);
-                glSum[2] += qBlue(g);
-            }
-        }
-    ASSERT_GT(glCovered, 10000);
-    ASSERT_GT(cpuCovered, 0);
+    const Ink cpuHair = inkOver(onCpu, bare);
+    const Ink glHair = inkOver(byGl, bare);
+    ASSERT_GT(glHair.covered, 10000);
+    ASSERT_GT(cpuHair.covered, 0);
     std::printf("[ software ] half-resolution hair: ink %.0f CPU, %.0f GL (%.3f); covered %lld CPU, %lld GL; mean "
                 "colour (%.1f %.1f %.1f) CPU, (%.1f %.1f %.1f) GL\n",
-        cpuInk, glInk, cpuInk / glInk, static_cast<long long>(cpuCovered), static_cast<long long>(glCovered),
-        cpuSum[0] / cpuCovered, cpuSum[1] / cpuCovered, cpuSum[2] / cpuCovered, glSum[0] / glCovered,
-        glSum[1] / glCovered, glSum[2] / glCovered);
-    EXPECT_NEAR(cpuInk / glInk, 1.0, 0.1);
-    EXPECT_NEAR(static_cast<double>(cpuCovered) / static_cast<double>(glCovered), 1.0, 0.1);
+        cpuHair.ink, glHair.ink, cpuHair.ink / glHair.ink, static_cast<long long>(cpuHair.covered),
+        static_cast<long long>(glHair.covered), cpuHair.mean(0), cpuHair.mean(1), cpuHair.mean(2), glHair.mean(0),
+        glHair.mean(1), glHair.mean(2));
+    EXPECT_NEAR(cpuHair.ink / glHair.ink, 1.0, 0.1);
+    EXPECT_NEAR(static_cast<double>(cpuHair.covered) / static_cast<double>(glHair.covered), 1.0, 0.1);
     for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(cpuSum[c] / cpuCovered, glSum[c] / glCovered, 6.0) << c;
+        EXPECT_NEAR(cpuHair.mean(c), glHair.mean(c), 6.0) << c;
 }
 
 // Orbiting a paused scene shades the same captured samples from each new view: GL captures them

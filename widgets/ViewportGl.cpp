@@ -342,7 +342,12 @@ void Viewport::paintGL(bool framebuffersRemade)
     const BackdropKey key{ view.view, view.projection, m_canvas.size(), m_backdropRevision };
     if (framebuffersRemade)
         m_backdropKey.reset();
-    const bool settled = m_lastBackdropKey == key;
+    // Settled: as the last paint had it. While frames stream under a still camera, a new revision
+    // (the head's new shadow every few paints) is settled too: the camera holds, so what is drawn
+    // now is what the next paints show (drawn into the cache once, not into the frame and again).
+    const bool sameCamera = m_lastBackdropKey && m_lastBackdropKey->view == key.view
+        && m_lastBackdropKey->projection == key.projection && m_lastBackdropKey->pixels == key.pixels;
+    const bool settled = m_lastBackdropKey == key || (hairIsNew && sameCamera);
     m_lastBackdropKey = key;
     // While it changes every paint, single-sampled (setSingleSampledBackdropWhileMoving); while frames
     // stream in too, where the head takes a new shadow every few paints and a multisampled backdrop

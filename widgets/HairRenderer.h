@@ -96,7 +96,7 @@ public:
     std::span<const std::uint8_t> drawSoftware(const PixelRect& region, std::span<const float> depth, ThreadPool* pool);
     std::uint64_t worldCaptures() const { return m_worldCaptures; } // prepareSoftware()'s GL passes
     // The centre lines' samples for a view as GL's vertex shader shades them (hair_samples.vert) or
-    // as the CPU does (HairShading.h): the two paths must agree (ViewportTest checks).
+    // as the CPU does (HairShading.h): the two paths must agree (HairLowResTest checks).
     std::vector<HairRasterSample> shadedSamples(
         const RenderView& view, const HairStyle& style, float fraction, bool coarse, bool onCpu);
 

@@ -5,7 +5,7 @@
 // reaching it through the deep opacity map) is captured from GL once per frame and shadow map
 // (hair_sample_world.vert); a paused orbit then costs the view's part only, on the pool's threads,
 // instead of the whole shader on llvmpipe's one vertex thread (measured: 330 ns a sample there).
-// ViewportTest checks that both give the same samples.
+// HairLowResTest.TheSoftwarePathShadesAndDrawsWhatGlDoes checks that both give the same samples.
 //
 // Pure C++ (no GL): tested without a context. Thread: any.
 

@@ -189,7 +189,7 @@ public:
     bool softwareShadowHair() const { return m_shadowMap.softwareHair(); }
     // The hair's samples for the current view at half resolution as a moving view draws them,
     // shaded by GL's vertex shader or by the software path's CPU (HairShading.h): the two must agree
-    // (ViewportTest). Empty without a context or hair. Paint first: it reads what the last paint
+    // (HairLowResTest). Empty without a context or hair. Paint first: it reads what the last paint
     // uploaded.
     std::vector<HairRasterSample> shadedHairSamples(bool onCpu);
     // GL passes that captured the hair's samples for the software path (HairRenderer::prepareSoftware):

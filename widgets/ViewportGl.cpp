@@ -100,7 +100,8 @@ void Viewport::initializeGL()
     if (!m_shadowMap.initialize(m_gl))
         qWarning("Viewport: %s", qPrintable(m_shadowMap.error()));
     // On a software rasteriser the shadow map's hair passes too are ours (HairShadowRaster.h).
-    m_shadowMap.setSoftwareHair(m_softwareGl && !m_glHairWanted, rasterPool());
+    const bool softwareHair = m_softwareGl && !m_glHairWanted;
+    m_shadowMap.setSoftwareHair(softwareHair, softwareHair ? rasterPool() : nullptr); // no threads on a card
     // Without it (a shader that does not build) the hair is always drawn at full resolution.
     if (!m_lowRes.initialize(m_gl))
         qWarning("Viewport: %s", qPrintable(m_lowRes.error()));

@@ -142,10 +142,7 @@ void shadeHairSamples(
         for (std::size_t i = begin; i < end; ++i)
             out[i] = shadeSample(in[i], view, viewTurn);
     };
-    if (pool)
-        pool->parallelFor(count, 4096, body);
-    else
-        body(0, count);
+    forRange(pool, count, 4096, body);
 }
 
 } // namespace wisp

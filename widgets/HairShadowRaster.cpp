@@ -93,14 +93,10 @@ void drawShadowHair(
         = std::clamp<std::size_t>(pool ? pool->threadCount() : 1, 1, std::max<std::size_t>(strands, 1));
     const auto runBegin = [&](std::size_t run) { return strands * run / runs; };
     const auto forEachRun = [&](const std::function<void(std::size_t)>& body) {
-        const auto chunk = [&](std::size_t a, std::size_t b) {
+        forRange(pool, runs, 1, [&](std::size_t a, std::size_t b) {
             for (std::size_t run = a; run < b; ++run)
                 body(run);
-        };
-        if (pool)
-            pool->parallelFor(runs, 1, chunk);
-        else
-            chunk(0, runs);
+        });
     };
 
     // Pass 1: the nearest depth, per run, then the least of them.

@@ -263,10 +263,7 @@ std::span<const std::uint8_t> HairSoftwareRaster::draw(const HairRasterInput& in
         for (std::size_t run = first; run < last; ++run)
             drawRun(run);
     };
-    if (pool)
-        pool->parallelFor(runCount, 1, body);
-    else
-        body(0, runCount);
+    forRange(pool, runCount, 1, body);
     for (const std::size_t n : runSegments)
         m_lastSegments += n;
 
@@ -292,10 +289,7 @@ std::span<const std::uint8_t> HairSoftwareRaster::draw(const HairRasterInput& in
         }
     };
     const auto rows = static_cast<std::size_t>(in.region.height());
-    if (pool)
-        pool->parallelFor(rows, 16, merge);
-    else
-        merge(0, rows);
+    forRange(pool, rows, 16, merge);
     return m_rgba;
 }
 

@@ -78,10 +78,7 @@ template <class Fn> bool parallelFor(ThreadPool* pool, int count, Fn&& fn)
             failed = true;
         }
     };
-    if (pool)
-        pool->parallelFor(static_cast<std::size_t>(count), 1, body);
-    else
-        body(0, static_cast<std::size_t>(count));
+    forRange(pool, static_cast<std::size_t>(count), 1, body);
     return !failed;
 }
 

@@ -15,18 +15,6 @@
 #define WISP_HAIR_VOLUME_GRID_ONCE_
 namespace wisp {
 
-namespace {
-// body(begin, end) over [0, count): on the pool, or on the calling thread when there is none.
-void forRange(
-    ThreadPool* pool, std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body)
-{
-    if (pool)
-        pool->parallelFor(count, grain, body);
-    else if (count > 0)
-        body(0, count);
-}
-} // namespace
-
 } // namespace wisp
 #endif
 

@@ -621,10 +621,7 @@ void Solver::volumePass(const StepConstants& c, int substepsUntilNext)
                 volumeSplat(m_blocks[i], c, slot);
             grid.releaseSlot(slot);
         };
-        if (pool)
-            pool->parallelFor(m_blocks.size(), 4, splatBlocks);
-        else
-            splatBlocks(0, m_blocks.size());
+        forRange(pool, m_blocks.size(), 4, splatBlocks);
     }
     m_volumeSplatted = false;
     VolumeRead& v = m_volumeRead;

@@ -58,4 +58,14 @@ private:
     bool m_stopping = false;
 };
 
+// body(begin, end) over [0, count): on `pool`, or on the calling thread when there is none.
+inline void forRange(
+    ThreadPool* pool, std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body)
+{
+    if (pool)
+        pool->parallelFor(count, grain, body);
+    else if (count > 0)
+        body(0, count);
+}
+
 } // namespace wisp

@@ -33,11 +33,14 @@ PaintRun paintFrames(Viewport& viewport, const std::vector<FramePtr>& frames, in
     feeder.start();
     while (run.paints < paints && timer.elapsed() < wisp::test::kWaitMs) {
         QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-        if (viewport.paintCount() != seen) { // one look per paint or more: the last paint's share
-            run.paints += static_cast<int>(viewport.paintCount() - seen);
+        if (viewport.paintCount() != seen) {
+            // One look per paint or more (a turn of the loop can hold two paints): the last paint's
+            // share counted for each, so a run of whole paints has a mean of exactly 1.
+            const int newPaints = static_cast<int>(viewport.paintCount() - seen);
+            run.paints += newPaints;
             seen = viewport.paintCount();
-            run.drawnFractionSum += viewport.lastDrawnFraction();
-            run.fullPaints += viewport.lastDrawnFraction() == 1.0f ? 1 : 0;
+            run.drawnFractionSum += newPaints * static_cast<double>(viewport.lastDrawnFraction());
+            run.fullPaints += viewport.lastDrawnFraction() == 1.0f ? newPaints : 0;
         }
     }
     feeder.stop();

@@ -243,3 +243,34 @@ TEST_F(ViewportTest, WhileTheHairMovesItsShadowsAreRenderedEveryThirdPaint)
 }
 
 } // namespace
+
+// Frames arriving as the simulation sends them, slower than the view can paint: each paint is a new
+// frame's, at half resolution, and none comes between them. A skipped shadow render used to ask for
+// a paint at once to catch up; it came before the next frame, found nothing moving and drew
+// everything at full resolution (in the editor every third paint, 75-90 ms of 110). Once the frames
+// stop, the refinement paint draws the shadows of the last frame.
+TEST_F(ViewportTest, StreamedFramesArePaintedOnceEachAndTheStillPaintCatchesUpTheShadows)
+{
+    viewport->setFrame(scalpFrame(head, 600, 16, 0.0f));
+    grab();
+    const std::uint64_t passes = viewport->shadowPassCount();
+    const std::uint64_t paints = viewport->paintCount();
+    constexpr int kFrames = 7; // shadows at the third and sixth; the seventh's skipped
+    for (int k = 1; k <= kFrames; ++k) {
+        viewport->setFrame(scalpFrame(head, 600, 16, static_cast<float>(k)));
+        ASSERT_TRUE(test::waitUntil([&] { return viewport->paintCount() == paints + static_cast<std::uint64_t>(k); }));
+        for (int turn = 0; turn < 5; ++turn) // a paint asked for at once would happen here
+            QCoreApplication::processEvents();
+        EXPECT_EQ(viewport->paintCount(), paints + static_cast<std::uint64_t>(k)) << "after frame " << k;
+        if (viewport->halfResolutionWhileMoving()) {
+            EXPECT_TRUE(viewport->lastPaintHairAtHalfResolution()) << "frame " << k;
+        }
+    }
+    EXPECT_EQ(viewport->shadowPassCount(), passes + 2);
+    // Still: the refinement paint renders the last frame's shadows.
+    ASSERT_TRUE(test::waitUntil([&] { return viewport->shadowPassCount() == passes + 3; }));
+    EXPECT_EQ(viewport->paintCount(), paints + kFrames + 1);
+    if (viewport->halfResolutionWhileMoving()) {
+        EXPECT_FALSE(viewport->lastPaintHairAtHalfResolution());
+    }
+}

@@ -1,6 +1,7 @@
 #include "widgets/FrameCompositor.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace wisp {
 
@@ -13,7 +14,10 @@ bool FrameCompositor::initialize(GlFunctions* gl)
     m_overlay = m_composite ? loadShaderProgram(QStringLiteral("overlay"), &m_error) : nullptr;
     m_resolve
         = m_overlay ? loadShaderProgram(QStringLiteral("composite"), QStringLiteral("resolve"), &m_error) : nullptr;
-    if (!m_composite || !m_overlay || !m_resolve) {
+    m_compositeWithHair = m_resolve
+        ? loadShaderProgram(QStringLiteral("composite"), QStringLiteral("present_hair"), &m_error)
+        : nullptr;
+    if (!m_composite || !m_overlay || !m_resolve || !m_compositeWithHair) {
         m_composite.reset();
         return false;
     }
@@ -26,7 +30,9 @@ bool FrameCompositor::initialize(GlFunctions* gl)
     m_resolve->bind();
     m_resolve->setUniformValue("u_colour", 0);
     m_resolve->setUniformValue("u_depth", 1);
-    m_resolve->release();
+    m_compositeWithHair->bind();
+    m_compositeWithHair->setUniformValue("u_frameSingle", 0);
+    m_compositeWithHair->release();
     for (Overlay& overlay : m_overlays) {
         gl->glGenTextures(1, &overlay.texture);
         gl->glBindTexture(GL_TEXTURE_2D, overlay.texture);
@@ -53,6 +59,7 @@ void FrameCompositor::release()
     m_gl->glDeleteVertexArrays(1, &m_vao);
     m_vao = 0;
     m_composite.reset();
+    m_compositeWithHair.reset();
     m_overlay.reset();
     m_resolve.reset();
     m_gl = nullptr;
@@ -98,7 +105,7 @@ void FrameCompositor::drawRect(QRect rect, QSize pixels, QOpenGLShaderProgram& p
     m_gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
-void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels, Finish finish)
+void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels, Finish finish, const LowResHairLayer* hair)
 {
     if (!m_composite || pixels.isEmpty())
         return;
@@ -112,15 +119,62 @@ void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels, Finis
     gl->glBindVertexArray(m_vao);
 
     // The frame, resolved: every pixel of the target.
-    m_composite->bind();
-    setUniform(*m_composite, "u_samples", std::max(samples, 0));
-    setUniform(*m_composite, "u_keepAlpha", finish == Finish::ImageWithAlpha ? 1 : 0);
-    const GLenum kind = samples > 0 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
-    gl->glActiveTexture(samples > 0 ? GL_TEXTURE0 : GL_TEXTURE1);
-    gl->glBindTexture(kind, frameTexture);
-    drawRect(QRect(QPoint(0, 0), pixels), pixels, *m_composite);
-    gl->glBindTexture(kind, 0);
-    gl->glActiveTexture(GL_TEXTURE0);
+    const int keepAlpha = finish == Finish::ImageWithAlpha ? 1 : 0;
+    if (hair && samples <= 0) {
+        // Where the hair is known, the frame is copied around it and laid with it only over it (a
+        // software rasteriser pays per pixel for the hair's ten texel reads, and the hair fills a
+        // fraction of the frame); every rectangle is drawn once.
+        const QRect whole(QPoint(0, 0), pixels);
+        std::vector<QRect> plain;
+        std::vector<QRect> withHair;
+        if (hair->inkedSpans) {
+            int below = 0; // rows under this one are covered
+            for (const QRect& span : *hair->inkedSpans) {
+                const QRect band = (span & whole);
+                if (band.isEmpty() || band.y() < below)
+                    continue; // outside; or overlapping (inkedSpans gives bands apart, bottom up)
+                if (band.y() > below)
+                    plain.emplace_back(0, below, pixels.width(), band.y() - below);
+                plain.emplace_back(0, band.y(), band.x(), band.height());
+                plain.emplace_back(
+                    band.x() + band.width(), band.y(), pixels.width() - band.x() - band.width(), band.height());
+                withHair.push_back(band);
+                below = band.y() + band.height();
+            }
+            if (below < pixels.height())
+                plain.emplace_back(0, below, pixels.width(), pixels.height() - below);
+        } else {
+            withHair.push_back(whole);
+        }
+        // The frame at unit 0, the hair's three textures at 1..3.
+        m_compositeWithHair->bind();
+        setUniform(*m_compositeWithHair, "u_keepAlpha", keepAlpha);
+        bindLowResHair(gl, *m_compositeWithHair, *hair, 1);
+        gl->glBindTexture(GL_TEXTURE_2D, frameTexture);
+        for (const QRect& rect : withHair)
+            drawRect(rect, pixels, *m_compositeWithHair);
+        gl->glBindTexture(GL_TEXTURE_2D, 0);
+        unbindLowResHair(gl, 1);
+        m_composite->bind();
+        setUniform(*m_composite, "u_samples", 0);
+        setUniform(*m_composite, "u_keepAlpha", keepAlpha);
+        gl->glActiveTexture(GL_TEXTURE1);
+        gl->glBindTexture(GL_TEXTURE_2D, frameTexture);
+        for (const QRect& rect : plain)
+            drawRect(rect, pixels, *m_composite);
+        gl->glBindTexture(GL_TEXTURE_2D, 0);
+        gl->glActiveTexture(GL_TEXTURE0);
+    } else {
+        m_composite->bind();
+        setUniform(*m_composite, "u_samples", std::max(samples, 0));
+        setUniform(*m_composite, "u_keepAlpha", keepAlpha);
+        const GLenum kind = samples > 0 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+        gl->glActiveTexture(samples > 0 ? GL_TEXTURE0 : GL_TEXTURE1);
+        gl->glBindTexture(kind, frameTexture);
+        drawRect(QRect(QPoint(0, 0), pixels), pixels, *m_composite);
+        gl->glBindTexture(kind, 0);
+        gl->glActiveTexture(GL_TEXTURE0);
+    }
 
     if (finish != Finish::Screen) {
         gl->glBindVertexArray(0);

@@ -11,6 +11,7 @@
 // Thread: GUI, with the viewport's context current (every member function).
 
 #include "widgets/GlSupport.h"
+#include "widgets/HairLowResTarget.h"
 
 #include <glm/vec3.hpp>
 
@@ -47,9 +48,12 @@ public:
     // Resolves `frameTexture` (GL_TEXTURE_2D_MULTISAMPLE with `samples` samples, or GL_TEXTURE_2D
     // when `samples` is 0; `pixels` big) into the bound framebuffer, which must be as big, then
     // draws the overlays over it. A rendered image (Viewport::renderImage) has no overlays and may
-    // keep the frame's alpha (premultiplied) for a transparent background.
+    // keep the frame's alpha (premultiplied) for a transparent background. With `hair` (a
+    // single-sampled frame only), the half-resolution hair is laid over the frame in the same pass
+    // (present_hair.frag), in place of a blended pass of its own into the frame.
     enum class Finish { Screen, Image, ImageWithAlpha };
-    void draw(GLuint frameTexture, int samples, QSize pixels, Finish finish = Finish::Screen);
+    void draw(GLuint frameTexture, int samples, QSize pixels, Finish finish = Finish::Screen,
+        const LowResHairLayer* hair = nullptr);
     // Resolves a multisampled colour and depth pair (GlCanvas's backdrop, `samples` > 0) into the
     // bound single-sampled framebuffer, colour and depth (resources/shaders/resolve.frag). With a
     // gradient, the colour (premultiplied, transparent where nothing was drawn) is laid over it.
@@ -72,6 +76,7 @@ private:
 
     GlFunctions* m_gl = nullptr;
     std::unique_ptr<QOpenGLShaderProgram> m_composite;
+    std::unique_ptr<QOpenGLShaderProgram> m_compositeWithHair; // present_hair.frag
     std::unique_ptr<QOpenGLShaderProgram> m_overlay;
     std::unique_ptr<QOpenGLShaderProgram> m_resolve;
     GLuint m_vao = 0; // none of the passes reads vertex attributes, but core profile needs one bound

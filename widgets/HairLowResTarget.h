@@ -16,7 +16,9 @@
 // four pixels: a partly covering strand would hide its neighbours). The composite keeps, of the four
 // texels around a frame pixel, only those whose block reaches no more than 1 % behind that pixel's
 // backdrop, renormalised, so hair behind the head's silhouette does not bleed over its edge
-// (resources/shaders/lowres_depth.frag, lowres_composite.frag).
+// (resources/shaders/lowres_depth.frag, lowres_hair.glsl). Laid over the frame by the pass that
+// finishes it (FrameCompositor::draw with a LowResHairLayer, present_hair.frag), or by composite()
+// where something is drawn over the hair afterwards (the brush rings).
 //
 // Thread: GUI, with the viewport's context current (every member function).
 
@@ -27,15 +29,36 @@
 #include <glm/mat4x4.hpp>
 
 #include <QOpenGLShaderProgram>
+#include <QRect>
 #include <QSize>
 #include <QString>
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
 namespace wisp {
+
+// What a pass needs to lay the hair drawn this frame over the frame (lowres_hair.glsl's uniforms).
+struct LowResHairLayer {
+    GLuint colourTexture = 0; // the target's, GL_TEXTURE_2D
+    GLuint depthTexture = 0;
+    QSize pixels; // the target's
+    GLuint frameDepthTexture = 0; // the frame's, GL_TEXTURE_2D: read, not written
+    QSize framePixels;
+    glm::mat4 projection{ 1.0f }; // the view's, to compare depths in metres
+    ClipRect region = kWholeViewport; // where the hair can be (outside it the target is stale)
+    // Where it is, when known (the CPU drew it: HairLowResTarget::inkedSpans): frame pixels, y up;
+    // every frame pixel outside them has no hair. Unset: anywhere in `region`.
+    std::optional<std::vector<QRect>> inkedSpans;
+};
+
+// Sets lowres_hair.glsl's uniforms on `program` (bound) and binds `layer`'s three textures to the
+// units `firstUnit` .. `firstUnit` + 2; unbindLowResHair unbinds them and leaves unit 0 active.
+void bindLowResHair(GlFunctions* gl, QOpenGLShaderProgram& program, const LowResHairLayer& layer, int firstUnit);
+void unbindLowResHair(GlFunctions* gl, int firstUnit);
 
 class HairLowResTarget {
 public:
@@ -56,17 +79,26 @@ public:
     // inside `region` (clip space; at least composite()'s region widened by two target texels),
     // with the viewport set to it. False (nothing bound) when it cannot be made.
     bool begin(QSize framePixels, GLuint frameDepthTexture, const ClipRect& region = kWholeViewport);
-    // Lays the hair drawn since begin() over the bound framebuffer (the frame, `framePixels` big,
-    // whose depth is `frameDepthTexture`; read, not written), premultiplied "over", inside `region`
-    // (clip space: where the hair can be; a full-screen pass costs a software rasteriser a few
-    // milliseconds). `projection`: the view's, to compare depths in metres.
+    // The hair drawn since begin(), to lay over the frame (`framePixels` big, whose depth is
+    // `frameDepthTexture`) inside `region` (clip space: where the hair can be).
+    LowResHairLayer layer(
+        QSize framePixels, GLuint frameDepthTexture, const glm::mat4& projection, const ClipRect& region) const;
+    // Lays `layer` over the bound framebuffer (the frame; its depth is read, not written),
+    // premultiplied "over", inside its region (a full-screen pass costs a software rasteriser a
+    // few milliseconds).
     // The software path (HairSoftwareRaster.h): the target's depth over `rect` (window depths, rows
     // bottom up) after begin(), and the hair's colour written straight into the target over `rect`
     // (premultiplied RGBA8, rows bottom up), in place of drawing it. The target stays bound.
     void readDepth(const PixelRect& rect, std::vector<float>& depth);
     void writeColour(const PixelRect& rect, std::span<const std::uint8_t> rgba);
-    void composite(QSize framePixels, GLuint frameDepthTexture, const glm::mat4& projection,
-        const ClipRect& region = kWholeViewport);
+    void composite(const LowResHairLayer& layer);
+    // Where the hair in `rgba` (as writeColour takes it, over `rect` of a target sizeFor(framePixels)
+    // big) reaches the frame through the composite's bilinear reads: for each band of kSpanRows frame
+    // rows (from the bottom), one rectangle from the first to the last frame pixel that reads an
+    // inked texel; bands with none are left out. Laying the hair costs a software rasteriser per
+    // pixel it covers, and the hair fills a fraction of its box.
+    static constexpr int kSpanRows = 16;
+    static std::vector<QRect> inkedSpans(const PixelRect& rect, std::span<const std::uint8_t> rgba, QSize framePixels);
     QSize size() const { return m_size; }
 
 private:

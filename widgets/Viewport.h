@@ -182,6 +182,13 @@ public:
     void setSoftwareHairWhileMoving(bool enabled) { m_softwareHairWhileMoving = enabled; }
     bool softwareHairWhileMoving() const { return m_softwareHairWhileMoving.value_or(m_softwareGl && !m_glHairWanted); }
     bool lastPaintHairOnCpu() const { return m_lastHairOnCpu; }
+    // The half-resolution hair laid over the frame by the pass that copies the frame into the window
+    // (FrameCompositor::draw with a LowResHairLayer), only over where the CPU inked it, rather than
+    // by a blended pass of its own over the frame (measured in the editor while simulating: 27.7 ->
+    // 34 fps). On by default; off, to compare. The brush rings, drawn over the hair, still take
+    // the pass of its own.
+    void setHalfResolutionHairInPresent(bool enabled) { m_halfResolutionHairInPresent = enabled; }
+    bool lastPaintHairLaidInPresent() const { return m_hairLayer.has_value(); }
     // The shadow map's hair passes drawn on the CPU (HairShadowRaster.h), the head's pass still by GL.
     // On by default where GL is a software rasteriser (unless WISP_GL_HAIR); needs the GL context
     // (call after the first paint), and the next paint makes the map again.
@@ -287,11 +294,16 @@ private:
     void paintImage(const RenderView& view); // paintGL's work for renderImage()
     // The half-resolution hair by HairSoftwareRaster into m_lowRes (begun over lowResRegion); false
     // (nothing drawn) where the samples cannot be captured.
-    bool drawHairOnCpu(
-        const RenderView& half, const HairStyle& style, float fraction, bool preview, const ClipRect& lowResRegion);
+    // `inkedSpans`: where it inked the frame (HairLowResTarget::inkedSpans).
+    bool drawHairOnCpu(const RenderView& half, const HairStyle& style, float fraction, bool preview,
+        const ClipRect& lowResRegion, std::vector<QRect>& inkedSpans);
     ThreadPool* rasterPool(); // m_rasterPool, made on first use
-    // The hair into the bound frame, at full resolution or through m_lowRes.
-    void drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution);
+    // The hair into the bound frame, at full resolution or through m_lowRes (laid over the frame
+    // by finishFrame, or here where `drawnOver`: something is drawn over the hair after it).
+    void drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution, bool drawnOver);
+    // The finished frame into the bound target (window, grab framebuffer) with the overlays, and the
+    // half-resolution hair of this paint laid in where drawHair left it (m_hairLayer).
+    void finishFrame(FrameCompositor::Finish finish);
     void uploadFrameIfChanged(); // streams m_frame's strands to the hair renderer once per frame
     void updateOverlays(const RenderView& view);
     void glUnavailable(const QString& why);
@@ -366,6 +378,8 @@ private:
     HairLowResTarget m_lowRes;
     std::optional<bool> m_halfResolutionWhileMoving; // unset: m_softwareGl
     bool m_lastHairAtHalfResolution = false;
+    std::optional<LowResHairLayer> m_hairLayer; // this paint's half-resolution hair, for finishFrame
+    bool m_halfResolutionHairInPresent = true;
     std::optional<bool> m_softwareHairWhileMoving; // unset: m_softwareGl unless WISP_GL_HAIR
     bool m_glHairWanted = false; // WISP_GL_HAIR was set at construction
     bool m_lastHairOnCpu = false;

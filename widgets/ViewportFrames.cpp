@@ -52,7 +52,7 @@ void Viewport::presentFrame()
     if (!drawFrame())
         return;
     m_canvas.bindWindow();
-    m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size());
+    finishFrame(FrameCompositor::Finish::Screen);
     m_passTimes.presentMs += m_passClock.lap();
     m_canvas.swap(m_window);
 }
@@ -65,7 +65,7 @@ QImage Viewport::grabFramebuffer()
     if (!drawn)
         return {};
     m_canvas.bindGrab();
-    m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size());
+    finishFrame(FrameCompositor::Finish::Screen);
     QImage image = m_canvas.readGrab();
     image.setDevicePixelRatio(frameRatio());
     return image;
@@ -87,8 +87,7 @@ QImage Viewport::renderImage(QSize pixels, const ImageOptions& options)
     QImage image;
     if (drawFrame()) {
         m_canvas.bindGrab();
-        m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size(),
-            render.transparent ? FrameCompositor::Finish::ImageWithAlpha : FrameCompositor::Finish::Image);
+        finishFrame(render.transparent ? FrameCompositor::Finish::ImageWithAlpha : FrameCompositor::Finish::Image);
         image = m_canvas.readGrab(render.transparent);
     }
     m_image.reset();

@@ -382,7 +382,8 @@ void Viewport::paintGL(bool framebuffersRemade)
     // hair at half resolution; the refinement paint after the motion draws it whole.
     const bool moving = !settled || hairIsNew;
     const bool halfResolution = halfResolutionWhileMoving() && moving && !refining && !m_grabbing;
-    drawHair(view, std::min(m_displayDensity, 1.0f) * fraction, preview, halfResolution);
+    // The brush rings are drawn over the hair: it is then laid over the frame before them.
+    drawHair(view, std::min(m_displayDensity, 1.0f) * fraction, preview, halfResolution, m_brushCursor.has_value());
     // Last: its hidden parts are drawn over everything.
     updateBrushRings(view);
     if (m_brushCursor)
@@ -466,13 +467,15 @@ void Viewport::paintImage(const RenderView& view)
     m_gl->glViewport(
         0, 0, static_cast<GLsizei>(imageView.viewportPixels.x), static_cast<GLsizei>(imageView.viewportPixels.y));
     const float preview = std::clamp(m_image->previewFraction, 0.0f, 1.0f);
-    drawHair(imageView, std::min(m_displayDensity, 1.0f) * preview, preview < 1.0f, m_image->hairAtHalfResolution);
+    drawHair(
+        imageView, std::min(m_displayDensity, 1.0f) * preview, preview < 1.0f, m_image->hairAtHalfResolution, false);
     m_gl->glDisable(GL_DEPTH_TEST);
     checkGlErrors(m_gl, "Viewport::paintImage");
 }
 
-void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution)
+void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bool halfResolution, bool drawnOver)
 {
+    m_hairLayer.reset();
     const QSize pixels = m_canvas.size();
     const HairStyle style = drawnStyle();
     // Only where the hair can be: the half-resolution target's passes cover the whole frame
@@ -494,7 +497,9 @@ void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bo
     RenderView half = view;
     half.viewportPixels
         = glm::vec2(static_cast<float>(m_lowRes.size().width()), static_cast<float>(m_lowRes.size().height()));
-    m_lastHairOnCpu = softwareHairWhileMoving() && drawHairOnCpu(half, style, fraction, preview, lowResRegion);
+    std::vector<QRect> inkedSpans;
+    m_lastHairOnCpu
+        = softwareHairWhileMoving() && drawHairOnCpu(half, style, fraction, preview, lowResRegion, inkedSpans);
     if (!m_lastHairOnCpu) {
         // No depth writes: its texels are four pixels, and a partly covering strand would hide the
         // strands beside it (measured on the default groom: 11 % of the hair's ink lost with them).
@@ -503,12 +508,25 @@ void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bo
         m_hair.setDepthWrites(true);
     }
     m_canvas.bindFrame();
-    m_lowRes.composite(pixels, m_canvas.frameDepthTexture(), view.projection, hairRegion);
+    // Laid over the frame as it is copied into the window (finishFrame): a blended pass of its own
+    // over the frame cost llvmpipe 12-14 ms between the editor's docks, whatever its shader.
+    LowResHairLayer layer = m_lowRes.layer(pixels, m_canvas.frameDepthTexture(), view.projection, hairRegion);
+    if (m_lastHairOnCpu)
+        layer.inkedSpans = std::move(inkedSpans);
+    if (drawnOver || !m_halfResolutionHairInPresent)
+        m_lowRes.composite(layer);
+    else
+        m_hairLayer = std::move(layer);
     m_gl->glEnable(GL_DEPTH_TEST); // as HairRenderer::draw leaves it
 }
 
-bool Viewport::drawHairOnCpu(
-    const RenderView& half, const HairStyle& style, float fraction, bool preview, const ClipRect& lowResRegion)
+void Viewport::finishFrame(FrameCompositor::Finish finish)
+{
+    m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size(), finish, m_hairLayer ? &*m_hairLayer : nullptr);
+}
+
+bool Viewport::drawHairOnCpu(const RenderView& half, const HairStyle& style, float fraction, bool preview,
+    const ClipRect& lowResRegion, std::vector<QRect>& inkedSpans)
 {
     // The samples first: llvmpipe runs their vertex shader on this thread, while its own threads
     // rasterise the backdrop and the target's depth, flushed to them here.
@@ -521,6 +539,7 @@ bool Viewport::drawHairOnCpu(
     if (rgba.empty())
         return rect.width() == 0 || rect.height() == 0; // the samples could not be read: GL draws them
     m_lowRes.writeColour(rect, rgba);
+    inkedSpans = HairLowResTarget::inkedSpans(rect, rgba, m_canvas.size());
     return true;
 }
 

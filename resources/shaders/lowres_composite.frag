@@ -1,57 +1,16 @@
 #version 330 core
-// Lays the half-resolution hair (premultiplied colour and alpha, and the nearest hair's depth) over
-// the full-resolution frame (widgets/HairLowResTarget.h). Each frame pixel takes the four target
-// texels around it with bilinear weights, so a strand's coverage summed across it is what it was
-// (a thin strand spreads over about two pixels, no fainter in total). The target's depth is the
-// farthest backdrop of its 2x2 block (the hair does not write it: see HairLowResTarget.h); a texel
-// whose block reaches more than 1 % behind this pixel's backdrop straddles a silhouette this pixel
-// is in front of, and gives nothing here, so hair behind the head's edge stays behind it. Blended "over": source ONE, destination ONE_MINUS_SRC_ALPHA.
-uniform sampler2D u_hair;        // the target's colour
-uniform sampler2D u_hairDepth;   // the target's depth: each 2x2 block's farthest backdrop
-uniform sampler2D u_frameDepth;  // the frame's depth (read only)
-uniform vec2 u_framePixels;
-uniform vec2 u_hairPixels;
-uniform float u_p22;  // projection[2][2] and [3][2]: window depth to distance
-uniform float u_p32;
+// Lays the half-resolution hair over the full-resolution frame (widgets/HairLowResTarget.h), blended
+// "over": source ONE, destination ONE_MINUS_SRC_ALPHA. Used where something is drawn over the hair
+// afterwards (the brush rings); otherwise present_hair.frag lays it in while finishing the frame.
+#include "lowres_hair.glsl"
 
 out vec4 fragColour;
 
-float distanceMetres(float windowDepth)
-{
-    // z_ndc = (P22 z + P32) / -z, so -z = P32 / (z_ndc + P22).
-    return u_p32 / (2.0 * windowDepth - 1.0 + u_p22);
-}
-
 void main()
 {
-    // This pixel's centre in target texels, less half a texel: the four around it and its weights.
-    vec2 at = gl_FragCoord.xy * (u_hairPixels / u_framePixels) - 0.5;
-    vec2 base = floor(at);
-    vec2 f = at - base;
-    ivec2 last = ivec2(u_hairPixels) - 1;
-    vec4 texels[4];
-    vec4 any = vec4(0.0);
-    for (int k = 0; k < 4; ++k) {
-        texels[k] = texelFetch(u_hair, clamp(ivec2(base) + ivec2(k & 1, k >> 1), ivec2(0), last), 0);
-        any += texels[k];
-    }
-    // No hair around this pixel (most of the frame): nothing to lay, and no depths to read. A
-    // software rasteriser skips the rest of a block whose fragments all end here.
-    if (dot(any, vec4(1.0)) <= 0.0)
+    vec4 hair = lowResHairAt(gl_FragCoord.xy);
+    // A software rasteriser skips the rest of a block whose fragments all end here.
+    if (hair == vec4(0.0))
         discard;
-    float backdrop = distanceMetres(texelFetch(u_frameDepth, ivec2(gl_FragCoord.xy), 0).r);
-    vec4 sum = vec4(0.0);
-    float weights = 0.0;
-    for (int k = 0; k < 4; ++k) {
-        ivec2 offset = ivec2(k & 1, k >> 1);
-        ivec2 texel = clamp(ivec2(base) + offset, ivec2(0), last);
-        vec2 w2 = mix(1.0 - f, f, vec2(offset));
-        float blockDistance = distanceMetres(texelFetch(u_hairDepth, texel, 0).r);
-        float weight = blockDistance <= backdrop * 1.01 ? w2.x * w2.y : 0.0;
-        sum += weight * texels[k];
-        weights += weight;
-    }
-    // Renormalised over the texels that count: at a silhouette the hair in front of the head keeps
-    // its strength on the head's side.
-    fragColour = weights > 0.0 ? sum / weights : vec4(0.0);
+    fragColour = hair;
 }

@@ -10,11 +10,15 @@
 #include "sim/geometry/Body.h"
 #include "widgets/Viewport.h"
 
+#include "widgets/HairLowResTarget.h"
+
 #include <QImage>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <random>
 
 namespace wisp {
 namespace {
@@ -332,6 +336,109 @@ TEST_F(HairLowResTest, APausedOrbitCapturesTheHairOnceAndDrawsItOnTheCpu)
     viewport->repaint();
     EXPECT_TRUE(viewport->lastPaintHairAtHalfResolution());
     EXPECT_FALSE(viewport->lastPaintHairOnCpu());
+}
+
+// The hair laid over the frame by the pass that copies the frame out, only over where the CPU inked
+// it (Viewport::setHalfResolutionHairInPresent, the default), against the blended pass of its own:
+// the same image to a level (the "over" rounded to 8 bits once rather than twice).
+TEST_F(HairLowResTest, TheHairLaidWhileCopyingTheFrameOutIsTheBlendedPassesImage)
+{
+    Viewport::ImageOptions halfOptions;
+    halfOptions.hairAtHalfResolution = true;
+    viewport->setFrame(nullptr);
+    const QImage bare = viewport->renderImage(kSize);
+    viewport->setFrame(settled->frame);
+    viewport->setHalfResolutionHairInPresent(false);
+    const QImage blended = viewport->renderImage(kSize, halfOptions);
+    EXPECT_FALSE(viewport->lastPaintHairLaidInPresent());
+    viewport->setHalfResolutionHairInPresent(true);
+    const QImage laid = viewport->renderImage(kSize, halfOptions);
+    EXPECT_TRUE(viewport->lastPaintHairLaidInPresent());
+    ASSERT_EQ(laid.size(), kSize);
+    ASSERT_EQ(blended.size(), kSize);
+    const Ink ink = inkOver(laid, bare);
+    const Ink blendedInk = inkOver(blended, bare);
+    int largest = 0;
+    qint64 apart = 0;
+    for (int y = 0; y < kSize.height(); ++y)
+        for (int x = 0; x < kSize.width(); ++x) {
+            const QRgb a = laid.pixel(x, y);
+            const QRgb b = blended.pixel(x, y);
+            const int channel = std::max(
+                { std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)), std::abs(qBlue(a) - qBlue(b)) });
+            largest = std::max(largest, channel);
+            apart += channel > 1;
+        }
+    std::printf("[ half-res ] laid while copying the frame out: ink %.0f (blended pass %.0f), largest channel "
+                "difference %d, %lld pixels more than a level apart\n",
+        ink.ink, blendedInk.ink, largest, static_cast<long long>(apart));
+    ASSERT_GT(ink.covered, 20000); // the hair is there
+    EXPECT_NEAR(ink.ink / blendedInk.ink, 1.0, 0.001);
+    EXPECT_LE(largest, 2);
+    EXPECT_LT(apart, 100);
+}
+
+// Where the CPU's half-resolution hair reaches the frame (HairLowResTarget::inkedSpans): every frame
+// pixel whose bilinear read (lowres_hair.glsl's arithmetic, here on the CPU) takes an inked texel
+// lies in a span, for even and odd frame sizes, and a single inked texel gives a span a few pixels
+// wide.
+TEST(HairLowResSpans, EveryFramePixelThatReadsInkLiesInASpanAndLittleElseDoes)
+{
+    for (const QSize frame : { QSize(160, 120), QSize(151, 97) }) {
+        const QSize target = HairLowResTarget::sizeFor(frame);
+        const PixelRect rect{ 3, 2, target.width() - 2, target.height() - 1 };
+        const std::size_t w = static_cast<std::size_t>(rect.width());
+        std::vector<std::uint8_t> rgba(4 * w * static_cast<std::size_t>(rect.height()), 0);
+        const auto ink = [&](int x, int y, std::uint8_t value) {
+            rgba[4 * (static_cast<std::size_t>(y - rect.y0) * w + static_cast<std::size_t>(x - rect.x0)) + 3] = value;
+        };
+        const auto inked = [&](int x, int y) {
+            if (x < rect.x0 || x >= rect.x1 || y < rect.y0 || y >= rect.y1)
+                return false;
+            const std::size_t at
+                = 4 * (static_cast<std::size_t>(y - rect.y0) * w + static_cast<std::size_t>(x - rect.x0));
+            return rgba[at] != 0 || rgba[at + 1] != 0 || rgba[at + 2] != 0 || rgba[at + 3] != 0;
+        };
+        EXPECT_TRUE(HairLowResTarget::inkedSpans(rect, rgba, frame).empty());
+
+        // One texel: a span or two (it may straddle two bands), a few pixels wide.
+        ink(rect.x0 + 20, rect.y0 + 20, 9);
+        std::vector<QRect> spans = HairLowResTarget::inkedSpans(rect, rgba, frame);
+        ASSERT_GE(spans.size(), 1u);
+        EXPECT_LE(spans.size(), 2u);
+        for (const QRect& span : spans) {
+            EXPECT_LE(span.width(), 10);
+            EXPECT_EQ(span.height() % HairLowResTarget::kSpanRows == 0 || span.bottom() == frame.height() - 1, true);
+        }
+        // Texels scattered over the rectangle, the edges among them.
+        std::mt19937 random(11);
+        for (int k = 0; k < 30; ++k)
+            ink(rect.x0 + static_cast<int>(random() % w), rect.y0 + static_cast<int>(random() % rect.height()), 40);
+        ink(rect.x0, rect.y0, 1);
+        ink(rect.x1 - 1, rect.y1 - 1, 200);
+        spans = HairLowResTarget::inkedSpans(rect, rgba, frame);
+        const double rx = static_cast<double>(target.width()) / frame.width();
+        const double ry = static_cast<double>(target.height()) / frame.height();
+        int missed = 0;
+        for (int y = 0; y < frame.height(); ++y)
+            for (int x = 0; x < frame.width(); ++x) {
+                const int bx = static_cast<int>(std::floor((x + 0.5) * rx - 0.5));
+                const int by = static_cast<int>(std::floor((y + 0.5) * ry - 0.5));
+                bool reads = false;
+                for (int k = 0; k < 4; ++k) {
+                    const int tx = std::clamp(bx + (k & 1), 0, target.width() - 1);
+                    const int ty = std::clamp(by + (k >> 1), 0, target.height() - 1);
+                    reads = reads || inked(tx, ty);
+                }
+                const bool covered
+                    = std::any_of(spans.begin(), spans.end(), [&](const QRect& span) { return span.contains(x, y); });
+                missed += reads && !covered;
+            }
+        EXPECT_EQ(missed, 0) << frame.width() << "x" << frame.height();
+        // Bands apart, bottom up, as FrameCompositor::draw takes them.
+        for (std::size_t i = 1; i < spans.size(); ++i)
+            EXPECT_GE(spans[i].top(), spans[i - 1].bottom() + 1);
+    }
 }
 
 } // namespace

@@ -221,7 +221,8 @@ public:
     // coverage.
     void setDisplayDensity(float density);
     float displayDensity() const { return m_displayDensity; }
-    double lastPaintMilliseconds() const { return m_lastPaintMs; } // GL work of the last paint
+    // GL work of the last paint, the frame copied out (with the hair laid in) included.
+    double lastPaintMilliseconds() const { return m_lastPaintMs; }
     // Per pass, for the last paint (all zero unless timing is on; see PassTimes.h). The
     // WISP_PASS_TIMES environment variable turns it on from the start.
     void setPassTiming(bool on) { m_passTiming = on; }
@@ -412,6 +413,14 @@ private:
     float m_lastFraction = 1.0f;
     bool m_lastPreview = false;
     double m_lastPaintMs = 0.0;
+    QElapsedTimer m_paintClock; // since this paint began
+    // What the last paint drew, for the level of detail once its frame is finished (finishFrame).
+    struct DetailReport {
+        bool preview = false;
+        float fraction = 1.0f;
+        std::size_t strands = 0;
+    };
+    std::optional<DetailReport> m_detailReport;
     bool m_passTiming = false;
     PassTimes m_passTimes;
     PassClock m_passClock;

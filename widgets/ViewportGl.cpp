@@ -323,8 +323,7 @@ void Viewport::paintGL(bool framebuffersRemade)
     }
     measureFrameRate();
     GlFunctions* gl = m_gl;
-    QElapsedTimer paintClock;
-    paintClock.start();
+    m_paintClock.start();
     m_passTimes = PassTimes{};
     m_passClock.start(gl, m_passTiming);
     const bool hairIsNew = m_frameDirty; // a frame arrived: the hair moves
@@ -391,18 +390,15 @@ void Viewport::paintGL(bool framebuffersRemade)
     gl->glDisable(GL_DEPTH_TEST);
     checkGlErrors(gl, "Viewport::paintGL");
 
-    // A software rasteriser works when flushed: finish here so the time is the paint's real cost
-    // (presenting would wait for it anyway). On a graphics card this would only stall the
-    // pipeline, and there the detail never needs to drop.
-    if (m_softwareGl)
-        gl->glFinish();
     m_passTimes.hairMs = m_passClock.lap();
-    m_lastPaintMs = static_cast<double>(paintClock.nsecsElapsed()) * 1e-6;
     const std::size_t strands = m_hair.strandCount();
     m_lastFraction = strands > 0 ? static_cast<float>(m_hair.lastDrawnStrands()) / static_cast<float>(strands) : 1.0f;
     m_lastPreview = preview;
+    // Reported to the level of detail once the frame is finished (finishFrame): the hair may be
+    // laid over it there, and that is part of what this paint's detail costs.
+    m_detailReport.reset();
     if (m_levelOfDetail && !refining)
-        m_detail.paintTook(m_lastPaintMs, preview, fraction, strands);
+        m_detailReport = DetailReport{ preview, fraction, strands };
     if (preview || m_lastHairAtHalfResolution || m_lastBackdropSingleSampled)
         m_refineTimer.start();
 
@@ -523,6 +519,17 @@ void Viewport::drawHair(const RenderView& view, float fraction, bool preview, bo
 void Viewport::finishFrame(FrameCompositor::Finish finish)
 {
     m_compositor.draw(m_canvas.frameColourTexture(), 0, m_canvas.size(), finish, m_hairLayer ? &*m_hairLayer : nullptr);
+    // A software rasteriser works when flushed: finish here so the time is the paint's real cost
+    // (the swap would wait for it anyway). On a graphics card this would only stall the pipeline,
+    // and there the detail never needs to drop.
+    if (m_softwareGl)
+        m_gl->glFinish();
+    if (m_image)
+        return; // an image's paint is not the view's: its time and detail are left alone
+    m_lastPaintMs = static_cast<double>(m_paintClock.nsecsElapsed()) * 1e-6;
+    if (m_detailReport)
+        m_detail.paintTook(m_lastPaintMs, m_detailReport->preview, m_detailReport->fraction, m_detailReport->strands);
+    m_detailReport.reset();
 }
 
 bool Viewport::drawHairOnCpu(const RenderView& half, const HairStyle& style, float fraction, bool preview,

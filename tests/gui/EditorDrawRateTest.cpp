@@ -37,6 +37,7 @@ TEST(EditorDrawRate, WhileSimulatingEachPaintShowsANewFrame)
     const std::uint64_t firstPaint = viewport.paintCount();
     const std::uint64_t firstFrame = host.publishedFrames();
     double fractionSum = 0.0;
+    double paintMsSum = 0.0;
     int looks = 0;
     int halfResolution = 0;
     std::uint64_t seen = firstPaint;
@@ -47,6 +48,7 @@ TEST(EditorDrawRate, WhileSimulatingEachPaintShowsANewFrame)
         if (viewport.paintCount() != seen) {
             seen = viewport.paintCount();
             fractionSum += viewport.lastDrawnFraction();
+            paintMsSum += viewport.lastPaintMilliseconds();
             halfResolution += viewport.lastPaintHairAtHalfResolution() ? 1 : 0;
             ++looks;
         }
@@ -56,11 +58,11 @@ TEST(EditorDrawRate, WhileSimulatingEachPaintShowsANewFrame)
     const std::uint64_t published = host.publishedFrames() - firstFrame;
     ASSERT_GE(painted, static_cast<std::uint64_t>(paints));
     ASSERT_GT(looks, 0);
-    std::printf("[ editor ] simulating, %dx%d viewport of a %dx%d window, %s: %.1f fps, %.0f%% strands, %d of %d "
-                "paints looked at were at half resolution; %llu paints for %llu frames published\n",
+    std::printf("[ editor ] simulating, %dx%d viewport of a %dx%d window, %s: %.1f fps, %.0f%% strands, %.1f ms GL "
+                "a paint, %d of %d paints looked at were at half resolution; %llu paints for %llu frames published\n",
         viewport.width(), viewport.height(), window->width(), window->height(),
         viewport.softwareRenderer() ? "software GL" : "hardware GL", static_cast<double>(painted) / seconds,
-        100.0 * fractionSum / looks, halfResolution, looks, static_cast<unsigned long long>(painted),
+        100.0 * fractionSum / looks, paintMsSum / looks, halfResolution, looks, static_cast<unsigned long long>(painted),
         static_cast<unsigned long long>(published));
     RecordProperty("fps_editor_simulating", static_cast<int>(std::lround(static_cast<double>(painted) / seconds)));
     // A paint shows a frame: a view that painted more often than frames came would be painting the

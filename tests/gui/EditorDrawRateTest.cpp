@@ -62,8 +62,8 @@ TEST(EditorDrawRate, WhileSimulatingEachPaintShowsANewFrame)
                 "a paint, %d of %d paints looked at were at half resolution; %llu paints for %llu frames published\n",
         viewport.width(), viewport.height(), window->width(), window->height(),
         viewport.softwareRenderer() ? "software GL" : "hardware GL", static_cast<double>(painted) / seconds,
-        100.0 * fractionSum / looks, paintMsSum / looks, halfResolution, looks, static_cast<unsigned long long>(painted),
-        static_cast<unsigned long long>(published));
+        100.0 * fractionSum / looks, paintMsSum / looks, halfResolution, looks,
+        static_cast<unsigned long long>(painted), static_cast<unsigned long long>(published));
     RecordProperty("fps_editor_simulating", static_cast<int>(std::lround(static_cast<double>(painted) / seconds)));
     // A paint shows a frame: a view that painted more often than frames came would be painting the
     // same hair again (a refinement paint after a pause in the frames is the only other kind).

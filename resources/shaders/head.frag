@@ -56,10 +56,16 @@ void main()
     ambient *= mix(0.35, 1.0, hairAmbient);
     vec3 colour = albedo * (vec3(1.0, 0.97, 0.93) * 0.95 * key * shadow + vec3(0.55, 0.6, 0.7) * 0.22 * fill * hairAmbient + ambient);
     colour += albedo * vec3(0.45, 0.08, 0.02) * scatter * shadow;
-    float rim = pow(1.0 - max(dot(N, V), 0.0), 3.0);
+    // Powers by multiplication: pow() is a log and an exp per lane on a software rasteriser.
+    float facing = 1.0 - max(dot(N, V), 0.0);
+    float rim = facing * facing * facing;
     colour += vec3(0.30, 0.33, 0.38) * 0.35 * rim;
     vec3 H = normalize(L + V);
-    colour += vec3(0.04) * pow(max(dot(N, H), 0.0), 24.0) * shadow;
+    float nh = max(dot(N, H), 0.0);
+    float nh3 = nh * nh * nh;
+    float nh6 = nh3 * nh3;
+    float nh12 = nh6 * nh6;
+    colour += vec3(0.04) * (nh12 * nh12) * shadow; // (N.H)^24
 
     fragColour = vec4(pow(clamp(colour, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 }

@@ -1,6 +1,7 @@
 #include "widgets/FrameCompositor.h"
 
 #include <algorithm>
+#include <span>
 #include <vector>
 
 namespace wisp {
@@ -105,6 +106,22 @@ void FrameCompositor::drawRect(QRect rect, QSize pixels, QOpenGLShaderProgram& p
     m_gl->glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
 }
 
+void FrameCompositor::copyFrame(
+    GLuint frameTexture, int samples, QSize pixels, int keepAlpha, std::span<const QRect> rects)
+{
+    GlFunctions* gl = m_gl;
+    m_composite->bind();
+    setUniform(*m_composite, "u_samples", std::max(samples, 0));
+    setUniform(*m_composite, "u_keepAlpha", keepAlpha);
+    const GLenum kind = samples > 0 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    gl->glActiveTexture(samples > 0 ? GL_TEXTURE0 : GL_TEXTURE1);
+    gl->glBindTexture(kind, frameTexture);
+    for (const QRect& rect : rects)
+        drawRect(rect, pixels, *m_composite);
+    gl->glBindTexture(kind, 0);
+    gl->glActiveTexture(GL_TEXTURE0);
+}
+
 void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels, Finish finish, const LowResHairLayer* hair)
 {
     if (!m_composite || pixels.isEmpty())
@@ -155,25 +172,10 @@ void FrameCompositor::draw(GLuint frameTexture, int samples, QSize pixels, Finis
             drawRect(rect, pixels, *m_compositeWithHair);
         gl->glBindTexture(GL_TEXTURE_2D, 0);
         unbindLowResHair(gl, 1);
-        m_composite->bind();
-        setUniform(*m_composite, "u_samples", 0);
-        setUniform(*m_composite, "u_keepAlpha", keepAlpha);
-        gl->glActiveTexture(GL_TEXTURE1);
-        gl->glBindTexture(GL_TEXTURE_2D, frameTexture);
-        for (const QRect& rect : plain)
-            drawRect(rect, pixels, *m_composite);
-        gl->glBindTexture(GL_TEXTURE_2D, 0);
-        gl->glActiveTexture(GL_TEXTURE0);
+        copyFrame(frameTexture, 0, pixels, keepAlpha, plain);
     } else {
-        m_composite->bind();
-        setUniform(*m_composite, "u_samples", std::max(samples, 0));
-        setUniform(*m_composite, "u_keepAlpha", keepAlpha);
-        const GLenum kind = samples > 0 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
-        gl->glActiveTexture(samples > 0 ? GL_TEXTURE0 : GL_TEXTURE1);
-        gl->glBindTexture(kind, frameTexture);
-        drawRect(QRect(QPoint(0, 0), pixels), pixels, *m_composite);
-        gl->glBindTexture(kind, 0);
-        gl->glActiveTexture(GL_TEXTURE0);
+        const QRect whole(QPoint(0, 0), pixels);
+        copyFrame(frameTexture, samples, pixels, keepAlpha, { &whole, 1 });
     }
 
     if (finish != Finish::Screen) {

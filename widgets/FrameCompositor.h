@@ -25,6 +25,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <span>
 
 namespace wisp {
 
@@ -67,6 +68,8 @@ public:
 private:
     // A rectangle of the target (pixels, origin at the bottom left as GL counts them).
     void drawRect(QRect rect, QSize pixels, QOpenGLShaderProgram& program);
+    // composite.frag's copy of the frame (multisampled with `samples` > 0) over `rects` of the target.
+    void copyFrame(GLuint frameTexture, int samples, QSize pixels, int keepAlpha, std::span<const QRect> rects);
 
     struct Overlay {
         GLuint texture = 0;

@@ -15,14 +15,17 @@
 #include "sim/solver/HairSimulation.h"
 #include "sim/style/StyleEdits.h"
 #include "sim/util/SimdTarget.h"
+#include "sim/util/ThreadPool.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 namespace wisp::cli {
@@ -43,6 +46,7 @@ struct BenchResult {
     // Steps of the solver over `particles` (not dabs or releases): such a row gets a floor row.
     bool solverSteps = true;
     double floorMs = 0; // the floor's median at this particle count, this run (0: none)
+    std::shared_ptr<const BenchResult> floor{}; // the floor's own row (timeSteps), when measured
 };
 
 // Peak resident memory of this process; reset between workloads so each reports its own.
@@ -69,19 +73,64 @@ struct RunOptions {
     double volume = -1.0; // the volume parameter (hair-hair interaction); below 0: the default
 };
 
-template <typename StepFn> void timeSteps(const RunOptions& o, StepFn&& step, BenchResult& r)
+// Workload steps are timed alone; a solver's steps (`floorPool`: its pool) are timed in turns
+// with the floor's (FloorSweep.h) over as many particles, a round of kFloorRoundSteps of each at a
+// time on the same threads, so that both see the same machine: on a shared host the speed drifts
+// by a tenth or more within a minute, and a floor timed after the workload moved the ratio by as
+// much (groom-1m's at AVX-512: 7.5x to 10.9x across three runs in one sitting).
+constexpr int kFloorRoundSteps = 10;
+
+template <typename StepFn>
+void timeSteps(const RunOptions& o, StepFn&& step, BenchResult& r, ThreadPool* floorPool = nullptr)
 {
     for (int i = 0; i < o.warmupSteps; ++i)
         step();
     StepTimer timer;
-    for (int i = 0; i < o.measuredSteps; ++i) {
-        timer.start();
-        step();
-        timer.stop();
-    }
     r.steps = o.measuredSteps;
+    if (!floorPool || r.particles == 0) {
+        for (int i = 0; i < o.measuredSteps; ++i) {
+            timer.start();
+            step();
+            timer.stop();
+        }
+        r.medianMs = timer.medianMs();
+        r.meanMs = timer.meanMs();
+        return;
+    }
+    // The workload's own peak, before the floor's rows are made beside it.
+    r.peakRssMb = peakRssMb();
+    FloorSweep sweep(r.particles, 15, *floorPool);
+    auto floor = std::make_shared<BenchResult>(BenchResult{ "floor" });
+    floor->particles = sweep.particleCount();
+    floor->strands = sweep.strandCount();
+    floor->threads = sweep.threadCount();
+    floor->substeps = 1;
+    floor->steps = o.measuredSteps;
+    floor->solverBytesPerParticle
+        = static_cast<double>(sweep.bytesPerStep()) / 2.0 / static_cast<double>(floor->particles);
+    floor->peakRssMb = -1.0; // (the process holds the workload too: no figure of its own)
+    for (int i = 0; i < o.warmupSteps; ++i)
+        sweep.step();
+    StepTimer floorTimer;
+    for (int done = 0; done < o.measuredSteps; done += kFloorRoundSteps) {
+        const int steps = std::min(kFloorRoundSteps, o.measuredSteps - done);
+        for (int i = 0; i < steps; ++i) {
+            timer.start();
+            step();
+            timer.stop();
+        }
+        for (int i = 0; i < steps; ++i) {
+            floorTimer.start();
+            sweep.step();
+            floorTimer.stop();
+        }
+    }
     r.medianMs = timer.medianMs();
     r.meanMs = timer.meanMs();
+    floor->medianMs = floor->floorMs = floorTimer.medianMs();
+    floor->meanMs = floorTimer.meanMs();
+    r.floorMs = floor->medianMs;
+    r.floor = std::move(floor);
 }
 
 // The first paper's grid on the default head: head collision on, gravity 9.8 m/s², wind on.
@@ -107,7 +156,7 @@ BenchResult gridWorkload(const std::string& name, int width, int height, int par
     r.threads = sim.solver().threadCount();
     r.substeps = sim.solver().settings().substeps;
     timeSteps(
-        o, [&] { sim.step(); }, r);
+        o, [&] { sim.step(); }, r, &sim.solver().threadPool());
     // After the steps: the volume grid and its per-thread slots are made by the first step.
     r.solverBytesPerParticle = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(r.particles);
     return r;
@@ -153,7 +202,7 @@ BenchResult sphereWorkload(const RunOptions& o)
     r.threads = solver.threadCount();
     r.substeps = s.substeps;
     timeSteps(
-        o, [&] { solver.step(); }, r);
+        o, [&] { solver.step(); }, r, &solver.threadPool());
     r.solverBytesPerParticle = static_cast<double>(solver.memoryBytes()) / static_cast<double>(r.particles);
     return r;
 }
@@ -322,23 +371,6 @@ std::vector<Workload> workloads()
     };
 }
 
-// The memory floor at a workload's particle count (FloorSweep.h): strands of 15 particles, the
-// same threads, timed as the workload was.
-BenchResult floorWorkload(std::size_t particles, const RunOptions& o)
-{
-    FloorSweep floor(particles, 15, o.threads);
-    BenchResult r{ "floor" };
-    r.particles = floor.particleCount();
-    r.strands = floor.strandCount();
-    r.threads = floor.threadCount();
-    r.substeps = 1;
-    r.solverBytesPerParticle = static_cast<double>(floor.bytesPerStep()) / 2.0 / static_cast<double>(r.particles);
-    timeSteps(
-        o, [&] { floor.step(); }, r);
-    r.floorMs = r.medianMs;
-    return r;
-}
-
 double ratioToFloor(const BenchResult& r)
 {
     return r.floorMs > 0.0 ? r.medianMs / r.floorMs : 0.0;
@@ -346,14 +378,17 @@ double ratioToFloor(const BenchResult& r)
 
 std::string json(const BenchResult& r)
 {
+    char peak[32] = "null"; // (the floor's row: timed beside the workload, no peak of its own)
+    if (r.peakRssMb >= 0.0)
+        std::snprintf(peak, sizeof peak, "%.1f", r.peakRssMb);
     char buffer[768];
     std::snprintf(buffer, sizeof buffer,
         "{\"name\": \"%s\", \"target\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, "
         "\"substeps\": %d, \"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
         "\"floor_ms_per_step\": %.4f, \"ratio_to_floor\": %.2f, "
-        "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %.1f}",
+        "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %s}",
         r.name.c_str(), solverSimdTarget(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs,
-        r.meanMs, r.floorMs, ratioToFloor(r), r.solverBytesPerParticle, r.peakRssMb);
+        r.meanMs, r.floorMs, ratioToFloor(r), r.solverBytesPerParticle, peak);
     return buffer;
 }
 
@@ -384,10 +419,11 @@ int runBench(int argc, char** argv)
             std::cout << "  " << w.name << std::string(w.name.size() < 16 ? 16 - w.name.size() : 1, ' ')
                       << w.description << "\n";
         std::cout << "\nms_per_step is the median wall-clock time of one solver step; peak_rss_mb the process's\n"
-                     "peak resident memory during that workload. After each stepping workload, a floor row\n"
-                     "times the minimal follow-the-leader sweep over as many particles (each position and\n"
-                     "previous position read and written once, one length constraint, nothing else), and\n"
-                     "x floor is the workload's ratio to it: how far it is from what this machine allows.\n";
+                     "peak resident memory during that workload. Each stepping workload is timed in turns\n"
+                     "with the floor, 10 steps of each at a time on the same threads: the minimal\n"
+                     "follow-the-leader sweep over as many particles (each position and previous position\n"
+                     "read and written once, one length constraint, nothing else), printed in the row after\n"
+                     "it; x floor is the workload's ratio to it, how far it is from what this machine allows.\n";
         return kSuccess;
     }
     RunOptions o;
@@ -432,8 +468,11 @@ int runBench(int argc, char** argv)
             char ratio[16] = "-";
             if (r.floorMs > 0.0)
                 std::snprintf(ratio, sizeof ratio, "%.2f", ratioToFloor(r));
-            std::printf("%-16s %10zu %8zu %7d %8d %12.4f %12.4f %8s %10.1f %10.1f\n", r.name.c_str(), r.particles,
-                r.strands, r.threads, r.substeps, r.medianMs, r.meanMs, ratio, r.solverBytesPerParticle, r.peakRssMb);
+            char peak[16] = "-";
+            if (r.peakRssMb >= 0.0)
+                std::snprintf(peak, sizeof peak, "%.1f", r.peakRssMb);
+            std::printf("%-16s %10zu %8zu %7d %8d %12.4f %12.4f %8s %10.1f %10s\n", r.name.c_str(), r.particles,
+                r.strands, r.threads, r.substeps, r.medianMs, r.meanMs, ratio, r.solverBytesPerParticle, peak);
         }
         std::fflush(stdout);
     };
@@ -442,17 +481,11 @@ int runBench(int argc, char** argv)
             continue;
         resetPeakRss();
         BenchResult r = w.run(o);
-        r.peakRssMb = peakRssMb();
-        if (!r.solverSteps || r.particles == 0) {
-            print(r);
-            continue;
-        }
-        resetPeakRss();
-        BenchResult floor = floorWorkload(r.particles, o);
-        floor.peakRssMb = peakRssMb();
-        r.floorMs = floor.floorMs;
+        if (!r.floor) // (a workload timed beside its floor read its own peak before the floor's rows)
+            r.peakRssMb = peakRssMb();
         print(r);
-        print(floor);
+        if (r.floor)
+            print(*r.floor);
     }
     return kSuccess;
 }

@@ -77,7 +77,19 @@ HWY_EXPORT(sweepBlocks);
 using namespace floor_sweep;
 
 FloorSweep::FloorSweep(std::size_t particles, std::uint32_t pointsPerStrand, int threadCount)
-    : m_pool(threadCount)
+    : FloorSweep(particles, pointsPerStrand, std::make_unique<ThreadPool>(threadCount), nullptr)
+{
+}
+
+FloorSweep::FloorSweep(std::size_t particles, std::uint32_t pointsPerStrand, ThreadPool& pool)
+    : FloorSweep(particles, pointsPerStrand, nullptr, &pool)
+{
+}
+
+FloorSweep::FloorSweep(
+    std::size_t particles, std::uint32_t pointsPerStrand, std::unique_ptr<ThreadPool> ownPool, ThreadPool* pool)
+    : m_ownPool(std::move(ownPool))
+    , m_pool(pool ? pool : m_ownPool.get())
     , m_points(std::max<std::uint32_t>(pointsPerStrand, 2))
 {
     m_strands = std::max<std::size_t>(1, (particles + m_points - 1) / m_points);
@@ -99,7 +111,7 @@ FloorSweep::FloorSweep(std::size_t particles, std::uint32_t pointsPerStrand, int
 void FloorSweep::step()
 {
     // A few blocks a chunk, as the solver splits its step; on the SIMD target the solver runs on.
-    m_pool.parallelFor(m_blocks, 4, [&](std::size_t begin, std::size_t end) {
+    m_pool->parallelFor(m_blocks, 4, [&](std::size_t begin, std::size_t end) {
         HWY_DYNAMIC_DISPATCH(sweepBlocks)(m_rows.data(), begin, end, m_points, m_segmentMetres);
     });
 }

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace wisp {
@@ -23,13 +24,17 @@ public:
     // 16 strands padded), hanging straight down at rest from roots 1 cm apart, 0.3 m long, on
     // `threadCount` threads (0: one per core).
     FloorSweep(std::size_t particles, std::uint32_t pointsPerStrand, int threadCount);
+    // The same on a pool it shares (a solver's, Solver::threadPool()), which must outlive it: the
+    // bench times the floor's steps between the workload's on the same threads, so neither pool's
+    // workers spin on a core the other's need.
+    FloorSweep(std::size_t particles, std::uint32_t pointsPerStrand, ThreadPool& pool);
 
     // One step of 1/60 s: every particle but the roots moves once.
     void step();
 
     std::size_t particleCount() const { return m_particles; }
     std::size_t strandCount() const { return m_strands; }
-    int threadCount() const { return m_pool.threadCount(); }
+    int threadCount() const { return m_pool->threadCount(); }
     std::uint32_t pointsPerStrand() const { return m_points; }
     float segmentMetres() const { return m_segmentMetres; }
     // Bytes the sweep reads and writes per step (positions and previous positions, once each way).
@@ -42,9 +47,12 @@ public:
     void displace(float dxMetres, float dzMetres);
 
 private:
+    FloorSweep(
+        std::size_t particles, std::uint32_t pointsPerStrand, std::unique_ptr<ThreadPool> ownPool, ThreadPool* pool);
     float at(std::size_t strand, std::uint32_t point, int field) const;
 
-    ThreadPool m_pool;
+    std::unique_ptr<ThreadPool> m_ownPool; // none when it runs on a pool it was given
+    ThreadPool* m_pool = nullptr;
     std::uint32_t m_points = 0;
     std::size_t m_strands = 0;
     std::size_t m_blocks = 0;

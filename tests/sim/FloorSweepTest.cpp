@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 
 using namespace wisp;
@@ -66,5 +67,30 @@ TEST(FloorSweep, OneAndTwoThreadsGiveTheSameBits)
             ASSERT_EQ(one.x(s, j), two.x(s, j));
             ASSERT_EQ(one.y(s, j), two.y(s, j));
             ASSERT_EQ(one.z(s, j), two.z(s, j));
+        }
+}
+
+// The bench times the floor between a solver's steps on the solver's own pool: the sweep on a pool
+// it is given runs on that pool's threads and gives the same bits as on a pool of its own.
+TEST(FloorSweep, OnASharedPoolItRunsOnThatPoolAndGivesTheSameBits)
+{
+    ThreadPool shared(3);
+    FloorSweep own(5000, 15, 1), onShared(5000, 15, shared);
+    EXPECT_EQ(onShared.threadCount(), shared.threadCount());
+    own.displace(0.02f, 0.01f);
+    onShared.displace(0.02f, 0.01f);
+    std::atomic<int> otherLoops{ 0 };
+    for (int i = 0; i < 20; ++i) {
+        own.step();
+        onShared.step();
+        // The pool is still the caller's to use between the sweep's steps.
+        shared.parallelFor(8, 1, [&](std::size_t, std::size_t) { otherLoops.fetch_add(1); });
+    }
+    EXPECT_EQ(otherLoops.load(), 160);
+    for (std::size_t s = 0; s < own.strandCount(); ++s)
+        for (std::uint32_t j = 0; j < 15; ++j) {
+            ASSERT_EQ(own.x(s, j), onShared.x(s, j));
+            ASSERT_EQ(own.y(s, j), onShared.y(s, j));
+            ASSERT_EQ(own.z(s, j), onShared.z(s, j));
         }
 }

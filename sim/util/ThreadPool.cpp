@@ -27,6 +27,8 @@ ThreadPool::ThreadPool(int threadCount)
     const int cores = static_cast<int>(std::thread::hardware_concurrency());
     if (threadCount <= 0)
         threadCount = std::max(1, cores);
+    // (Before the workers start: they read it.)
+    m_spins = cores > 0 && threadCount <= cores;
     try {
         m_workers.reserve(static_cast<std::size_t>(threadCount - 1));
         for (int i = 1; i < threadCount; ++i)
@@ -38,7 +40,6 @@ ThreadPool::ThreadPool(int threadCount)
         // No more threads (or memory) to be had: the workers started and the caller do the work,
         // rather than a throw out of sim/ with threads left running (std::terminate).
     }
-    m_spins = cores > 0 && this->threadCount() <= cores;
 }
 
 ThreadPool::~ThreadPool()

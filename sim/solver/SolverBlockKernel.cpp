@@ -120,6 +120,28 @@ template <bool Transformed> CapsulesInReach capsulesInReach(const Solver::Block&
     return list;
 }
 
+// A capsule as the particle loop reads it: its end a and axis ab splatted, 1 / |ab|² (a scalar
+// division) and radius + the hair offset as lanes. The same floats as the capsule's own
+// arithmetic gave, worked out once a slice instead of at every particle.
+struct LaneCapsule {
+    V3 a, ab;
+    Lane inverseLength2; // 1 / |ab|², where `segment`
+    Lane reach; // radius + hair offset, metres
+    bool segment = false; // false: a sphere (a == b)
+};
+inline LaneCapsule laneCapsule(const Capsule& capsule, float offsetMetres)
+{
+    LaneCapsule lanes;
+    const glm::vec3 abv = capsule.b - capsule.a;
+    const float ab2 = glm::dot(abv, abv);
+    lanes.a = splat(capsule.a);
+    lanes.ab = splat(abv);
+    lanes.segment = ab2 > 0.0f;
+    lanes.inverseLength2 = splat(lanes.segment ? 1.0f / ab2 : 0.0f);
+    lanes.reach = splat(capsule.radiusMetres + offsetMetres);
+    return lanes;
+}
+
 // How far a particle moved, for its clearance bound: its length, rounded up a little (the bound
 // must never shrink by less than the true move), so the bound lasts as long as the move allows.
 [[gnu::always_inline]] inline Lane moveLength(const V3& d)
@@ -173,8 +195,14 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     const Lane kickGain = lmin((splat(1.0f) + drag * dt) * splat(1.0f / c.keep), splat(kMaxKickGain));
     const ContactFriction mu{ splat(c.friction), splat(c.friction * kStaticOverKineticFriction) };
 
-    auto capsuleAt
-        = [&](std::size_t k) -> const Capsule& { return capsules.filtered ? *capsules.at[k] : c.capsulesWorld[k]; };
+    // The capsules in reach as lanes, once for the slice: worked out at each particle, their
+    // splats, the segment's squared length and its reciprocal (a scalar division) were 3.5 % of
+    // the sphere workload's instructions at AVX2 (callgrind; the same bits either way). (More
+    // capsules than a block lists: each is laid out where it is checked.)
+    std::array<LaneCapsule, 16> inReach;
+    if (capsules.filtered)
+        for (std::size_t k = 0; k < capsules.count; ++k)
+            inReach[k] = laneCapsule(*capsules.at[k], c.offset);
     const std::size_t capsulesToCheck = capsules.filtered ? capsules.count : c.capsulesWorld.size();
 
     // Verlet (eq. 3) with drag toward the wind taken implicitly: v' = (keep v + k dt w) / (1 + k dt)
@@ -330,16 +358,15 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             looked = true;
         }
         for (std::size_t k = 0; k < capsulesToCheck; ++k) {
-            const Capsule& capsule = capsuleAt(k);
-            const V3 a = splat(capsule.a);
-            const glm::vec3 abv = capsule.b - capsule.a;
-            const float ab2 = glm::dot(abv, abv);
-            const V3 ab = splat(abv);
-            const Lane u
-                = ab2 > 0.0f ? lmin(lmax(dot(position - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f)) : splat(0.0f);
-            const V3 away = position - (a + ab * u);
+            LaneCapsule laidOut;
+            const LaneCapsule& capsule
+                = capsules.filtered ? inReach[k] : (laidOut = laneCapsule(c.capsulesWorld[k], c.offset));
+            const Lane u = capsule.segment
+                ? lmin(lmax(dot(position - capsule.a, capsule.ab) * capsule.inverseLength2, splat(0.0f)), splat(1.0f))
+                : splat(0.0f);
+            const V3 away = position - (capsule.a + capsule.ab * u);
             const Lane dist = lsqrt(dot(away, away));
-            const Lane depth = splat(capsule.radiusMetres + c.offset) - dist;
+            const Lane depth = capsule.reach - dist;
             const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
             if (anyOf(inside)) {
                 needInverseLength();

@@ -137,9 +137,7 @@ std::string Solver::setSettings(const SolverSettings& settings)
     if (!error.empty())
         return error;
     if (settings.hairOffsetMetres != m_settings.hairOffsetMetres) // clearances are measured from the offset
-        for (Block& b : m_blocks)
-            for (ParticleRow& row : b.state)
-                row.clearance = Lane{} - 1.0f;
+        forgetClearances();
     m_settings = settings;
     return {};
 }
@@ -149,14 +147,20 @@ void Solver::setCollider(std::shared_ptr<const SignedDistanceField> headSdf)
     m_sdf = headSdf && !headSdf->empty() ? std::move(headSdf) : nullptr;
     m_field = m_sdf ? std::make_unique<CollisionField>(*m_sdf) : nullptr;
     m_volumeGrid.reset(); // its solid is the head
-    for (Block& b : m_blocks)
-        for (ParticleRow& row : b.state)
-            row.clearance = Lane{} - 1.0f;
+    forgetClearances();
 }
 
 void Solver::setCapsules(std::vector<Capsule> capsules)
 {
     m_capsules = std::move(capsules);
+    forgetClearances(); // the bounds cover the capsules too
+}
+
+void Solver::forgetClearances()
+{
+    for (Block& b : m_blocks)
+        for (ParticleRow& row : b.state)
+            row.clearance = Lane{} - 1.0f;
 }
 
 void Solver::setHeadTransform(const glm::mat4& headToWorld)

@@ -152,6 +152,9 @@ public:
     static constexpr float kVolumeDepthMetres = 0.3f;
 
 private:
+    // Every particle looks at the head and the capsules on its next substep (their clearance bounds
+    // are measured from colliders and an offset that changed).
+    void forgetClearances();
     void updateBendShares(float substepSeconds);
     void updateGlobalShape(float substepSeconds);
     void updateVolumeBounds();

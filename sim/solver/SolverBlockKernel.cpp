@@ -261,7 +261,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         // up (moveLength).
         const V3 checked = position;
         Lane clearance = p.clearance - moveLength(position - before);
-        // Only the lanes whose bound ran out meet the head: a lane's own bound decides, never its
+        // Only the lanes whose bound ran out meet the head and the capsules: a lane's own bound decides, never its
         // neighbours' (whose lookup would otherwise have given it contact too, where the field's
         // first-order extension reads a hair's breadth inside), so a lane ends alike however many
         // lanes run together (a slice of the block on each SIMD target).
@@ -357,24 +357,39 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             clearance = Transformed ? splat(-1e30f) : select(needsLook, lmax(-depth, splat(0.0f)), clearance);
             looked = true;
         }
-        for (std::size_t k = 0; k < capsulesToCheck; ++k) {
-            LaneCapsule laidOut;
-            const LaneCapsule& capsule
-                = capsules.filtered ? inReach[k] : (laidOut = laneCapsule(c.capsulesWorld[k], c.offset));
-            const Lane u = capsule.segment
-                ? lmin(lmax(dot(position - capsule.a, capsule.ab) * capsule.inverseLength2, splat(0.0f)), splat(1.0f))
-                : splat(0.0f);
-            const V3 away = position - (capsule.a + capsule.ab * u);
-            const Lane dist = lsqrt(dot(away, away));
-            const Lane depth = capsule.reach - dist;
-            const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f));
-            if (anyOf(inside)) {
-                needInverseLength();
-                const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
-                resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, headMove, position,
-                    previous, true, splat(c.offset));
-                looked = true;
+        // The capsules (the neck and shoulders, the bench's sphere), like the head only for the lanes
+        // whose bound ran out: the bound covers them too, the least of the lane's clearances to
+        // the head and to each capsule. (Checked at every particle before, the capsule alone was a
+        // quarter of the sphere workload's step.)
+        if (capsulesToCheck > 0 && anyOf(needsLook)) {
+            // Where the head's contact moved a lane, its capsule distances are measured from there:
+            // less that move, they bound the lane's clearance at `checked`, as the head's does.
+            const Lane headShift = looked ? moveLength(position - checked) : splat(0.0f);
+            Lane capsuleClearance = splat(1e30f);
+            for (std::size_t k = 0; k < capsulesToCheck; ++k) {
+                LaneCapsule laidOut;
+                const LaneCapsule& capsule
+                    = capsules.filtered ? inReach[k] : (laidOut = laneCapsule(c.capsulesWorld[k], c.offset));
+                const Lane u = capsule.segment
+                    ? lmin(
+                        lmax(dot(position - capsule.a, capsule.ab) * capsule.inverseLength2, splat(0.0f)), splat(1.0f))
+                    : splat(0.0f);
+                const V3 away = position - (capsule.a + capsule.ab * u);
+                const Lane dist = lsqrt(dot(away, away));
+                const Lane depth = capsule.reach - dist;
+                capsuleClearance = lmin(capsuleClearance, -depth);
+                const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f)) & needsLook;
+                if (anyOf(inside)) {
+                    needInverseLength();
+                    const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
+                    resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, headMove, position,
+                        previous, true, splat(c.offset));
+                }
             }
+            const Lane fromCapsules = lmax(capsuleClearance - headShift, splat(0.0f));
+            const Lane fromHead = c.field ? clearance : splat(1e30f); // (refreshed above where it looked)
+            clearance = Transformed ? splat(-1e30f) : select(needsLook, lmin(fromHead, fromCapsules), clearance);
+            looked = true;
         }
         if (i > 1) {
             ParticleSlice& q = row[i - 1];

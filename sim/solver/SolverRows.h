@@ -22,8 +22,9 @@ namespace wisp {
 struct Solver::ParticleRow {
     Lane x, y, z;
     Lane px, py, pz;
-    // A lower bound on (distance to the head - hair offset) at x: while it stays positive the head
-    // cannot be touched and its lookup is skipped. Negative means unknown.
+    // A lower bound on (distance to the nearest collider, the head or a capsule in reach - hair
+    // offset) at x: while it stays positive nothing can be touched and the lookups are skipped.
+    // Negative means unknown.
     Lane clearance;
 };
 // Rest shape, head space, as a step reads it: row j > 0 holds the segment from particle j-1 to j

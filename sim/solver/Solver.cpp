@@ -152,8 +152,13 @@ void Solver::setCollider(std::shared_ptr<const SignedDistanceField> headSdf)
 
 void Solver::setCapsules(std::vector<Capsule> capsules)
 {
+    // The bounds cover the capsules too: forgotten only when they change (the editor sets them again
+    // with every force parameter, while a slider is dragged, and every particle would look at the
+    // head again each time).
+    if (capsules == m_capsules)
+        return;
     m_capsules = std::move(capsules);
-    forgetClearances(); // the bounds cover the capsules too
+    forgetClearances();
 }
 
 void Solver::forgetClearances()

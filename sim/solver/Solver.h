@@ -40,6 +40,7 @@ struct Capsule {
     glm::vec3 a{ 0.0f };
     glm::vec3 b{ 0.0f };
     float radiusMetres = 0.0f;
+    bool operator==(const Capsule&) const = default;
 };
 
 class Solver {

@@ -184,7 +184,7 @@ TEST_F(SimulationHostTest, DestroyingWhilePlayingJoinsTheThread)
     EXPECT_GT(threadCount(), before);
     // Destruction does not wait for work in flight: it returns (guarded) and the thread is gone.
     runWithHangGuard("destroying a playing SimulationHost", [&] { host.reset(); });
-    EXPECT_LE(threadCount(), before);
+    EXPECT_TRUE(threadCountFallsTo(before)) << threadCount() << " threads, " << before << " before";
 }
 
 TEST_F(SimulationHostTest, DestroyingMidRegroomDropsQueuedWorkAndJoins)
@@ -197,7 +197,7 @@ TEST_F(SimulationHostTest, DestroyingMidRegroomDropsQueuedWorkAndJoins)
     QTest::qWait(20); // let the simulation thread start grooming
     host->setParameters(with(ParameterValues{}, { { Param::Segments, 20.0 } })); // queued behind it, dropped
     runWithHangGuard("destroying a SimulationHost mid-regroom", [&] { host.reset(); });
-    EXPECT_LE(threadCount(), before);
+    EXPECT_TRUE(threadCountFallsTo(before)) << threadCount() << " threads, " << before << " before";
 }
 
 TEST_F(SimulationHostTest, RequestsBeforeAnySceneAreHarmless)

@@ -72,6 +72,17 @@ inline long threadCount()
         std::distance(std::filesystem::directory_iterator("/proc/self/task"), std::filesystem::directory_iterator()));
 }
 
+// Whether this process's thread count falls to at most `most` within timeoutMs. A joined thread
+// has left its code, but the kernel may list it in /proc/self/task a little longer while it
+// finishes exiting (3 to 13 ms after pthread_join returned, on a 2-vCPU VM: a test that counted at
+// once failed one run in four); a thread that was never joined stays, and fails.
+inline bool threadCountFallsTo(long most, int timeoutMs = kWaitMs)
+{
+    for (int waited = 0; waited < timeoutMs && threadCount() > most; ++waited)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return threadCount() <= most;
+}
+
 // The pacer's clock, moved by the test (SimulationHost::SecondsClock). Each read returns the time
 // and then adds perRead: a paced step reads it at its start, after the solver and after building
 // its frame, so perRead sets what every step costs in the host's eyes, whatever the machine does.

@@ -77,22 +77,25 @@ struct RunOptions {
 // with the floor's (FloorSweep.h) over as many particles, a round of kFloorRoundSteps of each at a
 // time on the same threads, so that both see the same machine: on a shared host the speed drifts
 // by a tenth or more within a minute, and a floor timed after the workload moved the ratio by as
-// much (groom-1m's at AVX-512: 7.5x to 10.9x across three runs in one sitting).
+// much (groom-1m's at AVX-512: 7.5x to 10.9x across six runs in one sitting).
 constexpr int kFloorRoundSteps = 10;
 
 template <typename StepFn>
 void timeSteps(const RunOptions& o, StepFn&& step, BenchResult& r, ThreadPool* floorPool = nullptr)
 {
+    auto timed = [](StepTimer& timer, auto&& stepOnce, int steps) {
+        for (int i = 0; i < steps; ++i) {
+            timer.start();
+            stepOnce();
+            timer.stop();
+        }
+    };
     for (int i = 0; i < o.warmupSteps; ++i)
         step();
     StepTimer timer;
     r.steps = o.measuredSteps;
     if (!floorPool || r.particles == 0) {
-        for (int i = 0; i < o.measuredSteps; ++i) {
-            timer.start();
-            step();
-            timer.stop();
-        }
+        timed(timer, step, o.measuredSteps);
         r.medianMs = timer.medianMs();
         r.meanMs = timer.meanMs();
         return;
@@ -114,16 +117,9 @@ void timeSteps(const RunOptions& o, StepFn&& step, BenchResult& r, ThreadPool* f
     StepTimer floorTimer;
     for (int done = 0; done < o.measuredSteps; done += kFloorRoundSteps) {
         const int steps = std::min(kFloorRoundSteps, o.measuredSteps - done);
-        for (int i = 0; i < steps; ++i) {
-            timer.start();
-            step();
-            timer.stop();
-        }
-        for (int i = 0; i < steps; ++i) {
-            floorTimer.start();
-            sweep.step();
-            floorTimer.stop();
-        }
+        timed(timer, step, steps);
+        timed(
+            floorTimer, [&] { sweep.step(); }, steps);
     }
     r.medianMs = timer.medianMs();
     r.meanMs = timer.meanMs();

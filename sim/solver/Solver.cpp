@@ -196,9 +196,10 @@ void Solver::updateBendShares(float substepSeconds)
     m_pool->parallelFor(m_blocks.size(), 16, [&](std::size_t begin, std::size_t end) {
         std::vector<float> lengths;
         for (std::size_t i = begin; i < end; ++i) {
-            const Block& b = m_blocks[i];
+            Block& b = m_blocks[i];
             const int n = static_cast<int>(b.points);
             lengths.resize(b.points);
+            b.bends = false;
             for (int l = 0; l < kLanes; ++l) {
                 const float rigidity = bending::rigidity(std::min(1.0f, globalStiffness * b.stiffnessScale[l]));
                 for (int j = 0; j < n; ++j)
@@ -209,6 +210,7 @@ void Solver::updateBendShares(float substepSeconds)
                     r.bendChild[l] = k.child;
                     r.bendDamping[l] = k.damping;
                     r.bendParentRatio[l] = k.parentRatio;
+                    b.bends = b.bends || k.child != 0.0f || k.damping != 0.0f || k.parentRatio != 0.0f;
                 }
             }
         }

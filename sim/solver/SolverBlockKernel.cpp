@@ -152,7 +152,7 @@ inline LaneCapsule laneCapsule(const Capsule& capsule, float offsetMetres)
 // Substeps [firstSubstep, endSubstep) of the step for the block's lanes [slice x kVecLanes,
 // (slice + 1) x kVecLanes) (kernel::Lane: one register); the last call of a step (endSubstep ==
 // c.substeps) also puts back strands that went non-finite or flew away.
-template <bool Transformed, bool GlobalShape>
+template <bool Transformed, bool GlobalShape, bool Bends>
 void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, int slice,
     const CapsulesInReach& capsules)
 {
@@ -393,9 +393,15 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         }
         if (i > 1) {
             ParticleSlice& q = row[i - 1];
-            q.px += kick.x + velocityCorrection * correction.x;
-            q.py += kick.y + velocityCorrection * correction.y;
-            q.pz += kick.z + velocityCorrection * correction.z;
+            if constexpr (Bends) {
+                q.px += kick.x + velocityCorrection * correction.x;
+                q.py += kick.y + velocityCorrection * correction.y;
+                q.pz += kick.z + velocityCorrection * correction.z;
+            } else {
+                q.px += velocityCorrection * correction.x;
+                q.py += velocityCorrection * correction.y;
+                q.pz += velocityCorrection * correction.z;
+            }
         }
         // (Where nothing looked, position is `checked` and the bound stands as it is.)
         p.clearance = looked ? clearance - moveLength(position - checked) : clearance;
@@ -442,17 +448,20 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         V3 parentStart = parentBefore; // particle j-1 at the start of the substep
         V3 gustFrom{}, gustTo{}; // gusts at the samples either side of particle j
         Lane gustSpan = splat(1.0f);
-        V3 frameD{ shape[1].x, shape[1].y, shape[1].z }; // the follicle's frame: the root segment's rest
-        V3 frameE = anyPerpendicularOf(frameD); // direction and a normal to it (storeRestFrames)
-        if (Transformed) {
-            frameD = transform(c.rotation, frameD);
-            frameE = transform(c.rotation, frameE);
+        V3 frameD{}, frameE{}, frameB{}, turned{}; // (a limp block has no frames)
+        if constexpr (Bends) {
+            frameD = V3{ shape[1].x, shape[1].y, shape[1].z }; // the follicle's frame: the root segment's
+            frameE = anyPerpendicularOf(frameD); // rest direction and a normal to it (storeRestFrames)
+            if (Transformed) {
+                frameD = transform(c.rotation, frameD);
+                frameE = transform(c.rotation, frameE);
+            }
+            frameB = cross(frameD, frameE);
+            // The target direction of segment j: its rest direction's coordinates in the parent's
+            // rest frame, laid on the parent's frame now.
+            const V3 first = restCoordinates(rest[1].u, rest[1].v);
+            turned = frameD * first.x + frameE * first.y + frameB * first.z;
         }
-        V3 frameB = cross(frameD, frameE);
-        // The target direction of segment j: its rest direction's coordinates in the parent's rest
-        // frame, laid on the parent's frame now.
-        const V3 first = restCoordinates(rest[1].u, rest[1].v);
-        V3 turned = frameD * first.x + frameE * first.y + frameB * first.z;
         for (std::uint32_t j = 1; j < n; ++j) {
             ParticleSlice& p = row[j];
             const RestSlice& r = rest[j];
@@ -488,16 +497,22 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             const V3 predicted = predict(x, V3{ p.px, p.py, p.pz }, parentBefore, gustHere);
             parentBefore = x;
 
-            // The bend toward the target, and its reaction on the parent (SolverConstraints.h).
-            V3 reach
-                = bendTowardTarget(predicted, x, parentStart, parent, turned, r.length, r.bendChild, r.bendDamping);
-            const V3 kick = bendReaction(parent, reach, predicted, r.bendParentRatio, kickGain);
+            // The bend toward the target, and its reaction on the parent (SolverConstraints.h). A
+            // limp block (no lane bends) goes straight to its length: the bend with all its shares
+            // 0 moves nothing (reach = predicted - parent, no kick).
+            V3 reach = predicted - parent;
+            V3 kick{};
+            if constexpr (Bends) {
+                reach
+                    = bendTowardTarget(predicted, x, parentStart, parent, turned, r.length, r.bendChild, r.bendDamping);
+                kick = bendReaction(parent, reach, predicted, r.bendParentRatio, kickGain);
+            }
             if constexpr (GlobalShape)
                 reach = pullTowardGlobalShape<Transformed>(parent + reach, globalShape[j], root, rootHead, c.rotation)
                     - parent;
             parentStart = x;
             const auto [position, d] = finish(j, x, reach, parent, kick);
-            if (j + 1 < n) {
+            if (Bends && j + 1 < n) {
                 // Transport the frame onto this segment's direction d now: the shortest rotation
                 // from D to d takes a vector v across D to v - (d.v) / (1 + D.d) (D + d), which
                 // keeps it unit and across d; E, B and the next target's part across D, w, are
@@ -551,7 +566,9 @@ void advanceBlockSlices(Solver::Block& block, const StepConstants& c, int firstS
     prefetchNextShape(block);
     const CapsulesInReach capsules = capsulesInReach<Transformed>(block, c);
     for (int slice = 0; slice < kLanes / kVecLanes; ++slice)
-        advanceBlockAs<Transformed, GlobalShape>(block, c, firstSubstep, endSubstep, slice, capsules);
+        block.bends
+            ? advanceBlockAs<Transformed, GlobalShape, true>(block, c, firstSubstep, endSubstep, slice, capsules)
+            : advanceBlockAs<Transformed, GlobalShape, false>(block, c, firstSubstep, endSubstep, slice, capsules);
 }
 
 } // namespace

@@ -112,6 +112,9 @@ struct Solver::Block {
     std::span<const GlobalShapeRow> globalShape; // empty while the global shape is off
     const BlockWind* wind = nullptr; // per lane: wind of its own (a hair dryer); null: none
     std::uint32_t points = 0;
+    // Whether any lane has a bend share (Solver::updateBendShares): a limp block (stiffness 0 on
+    // every lane) skips the bend and its frames, which would move nothing.
+    bool bends = true;
 };
 
 struct StepConstants {

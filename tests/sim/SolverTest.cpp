@@ -138,6 +138,53 @@ TEST(Solver, StrandsDrapeOverASphereColliderWithoutEnteringIt)
     EXPECT_LT(lowest, -0.05f); // they fell around the sphere, not through it
 }
 
+// A block whose strands are all limp (stiffness 0) skips the bend and its frames (they would move
+// nothing); a block with one stiff strand bends. Limp strands land on the same bits either way, and
+// the stiff strand in a block of limp ones still holds its shape.
+TEST(Solver, LimpStrandsMoveAlikeWithAndWithoutAStiffStrandInTheirBlock)
+{
+    // 16 strands of 11 points (one block): 0.2 m sticking out sideways at different headings,
+    // with wind and collision so that every term of a step is at work.
+    HairCurves c;
+    for (int i = 0; i < 16; ++i) {
+        const float az = glm::two_pi<float>() * static_cast<float>(i) / 16.0f;
+        const glm::vec3 out(std::cos(az), 0.3f, std::sin(az));
+        auto p = c.strandForWrite(c.addStrand(11));
+        for (int j = 0; j <= 10; ++j)
+            p[j] = out * (0.1f + 0.02f * static_cast<float>(j));
+    }
+    auto run = [&](float firstStrandStiffness) {
+        Solver solver(1);
+        EXPECT_EQ(solver.setStrands(c), "");
+        solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
+        SolverSettings s = calm();
+        s.stiffness = 0.6f;
+        s.wind = { 2.0f, 0.0f, 0.5f };
+        s.dragPerSecond = 0.5f;
+        s.friction = 0.3f;
+        EXPECT_EQ(solver.setSettings(s), "");
+        std::vector<float> scales(16, 0.0f);
+        scales[0] = firstStrandStiffness;
+        EXPECT_EQ(solver.setStiffnessScales(scales), "");
+        for (int i = 0; i < 120; ++i)
+            solver.step();
+        std::vector<glm::vec3> out;
+        solver.copyPositions(out);
+        return out;
+    };
+    const std::vector<glm::vec3> mixed = run(1.0f), limp = run(0.0f);
+    ASSERT_EQ(mixed.size(), limp.size());
+    for (std::size_t k = 11; k < mixed.size(); ++k) { // strands 1..15
+        EXPECT_EQ(mixed[k].x, limp[k].x) << k;
+        EXPECT_EQ(mixed[k].y, limp[k].y) << k;
+        EXPECT_EQ(mixed[k].z, limp[k].z) << k;
+    }
+    // Strand 0's tip: limp it hangs about its length below the root, stiff it stands out.
+    const glm::vec3 root = c.strand(0).front();
+    EXPECT_LT(limp[10].y - root.y, -0.15f);
+    EXPECT_GT(mixed[10].y - root.y, -0.1f);
+}
+
 // The particles' clearance bounds cover the capsules (a capsule is checked only where a bound ran
 // out): hair that rested 20 cm from a capsule within its reach, whose bounds had grown to that,
 // must still meet a capsule put into it, on the very next step, and leave it when it goes.

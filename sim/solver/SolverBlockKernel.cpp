@@ -152,7 +152,7 @@ inline LaneCapsule laneCapsule(const Capsule& capsule, float offsetMetres)
 // Substeps [firstSubstep, endSubstep) of the step for the block's lanes [slice x kVecLanes,
 // (slice + 1) x kVecLanes) (kernel::Lane: one register); the last call of a step (endSubstep ==
 // c.substeps) also puts back strands that went non-finite or flew away.
-template <bool Transformed, bool GlobalShape, bool Bends>
+template <bool Transformed, bool GlobalShape, bool Bends, bool Gusty>
 void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubstep, int endSubstep, int slice,
     const CapsulesInReach& capsules)
 {
@@ -177,7 +177,6 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         : V3{};
     const V3 baseWind = splat(c.wind) + ownWind;
     const float windSpeed = glm::length(c.wind);
-    const bool gusty = c.turbulence > 0.0f && windSpeed > 0.0f;
     const Lane gustAmplitude = splat(c.turbulence * windSpeed);
     const float gustTime = static_cast<float>(std::fmod(c.time, 1000.0));
 
@@ -193,7 +192,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     // reaction is divided by that share here; capped, so strong drag or damping at a long substep
     // (where the share is no small correction) never amplifies it much.
     const Lane kickGain = lmin((splat(1.0f) + drag * dt) * splat(1.0f / c.keep), splat(kMaxKickGain));
-    const ContactFriction mu{ splat(c.friction), splat(c.friction * kStaticOverKineticFriction) };
+    const ContactFriction mu{ splat(c.friction), splat(c.friction * kStaticOverKineticFriction), !(c.friction > 0.0f) };
 
     // The capsules in reach as lanes, once for the slice: worked out at each particle, their
     // splats, the segment's squared length and its reciprocal (a scalar division) were 3.5 % of
@@ -211,7 +210,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     // drag scaled by eq. 1's s = |w x t| / (|w||t|): wind across the strand pushes, along it not.
     auto predict = [&](const V3& x, const V3& previous, const V3& parentBefore, const V3& gustHere) {
         V3 wind = baseWind;
-        if (gusty)
+        if constexpr (Gusty)
             wind = wind + gustHere * gustAmplitude;
         const Lane windSpeed2 = dot(wind, wind);
         const Mask calm = windSpeed2 < splat(1e-12f);
@@ -484,7 +483,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             // Gusts are smooth over tens of centimetres: sampled at every kGustStride-th particle
             // (where the particles were at the start of the substep) and interpolated between.
             V3 gustHere{};
-            if (gusty) {
+            if constexpr (Gusty) {
                 const std::uint32_t k = (j - 1) % kGustStride;
                 if (k == 0) {
                     const std::uint32_t ahead = std::min(j + kGustStride, n - 1);
@@ -565,10 +564,17 @@ void advanceBlockSlices(Solver::Block& block, const StepConstants& c, int firstS
 {
     prefetchNextShape(block);
     const CapsulesInReach capsules = capsulesInReach<Transformed>(block, c);
-    for (int slice = 0; slice < kLanes / kVecLanes; ++slice)
-        block.bends
-            ? advanceBlockAs<Transformed, GlobalShape, true>(block, c, firstSubstep, endSubstep, slice, capsules)
-            : advanceBlockAs<Transformed, GlobalShape, false>(block, c, firstSubstep, endSubstep, slice, capsules);
+    // Without gusts (no turbulence or no wind) and without bending (a limp block) the particle
+    // loop carries neither their samples nor their frames.
+    const bool gusty = c.turbulence > 0.0f && glm::length(c.wind) > 0.0f;
+    auto run = [&]<bool Bends, bool Gusty>() {
+        for (int slice = 0; slice < kLanes / kVecLanes; ++slice)
+            advanceBlockAs<Transformed, GlobalShape, Bends, Gusty>(block, c, firstSubstep, endSubstep, slice, capsules);
+    };
+    if (block.bends)
+        gusty ? run.template operator()<true, true>() : run.template operator()<true, false>();
+    else
+        gusty ? run.template operator()<false, true>() : run.template operator()<false, false>();
 }
 
 } // namespace

@@ -173,7 +173,17 @@ constexpr float kFrictionSinkMetres = 1e-7f;
 struct ContactFriction {
     Lane kinetic; // μk
     Lane statik; // μs
+    bool none = false; // μ = 0 (the scene's): friction takes nothing back, only the normal response is left
 };
+
+// Contact's normal response: the particle's velocity, relative to the collider's motion there
+// (headMove), keeps no part into the collider (previous follows the particle along the normal).
+[[gnu::always_inline]] inline void keepNoVelocityInto(
+    Mask inside, const V3& normal, const V3& oldPosition, const V3& headMove, const V3& position, V3& previous)
+{
+    const Lane movedNormal = dot(position - oldPosition - headMove, normal);
+    previous = select(inside, oldPosition + normal * lmin(movedNormal, splat(0.0f)), previous);
+}
 
 // Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below);
 // `headMove` is the collider's own motion there over the substep (StepConstants::headMoveLinear).
@@ -232,6 +242,13 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
 [[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
     const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
 {
+    // Without friction nothing is taken back, and the held point's turn below would only move the
+    // particle by its rounding (its three square roots and two divisions were a third of the
+    // divider's work of a particle in contact: the sphere workload is frictionless).
+    if (mu.none) {
+        keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
+        return;
+    }
     const V3 move = position - oldPosition - headMove;
     const V3 sliding = move - normal * dot(move, normal); // Δx⊥
     const Lane slide2 = dot(sliding, sliding);
@@ -252,8 +269,7 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
     const Lane sinkTolerance = band * kFrictionSinkShareOfOffset + kFrictionSinkMetres;
     const Mask holds = inside & (removedShare > splat(0.0f)) & (dot(atLength - position, normal) >= -sinkTolerance);
     position = select(holds, atLength, position);
-    const Lane movedNormal = dot(position - oldPosition - headMove, normal);
-    previous = select(inside, oldPosition + normal * lmin(movedNormal, splat(0.0f)), previous);
+    keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
 }
 
 } // namespace

@@ -109,7 +109,8 @@ TEST(Solver, GravityPullsAStraightStrandDownToItsFullLength)
 
 TEST(Solver, StrandsDrapeOverASphereColliderWithoutEnteringIt)
 {
-    // Strands rooted around the top of a sphere (radius 0.1 m), hanging under gravity.
+    // Strands rooted around the top of a sphere (radius 0.1 m), hanging under gravity, with friction
+    // and without (where contact keeps only its normal response).
     HairCurves c;
     for (int i = 0; i < 24; ++i) {
         const float az = glm::two_pi<float>() * static_cast<float>(i) / 24.0f;
@@ -118,24 +119,70 @@ TEST(Solver, StrandsDrapeOverASphereColliderWithoutEnteringIt)
         for (int j = 0; j < 15; ++j)
             p[j] = n * (0.1f + 0.3f * static_cast<float>(j) / 14.0f);
     }
-    Solver solver(2);
-    ASSERT_EQ(solver.setStrands(c), "");
-    solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
-    SolverSettings s = calm();
-    s.stiffness = 0.0f;
-    s.friction = 0.3f;
-    s.hairOffsetMetres = 0.002f;
-    ASSERT_EQ(solver.setSettings(s), "");
-    for (int i = 0; i < 400; ++i)
-        solver.step();
-    std::vector<glm::vec3> out;
-    solver.copyPositions(out);
-    float lowest = 1.0f;
-    for (const glm::vec3& x : out) {
-        EXPECT_GT(glm::length(x), 0.1f - 1e-4f);
-        lowest = std::min(lowest, x.y);
+    for (const float friction : { 0.3f, 0.0f }) {
+        SCOPED_TRACE(friction);
+        Solver solver(2);
+        ASSERT_EQ(solver.setStrands(c), "");
+        solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
+        SolverSettings s = calm();
+        s.stiffness = 0.0f;
+        s.friction = friction;
+        s.hairOffsetMetres = 0.002f;
+        ASSERT_EQ(solver.setSettings(s), "");
+        std::vector<glm::vec3> before, out;
+        for (int i = 0; i < 400; ++i) {
+            if (i == 399)
+                solver.copyPositions(before);
+            solver.step();
+        }
+        solver.copyPositions(out);
+        float lowest = 1.0f;
+        double fastest = 0.0; // m/s over the last step
+        for (std::size_t k = 0; k < out.size(); ++k) {
+            EXPECT_GT(glm::length(out[k]), 0.1f - 1e-4f);
+            lowest = std::min(lowest, out[k].y);
+            fastest = std::max(fastest, static_cast<double>(glm::distance(out[k], before[k])) * 60.0);
+        }
+        EXPECT_LT(lowest, -0.05f); // they fell around the sphere, not through it
+        EXPECT_LT(fastest, 0.05); // and came to rest on it (m/s), neither bouncing nor sinking
     }
-    EXPECT_LT(lowest, -0.05f); // they fell around the sphere, not through it
+}
+
+// Contact is inelastic along the normal, with friction and without: the step a particle lands on a
+// sphere leaves it no velocity into it (its previous position follows it along the normal), so it
+// neither keeps pressing in nor bounces. A one-segment strand swings down about its root onto the
+// sphere's shoulder at about 0.7 m/s.
+TEST(Solver, ALandingParticleKeepsNoVelocityIntoTheCollider)
+{
+    HairCurves c;
+    auto p = c.strandForWrite(c.addStrand(2));
+    p[0] = { -0.05f, 0.115f, 0.0f };
+    p[1] = { 0.0f, 0.13f, 0.0f };
+    for (const float friction : { 0.0f, 0.3f }) {
+        SCOPED_TRACE(friction);
+        Solver solver(1);
+        ASSERT_EQ(solver.setStrands(c), "");
+        solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
+        SolverSettings s = calm();
+        s.substeps = 1;
+        s.stiffness = 0.0f;
+        s.dampingPerSecond = 0.0f;
+        s.friction = friction;
+        ASSERT_EQ(solver.setSettings(s), "");
+        int landed = -1;
+        for (int i = 0; i < 60 && landed < 0; ++i) {
+            solver.step();
+            std::vector<glm::vec3> x, previous;
+            solver.copyState(x, previous);
+            const glm::vec3 normal = glm::normalize(x[1]);
+            if (glm::length(x[1]) < 0.1f + 1e-5f) {
+                landed = i;
+                EXPECT_GT(glm::dot(x[1] - previous[1], normal), -1e-6f);
+                EXPECT_GT(glm::length(x[1]), 0.1f - 1e-5f);
+            }
+        }
+        EXPECT_GT(landed, 1); // it fell for a few steps first
+    }
 }
 
 // A block whose strands are all limp (stiffness 0) skips the bend and its frames (they would move

@@ -203,11 +203,12 @@ struct ContactFriction {
     // Turned as far as the sphere allows (straight out along the normal when even that is not
     // enough); whatever depth is left is pushed out, and only that much length gives way.
     const Lane reach = lmin(needed, splat(1.0f));
-    const V3 unitTangent
-        = tangent * select(tangent2 > splat(1e-12f), lrsqrt(lmax(tangent2, splat(1e-12f))), splat(0.0f));
+    // The tangent's share, sine / |tangent| (sine = sqrt(1 - reach²)), as one square root of one
+    // quotient: one divider operation each, where the unit tangent and the sine took two each.
     const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
-    const Lane sine = sine2 * lrsqrt(lmax(sine2, splat(1e-20f)));
-    const V3 turned = parent + (normal * reach + unitTangent * sine) * length;
+    const Lane tangentShare
+        = select(tangent2 > splat(1e-12f), lsqrt(sine2 / lmax(tangent2, splat(1e-12f))), splat(0.0f));
+    const V3 turned = parent + (normal * reach + tangent * tangentShare) * length;
     // A segment shorter than twice the hair offset only has to clear the surface itself, not the
     // offset kept above it: starting on the skin it cannot reach out of the offset, and stretching
     // it to would break its length for no contact.

@@ -424,7 +424,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     for (int s = firstSubstep; s < endSubstep; ++s) {
         const Lane t = splat(static_cast<float>(s + 1) / static_cast<float>(c.substeps));
         const V3 root = rootStart + (rootEnd - rootStart) * t;
-        V3 parentBefore{ row[0].x, row[0].y, row[0].z };
+        const V3 parentBefore{ row[0].x, row[0].y, row[0].z };
         row[0].px = row[0].x;
         row[0].py = row[0].y;
         row[0].pz = row[0].z;
@@ -463,13 +463,33 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             const V3 first = restCoordinates(rest[1].u, rest[1].v);
             turned = frameD * first.x + frameE * first.y + frameB * first.z;
         }
+        // Particle j's prediction, from where it and its parent were at the start of the substep,
+        // with the gusts there (sampled at every kGustStride-th particle and interpolated between:
+        // they are smooth over tens of centimetres). Called for j = 1, 2, ... in turn.
+        auto predictAt = [&](std::uint32_t j, const V3& x, const V3& parentBefore) {
+            V3 gustHere{};
+            if constexpr (Gusty) {
+                const std::uint32_t k = (j - 1) % kGustStride;
+                if (k == 0) {
+                    const std::uint32_t ahead = std::min(j + kGustStride, n - 1);
+                    gustFrom = j == 1 ? gust(x, gustTime) : gustTo;
+                    gustTo = ahead == j ? gustFrom : gust(V3{ row[ahead].x, row[ahead].y, row[ahead].z }, gustTime);
+                    gustSpan = splat(1.0f / static_cast<float>(std::max<std::uint32_t>(ahead - j, 1)));
+                }
+                gustHere = gustFrom + (gustTo - gustFrom) * (splat(static_cast<float>(k)) * gustSpan);
+            }
+            return predict(x, V3{ row[j].px, row[j].py, row[j].pz }, parentBefore, gustHere);
+        };
+        V3 x{}, predicted{}; // particle j at the start of the substep, and its prediction
+        if (n > 1) {
+            x = V3{ row[1].x, row[1].y, row[1].z };
+            predicted = predictAt(1, x, parentBefore);
+        }
         for (std::uint32_t j = 1; j < n; ++j) {
-            ParticleSlice& p = row[j];
             const RestSlice& r = rest[j];
             // The next block's rows (the next in memory, which this thread most likely runs next).
             if (s == firstSubstep && slice == 0)
                 prefetchRows(block, j);
-            const V3 x{ p.x, p.y, p.z };
             // The next particle's field nodes, where it was at the start of the substep, while this
             // one is worked on, if its clearance bound is near running out (its lookup is likely).
             if (c.field && j + 1 < n) {
@@ -482,22 +502,6 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                         likely);
                 }
             }
-            // Gusts are smooth over tens of centimetres: sampled at every kGustStride-th particle
-            // (where the particles were at the start of the substep) and interpolated between.
-            V3 gustHere{};
-            if constexpr (Gusty) {
-                const std::uint32_t k = (j - 1) % kGustStride;
-                if (k == 0) {
-                    const std::uint32_t ahead = std::min(j + kGustStride, n - 1);
-                    gustFrom = j == 1 ? gust(x, gustTime) : gustTo;
-                    gustTo = ahead == j ? gustFrom : gust(V3{ row[ahead].x, row[ahead].y, row[ahead].z }, gustTime);
-                    gustSpan = splat(1.0f / static_cast<float>(std::max<std::uint32_t>(ahead - j, 1)));
-                }
-                gustHere = gustFrom + (gustTo - gustFrom) * (splat(static_cast<float>(k)) * gustSpan);
-            }
-            const V3 predicted = predict(x, V3{ p.px, p.py, p.pz }, parentBefore, gustHere);
-            parentBefore = x;
-
             // The bend toward the target, and its reaction on the parent (SolverConstraints.h). A
             // limp block (no lane bends) goes straight to its length: the bend with all its shares
             // 0 moves nothing (reach = predicted - parent, no kick).
@@ -512,6 +516,17 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 reach = pullTowardGlobalShape<Transformed>(parent + reach, globalShape[j], root, rootHead, c.rotation)
                     - parent;
             parentStart = x;
+            // The next particle's prediction and its rest direction's coordinates wait for nothing
+            // this particle does (its previous position is written by the particle after it): in
+            // program order before this one's length and contact, the chain's slow part, so that
+            // they run beside it.
+            V3 xNext{}, predictedNext{}, next{};
+            if (j + 1 < n) {
+                xNext = V3{ row[j + 1].x, row[j + 1].y, row[j + 1].z };
+                predictedNext = predictAt(j + 1, xNext, x);
+                if constexpr (Bends)
+                    next = restCoordinates(rest[j + 1].u, rest[j + 1].v);
+            }
             const auto [position, d] = finish(j, x, reach, parent, kick);
             if (Bends && j + 1 < n) {
                 // Transport the frame onto this segment's direction d now: the shortest rotation
@@ -519,7 +534,6 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 // keeps it unit and across d; E, B and the next target's part across D, w, are
                 // such vectors. So the next target d lx + w - (d.w) / (1 + D.d) (D + d) waits only
                 // for d, not for the new frame. (No renormalisation on the chain.)
-                const V3 next = restCoordinates(rest[j + 1].u, rest[j + 1].v);
                 const V3 w = frameE * next.y + frameB * next.z;
                 const Lane inverse = lrcp(lmax(splat(1.0f) + dot(frameD, d), splat(1e-2f)));
                 const V3 sum = frameD + d;
@@ -529,6 +543,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 frameD = d;
             }
             parent = position;
+            x = xNext;
+            predicted = predictedNext;
         }
     }
 

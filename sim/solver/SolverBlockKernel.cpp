@@ -383,8 +383,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 if (anyOf(inside)) {
                     needInverseLength();
                     const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
-                    resolveContact(inside, depth, normal, mu, parent, length, inverseLength, before, headMove, position,
-                        previous, true, splat(c.offset));
+                    resolveContact<!Bends>(inside, depth, normal, mu, parent, length, inverseLength, before, headMove,
+                        position, previous, true, splat(c.offset));
                 }
             }
             const Lane fromCapsules = lmax(capsuleClearance - headShift, splat(0.0f));

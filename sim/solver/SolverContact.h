@@ -191,9 +191,10 @@ struct ContactFriction {
     const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band);
 
 // The contact's turn (and push) alone, for the head's looks: their friction is taken once, after
-// the last look, from their summed depths (advanceBlock).
-[[gnu::noinline]] void turnOutOfContact(Mask inside, Lane depth, const V3& normal, const V3& parent, Lane length,
-    Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
+// the last look, from their summed depths (advanceBlock). Inlined where the caller has registers
+// to spare (turnOutOfContact below is the out-of-line one).
+[[gnu::always_inline]] inline void turnOutOfContactInline(Mask inside, Lane depth, const V3& normal, const V3& parent,
+    Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
 {
     const V3 u0 = (position - parent) * inverseLength;
     const Lane along = dot(normal, u0);
@@ -216,13 +217,29 @@ struct ContactFriction {
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
 }
+[[gnu::noinline]] void turnOutOfContact(Mask inside, Lane depth, const V3& normal, const V3& parent, Lane length,
+    Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
+{
+    turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+}
 
-// Contact and its friction in one (a capsule: one look).
+// Contact and its friction in one (a capsule: one look). `Inlined`: the turn, and the normal
+// response of frictionless contact, in the caller's code (a limp block's loop has the registers:
+// the strand's chain then does not pass through memory twice a contact; the same bits either way).
+template <bool Inlined>
 inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
     Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position, V3& previous,
     bool pushWhatIsLeft, Lane band)
 {
-    turnOutOfContact(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+    if constexpr (Inlined) {
+        turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+        if (mu.none) {
+            keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
+            return;
+        }
+    } else {
+        turnOutOfContact(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+    }
     applyFriction(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
 }
 

@@ -60,6 +60,14 @@ SolverSettings calm()
     return s;
 }
 
+// The strands on a sphere collider of radius 0.1 m at the origin (the bench's), with settings `s`.
+void putOnSphere(Solver& solver, const HairCurves& strands, const SolverSettings& s)
+{
+    ASSERT_EQ(solver.setStrands(strands), "");
+    solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
+    ASSERT_EQ(solver.setSettings(s), "");
+}
+
 } // namespace
 
 TEST(Solver, CurlsKeepTheirPeriodAfterSettling)
@@ -122,13 +130,11 @@ TEST(Solver, StrandsDrapeOverASphereColliderWithoutEnteringIt)
     for (const float friction : { 0.3f, 0.0f }) {
         SCOPED_TRACE(friction);
         Solver solver(2);
-        ASSERT_EQ(solver.setStrands(c), "");
-        solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
         SolverSettings s = calm();
         s.stiffness = 0.0f;
         s.friction = friction;
         s.hairOffsetMetres = 0.002f;
-        ASSERT_EQ(solver.setSettings(s), "");
+        putOnSphere(solver, c, s);
         std::vector<glm::vec3> before, out;
         for (int i = 0; i < 400; ++i) {
             if (i == 399)
@@ -161,14 +167,12 @@ TEST(Solver, ALandingParticleKeepsNoVelocityIntoTheCollider)
     for (const float friction : { 0.0f, 0.3f }) {
         SCOPED_TRACE(friction);
         Solver solver(1);
-        ASSERT_EQ(solver.setStrands(c), "");
-        solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
         SolverSettings s = calm();
         s.substeps = 1;
         s.stiffness = 0.0f;
         s.dampingPerSecond = 0.0f;
         s.friction = friction;
-        ASSERT_EQ(solver.setSettings(s), "");
+        putOnSphere(solver, c, s);
         int landed = -1;
         for (int i = 0; i < 60 && landed < 0; ++i) {
             solver.step();
@@ -202,14 +206,12 @@ TEST(Solver, LimpStrandsMoveAlikeWithAndWithoutAStiffStrandInTheirBlock)
     }
     auto run = [&](float firstStrandStiffness) {
         Solver solver(1);
-        EXPECT_EQ(solver.setStrands(c), "");
-        solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
         SolverSettings s = calm();
         s.stiffness = 0.6f;
         s.wind = { 2.0f, 0.0f, 0.5f };
         s.dragPerSecond = 0.5f;
         s.friction = 0.3f;
-        EXPECT_EQ(solver.setSettings(s), "");
+        putOnSphere(solver, c, s);
         std::vector<float> scales(16, 0.0f);
         scales[0] = firstStrandStiffness;
         EXPECT_EQ(solver.setStiffnessScales(scales), "");

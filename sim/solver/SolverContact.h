@@ -167,9 +167,10 @@ constexpr int kArcBisections = 6;
 constexpr float kFrictionSinkShareOfOffset = 0.05f;
 constexpr float kFrictionSinkMetres = 1e-7f;
 
-// (turnOutOfContact and applyFriction stay out of line: inlined into the kernel they give the same
-// bits, now that nothing is contracted into FMA, but made groom-1m and the sphere 3-10 % slower at
-// AVX2 and AVX-512 (28 Nov: the kernel's live values spilled).)
+// (turnOutOfContact and applyFriction stay out of line in the bending kernel: inlined there they
+// give the same bits, now that nothing is contracted into FMA, but made groom-1m and the sphere
+// 3-10 % slower at AVX2 and AVX-512 (28 Nov: the kernel's live values spilled). A limp block's
+// kernel, with fewer live values, turns a capsule's contact in line: resolveContact<true>.)
 struct ContactFriction {
     Lane kinetic; // μk
     Lane statik; // μs

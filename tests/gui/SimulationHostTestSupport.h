@@ -78,9 +78,7 @@ inline long threadCount()
 // once failed one run in four); a thread that was never joined stays, and fails.
 inline bool threadCountFallsTo(long most, int timeoutMs = kWaitMs)
 {
-    for (int waited = 0; waited < timeoutMs && threadCount() > most; ++waited)
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    return threadCount() <= most;
+    return waitUntil([&] { return threadCount() <= most; }, timeoutMs);
 }
 
 // The pacer's clock, moved by the test (SimulationHost::SecondsClock). Each read returns the time

@@ -61,8 +61,10 @@ count=${#paths[@]}
 for ((r = 0; r < rounds; ++r)); do
     for ((k = 0; k < count; ++k)); do
         i=$((r % 2 == 0 ? k : count - 1 - k))
-        # The workload's row (the first JSON line; the floor's is the second).
-        line=$("${paths[$i]}" bench --json "${options[@]}" | head -n 1)
+        # The workload's row: the first JSON line (the floor's is the second). Read whole, not
+        # through `head`, whose early exit would end the bench with SIGPIPE (and, with pipefail, this).
+        out=$("${paths[$i]}" bench --json "${options[@]}")
+        line=${out%%$'\n'*}
         ms=$(sed -n 's/.*"ms_per_step": \([0-9.]*\).*/\1/p' <<< "$line")
         ratio=$(sed -n 's/.*"ratio_to_floor": \([0-9.]*\).*/\1/p' <<< "$line")
         target=$(sed -n 's/.*"target": "\([^"]*\)".*/\1/p' <<< "$line")

@@ -135,6 +135,9 @@ struct StepConstants {
     glm::mat3 previousRotation{ 1.0f };
     glm::vec3 previousTranslation{ 0.0f };
     bool transformed = false; // head is not at the identity: SDF lookups need head space
+    // Whether the kernel asks for the next block's rows while it runs a block (Solver::step): only
+    // where the rows are too many to stay in the caches from one step to the next.
+    bool prefetchNextBlock = true;
     // The head's own motion over one substep at a world point x on it (or on the body, which moves
     // with it): headMoveLinear x + headMoveOffset, the step's rigid motion of the head point now at
     // x shared evenly over the substeps, as the roots move. Friction takes the slide relative to it.

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 using namespace wisp;
 
@@ -232,6 +234,54 @@ TEST(Solver, LimpStrandsMoveAlikeWithAndWithoutAStiffStrandInTheirBlock)
     const glm::vec3 root = c.strand(0).front();
     EXPECT_LT(limp[10].y - root.y, -0.15f);
     EXPECT_GT(mixed[10].y - root.y, -0.1f);
+}
+
+// A particle gone non-finite puts its strand back at rest at the end of the step, wherever it is on
+// the strand (the kernel looks at each row as the step's last substep finishes it) and at any
+// substep count; the strands beside it in its block do not change by a bit.
+TEST(Solver, ANonFiniteParticleAnywhereOnAStrandPutsThatStrandAloneBackAtRest)
+{
+    HairCurves c; // 20 strands of 11 points: a full block and part of another
+    for (int i = 0; i < 20; ++i) {
+        const float az = glm::two_pi<float>() * static_cast<float>(i) / 20.0f;
+        const glm::vec3 out(std::cos(az), 0.2f, std::sin(az));
+        auto p = c.strandForWrite(c.addStrand(11));
+        for (int j = 0; j <= 10; ++j)
+            p[j] = out * (0.1f + 0.02f * static_cast<float>(j));
+    }
+    for (const int substeps : { 1, 3 }) {
+        for (const std::size_t point : { std::size_t{ 1 }, std::size_t{ 6 }, std::size_t{ 10 } }) {
+            SCOPED_TRACE("substeps " + std::to_string(substeps) + ", point " + std::to_string(point));
+            SolverSettings s = calm();
+            s.substeps = substeps;
+            s.wind = { 2.0f, 0.0f, 0.5f };
+            s.dragPerSecond = 0.5f;
+            Solver broken(1), reference(1);
+            putOnSphere(broken, c, s);
+            putOnSphere(reference, c, s);
+            for (int i = 0; i < 10; ++i) {
+                broken.step();
+                reference.step();
+            }
+            constexpr std::size_t kBrokenStrand = 3;
+            broken.moveParticle(kBrokenStrand, point, glm::vec3(NAN));
+            broken.step();
+            reference.step();
+            EXPECT_EQ(broken.strandsReset(), 1u);
+            EXPECT_EQ(reference.strandsReset(), 0u);
+            std::vector<glm::vec3> a, b;
+            broken.copyPositions(a);
+            reference.copyPositions(b);
+            ASSERT_EQ(a.size(), b.size());
+            for (std::size_t k = 0; k < a.size(); ++k) {
+                ASSERT_TRUE(std::isfinite(a[k].x + a[k].y + a[k].z)) << k;
+                if (k / 11 == kBrokenStrand) // back at rest: where the rest strand is
+                    EXPECT_LT(glm::distance(a[k], c.positions[k]), 1e-5f) << k;
+                else
+                    EXPECT_TRUE(a[k] == b[k]) << k;
+            }
+        }
+    }
 }
 
 // The particles' clearance bounds cover the capsules (a capsule is checked only where a bound ran

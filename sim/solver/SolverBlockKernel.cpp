@@ -295,7 +295,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 // depth, nanometres on a smooth head, would have let the slide through).
                 Lane contactDepth = depth;
                 V3 contactNormal = sample.normal;
-                turnOutOfContact(
+                turnOut<!Bends>(
                     inside, depth, sample.normal, parent, length, inverseLength, position, false, splat(c.offset));
                 // What is left within half the offset (still clear of the skin) stays: turning it
                 // far along the arc below for that little would shake stiff hair lying on the head.
@@ -315,7 +315,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                     contactDepth = contactDepth + select(turns, nextDepth, splat(0.0f));
                     contactNormal = select(turns, next.normal, contactNormal);
                     if (pass < kHeadContactPasses) {
-                        turnOutOfContact(stillInside, nextDepth, next.normal, parent, length, inverseLength, position,
+                        turnOut<!Bends>(stillInside, nextDepth, next.normal, parent, length, inverseLength, position,
                             false, splat(c.offset));
                         // Turning converges fast on a smooth surface: look once more only where a
                         // lane was still a quarter of the offset deep before this last turn (in a
@@ -348,11 +348,11 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                         }
                         position = select(arcClears, onArc(hi), position);
                     }
-                    turnOutOfContact(stuck & ~arcClears, nextDepth, next.normal, parent, length, inverseLength,
-                        position, true, splat(c.offset));
+                    turnOut<!Bends>(stuck & ~arcClears, nextDepth, next.normal, parent, length, inverseLength, position,
+                        true, splat(c.offset));
                 }
-                applyFriction(inside, contactDepth, contactNormal, mu, parent, before, headMove, position, previous,
-                    splat(c.offset));
+                applyFriction<!Bends>(inside, contactDepth, contactNormal, mu, parent, before, headMove, position,
+                    previous, splat(c.offset));
             }
             // A moving head moves the field under the particles: no bound survives that.
             clearance = Transformed ? splat(-1e30f) : select(needsLook, lmax(-depth, splat(0.0f)), clearance);

@@ -167,10 +167,10 @@ constexpr int kArcBisections = 6;
 constexpr float kFrictionSinkShareOfOffset = 0.05f;
 constexpr float kFrictionSinkMetres = 1e-7f;
 
-// (turnOutOfContact and applyFriction stay out of line in the bending kernel: inlined there they
-// give the same bits, now that nothing is contracted into FMA, but made groom-1m and the sphere
-// 3-10 % slower at AVX2 and AVX-512 (28 Nov: the kernel's live values spilled). A limp block's
-// kernel, with fewer live values, turns a capsule's contact in line: resolveContact<true>.)
+// (The turn and friction stay out of line in the bending kernel: inlined there they give the same
+// bits, now that nothing is contracted into FMA, but made groom-1m and the sphere 3-10 % slower at
+// AVX2 and AVX-512 (28 Nov: the kernel's live values spilled). A limp block's kernel, with fewer
+// live values, turns a capsule's contact in line: resolveContact<true>.)
 struct ContactFriction {
     Lane kinetic; // μk
     Lane statik; // μs
@@ -184,64 +184,6 @@ struct ContactFriction {
 {
     const Lane movedNormal = dot(position - oldPosition - headMove, normal);
     previous = select(inside, oldPosition + normal * lmin(movedNormal, splat(0.0f)), previous);
-}
-
-// Coulomb friction for the lanes in contact (`inside`) that now sit at `position` (below);
-// `headMove` is the collider's own motion there over the substep (StepConstants::headMoveLinear).
-[[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band);
-
-// The contact's turn (and push) alone, for the head's looks: their friction is taken once, after
-// the last look, from their summed depths (advanceBlock). Inlined where the caller has registers
-// to spare (turnOutOfContact below is the out-of-line one).
-[[gnu::always_inline]] inline void turnOutOfContactInline(Mask inside, Lane depth, const V3& normal, const V3& parent,
-    Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
-{
-    const V3 u0 = (position - parent) * inverseLength;
-    const Lane along = dot(normal, u0);
-    const Lane needed = depth * inverseLength + along; // n . u the particle needs to be on the plane
-    const V3 tangent = u0 - normal * along;
-    const Lane tangent2 = dot(tangent, tangent);
-    // Turned as far as the sphere allows (straight out along the normal when even that is not
-    // enough); whatever depth is left is pushed out, and only that much length gives way.
-    const Lane reach = lmin(needed, splat(1.0f));
-    // The tangent's share, sine / |tangent| (sine = sqrt(1 - reach²)), as one square root of one
-    // quotient: one divider operation each, where the unit tangent and the sine took two each.
-    const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
-    const Lane tangentShare
-        = select(tangent2 > splat(1e-12f), lsqrt(sine2 / lmax(tangent2, splat(1e-12f))), splat(0.0f));
-    const V3 turned = parent + (normal * reach + tangent * tangentShare) * length;
-    // A segment shorter than twice the hair offset only has to clear the surface itself, not the
-    // offset kept above it: starting on the skin it cannot reach out of the offset, and stretching
-    // it to would break its length for no contact.
-    const Lane slack = select(length < band * 2.0f, band, splat(0.0f)); // only for segments that short
-    const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
-    position = select(inside, turned + normal * left, position);
-}
-[[gnu::noinline]] void turnOutOfContact(Mask inside, Lane depth, const V3& normal, const V3& parent, Lane length,
-    Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
-{
-    turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
-}
-
-// Contact and its friction in one (a capsule: one look). `Inlined`: the turn, and the normal
-// response of frictionless contact, in the caller's code (a limp block's loop has the registers:
-// the strand's chain then does not pass through memory twice a contact; the same bits either way).
-template <bool Inlined>
-inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
-    Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position, V3& previous,
-    bool pushWhatIsLeft, Lane band)
-{
-    if constexpr (Inlined) {
-        turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
-        if (mu.none) {
-            keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
-            return;
-        }
-    } else {
-        turnOutOfContact(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
-    }
-    applyFriction(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
 }
 
 // Coulomb friction at the position level (Macklin et al. 2014, "Unified Particle Physics for
@@ -258,8 +200,9 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
 // head catches the curvature). The previous position follows so that the velocity is what the
 // particle really moved, less any part into the collider (relative to its motion): friction
 // invents no velocity.
-[[gnu::noinline]] void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
+[[gnu::always_inline]] inline void applyFrictionInline(Mask inside, Lane depth, const V3& normal,
+    const ContactFriction& mu, const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous,
+    Lane band)
 {
     // Without friction nothing is taken back, and the held point's turn below would only move the
     // particle by its rounding (its three square roots and two divisions were a third of the
@@ -289,6 +232,119 @@ inline void resolveContact(Mask inside, Lane depth, const V3& normal, const Cont
     const Mask holds = inside & (removedShare > splat(0.0f)) & (dot(atLength - position, normal) >= -sinkTolerance);
     position = select(holds, atLength, position);
     keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
+}
+
+// The contact's turn (and push) alone, for the head's looks: their friction is taken once, after
+// the last look, from their summed depths (advanceBlock). Inlined where the caller has registers
+// to spare (turnOut below calls it out of line).
+[[gnu::always_inline]] inline void turnOutOfContactInline(Mask inside, Lane depth, const V3& normal, const V3& parent,
+    Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
+{
+    const V3 u0 = (position - parent) * inverseLength;
+    const Lane along = dot(normal, u0);
+    const Lane needed = depth * inverseLength + along; // n . u the particle needs to be on the plane
+    const V3 tangent = u0 - normal * along;
+    const Lane tangent2 = dot(tangent, tangent);
+    // Turned as far as the sphere allows (straight out along the normal when even that is not
+    // enough); whatever depth is left is pushed out, and only that much length gives way.
+    const Lane reach = lmin(needed, splat(1.0f));
+    // The tangent's share, sine / |tangent| (sine = sqrt(1 - reach²)), as one square root of one
+    // quotient: one divider operation each, where the unit tangent and the sine took two each.
+    const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
+    const Lane tangentShare
+        = select(tangent2 > splat(1e-12f), lsqrt(sine2 / lmax(tangent2, splat(1e-12f))), splat(0.0f));
+    const V3 turned = parent + (normal * reach + tangent * tangentShare) * length;
+    // A segment shorter than twice the hair offset only has to clear the surface itself, not the
+    // offset kept above it: starting on the skin it cannot reach out of the offset, and stretching
+    // it to would break its length for no contact.
+    const Lane slack = select(length < band * 2.0f, band, splat(0.0f)); // only for segments that short
+    const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
+    position = select(inside, turned + normal * left, position);
+}
+// Out of line, turnOutOfContactInline and applyFrictionInline are called in one of two ways. By
+// address: a kernel variable whose address reaches an out-of-line call lives in memory for the
+// whole particle loop (GCC does not keep it in registers around the call's rare branch), so the
+// strand's serial chain (the parent's position, the particle's) goes through the stack at every
+// particle, contact or not. On copies, with what changed given back: the kernel's variables stay in
+// registers, and each call copies its arguments. The limp kernel runs on copies (callgrind, the
+// sphere at AVX2: 13 % fewer of the kernel's instructions; 2 threads, ten interleaved rounds, 2.62
+// -> 2.21 x the floor); the bending kernel, whose live values spill anyway, by address (on copies
+// it ran 2.6 % more instructions on paper-35x35x30 and groom-1m was 3-9 % slower). The same bits
+// either way.
+[[gnu::noinline]] void turnOutOfContactByAddress(Mask inside, Lane depth, const V3& normal, const V3& parent,
+    Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
+{
+    turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+}
+[[gnu::noinline]] V3 turnOutOfContactOnCopies(Mask inside, Lane depth, V3 normal, V3 parent, Lane length,
+    Lane inverseLength, V3 position, bool pushWhatIsLeft, Lane band)
+{
+    turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+    return position;
+}
+[[gnu::noinline]] void applyFrictionByAddress(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
+    const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
+{
+    applyFrictionInline(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
+}
+// A particle's position and previous position, as friction leaves them.
+struct HeldParticle {
+    V3 position;
+    V3 previous;
+};
+[[gnu::noinline]] HeldParticle applyFrictionOnCopies(Mask inside, Lane depth, V3 normal, const ContactFriction& mu,
+    V3 parent, V3 oldPosition, V3 headMove, V3 position, V3 previous, Lane band)
+{
+    applyFrictionInline(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
+    return { position, previous };
+}
+
+// The contact's turn, out of line, on copies or by address (above).
+template <bool OnCopies>
+[[gnu::always_inline]] inline void turnOut(Mask inside, Lane depth, const V3& normal, const V3& parent, Lane length,
+    Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
+{
+    if constexpr (OnCopies)
+        position = turnOutOfContactOnCopies(
+            inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+    else
+        turnOutOfContactByAddress(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+}
+
+// Coulomb friction (applyFrictionInline), out of line, on copies or by address (above).
+template <bool OnCopies>
+[[gnu::always_inline]] inline void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
+    const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
+{
+    if constexpr (OnCopies) {
+        const HeldParticle held
+            = applyFrictionOnCopies(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
+        position = held.position;
+        previous = held.previous;
+    } else {
+        applyFrictionByAddress(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
+    }
+}
+
+// Contact and its friction in one (a capsule: one look). `Limp`: the limp kernel's way, the turn
+// and the normal response of frictionless contact in the caller's code (its loop has the
+// registers), friction out of line on copies; else both out of line by address. The same bits
+// either way.
+template <bool Limp>
+inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
+    Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position, V3& previous,
+    bool pushWhatIsLeft, Lane band)
+{
+    if constexpr (Limp) {
+        turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+        if (mu.none) {
+            keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
+            return;
+        }
+    } else {
+        turnOut<false>(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+    }
+    applyFriction<Limp>(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
 }
 
 } // namespace

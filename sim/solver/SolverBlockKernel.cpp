@@ -151,6 +151,91 @@ inline LaneCapsule laneCapsule(const Capsule& capsule, float offsetMetres)
     return (labs(d.x) + labs(d.y) + labs(d.z)) * 1.0001f + 1e-9f;
 }
 
+// The head's contact for the lanes `inside` (depth > 0 at the first look, normal there), out of
+// line and on copies of the kernel's values (see HeldParticle in SolverContact.h: by address they
+// would keep the strand's chain in memory through every particle): the turns onto the tangent
+// plane with their looks again, the arc and the push where turning does not converge, then
+// friction. Returns the particle's position and previous position.
+template <bool Transformed>
+[[gnu::noinline]] HeldParticle resolveHeadContact(const StepConstants& c, Mask needsLook, Mask inside, Lane depth,
+    V3 normal, const ContactFriction& mu, V3 parent, Lane length, Lane inverseLength, V3 before, V3 headMove,
+    V3 position, V3 previous)
+{
+    // The head's distance and normal at a world-space position.
+    auto sampleHead = [&](const V3& at) {
+        SdfSample sample = sampleField(
+            *c.field, Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at, needsLook);
+        if (Transformed)
+            sample.normal = transform(c.rotation, sample.normal);
+        return sample;
+    };
+    // A curved surface is not its tangent plane: turn onto the plane, look again from
+    // there, and only then push what the segment cannot reach. Friction comes once, after
+    // the last look: its normal correction is what all the looks moved the particle out
+    // (their depths summed), on the tangent plane where it ends (a second look's own
+    // depth, nanometres on a smooth head, would have let the slide through).
+    Lane contactDepth = depth;
+    V3 contactNormal = normal;
+    turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, false, splat(c.offset));
+    // What is left within half the offset (still clear of the skin) stays: turning it
+    // far along the arc below for that little would shake stiff hair lying on the head.
+    const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
+    // The last pass only for lanes still deep before it (below): a lane's own state
+    // decides, never its neighbours', so it ends alike however many lanes run together
+    // (a slice of the block on each SIMD target).
+    Mask wantsLastPass = Mask{} == 0;
+    for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
+        const SdfSample next = sampleHead(position);
+        const Lane nextDepth = splat(c.offset) - next.distance;
+        const Mask stillInside = (nextDepth > splat(kContactResidualMetres)) & needsLook;
+        const Mask stuck = stillInside & (nextDepth > slack) & wantsLastPass;
+        if (!anyOf(pass < kHeadContactPasses ? stillInside : stuck))
+            break;
+        const Mask turns = pass < kHeadContactPasses ? stillInside : stuck;
+        contactDepth = contactDepth + select(turns, nextDepth, splat(0.0f));
+        contactNormal = select(turns, next.normal, contactNormal);
+        if (pass < kHeadContactPasses) {
+            turnOutOfContactInline(
+                stillInside, nextDepth, next.normal, parent, length, inverseLength, position, false, splat(c.offset));
+            // Turning converges fast on a smooth surface: look once more only where a
+            // lane was still a quarter of the offset deep before this last turn (in a
+            // crevice the last turn may put it deeper on the other wall).
+            if (pass + 1 == kHeadContactPasses) {
+                wantsLastPass = stillInside & (nextDepth > slack * 0.5f);
+                if (!anyOf(wantsLastPass))
+                    break;
+            }
+            continue;
+        }
+        // Turning did not converge (a crevice by an ear, where the normal flips from
+        // wall to wall): turn along the arc toward the parent's outward normal and take
+        // its first clear point, keeping the length. Only lanes that no turn gets out
+        // (the parent itself too deep) are pushed, and their length gives way.
+        const V3 from = (position - parent) * inverseLength;
+        const V3 to = sampleHead(parent).normal;
+        auto onArc = [&](Lane t) {
+            const V3 v = from + (to - from) * t;
+            return parent + v * (length * lrsqrt(lmax(dot(v, v), splat(1e-12f))));
+        };
+        const Mask arcClears = stuck & (splat(c.offset) - sampleHead(onArc(splat(1.0f))).distance <= slack);
+        if (anyOf(arcClears)) {
+            Lane lo = splat(0.0f), hi = splat(1.0f);
+            for (int b = 0; b < kArcBisections; ++b) {
+                const Lane mid = (lo + hi) * 0.5f;
+                const Mask clear = splat(c.offset) - sampleHead(onArc(mid)).distance <= slack;
+                hi = select(clear, mid, hi);
+                lo = select(clear, lo, mid);
+            }
+            position = select(arcClears, onArc(hi), position);
+        }
+        turnOutOfContactInline(
+            stuck & ~arcClears, nextDepth, next.normal, parent, length, inverseLength, position, true, splat(c.offset));
+    }
+    applyFrictionInline(
+        inside, contactDepth, contactNormal, mu, parent, before, headMove, position, previous, splat(c.offset));
+    return { position, previous };
+}
+
 // Substeps [firstSubstep, endSubstep) of the step for the block's lanes [slice x kVecLanes,
 // (slice + 1) x kVecLanes) (kernel::Lane: one register); the last call of a step (endSubstep ==
 // c.substeps) also puts back strands that went non-finite or flew away.
@@ -288,71 +373,10 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             const Mask inside = (depth > splat(0.0f)) & needsLook;
             if (anyOf(inside)) {
                 needInverseLength();
-                // A curved surface is not its tangent plane: turn onto the plane, look again from
-                // there, and only then push what the segment cannot reach. Friction comes once, after
-                // the last look: its normal correction is what all the looks moved the particle out
-                // (their depths summed), on the tangent plane where it ends (a second look's own
-                // depth, nanometres on a smooth head, would have let the slide through).
-                Lane contactDepth = depth;
-                V3 contactNormal = sample.normal;
-                turnOut<!Bends>(
-                    inside, depth, sample.normal, parent, length, inverseLength, position, false, splat(c.offset));
-                // What is left within half the offset (still clear of the skin) stays: turning it
-                // far along the arc below for that little would shake stiff hair lying on the head.
-                const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
-                // The last pass only for lanes still deep before it (below): a lane's own state
-                // decides, never its neighbours', so it ends alike however many lanes run together
-                // (a slice of the block on each SIMD target).
-                Mask wantsLastPass = Mask{} == 0;
-                for (int pass = 1; pass <= kHeadContactPasses; ++pass) {
-                    const SdfSample next = sampleHead(position);
-                    const Lane nextDepth = splat(c.offset) - next.distance;
-                    const Mask stillInside = (nextDepth > splat(kContactResidualMetres)) & needsLook;
-                    const Mask stuck = stillInside & (nextDepth > slack) & wantsLastPass;
-                    if (!anyOf(pass < kHeadContactPasses ? stillInside : stuck))
-                        break;
-                    const Mask turns = pass < kHeadContactPasses ? stillInside : stuck;
-                    contactDepth = contactDepth + select(turns, nextDepth, splat(0.0f));
-                    contactNormal = select(turns, next.normal, contactNormal);
-                    if (pass < kHeadContactPasses) {
-                        turnOut<!Bends>(stillInside, nextDepth, next.normal, parent, length, inverseLength, position,
-                            false, splat(c.offset));
-                        // Turning converges fast on a smooth surface: look once more only where a
-                        // lane was still a quarter of the offset deep before this last turn (in a
-                        // crevice the last turn may put it deeper on the other wall).
-                        if (pass + 1 == kHeadContactPasses) {
-                            wantsLastPass = stillInside & (nextDepth > slack * 0.5f);
-                            if (!anyOf(wantsLastPass))
-                                break;
-                        }
-                        continue;
-                    }
-                    // Turning did not converge (a crevice by an ear, where the normal flips from
-                    // wall to wall): turn along the arc toward the parent's outward normal and take
-                    // its first clear point, keeping the length. Only lanes that no turn gets out
-                    // (the parent itself too deep) are pushed, and their length gives way.
-                    const V3 from = (position - parent) * inverseLength;
-                    const V3 to = sampleHead(parent).normal;
-                    auto onArc = [&](Lane t) {
-                        const V3 v = from + (to - from) * t;
-                        return parent + v * (length * lrsqrt(lmax(dot(v, v), splat(1e-12f))));
-                    };
-                    const Mask arcClears = stuck & (splat(c.offset) - sampleHead(onArc(splat(1.0f))).distance <= slack);
-                    if (anyOf(arcClears)) {
-                        Lane lo = splat(0.0f), hi = splat(1.0f);
-                        for (int b = 0; b < kArcBisections; ++b) {
-                            const Lane mid = (lo + hi) * 0.5f;
-                            const Mask clear = splat(c.offset) - sampleHead(onArc(mid)).distance <= slack;
-                            hi = select(clear, mid, hi);
-                            lo = select(clear, lo, mid);
-                        }
-                        position = select(arcClears, onArc(hi), position);
-                    }
-                    turnOut<!Bends>(stuck & ~arcClears, nextDepth, next.normal, parent, length, inverseLength, position,
-                        true, splat(c.offset));
-                }
-                applyFriction<!Bends>(inside, contactDepth, contactNormal, mu, parent, before, headMove, position,
-                    previous, splat(c.offset));
+                const HeldParticle held = resolveHeadContact<Transformed>(c, needsLook, inside, depth, sample.normal,
+                    mu, parent, length, inverseLength, before, headMove, position, previous);
+                position = held.position;
+                previous = held.previous;
             }
             // A moving head moves the field under the particles: no bound survives that.
             clearance = Transformed ? splat(-1e30f) : select(needsLook, lmax(-depth, splat(0.0f)), clearance);

@@ -236,7 +236,7 @@ struct ContactFriction {
 
 // The contact's turn (and push) alone, for the head's looks: their friction is taken once, after
 // the last look, from their summed depths (advanceBlock). Inlined where the caller has registers
-// to spare (turnOut below calls it out of line).
+// to spare (resolveContactOnCopies below and resolveHeadContact call it out of line).
 [[gnu::always_inline]] inline void turnOutOfContactInline(Mask inside, Lane depth, const V3& normal, const V3& parent,
     Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
 {
@@ -261,33 +261,15 @@ struct ContactFriction {
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
 }
-// Out of line, turnOutOfContactInline and applyFrictionInline are called in one of two ways. By
-// address: a kernel variable whose address reaches an out-of-line call lives in memory for the
-// whole particle loop (GCC does not keep it in registers around the call's rare branch), so the
-// strand's serial chain (the parent's position, the particle's) goes through the stack at every
-// particle, contact or not. On copies, with what changed given back: the kernel's variables stay in
-// registers, and each call copies its arguments. The limp kernel runs on copies (callgrind, the
-// sphere at AVX2: 13 % fewer of the kernel's instructions; 2 threads, ten interleaved rounds, 2.62
-// -> 2.21 x the floor); the bending kernel, whose live values spill anyway, by address (on copies
-// it ran 2.6 % more instructions on paper-35x35x30 and groom-1m was 3-9 % slower). The same bits
-// either way.
-[[gnu::noinline]] void turnOutOfContactByAddress(Mask inside, Lane depth, const V3& normal, const V3& parent,
-    Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
-{
-    turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
-}
-[[gnu::noinline]] V3 turnOutOfContactOnCopies(Mask inside, Lane depth, V3 normal, V3 parent, Lane length,
-    Lane inverseLength, V3 position, bool pushWhatIsLeft, Lane band)
-{
-    turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
-    return position;
-}
-[[gnu::noinline]] void applyFrictionByAddress(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
-{
-    applyFrictionInline(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
-}
-// A particle's position and previous position, as friction leaves them.
+// Out of line, the turn and friction take the kernel's values as copies and give back what they
+// change, never a kernel variable by address: a variable whose address reaches an out-of-line call
+// lives in memory for the whole particle loop (GCC does not keep it in registers around the call's
+// rare branch), and the strand's serial chain (the parent's position, the particle's) then went
+// through the stack at every particle, contact or not (callgrind, the sphere at AVX2: 13 % of the
+// limp kernel's instructions; 2 threads, ten interleaved rounds, 2.62 -> 2.22 x the floor). One call
+// a contact (resolveContact here, the head's in SolverBlockKernel.cpp), each copying its arguments.
+
+// A particle's position and previous position, as contact and friction leave them.
 struct HeldParticle {
     V3 position;
     V3 previous;
@@ -298,53 +280,39 @@ struct HeldParticle {
     applyFrictionInline(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
     return { position, previous };
 }
-
-// The contact's turn, out of line, on copies or by address (above).
-template <bool OnCopies>
-[[gnu::always_inline]] inline void turnOut(Mask inside, Lane depth, const V3& normal, const V3& parent, Lane length,
-    Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
+[[gnu::noinline]] HeldParticle resolveContactOnCopies(Mask inside, Lane depth, V3 normal, const ContactFriction& mu,
+    V3 parent, Lane length, Lane inverseLength, V3 oldPosition, V3 headMove, V3 position, V3 previous,
+    bool pushWhatIsLeft, Lane band)
 {
-    if constexpr (OnCopies)
-        position = turnOutOfContactOnCopies(
-            inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
-    else
-        turnOutOfContactByAddress(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
-}
-
-// Coulomb friction (applyFrictionInline), out of line, on copies or by address (above).
-template <bool OnCopies>
-[[gnu::always_inline]] inline void applyFriction(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu,
-    const V3& parent, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
-{
-    if constexpr (OnCopies) {
-        const HeldParticle held
-            = applyFrictionOnCopies(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
-        position = held.position;
-        previous = held.previous;
-    } else {
-        applyFrictionByAddress(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
-    }
+    turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+    applyFrictionInline(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
+    return { position, previous };
 }
 
 // Contact and its friction in one (a capsule: one look). `Limp`: the limp kernel's way, the turn
 // and the normal response of frictionless contact in the caller's code (its loop has the
-// registers), friction out of line on copies; else both out of line by address. The same bits
-// either way.
+// registers), friction out of line; else all of it out of line (the bending kernel's values spill
+// around it inlined). The same bits either way.
 template <bool Limp>
 inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
     Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position, V3& previous,
     bool pushWhatIsLeft, Lane band)
 {
+    HeldParticle held;
     if constexpr (Limp) {
         turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
         if (mu.none) {
             keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
             return;
         }
+        held
+            = applyFrictionOnCopies(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
     } else {
-        turnOut<false>(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+        held = resolveContactOnCopies(inside, depth, normal, mu, parent, length, inverseLength, oldPosition, headMove,
+            position, previous, pushWhatIsLeft, band);
     }
-    applyFriction<Limp>(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
+    position = held.position;
+    previous = held.previous;
 }
 
 } // namespace

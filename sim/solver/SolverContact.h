@@ -144,7 +144,7 @@ struct NodeIndices {
 // parent onto the collider's tangent plane, so they leave it and keep their segment's length;
 // where no point at that length from the parent is outside (the parent itself is too deep), the
 // particle is pushed out along the normal and the length gives way. Then Coulomb friction at the
-// position level (applyFriction below), once per contact: after the head's last look, or with
+// position level (applyFrictionInline below), once per contact: after the head's last look, or with
 // each capsule. The normal part of the velocity is kept only outward.
 // Static friction of hair on skin is a little above its kinetic friction (measured hair-on-hair
 // and hair-on-skin coefficients differ by about this much).
@@ -161,7 +161,7 @@ constexpr float kContactResidualMetres = 1e-6f;
 // Steps of the bisection along the arc from a stuck particle toward its parent's outward normal
 // (the first clear point to within 1/64 of the arc).
 constexpr int kArcBisections = 6;
-// How far below the contact's tangent plane friction may leave a held point (applyFriction): a
+// How far below the contact's tangent plane friction may leave a held point (applyFrictionInline): a
 // share of the hair offset, and a floor for an offset of 0. Turning a held point about its parent
 // along a curved surface sinks it a few micrometres; the next look at the head takes that.
 constexpr float kFrictionSinkShareOfOffset = 0.05f;

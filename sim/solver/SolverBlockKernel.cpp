@@ -151,6 +151,18 @@ inline LaneCapsule laneCapsule(const Capsule& capsule, float offsetMetres)
     return (labs(d.x) + labs(d.y) + labs(d.z)) * 1.0001f + 1e-9f;
 }
 
+// The head's distance and normal at a world-space point, for the lanes of `use`: the field is in
+// head space, so a turned head's point is taken there and its normal back into the world.
+template <bool Transformed>
+[[gnu::always_inline]] inline SdfSample sampleHeadAt(const StepConstants& c, const V3& at, const Mask& use)
+{
+    SdfSample sample = sampleField(
+        *c.field, Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at, use);
+    if (Transformed)
+        sample.normal = transform(c.rotation, sample.normal);
+    return sample;
+}
+
 // The head's contact for the lanes `inside` (depth > 0 at the first look, normal there), out of
 // line and on copies of the kernel's values (see HeldParticle in SolverContact.h: by address they
 // would keep the strand's chain in memory through every particle): the turns onto the tangent
@@ -161,14 +173,7 @@ template <bool Transformed>
     V3 normal, const ContactFriction& mu, V3 parent, Lane length, Lane inverseLength, V3 before, V3 headMove,
     V3 position, V3 previous)
 {
-    // The head's distance and normal at a world-space position.
-    auto sampleHead = [&](const V3& at) {
-        SdfSample sample = sampleField(
-            *c.field, Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at, needsLook);
-        if (Transformed)
-            sample.normal = transform(c.rotation, sample.normal);
-        return sample;
-    };
+    auto sampleHead = [&](const V3& at) { return sampleHeadAt<Transformed>(c, at, needsLook); };
     // A curved surface is not its tangent plane: turn onto the plane, look again from
     // there, and only then push what the segment cannot reach. Friction comes once, after
     // the last look: its normal correction is what all the looks moved the particle out
@@ -360,15 +365,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             haveInverseLength = true;
         };
         if (c.field && anyOf(needsLook)) {
-            // The head's distance and normal at a world-space position.
-            auto sampleHead = [&](const V3& at) {
-                SdfSample sample = sampleField(*c.field,
-                    Transformed ? transform(glm::transpose(c.rotation), at - splat(c.translation)) : at, needsLook);
-                if (Transformed)
-                    sample.normal = transform(c.rotation, sample.normal);
-                return sample;
-            };
-            const SdfSample sample = sampleHead(position);
+            const SdfSample sample = sampleHeadAt<Transformed>(c, position, needsLook);
             const Lane depth = splat(c.offset) - sample.distance;
             const Mask inside = (depth > splat(0.0f)) & needsLook;
             if (anyOf(inside)) {

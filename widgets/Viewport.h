@@ -247,6 +247,9 @@ public:
     static QColor backgroundColour(double heightFraction);
     // Empty when GL is ready; otherwise why nothing 3D is drawn (no 3.3 context, a shader error).
     QString glStatus() const { return m_glStatus; }
+    // The OpenGL the view draws with, as the driver names it ("llvmpipe (LLVM 15.0.6, 256 bits), 4.5
+    // (Core Profile) Mesa 22.3.6"); empty until the view's first paint has made its context.
+    QString glDescription() const { return m_glDescription; }
     int samples() const { return m_samples; } // MSAA samples of the backdrop (the hair: none), known after a paint
 
 public slots:
@@ -368,6 +371,7 @@ private:
     GlFunctions* m_gl = nullptr;
     bool m_glFailed = false; // no usable context: the widget paints m_glStatus instead
     QString m_glStatus;
+    QString m_glDescription; // GL_RENDERER, GL_VERSION (glDescription)
     int m_samples = 0;
     BackgroundRenderer m_background;
     HeadRenderer m_head;

@@ -70,6 +70,8 @@ void Viewport::initializeGL()
     }
     m_gl = functions;
     const QByteArray renderer = reinterpret_cast<const char*>(m_gl->glGetString(GL_RENDERER));
+    m_glDescription = QString::fromUtf8(renderer) + QStringLiteral(", ")
+        + QString::fromUtf8(reinterpret_cast<const char*>(m_gl->glGetString(GL_VERSION)));
     m_softwareGl = renderer.contains("llvmpipe") || renderer.contains("softpipe") || renderer.contains("SwiftShader")
         || renderer.contains("Software");
 

@@ -2,6 +2,7 @@
 
 #include "sim/geometry/Body.h"
 
+#include "app/editor/AboutText.h"
 #include "app/editor/BakeController.h"
 #include "app/editor/BrushPanel.h"
 #include "app/editor/Document.h"
@@ -232,11 +233,8 @@ void MainWindow::createActions()
         m_shortcutsDialog->setAttribute(Qt::WA_DeleteOnClose);
         m_shortcutsDialog->show();
     });
-    help->addAction(tr("&About Wisp"), this, [this] {
-        QMessageBox::about(this, tr("About Wisp"),
-            tr("<b>Wisp</b> — hair styling and simulation.<br>Paint where hair grows, shape it into "
-               "wisps, and watch it move under gravity and wind while you edit."));
-    });
+    help->addAction(tr("&About Wisp"), this,
+        [this] { QMessageBox::about(this, tr("About Wisp"), aboutText(m_viewport->glDescription())); });
 
     QToolBar* tools = addToolBar(tr("Simulation"));
     tools->setObjectName(QStringLiteral("simulationToolBar"));

@@ -21,18 +21,6 @@
 using namespace wisp;
 using namespace wisp::test;
 
-namespace {
-
-QMenu* menuNamed(MainWindow& window, const QString& title)
-{
-    for (QAction* top : window.menuBar()->actions())
-        if (top->menu() && top->menu()->title().remove('&') == title)
-            return top->menu();
-    return nullptr;
-}
-
-} // namespace
-
 TEST(AboutBox, NamesTheSolversSimdTargetQtAndTheViewsOpenGl)
 {
     auto window = openEditor();

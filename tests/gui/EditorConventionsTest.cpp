@@ -202,10 +202,7 @@ TEST_F(EditorConventionsTest, EscapeLeavesTheToolAndCtrlShiftSTriggersSaveAs)
 
 TEST_F(EditorConventionsTest, TheShortcutListShowsEveryActionWithAShortcut)
 {
-    QMenu* help = nullptr;
-    for (QAction* top : window->menuBar()->actions())
-        if (top->menu() && top->menu()->title().remove('&') == QStringLiteral("Help"))
-            help = top->menu();
+    QMenu* help = menuNamed(*window, QStringLiteral("Help"));
     ASSERT_NE(help, nullptr);
     ASSERT_TRUE(help->actions().contains(window->shortcutsAction()));
     window->shortcutsAction()->trigger(); // shows the dialog, not modal
@@ -239,10 +236,7 @@ TEST_F(EditorConventionsTest, TheShortcutListShowsEveryActionWithAShortcut)
 
 TEST_F(EditorConventionsTest, TheViewMenuNamesEveryEntryOnce)
 {
-    QMenu* view = nullptr;
-    for (QAction* top : window->menuBar()->actions())
-        if (top->menu() && top->menu()->title().remove('&') == QStringLiteral("View"))
-            view = top->menu();
+    QMenu* view = menuNamed(*window, QStringLiteral("View"));
     ASSERT_NE(view, nullptr);
     std::set<QString> names;
     int entries = 0;

@@ -9,9 +9,12 @@
 #include "sim/solver/Frame.h"
 #include "widgets/ParameterPanel.h"
 
+#include <QAction>
 #include <QApplication>
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
+#include <QMenu>
+#include <QMenuBar>
 #include <QMouseEvent>
 #include <QSignalSpy>
 #include <QSlider>
@@ -126,6 +129,15 @@ inline std::unique_ptr<MainWindow> openEditor(int width = 1300, int height = 850
     window->activateWindow();
     EXPECT_TRUE(QTest::qWaitForWindowActive(window.get()));
     return window;
+}
+
+// The window's menu titled `title` (its mnemonic's & left out: "Help"), or null.
+inline QMenu* menuNamed(const MainWindow& window, const QString& title)
+{
+    for (QAction* top : window.menuBar()->actions())
+        if (top->menu() && top->menu()->title().remove('&') == title)
+            return top->menu();
+    return nullptr;
 }
 
 // Waits until the host has taken every edit: no regroom finished (sceneReady) for `quietMs`.

@@ -17,6 +17,7 @@
 #include "sim/util/SimdTarget.h"
 #include "sim/util/ThreadPool.h"
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -27,13 +28,58 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace wisp::cli {
 
 namespace {
 
+// The physics a step runs, as `--without` names it and the JSON rows list it (physicsOf).
+enum class Physics { HeadContact, Bending, Gusts, Volume, Capsules };
+struct PhysicsName {
+    Physics physics;
+    const char* name;
+};
+constexpr PhysicsName kPhysicsNames[] = {
+    { Physics::HeadContact, "head-contact" },
+    { Physics::Bending, "bending" },
+    { Physics::Gusts, "gusts" },
+    { Physics::Volume, "volume" },
+    { Physics::Capsules, "capsules" },
+};
+// What `--without` can turn off (the grid workloads' physics): the capsules are the sphere's own.
+constexpr int kPhysicsToTurnOff = 4;
+
+const char* nameOf(Physics physics)
+{
+    for (const PhysicsName& p : kPhysicsNames)
+        if (p.physics == physics)
+            return p.name;
+    return "";
+}
+
+// The physics a solver steps with, read from the solver itself (not from what was asked).
+std::vector<Physics> physicsOf(const Solver& solver)
+{
+    const SolverSettings& s = solver.settings();
+    std::vector<Physics> on;
+    if (solver.hasCollider())
+        on.push_back(Physics::HeadContact);
+    if (s.stiffness > 0.0f)
+        on.push_back(Physics::Bending);
+    if (s.turbulence > 0.0f && glm::length(s.wind) > 0.0f)
+        on.push_back(Physics::Gusts);
+    if (s.volume > 0.0f)
+        on.push_back(Physics::Volume);
+    if (solver.capsuleCount() > 0)
+        on.push_back(Physics::Capsules);
+    return on;
+}
+
 struct BenchResult {
     std::string name;
+    std::vector<Physics> physics{}; // what the solver stepped with (physicsOf)
     std::size_t particles = 0;
     std::size_t strands = 0;
     int threads = 0;
@@ -71,6 +117,8 @@ struct RunOptions {
     std::size_t sphereStrands = 10'000;
     std::string headPath; // brush-dab: a head file instead of the default head
     double volume = -1.0; // the volume parameter (hair-hair interaction); below 0: the default
+    std::vector<Physics> without; // physics the grid workloads run without (--without)
+    bool runsWithout(Physics p) const { return std::find(without.begin(), without.end(), p) != without.end(); }
 };
 
 // Workload steps are timed alone; a solver's steps (`floorPool`: its pool) are timed in turns
@@ -143,10 +191,21 @@ BenchResult gridWorkload(const std::string& name, int width, int height, int par
     v.set(Param::Body, 0);
     if (o.volume >= 0.0)
         v.set(Param::Volume, o.volume);
+    // --without: each feature off as an artist would turn it off, the head's contact by giving the
+    // solver no head (its volume grid then has no solid head either).
+    if (o.runsWithout(Physics::Bending))
+        v.set(Param::Stiffness, 0.0);
+    if (o.runsWithout(Physics::Gusts))
+        v.set(Param::Turbulence, 0.0);
+    if (o.runsWithout(Physics::Volume))
+        v.set(Param::Volume, 0.0);
     HairSimulation sim(o.threads);
     if (std::string error = sim.setupGrid(head.mesh, width, height, particles, 0.3f, v); !error.empty())
         throw CliError{ kBadInput, name + ": " + error };
+    if (o.runsWithout(Physics::HeadContact))
+        sim.solver().setCollider(nullptr);
     BenchResult r{ name };
+    r.physics = physicsOf(sim.solver());
     r.particles = sim.solver().particleCount();
     r.strands = sim.solver().strandCount();
     r.threads = sim.solver().threadCount();
@@ -193,6 +252,7 @@ BenchResult sphereWorkload(const RunOptions& o)
         throw CliError{ kBadInput, "sphere workload: " + error };
     solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
     BenchResult r{ "sphere" };
+    r.physics = physicsOf(solver);
     r.particles = solver.particleCount();
     r.strands = solver.strandCount();
     r.threads = solver.threadCount();
@@ -270,6 +330,7 @@ BenchResult brushWorkload(const RunOptions& o)
         r);
     r.particles = sim.solver().particleCount();
     r.strands = sim.groom().strandCount();
+    r.physics = physicsOf(sim.solver());
     r.solverBytesPerParticle
         = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(std::max<std::size_t>(1, r.particles));
     return r;
@@ -329,6 +390,7 @@ BenchResult combWorkload(const RunOptions& o)
         r);
     r.particles = sim.solver().particleCount();
     r.strands = combed / static_cast<std::size_t>(std::max(1, stroke)); // combed key hairs per release
+    r.physics = physicsOf(sim.solver());
     r.solverBytesPerParticle
         = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(std::max<std::size_t>(1, r.particles));
     return r;
@@ -367,6 +429,35 @@ std::vector<Workload> workloads()
     };
 }
 
+// `--without`'s list: known names, comma-separated, each at most once (an error names the first
+// that is not, and the choices).
+std::vector<Physics> physicsToTurnOff(const std::string& list)
+{
+    std::string choices;
+    for (int i = 0; i < kPhysicsToTurnOff; ++i)
+        choices += (i == 0 ? "" : ", ") + std::string(kPhysicsNames[i].name);
+    std::vector<Physics> off;
+    std::stringstream items(list);
+    std::string item;
+    while (std::getline(items, item, ',')) {
+        const auto named = std::find_if(
+            kPhysicsNames, kPhysicsNames + kPhysicsToTurnOff, [&](const PhysicsName& p) { return item == p.name; });
+        if (named == kPhysicsNames + kPhysicsToTurnOff)
+            throw CliError{ kBadInput,
+                "--without: no physics '" + item + "' to turn off (there are: " + choices + ")" };
+        if (std::find(off.begin(), off.end(), named->physics) == off.end())
+            off.push_back(named->physics);
+    }
+    if (off.empty() || list.back() == ',')
+        throw CliError{ kBadInput, "--without: a comma-separated list of " + choices };
+    return off;
+}
+
+bool isGridWorkload(const std::string& name)
+{
+    return name == "groom-1m" || name.rfind("paper-", 0) == 0;
+}
+
 double ratioToFloor(const BenchResult& r)
 {
     return r.floorMs > 0.0 ? r.medianMs / r.floorMs : 0.0;
@@ -377,14 +468,17 @@ std::string json(const BenchResult& r)
     char peak[32] = "null"; // (the floor's row: timed beside the workload, no peak of its own)
     if (r.peakRssMb >= 0.0)
         std::snprintf(peak, sizeof peak, "%.1f", r.peakRssMb);
-    char buffer[768];
+    std::string physics; // (the floor's row: none of these)
+    for (Physics p : r.physics)
+        physics += (physics.empty() ? "\"" : ", \"") + std::string(nameOf(p)) + "\"";
+    char buffer[1024];
     std::snprintf(buffer, sizeof buffer,
         "{\"name\": \"%s\", \"target\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, "
         "\"substeps\": %d, \"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
-        "\"floor_ms_per_step\": %.4f, \"ratio_to_floor\": %.2f, "
+        "\"floor_ms_per_step\": %.4f, \"ratio_to_floor\": %.2f, \"physics\": [%s], "
         "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %s}",
         r.name.c_str(), solverSimdTarget(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs,
-        r.meanMs, r.floorMs, ratioToFloor(r), r.solverBytesPerParticle, peak);
+        r.meanMs, r.floorMs, ratioToFloor(r), physics.c_str(), r.solverBytesPerParticle, peak);
     return buffer;
 }
 
@@ -406,6 +500,9 @@ int runBench(int argc, char** argv)
         { "target", "NAME",
             "run the solver's kernels on this SIMD target instead of the best this CPU has (AVX-512, AVX2, SSE4, "
             "...: the first line of the table lists them)" },
+        { "without", "LIST",
+            "run the grid workloads without these physics, comma-separated: head-contact (the solver gets no "
+            "head), bending (stiffness 0), gusts (turbulence 0), volume (volume 0); to see what each costs" },
     };
     const CommandLine args(argc, argv, 2, options);
     const std::vector<Workload> all = workloads();
@@ -419,7 +516,9 @@ int runBench(int argc, char** argv)
                      "with the floor, 10 steps of each at a time on the same threads: the minimal\n"
                      "follow-the-leader sweep over as many particles (each position and previous position\n"
                      "read and written once, one length constraint, nothing else), printed in the row after\n"
-                     "it; x floor is the workload's ratio to it, how far it is from what this machine allows.\n";
+                     "it; x floor is the workload's ratio to it, how far it is from what this machine allows.\n"
+                     "physics (JSON) lists what the workload's solver stepped with, read from the solver:\n"
+                     "head-contact, bending, gusts, volume, capsules.\n";
         return kSuccess;
     }
     RunOptions o;
@@ -431,6 +530,10 @@ int runBench(int argc, char** argv)
         o.volume = args.real("volume", 0.0);
     if (o.volume != -1.0 && !checkParameterValue(Param::Volume, o.volume).empty())
         throw CliError{ kBadInput, "--" + checkParameterValue(Param::Volume, o.volume) };
+    if (const auto without = args.text("without"))
+        o.without = physicsToTurnOff(*without);
+    if (o.runsWithout(Physics::Volume) && o.volume != -1.0)
+        throw CliError{ kBadInput, "--without volume and --volume: give one of them" };
     const auto only = args.text("workload");
     if (only) {
         bool known = false;
@@ -442,6 +545,11 @@ int runBench(int argc, char** argv)
                 names += " " + w.name;
             throw CliError{ kBadInput, "--workload: no workload '" + *only + "' (there are:" + names + ")" };
         }
+        if (!o.without.empty() && !isGridWorkload(*only))
+            throw CliError{ kBadInput,
+                "--without: the " + *only
+                    + " workload keeps its own physics; --without is for the grid workloads "
+                      "(paper-*, groom-1m)" };
     }
     if (const auto target = args.text("target")) {
         if (std::string why = forceSimdTarget(*target); !why.empty())
@@ -454,6 +562,12 @@ int runBench(int argc, char** argv)
             available += (available.empty() ? "" : ", ") + t;
         std::printf("target %s (chosen at run time of %s; %d floats a register, the solver's lanes are 16)\n",
             solverSimdTarget(), available.c_str(), solverVectorFloats());
+        if (!o.without.empty()) {
+            std::string off;
+            for (Physics p : o.without)
+                off += (off.empty() ? "" : ", ") + std::string(nameOf(p));
+            std::printf("the grid workloads without %s\n", off.c_str());
+        }
         std::printf("%-16s %10s %8s %7s %8s %12s %12s %8s %10s %10s\n", "workload", "particles", "strands", "threads",
             "substeps", "ms/step", "mean ms", "x floor", "B/particle", "peak MB");
     }

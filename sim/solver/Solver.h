@@ -58,7 +58,9 @@ public:
     [[nodiscard]] std::string setSettings(const SolverSettings& settings);
     const SolverSettings& settings() const { return m_settings; }
     void setCollider(std::shared_ptr<const SignedDistanceField> headSdf); // null: no head collision
+    bool hasCollider() const { return m_sdf != nullptr; }
     void setCapsules(std::vector<Capsule> capsules);
+    std::size_t capsuleCount() const { return m_capsules.size(); }
     // Rigid transform (rotation + translation) from head space to world space; roots follow it.
     void setHeadTransform(const glm::mat4& headToWorld);
     const glm::mat4& headTransform() const { return m_headToWorld; }

@@ -250,6 +250,64 @@ TEST(Cli, BenchRunsOnTheTargetItIsToldAndRefusesOneItLacks)
     EXPECT_NE(bad.output.find(wisp::availableSimdTargets().front()), std::string::npos) << bad.output;
 }
 
+// --without runs the grid workloads without the physics it names, to see what each costs, and every
+// JSON row lists the physics its solver stepped with, read from the solver (not from the options).
+TEST(Cli, BenchRunsTheGridWorkloadsWithoutThePhysicsItIsToldAndListsWhatRan)
+{
+    const std::string grid = "bench --workload paper-15x15x10 --steps 50 --threads 1 --json";
+    const CliRun all = cli(grid);
+    ASSERT_EQ(all.status, 0) << all.output;
+    EXPECT_NE(all.output.find("\"name\": \"paper-15x15x10\""), std::string::npos) << all.output;
+    EXPECT_NE(all.output.find("\"physics\": [\"head-contact\", \"bending\", \"gusts\", \"volume\"]"), std::string::npos)
+        << all.output;
+    EXPECT_NE(all.output.find("\"name\": \"floor\""), std::string::npos) << all.output;
+    EXPECT_TRUE(std::regex_search(all.output, std::regex("\"name\": \"floor\".*\"physics\": \\[\\]"))) << all.output;
+
+    const CliRun limp = cli(grid + " --without bending");
+    ASSERT_EQ(limp.status, 0) << limp.output;
+    EXPECT_NE(limp.output.find("\"physics\": [\"head-contact\", \"gusts\", \"volume\"]"), std::string::npos)
+        << limp.output;
+
+    const CliRun bare = cli(grid + " --without head-contact,volume,gusts,bending,gusts");
+    ASSERT_EQ(bare.status, 0) << bare.output;
+    EXPECT_TRUE(std::regex_search(bare.output, std::regex("\"name\": \"paper-15x15x10\".*\"physics\": \\[\\]")))
+        << bare.output;
+    // Without the volume the solver holds no grid: fewer bytes a particle.
+    const std::regex bytes("\"name\": \"paper-15x15x10\".*\"solver_bytes_per_particle\": ([0-9.]+)");
+    std::smatch withGrid, without;
+    ASSERT_TRUE(std::regex_search(all.output, withGrid, bytes)) << all.output;
+    ASSERT_TRUE(std::regex_search(bare.output, without, bytes)) << bare.output;
+    EXPECT_LT(std::stod(without[1]), std::stod(withGrid[1]));
+
+    const CliRun table = cli("bench --workload paper-15x15x10 --steps 50 --threads 1 --without gusts,head-contact");
+    ASSERT_EQ(table.status, 0) << table.output;
+    EXPECT_NE(table.output.find("\nthe grid workloads without gusts, head-contact\n"), std::string::npos)
+        << table.output;
+
+    const CliRun sphere = cli("bench --workload sphere --strands 200 --steps 50 --threads 1 --json");
+    ASSERT_EQ(sphere.status, 0) << sphere.output;
+    EXPECT_NE(sphere.output.find("\"physics\": [\"capsules\"]"), std::string::npos) << sphere.output;
+}
+
+TEST(Cli, BenchRefusesAWithoutListItCannotRun)
+{
+    const CliRun unknown = cli("bench --workload paper-15x15x10 --steps 50 --without bending,magnetism");
+    EXPECT_EQ(unknown.status, 1) << unknown.output;
+    EXPECT_NE(unknown.output.find("--without: no physics 'magnetism' to turn off (there are: head-contact, bending, "
+                                  "gusts, volume)"),
+        std::string::npos)
+        << unknown.output;
+    const CliRun empty = cli("bench --workload paper-15x15x10 --steps 50 --without bending,");
+    EXPECT_EQ(empty.status, 1) << empty.output;
+    EXPECT_NE(empty.output.find("--without"), std::string::npos) << empty.output;
+    const CliRun both = cli("bench --workload paper-15x15x10 --steps 50 --without volume --volume 0.3");
+    EXPECT_EQ(both.status, 1) << both.output;
+    EXPECT_NE(both.output.find("--without volume and --volume"), std::string::npos) << both.output;
+    const CliRun sphere = cli("bench --workload sphere --strands 200 --steps 50 --without gusts");
+    EXPECT_EQ(sphere.status, 1) << sphere.output;
+    EXPECT_NE(sphere.output.find("--without is for the grid workloads"), std::string::npos) << sphere.output;
+}
+
 // simulate --target runs the solver on the target it is told, and every target writes the same
 // file, byte for byte (the README's rule: the same bits on every target), wind and volume on.
 TEST(Cli, SimulateOnEveryTargetWritesTheSameFile)

@@ -7,13 +7,15 @@
 #
 #   scripts/bench-ab.sh [--rounds N] BINARY... -- BENCH_OPTIONS...
 #   scripts/bench-ab.sh --rounds 8 /tmp/before/wisp-cli build/app/wisp-cli -- --workload groom-1m --threads 2
+#   scripts/bench-ab.sh all=build/app/wisp-cli 'no-gusts=build/app/wisp-cli --without gusts' -- --workload groom-1m
 #
-# A binary may be given as LABEL=PATH; every run also gets --json (and --steps 50 unless the
-# options name --steps). Needs only bash, awk and sort.
+# A binary may be given as LABEL=PATH, and PATH may be followed by bench options of its own (one
+# argument, quoted: the same binary run several ways). Every run also gets --json (and --steps 50
+# unless the options name --steps). Needs only bash, awk and sort.
 set -euo pipefail
 
 usage() {
-    sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//' >&2
+    sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//' >&2
     exit 2
 }
 
@@ -44,14 +46,19 @@ options=("$@")
 
 labels=()
 paths=()
+own=() # each binary's own bench options, space-separated
 for b in "${binaries[@]}"; do
+    spec=$b
     if [[ "$b" == *=* ]]; then
         labels+=("${b%%=*}")
-        paths+=("${b#*=}")
+        spec=${b#*=}
     else
         labels+=("$b")
-        paths+=("$b")
     fi
+    read -r -a words <<< "$spec"
+    [[ ${#words[@]} -ge 1 ]] || { echo "bench-ab: '$b': no binary" >&2; exit 2; }
+    paths+=("${words[0]}")
+    own+=("${words[*]:1}")
     [[ -x "${paths[-1]}" ]] || { echo "bench-ab: ${paths[-1]}: not an executable" >&2; exit 2; }
 done
 
@@ -63,7 +70,8 @@ for ((r = 0; r < rounds; ++r)); do
         i=$((r % 2 == 0 ? k : count - 1 - k))
         # The workload's row: the first JSON line (the floor's is the second). Read whole, not
         # through `head`, whose early exit would end the bench with SIGPIPE (and, with pipefail, this).
-        out=$("${paths[$i]}" bench --json "${options[@]}")
+        read -r -a more <<< "${own[$i]}"
+        out=$("${paths[$i]}" bench --json "${options[@]}" "${more[@]}")
         line=${out%%$'\n'*}
         ms=$(sed -n 's/.*"ms_per_step": \([0-9.]*\).*/\1/p' <<< "$line")
         ratio=$(sed -n 's/.*"ratio_to_floor": \([0-9.]*\).*/\1/p' <<< "$line")

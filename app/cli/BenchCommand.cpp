@@ -59,6 +59,15 @@ const char* nameOf(Physics physics)
     return "";
 }
 
+// The names of `list`, comma-separated, each in `quote`s (JSON) or bare (the table).
+std::string namesOf(const std::vector<Physics>& list, const char* quote = "")
+{
+    std::string names;
+    for (Physics p : list)
+        names += (names.empty() ? "" : ", ") + std::string(quote) + nameOf(p) + quote;
+    return names;
+}
+
 // The physics a solver steps with, read from the solver itself (not from what was asked).
 std::vector<Physics> physicsOf(const Solver& solver)
 {
@@ -468,9 +477,7 @@ std::string json(const BenchResult& r)
     char peak[32] = "null"; // (the floor's row: timed beside the workload, no peak of its own)
     if (r.peakRssMb >= 0.0)
         std::snprintf(peak, sizeof peak, "%.1f", r.peakRssMb);
-    std::string physics; // (the floor's row: none of these)
-    for (Physics p : r.physics)
-        physics += (physics.empty() ? "\"" : ", \"") + std::string(nameOf(p)) + "\"";
+    const std::string physics = namesOf(r.physics, "\""); // (the floor's row: none)
     char buffer[1024];
     std::snprintf(buffer, sizeof buffer,
         "{\"name\": \"%s\", \"target\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, "
@@ -562,12 +569,8 @@ int runBench(int argc, char** argv)
             available += (available.empty() ? "" : ", ") + t;
         std::printf("target %s (chosen at run time of %s; %d floats a register, the solver's lanes are 16)\n",
             solverSimdTarget(), available.c_str(), solverVectorFloats());
-        if (!o.without.empty()) {
-            std::string off;
-            for (Physics p : o.without)
-                off += (off.empty() ? "" : ", ") + std::string(nameOf(p));
-            std::printf("the grid workloads without %s\n", off.c_str());
-        }
+        if (!o.without.empty())
+            std::printf("the grid workloads without %s\n", namesOf(o.without).c_str());
         std::printf("%-16s %10s %8s %7s %8s %12s %12s %8s %10s %10s\n", "workload", "particles", "strands", "threads",
             "substeps", "ms/step", "mean ms", "x floor", "B/particle", "peak MB");
     }

@@ -14,6 +14,7 @@
 #include "sim/solver/FloorSweep.h"
 #include "sim/solver/HairSimulation.h"
 #include "sim/style/StyleEdits.h"
+#include "sim/util/CpuName.h"
 #include "sim/util/SimdTarget.h"
 #include "sim/util/ThreadPool.h"
 
@@ -29,6 +30,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace wisp::cli {
@@ -478,14 +480,20 @@ std::string json(const BenchResult& r)
     if (r.peakRssMb >= 0.0)
         std::snprintf(peak, sizeof peak, "%.1f", r.peakRssMb);
     const std::string physics = namesOf(r.physics, "\""); // (the floor's row: none)
-    char buffer[1024];
+    std::string cpu; // (JSON-escaped: a brand string has no quotes, but nothing says it may not)
+    for (char c : cpuModelName())
+        if (c == '"' || c == '\\')
+            cpu += std::string("\\") + c;
+        else if (static_cast<unsigned char>(c) >= 0x20)
+            cpu += c;
+    char buffer[1280];
     std::snprintf(buffer, sizeof buffer,
         "{\"name\": \"%s\", \"target\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, "
         "\"substeps\": %d, \"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
-        "\"floor_ms_per_step\": %.4f, \"ratio_to_floor\": %.2f, \"physics\": [%s], "
+        "\"floor_ms_per_step\": %.4f, \"ratio_to_floor\": %.2f, \"physics\": [%s], \"cpu\": \"%s\", "
         "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %s}",
         r.name.c_str(), solverSimdTarget(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs,
-        r.meanMs, r.floorMs, ratioToFloor(r), physics.c_str(), r.solverBytesPerParticle, peak);
+        r.meanMs, r.floorMs, ratioToFloor(r), physics.c_str(), cpu.c_str(), r.solverBytesPerParticle, peak);
     return buffer;
 }
 
@@ -569,6 +577,7 @@ int runBench(int argc, char** argv)
             available += (available.empty() ? "" : ", ") + t;
         std::printf("target %s (chosen at run time of %s; %d floats a register, the solver's lanes are 16)\n",
             solverSimdTarget(), available.c_str(), solverVectorFloats());
+        std::printf("cpu %s, %u logical cores\n", cpuModelName().c_str(), std::thread::hardware_concurrency());
         if (!o.without.empty())
             std::printf("the grid workloads without %s\n", namesOf(o.without).c_str());
         std::printf("%-16s %10s %8s %7s %8s %12s %12s %8s %10s %10s\n", "workload", "particles", "strands", "threads",

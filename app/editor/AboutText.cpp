@@ -1,5 +1,6 @@
 #include "app/editor/AboutText.h"
 
+#include "sim/util/CpuName.h"
 #include "sim/util/SimdTarget.h"
 
 #include <QCoreApplication>
@@ -17,7 +18,8 @@ QString aboutText(const QString& glDescription)
     return tr("<b>Wisp</b> — hair styling and simulation.<br>Paint where hair grows, shape it into wisps, and "
               "watch it move under gravity and wind while you edit.")
         + QStringLiteral("<p>")
-        + tr("Solver kernels: %1<br>Qt: %2<br>OpenGL: %3").arg(solver, QString::fromLatin1(qVersion()), gl)
+        + tr("CPU: %1<br>Solver kernels: %2<br>Qt: %3<br>OpenGL: %4")
+              .arg(QString::fromStdString(cpuModelName()).toHtmlEscaped(), solver, QString::fromLatin1(qVersion()), gl)
         + QStringLiteral("</p>");
 }
 

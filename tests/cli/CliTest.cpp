@@ -1,6 +1,7 @@
 // wisp-cli as a user runs it: real processes, exit statuses, messages and output files.
 #include "io/StrandText.h"
 #include "sim/geometry/DefaultHead.h"
+#include "sim/util/CpuName.h"
 #include "sim/util/SimdTarget.h"
 
 #include "CliRunner.h"
@@ -226,6 +227,9 @@ TEST(Cli, BenchNamesItsTargetAndMeasuresTheFloorBesideEachWorkload)
     ASSERT_EQ(table.status, 0) << table.output;
     EXPECT_EQ(table.output.rfind(std::string("target ") + wisp::solverSimdTarget() + " (", 0), 0u) << table.output;
     EXPECT_NE(table.output.find("x floor"), std::string::npos) << table.output;
+    // The machine, by its maker's name, on the second line and in every JSON row.
+    EXPECT_NE(table.output.find("\ncpu " + wisp::cpuModelName() + ", "), std::string::npos) << table.output;
+    EXPECT_NE(r.output.find("\"cpu\": \"" + wisp::cpuModelName() + "\""), std::string::npos) << r.output;
     EXPECT_NE(table.output.find("\nfloor "), std::string::npos) << table.output;
 }
 

@@ -5,6 +5,7 @@
 #include "GuiTestSupport.h"
 #include "app/editor/AboutText.h"
 #include "app/editor/MainWindow.h"
+#include "sim/util/CpuName.h"
 #include "sim/util/SimdTarget.h"
 #include "widgets/Viewport.h"
 
@@ -56,6 +57,8 @@ TEST(AboutBox, NamesTheSolversSimdTargetQtAndTheViewsOpenGl)
     EXPECT_TRUE(shown.contains(QStringLiteral("Solver kernels: %1 (%2 floats a register)")
                                    .arg(QString::fromLatin1(solverSimdTarget()))
                                    .arg(solverVectorFloats())))
+        << shown.toStdString();
+    EXPECT_TRUE(shown.contains(QStringLiteral("CPU: ") + QString::fromStdString(cpuModelName()).toHtmlEscaped()))
         << shown.toStdString();
     EXPECT_TRUE(shown.contains(QStringLiteral("Qt: ") + QString::fromLatin1(qVersion()))) << shown.toStdString();
     EXPECT_TRUE(shown.contains(QStringLiteral("OpenGL: ") + gl.toHtmlEscaped())) << shown.toStdString();

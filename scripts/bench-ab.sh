@@ -10,12 +10,13 @@
 #   scripts/bench-ab.sh all=build/app/wisp-cli 'no-gusts=build/app/wisp-cli --without gusts' -- --workload groom-1m
 #
 # A binary may be given as LABEL=PATH, and PATH may be followed by bench options of its own (one
-# argument, quoted: the same binary run several ways). Every run also gets --json (and --steps 50
-# unless the options name --steps). Needs only bash, awk and sort.
+# argument, quoted: the same binary run several ways; words split at spaces, so neither the path nor
+# those options may hold one). Every run also gets --json (and --steps 50 unless the options name
+# --steps). Needs only bash, awk and sort.
 set -euo pipefail
 
 usage() {
-    sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//' >&2
+    sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//' >&2
     exit 2
 }
 
@@ -49,9 +50,9 @@ paths=()
 own=() # each binary's own bench options, space-separated
 for b in "${binaries[@]}"; do
     spec=$b
-    if [[ "$b" == *=* ]]; then
-        labels+=("${b%%=*}")
-        spec=${b#*=}
+    if [[ "$b" =~ ^([^[:space:]=]+)=(.*)$ ]]; then # (a label has no spaces: --opt=value is an option)
+        labels+=("${BASH_REMATCH[1]}")
+        spec=${BASH_REMATCH[2]}
     else
         labels+=("$b")
     fi
@@ -76,7 +77,7 @@ for ((r = 0; r < rounds; ++r)); do
         ms=$(sed -n 's/.*"ms_per_step": \([0-9.]*\).*/\1/p' <<< "$line")
         ratio=$(sed -n 's/.*"ratio_to_floor": \([0-9.]*\).*/\1/p' <<< "$line")
         target=$(sed -n 's/.*"target": "\([^"]*\)".*/\1/p' <<< "$line")
-        [[ -n "$ms" && -n "$ratio" ]] || { echo "bench-ab: ${paths[$i]} printed no row: $line" >&2; exit 1; }
+        [[ -n "$ms" && -n "$ratio" ]] || { echo "bench-ab: ${labels[$i]} printed no row: $line" >&2; exit 1; }
         printf '%d\t%s\t%s\t%s\n' "$i" "$ms" "$ratio" "$target" >> "$results"
     done
     echo "bench-ab: round $((r + 1)) of $rounds done" >&2

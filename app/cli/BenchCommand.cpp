@@ -50,8 +50,10 @@ constexpr PhysicsName kPhysicsNames[] = {
     { Physics::Volume, "volume" },
     { Physics::Capsules, "capsules" },
 };
-// What `--without` can turn off (the grid workloads' physics): the capsules are the sphere's own.
+// What `--without` can turn off (the grid workloads' physics, the table's first entries): the
+// capsules are the sphere's own.
 constexpr int kPhysicsToTurnOff = 4;
+static_assert(kPhysicsNames[kPhysicsToTurnOff].physics == Physics::Capsules, "what --without turns off comes first");
 
 const char* nameOf(Physics physics)
 {
@@ -90,7 +92,7 @@ std::vector<Physics> physicsOf(const Solver& solver)
 
 struct BenchResult {
     std::string name;
-    std::vector<Physics> physics{}; // what the solver stepped with (physicsOf)
+    std::vector<Physics> physics{}; // what the solver was set up to step with (physicsOf)
     std::size_t particles = 0;
     std::size_t strands = 0;
     int threads = 0;
@@ -440,17 +442,23 @@ std::vector<Workload> workloads()
     };
 }
 
-// `--without`'s list: known names, comma-separated, each at most once (an error names the first
-// that is not, and the choices).
+// `--without`'s list: known names, comma-separated (spaces around a name are allowed, a name
+// given twice counts once); an error names the first item that is not one, and the choices.
 std::vector<Physics> physicsToTurnOff(const std::string& list)
 {
     std::string choices;
     for (int i = 0; i < kPhysicsToTurnOff; ++i)
         choices += (i == 0 ? "" : ", ") + std::string(kPhysicsNames[i].name);
     std::vector<Physics> off;
-    std::stringstream items(list);
-    std::string item;
-    while (std::getline(items, item, ',')) {
+    std::size_t from = 0;
+    while (true) {
+        const std::size_t comma = std::min(list.find(',', from), list.size());
+        std::string item = list.substr(from, comma - from);
+        item.erase(0, item.find_first_not_of(' '));
+        item.erase(item.find_last_not_of(' ') + 1);
+        if (item.empty())
+            throw CliError{ kBadInput,
+                "--without: expects physics names separated by commas, with none empty (there are: " + choices + ")" };
         const auto named = std::find_if(
             kPhysicsNames, kPhysicsNames + kPhysicsToTurnOff, [&](const PhysicsName& p) { return item == p.name; });
         if (named == kPhysicsNames + kPhysicsToTurnOff)
@@ -458,10 +466,10 @@ std::vector<Physics> physicsToTurnOff(const std::string& list)
                 "--without: no physics '" + item + "' to turn off (there are: " + choices + ")" };
         if (std::find(off.begin(), off.end(), named->physics) == off.end())
             off.push_back(named->physics);
+        if (comma == list.size())
+            return off;
+        from = comma + 1;
     }
-    if (off.empty() || list.back() == ',')
-        throw CliError{ kBadInput, "--without: a comma-separated list of " + choices };
-    return off;
 }
 
 bool isGridWorkload(const std::string& name)
@@ -474,27 +482,39 @@ double ratioToFloor(const BenchResult& r)
     return r.floorMs > 0.0 ? r.medianMs / r.floorMs : 0.0;
 }
 
+// `text` as a JSON string's contents: quotes and backslashes escaped, control characters left out
+// (a --head file's name goes into a row's name).
+std::string jsonText(const std::string& text)
+{
+    std::string out;
+    for (char c : text)
+        if (c == '"' || c == '\\')
+            out += std::string("\\") + c;
+        else if (static_cast<unsigned char>(c) >= 0x20)
+            out += c;
+    return out;
+}
+
 std::string json(const BenchResult& r)
 {
     char peak[32] = "null"; // (the floor's row: timed beside the workload, no peak of its own)
     if (r.peakRssMb >= 0.0)
         std::snprintf(peak, sizeof peak, "%.1f", r.peakRssMb);
+    const std::string name = jsonText(r.name), cpu = jsonText(cpuModelName());
     const std::string physics = namesOf(r.physics, "\""); // (the floor's row: none)
-    std::string cpu; // (JSON-escaped: a brand string has no quotes, but nothing says it may not)
-    for (char c : cpuModelName())
-        if (c == '"' || c == '\\')
-            cpu += std::string("\\") + c;
-        else if (static_cast<unsigned char>(c) >= 0x20)
-            cpu += c;
-    char buffer[1280];
-    std::snprintf(buffer, sizeof buffer,
-        "{\"name\": \"%s\", \"target\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, "
-        "\"substeps\": %d, \"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
-        "\"floor_ms_per_step\": %.4f, \"ratio_to_floor\": %.2f, \"physics\": [%s], \"cpu\": \"%s\", "
-        "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %s}",
-        r.name.c_str(), solverSimdTarget(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs,
-        r.meanMs, r.floorMs, ratioToFloor(r), physics.c_str(), cpu.c_str(), r.solverBytesPerParticle, peak);
-    return buffer;
+    auto print = [&](char* to, std::size_t size) {
+        return std::snprintf(to, size,
+            "{\"name\": \"%s\", \"target\": \"%s\", \"particles\": %zu, \"strands\": %zu, \"threads\": %d, "
+            "\"substeps\": %d, \"steps\": %d, \"ms_per_step\": %.4f, \"ms_per_step_mean\": %.4f, "
+            "\"floor_ms_per_step\": %.4f, \"ratio_to_floor\": %.2f, \"physics\": [%s], \"cpu\": \"%s\", "
+            "\"solver_bytes_per_particle\": %.1f, \"peak_rss_mb\": %s}",
+            name.c_str(), solverSimdTarget(), r.particles, r.strands, r.threads, r.substeps, r.steps, r.medianMs,
+            r.meanMs, r.floorMs, ratioToFloor(r), physics.c_str(), cpu.c_str(), r.solverBytesPerParticle, peak);
+    };
+    // Sized first, so that a long file name or CPU name never cuts the row short.
+    std::string row(static_cast<std::size_t>(std::max(0, print(nullptr, 0))), '\0');
+    print(row.data(), row.size() + 1);
+    return row;
 }
 
 } // namespace
@@ -532,8 +552,8 @@ int runBench(int argc, char** argv)
                      "follow-the-leader sweep over as many particles (each position and previous position\n"
                      "read and written once, one length constraint, nothing else), printed in the row after\n"
                      "it; x floor is the workload's ratio to it, how far it is from what this machine allows.\n"
-                     "physics (JSON) lists what the workload's solver stepped with, read from the solver:\n"
-                     "head-contact, bending, gusts, volume, capsules.\n";
+                     "physics (JSON) lists what the workload's solver was set up to step with, read from the\n"
+                     "solver: head-contact, bending, gusts, volume, capsules.\n";
         return kSuccess;
     }
     RunOptions o;
@@ -577,7 +597,10 @@ int runBench(int argc, char** argv)
             available += (available.empty() ? "" : ", ") + t;
         std::printf("target %s (chosen at run time of %s; %d floats a register, the solver's lanes are 16)\n",
             solverSimdTarget(), available.c_str(), solverVectorFloats());
-        std::printf("cpu %s, %u logical cores\n", cpuModelName().c_str(), std::thread::hardware_concurrency());
+        if (const unsigned cores = std::thread::hardware_concurrency(); cores > 0)
+            std::printf("cpu %s, %u logical cores\n", cpuModelName().c_str(), cores);
+        else
+            std::printf("cpu %s\n", cpuModelName().c_str());
         if (!o.without.empty())
             std::printf("the grid workloads without %s\n", namesOf(o.without).c_str());
         std::printf("%-16s %10s %8s %7s %8s %12s %12s %8s %10s %10s\n", "workload", "particles", "strands", "threads",

@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <cpuid.h>
@@ -9,9 +10,6 @@
 
 namespace wisp {
 
-namespace {
-
-// One space between words, none at the ends (brand strings are padded: "  Intel(R) Xeon(R) ...").
 std::string collapsedSpaces(const std::string& text)
 {
     std::string out;
@@ -27,6 +25,26 @@ std::string collapsedSpaces(const std::string& text)
         out.pop_back();
     return out;
 }
+
+std::string cpuModelFromCpuinfo(const std::string& cpuinfo)
+{
+    std::istringstream in(cpuinfo);
+    std::string line;
+    while (std::getline(in, line)) {
+        const auto colon = line.find(':');
+        if (colon == std::string::npos)
+            continue;
+        const std::string key = collapsedSpaces(line.substr(0, colon));
+        if (key == "model name" || key == "cpu model" || key == "Model" || key == "Hardware") {
+            std::string value = collapsedSpaces(line.substr(colon + 1));
+            if (!value.empty())
+                return value;
+        }
+    }
+    return {};
+}
+
+namespace {
 
 std::string brandString()
 {
@@ -46,31 +64,17 @@ std::string brandString()
 #endif
 }
 
-std::string procCpuinfoModel()
-{
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line)) {
-        const auto colon = line.find(':');
-        if (colon == std::string::npos)
-            continue;
-        const std::string key = collapsedSpaces(line.substr(0, colon));
-        if (key == "model name" || key == "Model" || key == "Hardware" || key == "cpu model") {
-            std::string value = collapsedSpaces(line.substr(colon + 1));
-            if (!value.empty())
-                return value;
-        }
-    }
-    return {};
-}
-
 } // namespace
 
 std::string cpuModelName()
 {
     std::string name = brandString();
-    if (name.empty())
-        name = procCpuinfoModel();
+    if (name.empty()) {
+        std::ifstream in("/proc/cpuinfo");
+        std::ostringstream text;
+        text << in.rdbuf();
+        name = cpuModelFromCpuinfo(text.str());
+    }
     return name.empty() ? "unknown CPU" : name;
 }
 

@@ -272,7 +272,7 @@ TEST(Cli, BenchRunsTheGridWorkloadsWithoutThePhysicsItIsToldAndListsWhatRan)
     EXPECT_NE(limp.output.find("\"physics\": [\"head-contact\", \"gusts\", \"volume\"]"), std::string::npos)
         << limp.output;
 
-    const CliRun bare = cli(grid + " --without head-contact,volume,gusts,bending,gusts");
+    const CliRun bare = cli(grid + " --without 'head-contact, volume,gusts,bending,gusts'");
     ASSERT_EQ(bare.status, 0) << bare.output;
     EXPECT_TRUE(std::regex_search(bare.output, std::regex("\"name\": \"paper-15x15x10\".*\"physics\": \\[\\]")))
         << bare.output;
@@ -297,9 +297,14 @@ TEST(Cli, BenchRefusesAWithoutListItCannotRun)
                                   "gusts, volume)"),
         std::string::npos)
         << unknown.output;
-    const CliRun empty = cli("bench --workload paper-15x15x10 --steps 50 --without bending,");
-    EXPECT_EQ(empty.status, 1) << empty.output;
-    EXPECT_NE(empty.output.find("--without"), std::string::npos) << empty.output;
+    for (const char* list : { "bending,", ",bending", "bending,,gusts", "''" }) {
+        const CliRun empty = cli(std::string("bench --workload paper-15x15x10 --steps 50 --without ") + list);
+        EXPECT_EQ(empty.status, 1) << list << ": " << empty.output;
+        EXPECT_NE(empty.output.find("--without: expects physics names separated by commas, with none empty (there "
+                                    "are: head-contact, bending, gusts, volume)"),
+            std::string::npos)
+            << list << ": " << empty.output;
+    }
     const CliRun both = cli("bench --workload paper-15x15x10 --steps 50 --without volume --volume 0.3");
     EXPECT_EQ(both.status, 1) << both.output;
     EXPECT_NE(both.output.find("--without volume and --volume"), std::string::npos) << both.output;

@@ -79,7 +79,7 @@ std::vector<Physics> physicsOf(const Solver& solver)
     std::vector<Physics> on;
     if (solver.hasCollider())
         on.push_back(Physics::HeadContact);
-    if (s.stiffness > 0.0f)
+    if (solver.anyStrandBends())
         on.push_back(Physics::Bending);
     if (s.turbulence > 0.0f && glm::length(s.wind) > 0.0f)
         on.push_back(Physics::Gusts);
@@ -218,13 +218,13 @@ BenchResult gridWorkload(const std::string& name, int width, int height, int par
     if (o.runsWithout(Physics::HeadContact))
         sim.solver().setCollider(nullptr);
     BenchResult r{ name };
-    r.physics = physicsOf(sim.solver());
     r.particles = sim.solver().particleCount();
     r.strands = sim.solver().strandCount();
     r.threads = sim.solver().threadCount();
     r.substeps = sim.solver().settings().substeps;
     timeSteps(
         o, [&] { sim.step(); }, r, &sim.solver().threadPool());
+    r.physics = physicsOf(sim.solver()); // (as the steps ran)
     // After the steps: the volume grid and its per-thread slots are made by the first step.
     r.solverBytesPerParticle = static_cast<double>(sim.solver().memoryBytes()) / static_cast<double>(r.particles);
     return r;
@@ -265,13 +265,13 @@ BenchResult sphereWorkload(const RunOptions& o)
         throw CliError{ kBadInput, "sphere workload: " + error };
     solver.setCapsules({ Capsule{ { 0, 0, 0 }, { 0, 0, 0 }, 0.1f } });
     BenchResult r{ "sphere" };
-    r.physics = physicsOf(solver);
     r.particles = solver.particleCount();
     r.strands = solver.strandCount();
     r.threads = solver.threadCount();
     r.substeps = s.substeps;
     timeSteps(
         o, [&] { solver.step(); }, r, &solver.threadPool());
+    r.physics = physicsOf(solver); // (as the steps ran)
     r.solverBytesPerParticle = static_cast<double>(solver.memoryBytes()) / static_cast<double>(r.particles);
     return r;
 }

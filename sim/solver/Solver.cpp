@@ -198,6 +198,18 @@ void Solver::resetToRest()
 
 // The bend shares of every segment for a substep of `substepSeconds` (BendingModel.h): from the
 // rigidity of each lane's stiffness (settings x the strand's scale) and the segment lengths.
+bool Solver::anyStrandBends() const
+{
+    if (m_bendSharesStale || m_bendSharesFor.x != m_settings.stiffness) // (the next step sets the shares)
+        return m_settings.stiffness > 0.0f && std::any_of(m_blocks.begin(), m_blocks.end(), [](const Block& b) {
+            for (int l = 0; l < kLanes; ++l)
+                if (b.strand[l] >= 0 && b.stiffnessScale[l] > 0.0f)
+                    return true;
+            return false;
+        });
+    return std::any_of(m_blocks.begin(), m_blocks.end(), [](const Block& b) { return b.bends; });
+}
+
 void Solver::updateBendShares(float substepSeconds)
 {
     const float globalStiffness = m_settings.stiffness;

@@ -61,6 +61,10 @@ public:
     bool hasCollider() const { return m_sdf != nullptr; }
     void setCapsules(std::vector<Capsule> capsules);
     std::size_t capsuleCount() const { return m_capsules.size(); }
+    // Whether any strand bends: a bend share on some lane, as the last step set them (a stiffness
+    // or stiffness scales of 0 leave a block limp); until a step sets them for the settings now,
+    // whether the stiffness and some strand's scale ask for it.
+    bool anyStrandBends() const;
     // Rigid transform (rotation + translation) from head space to world space; roots follow it.
     void setHeadTransform(const glm::mat4& headToWorld);
     const glm::mat4& headTransform() const { return m_headToWorld; }

@@ -239,6 +239,43 @@ TEST(Solver, LimpStrandsMoveAlikeWithAndWithoutAStiffStrandInTheirBlock)
 // A particle gone non-finite puts its strand back at rest at the end of the step, wherever it is on
 // the strand (the kernel looks at each row as the step's last substep finishes it) and at any
 // substep count; the strands beside it in its block do not change by a bit.
+// Whether the solver bends any strand (what `wisp-cli bench` reports it stepped with): the scene's
+// stiffness and the strands' scales, as the step's bend shares say once a step has set them.
+TEST(Solver, SaysWhetherAnyStrandBends)
+{
+    HairCurves c;
+    for (int i = 0; i < 20; ++i) { // two blocks, the second with padding lanes
+        auto p = c.strandForWrite(c.addStrand(6));
+        for (int j = 0; j < 6; ++j)
+            p[j] = { 0.01f * static_cast<float>(i), -0.02f * static_cast<float>(j), 0.0f };
+    }
+    Solver solver(1);
+    ASSERT_EQ(solver.setStrands(c), "");
+    SolverSettings s = calm();
+    s.stiffness = 0.4f;
+    ASSERT_EQ(solver.setSettings(s), "");
+    EXPECT_TRUE(solver.anyStrandBends()); // (asked for, before a step)
+    solver.step();
+    EXPECT_TRUE(solver.anyStrandBends());
+
+    std::vector<float> scales(20, 0.0f);
+    ASSERT_EQ(solver.setStiffnessScales(scales), "");
+    EXPECT_FALSE(solver.anyStrandBends());
+    solver.step();
+    EXPECT_FALSE(solver.anyStrandBends());
+    scales[19] = 0.5f; // one strand, in the block with padding
+    ASSERT_EQ(solver.setStiffnessScales(scales), "");
+    EXPECT_TRUE(solver.anyStrandBends());
+    solver.step();
+    EXPECT_TRUE(solver.anyStrandBends());
+
+    s.stiffness = 0.0f;
+    ASSERT_EQ(solver.setSettings(s), "");
+    EXPECT_FALSE(solver.anyStrandBends());
+    solver.step();
+    EXPECT_FALSE(solver.anyStrandBends());
+}
+
 TEST(Solver, ANonFiniteParticleAnywhereOnAStrandPutsThatStrandAloneBackAtRest)
 {
     HairCurves c; // 20 strands of 11 points: a full block and part of another

@@ -196,8 +196,6 @@ void Solver::resetToRest()
             placeLaneAtRest(b, l, rotation, translation);
 }
 
-// The bend shares of every segment for a substep of `substepSeconds` (BendingModel.h): from the
-// rigidity of each lane's stiffness (settings x the strand's scale) and the segment lengths.
 bool Solver::anyStrandBends() const
 {
     if (m_bendSharesStale || m_bendSharesFor.x != m_settings.stiffness) // (the next step sets the shares)
@@ -210,6 +208,8 @@ bool Solver::anyStrandBends() const
     return std::any_of(m_blocks.begin(), m_blocks.end(), [](const Block& b) { return b.bends; });
 }
 
+// The bend shares of every segment for a substep of `substepSeconds` (BendingModel.h): from the
+// rigidity of each lane's stiffness (settings x the strand's scale) and the segment lengths.
 void Solver::updateBendShares(float substepSeconds)
 {
     const float globalStiffness = m_settings.stiffness;

@@ -18,7 +18,6 @@
 #include "sim/util/SimdTarget.h"
 #include "sim/util/ThreadPool.h"
 
-#include <glm/geometric.hpp>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -81,7 +80,7 @@ std::vector<Physics> physicsOf(const Solver& solver)
         on.push_back(Physics::HeadContact);
     if (solver.anyStrandBends())
         on.push_back(Physics::Bending);
-    if (s.turbulence > 0.0f && glm::length(s.wind) > 0.0f)
+    if (blowsGusts(s.turbulence, s.wind))
         on.push_back(Physics::Gusts);
     if (s.volume > 0.0f)
         on.push_back(Physics::Volume);
@@ -446,9 +445,7 @@ std::vector<Workload> workloads()
 // given twice counts once); an error names the first item that is not one, and the choices.
 std::vector<Physics> physicsToTurnOff(const std::string& list)
 {
-    std::string choices;
-    for (int i = 0; i < kPhysicsToTurnOff; ++i)
-        choices += (i == 0 ? "" : ", ") + std::string(kPhysicsNames[i].name);
+    const std::string choices = namesOf({ Physics::HeadContact, Physics::Bending, Physics::Gusts, Physics::Volume });
     std::vector<Physics> off;
     std::size_t from = 0;
     while (true) {

@@ -640,7 +640,7 @@ void advanceBlockSlices(Solver::Block& block, const StepConstants& c, int firstS
     const CapsulesInReach capsules = capsulesInReach<Transformed>(block, c);
     // Without gusts (no turbulence or no wind) and without bending (a limp block) the particle
     // loop carries neither their samples nor their frames.
-    const bool gusty = c.turbulence > 0.0f && glm::length(c.wind) > 0.0f;
+    const bool gusty = blowsGusts(c.turbulence, c.wind);
     auto run = [&]<bool Bends, bool Gusty>() {
         for (int slice = 0; slice < kLanes / kVecLanes; ++slice)
             advanceBlockAs<Transformed, GlobalShape, Bends, Gusty>(block, c, firstSubstep, endSubstep, slice, capsules);

@@ -7,6 +7,11 @@
 
 namespace wisp {
 
+bool blowsGusts(float turbulence, const glm::vec3& wind)
+{
+    return turbulence > 0.0f && glm::length(wind) > 0.0f;
+}
+
 glm::vec3 windVelocity(float speed, float azimuthDegrees, float elevationDegrees)
 {
     const float az = glm::radians(azimuthDegrees);

@@ -42,6 +42,10 @@ inline float substepSeconds(const SolverSettings& settings)
 // Wind velocity from speed and angles (see the wind_azimuth and wind_elevation help texts).
 glm::vec3 windVelocity(float speed, float azimuthDegrees, float elevationDegrees);
 
+// Whether the wind blows in gusts: some turbulence and some wind (the block kernel then samples
+// them along each strand; `wisp-cli bench` lists them among the physics a step runs).
+bool blowsGusts(float turbulence, const glm::vec3& wind);
+
 SolverSettings solverSettingsFrom(const ParameterValues& values);
 
 // Empty when usable; otherwise names the setting and what is wrong with it.

@@ -68,14 +68,18 @@ std::string brandString()
 
 std::string cpuModelName()
 {
-    std::string name = brandString();
-    if (name.empty()) {
-        std::ifstream in("/proc/cpuinfo");
-        std::ostringstream text;
-        text << in.rdbuf();
-        name = cpuModelFromCpuinfo(text.str());
-    }
-    return name.empty() ? "unknown CPU" : name;
+    // Looked up once (every bench row prints it): the CPU does not change under a running process.
+    static const std::string name = [] {
+        std::string found = brandString();
+        if (found.empty()) {
+            std::ifstream in("/proc/cpuinfo");
+            std::ostringstream text;
+            text << in.rdbuf();
+            found = cpuModelFromCpuinfo(text.str());
+        }
+        return found.empty() ? std::string("unknown CPU") : found;
+    }();
+    return name;
 }
 
 } // namespace wisp

@@ -336,7 +336,9 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     // again (so 1 / length, a division, only where contact looked).
     struct Finished {
         V3 position;
-        V3 direction;
+        V3 along; // the segment (parent to position) or a vector along it, so its direction is
+        Lane alongLength; // along / alongLength, where alongLength = |along|
+        Lane inverseAlong; // and inverseAlong = 1 / alongLength
     };
     auto finish = [&](std::uint32_t i, const V3& before, const V3& reach, const V3& parent, const V3& kick) {
         ParticleSlice& p = row[i];
@@ -440,13 +442,15 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         p.px = previous.x;
         p.py = previous.y;
         p.pz = previous.z;
-        V3 direction = ftl.direction;
+        Finished done{ position, reach, ftl.reachLength, ftl.inverseReach };
         if (haveInverseLength) {
             const Mask moved
                 = (position.x != ftl.position.x) | (position.y != ftl.position.y) | (position.z != ftl.position.z);
-            direction = select(moved, (position - parent) * inverseLength, direction);
+            done.along = select(moved, position - parent, reach);
+            done.alongLength = select(moved, length, ftl.reachLength);
+            done.inverseAlong = select(moved, inverseLength, ftl.inverseReach);
         }
-        return Finished{ position, direction };
+        return done;
     };
 
     // Whether a strand went non-finite or flew away (checked after the step's last substep, below):
@@ -582,19 +586,27 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 if constexpr (Bends)
                     next = restCoordinates(rest[j + 1].u, rest[j + 1].v);
             }
-            const auto [position, d] = finish(j, x, reach, parent, kick);
+            const Finished done = finish(j, x, reach, parent, kick);
+            const V3 position = done.position;
             if (Bends && j + 1 < n) {
                 // Transport the frame onto this segment's direction d now: the shortest rotation
                 // from D to d takes a vector v across D to v - (d.v) / (1 + D.d) (D + d), which
                 // keeps it unit and across d; E, B and the next target's part across D, w, are
                 // such vectors. So the next target d lx + w - (d.w) / (1 + D.d) (D + d) waits only
                 // for d, not for the new frame. (No renormalisation on the chain.)
+                // Taken from r = `along` (d = r / |r|): (d.v) / (1 + D.d) = (r.v) / (|r| + D.r), so
+                // the dot products run beside |r|'s square root and the division waits only for
+                // |r|, not for d, which waits for 1 / |r|, a second division. The clamp
+                // 1 + D.d >= 1e-2 is |r| + D.r >= 1e-2 |r|.
+                const V3 r = done.along;
                 const V3 w = frameE * next.y + frameB * next.z;
-                const Lane inverse = lrcp(lmax(splat(1.0f) + dot(frameD, d), splat(1e-2f)));
+                const Lane inverse
+                    = splat(1.0f) / lmax(done.alongLength + dot(frameD, r), done.alongLength * 1e-2f);
+                const V3 d = r * done.inverseAlong;
                 const V3 sum = frameD + d;
-                turned = d * next.x + w - sum * (dot(d, w) * inverse);
-                frameE = frameE - sum * (dot(d, frameE) * inverse);
-                frameB = frameB - sum * (dot(d, frameB) * inverse);
+                turned = r * (done.inverseAlong * next.x) + w - sum * (dot(r, w) * inverse);
+                frameE = frameE - sum * (dot(r, frameE) * inverse);
+                frameB = frameB - sum * (dot(r, frameB) * inverse);
                 frameD = d;
             }
             // The parent's row is final now (its previous position took this particle's correction).

@@ -139,7 +139,8 @@ template <bool Transformed>
 struct LengthCorrection {
     V3 position; // at rest length from the parent
     V3 correction; // position less the unconstrained position, for the DFTL velocity correction
-    V3 direction; // the segment's unit direction, parent to position
+    Lane reachLength; // |reach|: the segment's direction is reach / |reach| = reach x inverseReach
+    Lane inverseReach;
 };
 
 // A rest direction's coordinates in its parent's rest frame from their stereographic projection
@@ -168,9 +169,10 @@ struct LengthCorrection {
 // final, along the same direction.
 [[gnu::always_inline]] inline LengthCorrection followTheLeader(const V3& parent, const V3& reach, Lane length)
 {
-    const Lane inverseReach = lrsqrt(lmax(dot(reach, reach), splat(1e-24f)));
+    const Lane reachLength = lsqrt(lmax(dot(reach, reach), splat(1e-24f)));
+    const Lane inverseReach = splat(1.0f) / reachLength;
     const Lane scale = length * inverseReach;
-    return { parent + reach * scale, reach * (scale - 1.0f), reach * inverseReach };
+    return { parent + reach * scale, reach * (scale - 1.0f), reachLength, inverseReach };
 }
 
 } // namespace

@@ -600,8 +600,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 // 1 + D.d >= 1e-2 is |r| + D.r >= 1e-2 |r|.
                 const V3 r = done.along;
                 const V3 w = frameE * next.y + frameB * next.z;
-                const Lane inverse
-                    = splat(1.0f) / lmax(done.alongLength + dot(frameD, r), done.alongLength * 1e-2f);
+                const Lane inverse = splat(1.0f) / lmax(done.alongLength + dot(frameD, r), done.alongLength * 1e-2f);
                 const V3 d = r * done.inverseAlong;
                 const V3 sum = frameD + d;
                 turned = r * (done.inverseAlong * next.x) + w - sum * (dot(r, w) * inverse);

@@ -80,8 +80,13 @@ inline void prefetchRows(const Solver::Block& block, std::uint32_t j)
 inline void prefetchNextShape(const Solver::Block& block)
 {
     const char* at = reinterpret_cast<const char*>(block.shape.data() + Solver::Block::kShapeRows);
-    for (std::size_t byte = 0; byte < 2 * sizeof(ShapeRow); byte += 64)
+    for (std::size_t byte = 0; byte < 2 * sizeof(ShapeRow); byte += 64) {
+#if HWY_ARCH_X86
         asm volatile("prefetcht0 %0" : : "m"(*(at + byte)));
+#else // (x86's instruction would not assemble for ARM, where GCC was not seen to drop the hint)
+        __builtin_prefetch(at + byte);
+#endif
+    }
 }
 
 // The capsules any particle of a block can reach this step: none farther from its root than its

@@ -11,6 +11,9 @@
 #
 # After the tests, the Release mode also fuzzes every reader briefly (scripts/fuzz.sh --ci: its
 # own clang build, about 20 s a target); WISP_CI_FUZZ=0 skips that.
+# It also compiles sim/ for 64-bit ARM (scripts/arm64-check.sh: Debian's cross compiler, about
+# 2 min), so the solver's NEON and SVE kernels, which no x86 build compiles, keep compiling;
+# WISP_CI_ARM64=0 skips that.
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
@@ -30,4 +33,7 @@ xvfb-run -a -s "-screen 0 1600x1000x24" ctest --output-on-failure -j2 --timeout 
 cd ..
 if [ "${1:-}" != "--sanitize" ] && [ "${WISP_CI_FUZZ:-1}" != 0 ]; then
   scripts/fuzz.sh --ci
+fi
+if [ "${1:-}" != "--sanitize" ] && [ "${WISP_CI_ARM64:-1}" != 0 ]; then
+  scripts/arm64-check.sh
 fi

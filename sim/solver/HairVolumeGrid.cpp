@@ -65,6 +65,11 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridTarget> {
         std::memcpy(&v, p, sizeof v);
         return v;
     }
+    // A pair's floats in fixed point, rounded half away from zero (the conversion truncates).
+    static Fixed8 roundToFixed(Float8 value)
+    {
+        return HWY_NAMESPACE::lanes::truncateToInt64(value + (value < 0.0f ? Float8{} - 0.5f : Float8{} + 0.5f));
+    }
 
     // The row's grid coordinates (CellRow), in one vector pass.
     static void cellsOf(const G& g, const float* x, const float* y, const float* z, int count, CellRow& out);
@@ -396,7 +401,7 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::splatRow(G& g, int slot, 
                 const Float8 value = run[2 * dz + dy] * units;
                 Fixed8 sum;
                 std::memcpy(&sum, pair, sizeof sum);
-                sum += __builtin_convertvector(value + (value < 0.0f ? Float8{} - 0.5f : Float8{} + 0.5f), Fixed8);
+                sum += roundToFixed(value);
                 std::memcpy(pair, &sum, sizeof sum);
             }
     };

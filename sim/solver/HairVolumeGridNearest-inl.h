@@ -174,7 +174,7 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
             Fixed4 sum;
             std::int64_t* const at = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
             std::memcpy(&sum, at, sizeof sum);
-            sum += __builtin_convertvector(value + (value < 0.0f ? Float4{} - 0.5f : Float4{} + 0.5f), Fixed4);
+            sum += HWY_NAMESPACE::lanes::truncateToInt64(value + (value < 0.0f ? Float4{} - 0.5f : Float4{} + 0.5f));
             std::memcpy(at, &sum, sizeof sum);
         };
         constexpr float kMax = G::kMaxMoveMetres;

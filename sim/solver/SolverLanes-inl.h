@@ -19,6 +19,7 @@
 
 #include <hwy/highway.h>
 
+#include <cstdint>
 #include <cstring>
 #if HWY_ARCH_X86
 #include <immintrin.h>
@@ -267,6 +268,59 @@ template <class L> inline L lsin(L x)
             + r2
                 * (-1.0f / 6
                     + r2 * (1.0f / 120 + r2 * (-1.0f / 5040 + r2 * (1.0f / 362880 + r2 * (-1.0f / 39916800))))));
+}
+
+// Floats to 64-bit integers, truncated toward zero, as C++'s conversion gives them (for |v| < 2^63;
+// the volume grid's fixed point keeps its values below 2^61), four or eight at a time: the volume
+// grid's splats (HairVolumeGrid.cpp, HairVolumeGridNearest-inl.h). GCC 12 converts a vector of
+// them lane by lane below AVX-512, which has the instruction: a scalar conversion and two moves
+// a lane, most of an AVX2 trilinear splat's flush (perf, paper-35x35x30). On AVX2 the float's
+// fields do it: the mantissa with its hidden bit, shifted by the exponent (the variable 64-bit
+// shifts give 0 for a count past 63, so one of the two shifts is always a no-op), then the sign.
+using Float4 = float __attribute__((vector_size(4 * sizeof(float))));
+using Float8 = float __attribute__((vector_size(8 * sizeof(float))));
+using Int64x4 = std::int64_t __attribute__((vector_size(4 * sizeof(std::int64_t))));
+using Int64x8 = std::int64_t __attribute__((vector_size(8 * sizeof(std::int64_t))));
+inline Int64x4 truncateToInt64(Float4 v)
+{
+#if WISP_LANES_AVX512
+    __m128 in;
+    std::memcpy(&in, &v, sizeof in);
+    const __m256i out = _mm256_cvttps_epi64(in);
+#elif WISP_LANES_AVX
+    __m128i in;
+    std::memcpy(&in, &v, sizeof in);
+    const __m256i bits = _mm256_cvtepu32_epi64(in); // each float's bits in a 64-bit lane
+    const __m256i exponent = _mm256_and_si256(_mm256_srli_epi64(bits, 23), _mm256_set1_epi64x(0xFF));
+    const __m256i mantissa = _mm256_or_si256(
+        _mm256_and_si256(bits, _mm256_set1_epi64x(0x7FFFFF)), _mm256_set1_epi64x(0x800000));
+    // |v| = mantissa x 2^(exponent - 150): left by the difference, or right by its opposite.
+    const __m256i left = _mm256_sub_epi64(exponent, _mm256_set1_epi64x(150));
+    const __m256i right = _mm256_sub_epi64(_mm256_set1_epi64x(150), exponent);
+    const __m256i magnitude = _mm256_or_si256(_mm256_sllv_epi64(mantissa, left), _mm256_srlv_epi64(mantissa, right));
+    const __m256i sign = _mm256_sub_epi64(_mm256_setzero_si256(), _mm256_srli_epi64(bits, 31)); // 0 or -1
+    const __m256i out = _mm256_sub_epi64(_mm256_xor_si256(magnitude, sign), sign);
+#else
+    const Int64x4 out = __builtin_convertvector(v, Int64x4);
+#endif
+    Int64x4 result;
+    std::memcpy(&result, &out, sizeof result);
+    return result;
+}
+inline Int64x8 truncateToInt64(Float8 v)
+{
+#if WISP_LANES_AVX512
+    __m256 in;
+    std::memcpy(&in, &v, sizeof in);
+    const __m512i out = _mm512_cvttps_epi64(in);
+    Int64x8 result;
+    std::memcpy(&result, &out, sizeof result);
+    return result;
+#else
+    const Float4 low = { v[0], v[1], v[2], v[3] }, high = { v[4], v[5], v[6], v[7] };
+    const Int64x4 lo = truncateToInt64(low), hi = truncateToInt64(high);
+    return Int64x8{ lo[0], lo[1], lo[2], lo[3], hi[0], hi[1], hi[2], hi[3] };
+#endif
 }
 
 } // namespace

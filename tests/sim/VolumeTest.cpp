@@ -14,6 +14,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <string>
+#include <vector>
 
 using namespace wisp;
 using namespace wisp::test;
@@ -147,6 +149,61 @@ TEST(HairVolumeGrid, SameBitsWhicheverThreadsSplatWhichParticles)
         ASSERT_EQ(one.size(), three.size());
         EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(float)), 0);
         EXPECT_GT(*std::max_element(one.begin(), one.end()), 1000.0f); // it read real hair
+    }
+}
+
+// The splats' fixed point on every SIMD target (the float-to-64-bit conversion is one instruction
+// on AVX-512, the float's fields shifted on AVX2, lane by lane on SSE4): rows of sixteen, some lanes
+// sharing a cell, with weights from one that fills the fixed point's range (its values near 2^60)
+// to ones a few units wide, and moves of both signs up to the clamp. Every target reads back the
+// same bits, and the weight splatted is the weight read back.
+TEST(HairVolumeGrid, EveryTargetSplatsTheSameFixedPointFromAFewUnitsToTheTopOfItsRange)
+{
+    for (const HairVolumeGrid::Kernel kernel :
+        { HairVolumeGrid::Kernel::Trilinear, HairVolumeGrid::Kernel::NearestSmoothed }) {
+        double splatted = 0.0;
+        auto run = [&](const std::string& target) {
+            EXPECT_EQ(forceSimdTarget(target), "");
+            HairVolumeGrid grid;
+            grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f), 1, HairVolumeGrid::kMaxNodes, kernel);
+            grid.setWeightBound(1.0); // units of 2^-60
+            alignas(64) float x[16], y[16], z[16], w[16], mx[16], my[16], mz[16];
+            splatted = 0.0;
+            for (int row = 0; row < 8; ++row) {
+                for (int l = 0; l < 16; ++l) {
+                    const float t = static_cast<float>(row * 16 + l);
+                    x[l] = 0.002f * static_cast<float>(l / 3) - 0.01f; // three lanes a cell, or two
+                    y[l] = 0.05f * std::sin(t * 0.37f);
+                    z[l] = 0.05f * std::cos(t * 0.23f);
+                    // One heavy particle a row, the rest from 1e-3 down to 3e-18 (a few units).
+                    w[l] = l == 5 ? 0.1f : 1e-3f * std::pow(1e-1f, static_cast<float>(l % 16));
+                    mx[l] = 0.7f * std::sin(t); // beyond the clamp (0.5 m) now and then
+                    my[l] = -0.3f * std::cos(t * 1.3f);
+                    mz[l] = l % 2 ? -1e-6f : 0.49f;
+                    splatted += static_cast<double>(w[l]);
+                }
+                grid.splatRow(0, x, y, z, w, mx, my, mz);
+            }
+            grid.finish(nullptr);
+            EXPECT_NEAR(grid.totalWeight(), splatted, 1e-6 * splatted) << target;
+            std::vector<float> out;
+            for (float px = -0.02f; px < 0.01f; px += 0.0013f)
+                for (float py = -0.05f; py < 0.05f; py += 0.007f) {
+                    const HairVolumeGrid::Sample s = grid.sample({ px, py, 0.6f * py });
+                    out.insert(out.end(), { s.density, s.hair, s.move.x, s.move.y, s.move.z, s.gradient.x });
+                }
+            return out;
+        };
+        const std::vector<std::string> targets = availableSimdTargets();
+        const std::vector<float> best = run(targets.front());
+        EXPECT_GT(*std::max_element(best.begin(), best.end()), 1e3f); // it read the heavy particles
+        for (const std::string& target : targets) {
+            const std::vector<float> other = run(target);
+            ASSERT_EQ(other.size(), best.size());
+            EXPECT_EQ(std::memcmp(other.data(), best.data(), best.size() * sizeof(float)), 0)
+                << target << " against " << targets.front();
+        }
+        forceSimdTarget("");
     }
 }
 

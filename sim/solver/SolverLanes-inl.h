@@ -292,8 +292,8 @@ inline Int64x4 truncateToInt64(Float4 v)
     std::memcpy(&in, &v, sizeof in);
     const __m256i bits = _mm256_cvtepu32_epi64(in); // each float's bits in a 64-bit lane
     const __m256i exponent = _mm256_and_si256(_mm256_srli_epi64(bits, 23), _mm256_set1_epi64x(0xFF));
-    const __m256i mantissa = _mm256_or_si256(
-        _mm256_and_si256(bits, _mm256_set1_epi64x(0x7FFFFF)), _mm256_set1_epi64x(0x800000));
+    const __m256i mantissa
+        = _mm256_or_si256(_mm256_and_si256(bits, _mm256_set1_epi64x(0x7FFFFF)), _mm256_set1_epi64x(0x800000));
     // |v| = mantissa x 2^(exponent - 150): left by the difference, or right by its opposite.
     const __m256i left = _mm256_sub_epi64(exponent, _mm256_set1_epi64x(150));
     const __m256i right = _mm256_sub_epi64(_mm256_set1_epi64x(150), exponent);

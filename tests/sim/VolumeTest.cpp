@@ -207,6 +207,45 @@ TEST(HairVolumeGrid, EveryTargetSplatsTheSameFixedPointFromAFewUnitsToTheTopOfIt
     }
 }
 
+// A full row of sixteen read at once (eight lanes at a time, turned into the row's arrays by a
+// transpose) gives each lane exactly what it reads alone, every one of its eight values; lanes
+// outside the grid read zeros.
+TEST(HairVolumeGrid, AFullTrilinearRowReadsWhatEachLaneReadsAlone)
+{
+    HairVolumeGrid grid;
+    ASSERT_TRUE(grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f)));
+    grid.setSolid([](const glm::vec3& p) { return glm::length(p) - 0.02f; });
+    grid.setWeightBound(2000.0);
+    for (int i = 0; i < 2000; ++i) {
+        const float t = static_cast<float>(i);
+        grid.splat(0, { 0.05f * std::sin(t * 0.37f), 0.05f * std::sin(t * 0.11f), 0.05f * std::cos(t * 0.23f) },
+            1.0f + 0.5f * std::sin(t), { 0.001f * std::cos(t), 0.0005f, -0.002f * std::sin(t * 0.7f) });
+    }
+    grid.finish(nullptr, 3000.0f);
+    alignas(64) float x[16], y[16], z[16];
+    for (int l = 0; l < 16; ++l) {
+        x[l] = -0.04f + 0.0053f * static_cast<float>(l);
+        y[l] = 0.003f * static_cast<float>(l % 5) - 0.01f;
+        z[l] = 0.02f * std::sin(static_cast<float>(l));
+    }
+    x[6] = 0.5f; // outside
+    HairVolumeGrid::SampleRow row;
+    grid.sampleRow(x, y, z, row);
+    for (int l = 0; l < 16; ++l) {
+        HairVolumeGrid::SampleRow alone;
+        grid.sampleRow(&x[l], &y[l], &z[l], alone, 1);
+        const float* const rowFields[8]
+            = { row.density, row.gradX, row.gradY, row.gradZ, row.momentumX, row.momentumY, row.momentumZ, row.hair };
+        const float* const aloneFields[8] = { alone.density, alone.gradX, alone.gradY, alone.gradZ, alone.momentumX,
+            alone.momentumY, alone.momentumZ, alone.hair };
+        for (int f = 0; f < 8; ++f)
+            EXPECT_EQ(rowFields[f][l], aloneFields[f][0]) << "lane " << l << ", value " << f;
+    }
+    EXPECT_EQ(row.density[6], 0.0f);
+    EXPECT_GT(row.hair[8], 0.0f); // inside the hair
+    EXPECT_NE(row.momentumZ[8], 0.0f);
+}
+
 // A row sampled every fourth lane (the level of detail of a dense groom): lanes 0, 4, 8, 12 and 15
 // read what sample() reads there, the lanes between the linear blend of the two around them.
 TEST(HairVolumeGrid, AStridedRowBlendsTheSamplesAroundEachLane)

@@ -211,7 +211,21 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::finish(G& g, ThreadPool* 
             s[3] = 0.25f * (before.moveZ + after.moveZ) + 0.5f * here.moveZ;
         }
     };
+    using Index4 = std::int32_t __attribute__((vector_size(4 * sizeof(std::int32_t))));
     auto storeRow = [&](std::size_t n0, int nodes, const float* sums) { // what sample() reads of the hair
+        if (nodes == kBrick) { // a shuffle and a 16-byte store a node (GCC stored the row float by float)
+            Float16 all;
+            std::memcpy(&all, sums, sizeof all);
+            for (int i = 0; i < kBrick; ++i) {
+                const Float4 sum = { all[4 * i], all[4 * i + 1], all[4 * i + 2], all[4 * i + 3] };
+                const Float4 hair = __builtin_shuffle(sum, Index4{ 1, 2, 3, 0 }); // Node's moveX, moveY, moveZ, weight
+                std::memcpy(&g.m_nodes[n0 + static_cast<std::size_t>(i)].moveX, &hair, sizeof hair);
+            }
+            const Float4 weight = { all[0], all[4], all[8], all[12] };
+            const Float4 density = weight * perVolume;
+            std::memcpy(&g.m_hairDensity[n0], &density, sizeof density);
+            return;
+        }
         for (int i = 0; i < nodes; ++i) {
             Node& node = g.m_nodes[n0 + static_cast<std::size_t>(i)];
             const float* const s = sums + 4 * i;
@@ -286,13 +300,17 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::finish(G& g, ThreadPool* 
                 const Float4 here = density(n0), gx = (density(n0 + 1) - density(n0 - 1)) * inv2h,
                              gy = (density(n0 + sy) - density(n0 - sy)) * inv2h,
                              gz = (density(n0 + sz) - density(n0 - sz)) * inv2h;
-                for (int i = 0; i < kBrick; ++i) {
-                    Node& node = g.m_nodes[n0 + static_cast<std::size_t>(i)];
-                    node.density = here[i];
-                    node.gradX = gx[i];
-                    node.gradY = gy[i];
-                    node.gradZ = gz[i];
-                }
+                // Node i's (density, gradient) is column i of these four: a 4 x 4 transpose, then a
+                // 16-byte store a node.
+                const Float4 t0 = __builtin_shuffle(here, gx, Index4{ 0, 4, 1, 5 }),
+                             t1 = __builtin_shuffle(here, gx, Index4{ 2, 6, 3, 7 }),
+                             t2 = __builtin_shuffle(gy, gz, Index4{ 0, 4, 1, 5 }),
+                             t3 = __builtin_shuffle(gy, gz, Index4{ 2, 6, 3, 7 });
+                const Float4 columns[kBrick] = { __builtin_shuffle(t0, t2, Index4{ 0, 1, 4, 5 }),
+                    __builtin_shuffle(t0, t2, Index4{ 2, 3, 6, 7 }), __builtin_shuffle(t1, t3, Index4{ 0, 1, 4, 5 }),
+                    __builtin_shuffle(t1, t3, Index4{ 2, 3, 6, 7 }) };
+                for (int i = 0; i < kBrick; ++i)
+                    std::memcpy(&g.m_nodes[n0 + static_cast<std::size_t>(i)].density, &columns[i], sizeof columns[i]);
                 return;
             }
             for (int i = i0; i < i0 + nodes; ++i) {

@@ -207,13 +207,10 @@ TEST(HairVolumeGrid, EveryTargetSplatsTheSameFixedPointFromAFewUnitsToTheTopOfIt
     }
 }
 
-// A full row of sixteen read at once (eight lanes at a time, turned into the row's arrays by a
-// transpose) gives each lane exactly what it reads alone, every one of its eight values; lanes
-// outside the grid read zeros.
-TEST(HairVolumeGrid, AFullTrilinearRowReadsWhatEachLaneReadsAlone)
+// A solid ball of 2 cm and a cloud of 2,000 particles of different weights and moves around it,
+// splatted one by one into slot 0 of a grid laid over (-0.1, 0.1)^3 (not finished).
+void splatACloud(HairVolumeGrid& grid)
 {
-    HairVolumeGrid grid;
-    ASSERT_TRUE(grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f)));
     grid.setSolid([](const glm::vec3& p) { return glm::length(p) - 0.02f; });
     grid.setWeightBound(2000.0);
     for (int i = 0; i < 2000; ++i) {
@@ -221,6 +218,16 @@ TEST(HairVolumeGrid, AFullTrilinearRowReadsWhatEachLaneReadsAlone)
         grid.splat(0, { 0.05f * std::sin(t * 0.37f), 0.05f * std::sin(t * 0.11f), 0.05f * std::cos(t * 0.23f) },
             1.0f + 0.5f * std::sin(t), { 0.001f * std::cos(t), 0.0005f, -0.002f * std::sin(t * 0.7f) });
     }
+}
+
+// A full row of sixteen read at once (eight lanes at a time, turned into the row's arrays by a
+// transpose) gives each lane exactly what it reads alone, every one of its eight values; lanes
+// outside the grid read zeros.
+TEST(HairVolumeGrid, AFullTrilinearRowReadsWhatEachLaneReadsAlone)
+{
+    HairVolumeGrid grid;
+    ASSERT_TRUE(grid.setBounds(glm::vec3(-0.1f), glm::vec3(0.1f)));
+    splatACloud(grid);
     grid.finish(nullptr, 3000.0f);
     alignas(64) float x[16], y[16], z[16];
     for (int l = 0; l < 16; ++l) {
@@ -287,13 +294,7 @@ TEST(HairVolumeGrid, ANearestRowReadsWhatEachLaneReadsAlone)
     HairVolumeGrid grid;
     ASSERT_TRUE(grid.setBounds(
         glm::vec3(-0.1f), glm::vec3(0.1f), 1, HairVolumeGrid::kMaxNodes, HairVolumeGrid::Kernel::NearestSmoothed));
-    grid.setSolid([](const glm::vec3& p) { return glm::length(p) - 0.02f; });
-    grid.setWeightBound(2000.0);
-    for (int i = 0; i < 2000; ++i) {
-        const float t = static_cast<float>(i);
-        grid.splat(0, { 0.05f * std::sin(t * 0.37f), 0.05f * std::sin(t * 0.11f), 0.05f * std::cos(t * 0.23f) },
-            1.0f + 0.5f * std::sin(t), { 0.001f * std::cos(t), 0.0005f, -0.002f * std::sin(t * 0.7f) });
-    }
+    splatACloud(grid);
     grid.finish(nullptr, 1e4f);
     alignas(64) float x[16], y[16], z[16];
     for (int l = 0; l < 16; ++l) {

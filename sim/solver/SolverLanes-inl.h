@@ -270,8 +270,9 @@ template <class L> inline L lsin(L x)
                     + r2 * (1.0f / 120 + r2 * (-1.0f / 5040 + r2 * (1.0f / 362880 + r2 * (-1.0f / 39916800))))));
 }
 
-// Floats to 64-bit integers, truncated toward zero, as C++'s conversion gives them (for |v| < 2^63;
-// the volume grid's fixed point keeps its values below 2^61), four or eight at a time: the volume
+// Floats to 64-bit integers, truncated toward zero, as C++'s conversion gives them for |v| < 2^63 (the
+// volume grid's fixed point keeps its values below 2^61), and beyond that, NaN included, INT64_MIN
+// on every x86 target, as x86's own conversions give it; four or eight at a time: the volume
 // grid's splats (HairVolumeGrid.cpp, HairVolumeGridNearest-inl.h). GCC 12 converts a vector of
 // them lane by lane below AVX-512, which has the instruction: a scalar conversion and two moves
 // a lane, most of an AVX2 trilinear splat's flush (perf, paper-35x35x30). On AVX2 the float's
@@ -299,7 +300,11 @@ inline Int64x4 truncateToInt64(Float4 v)
     const __m256i right = _mm256_sub_epi64(_mm256_set1_epi64x(150), exponent);
     const __m256i magnitude = _mm256_or_si256(_mm256_sllv_epi64(mantissa, left), _mm256_srlv_epi64(mantissa, right));
     const __m256i sign = _mm256_sub_epi64(_mm256_setzero_si256(), _mm256_srli_epi64(bits, 31)); // 0 or -1
-    const __m256i out = _mm256_sub_epi64(_mm256_xor_si256(magnitude, sign), sign);
+    const __m256i truncated = _mm256_sub_epi64(_mm256_xor_si256(magnitude, sign), sign);
+    // Beyond (NaN, infinities, |v| >= 2^63): x86's "integer indefinite", as the AVX-512 and the
+    // scalar conversions give it, so that every target gives the same bits for any input.
+    const __m256i beyond = _mm256_cmpgt_epi64(exponent, _mm256_set1_epi64x(126 + 63));
+    const __m256i out = _mm256_blendv_epi8(truncated, _mm256_set1_epi64x(INT64_MIN), beyond);
 #else
     const Int64x4 out = __builtin_convertvector(v, Int64x4);
 #endif

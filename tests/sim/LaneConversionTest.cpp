@@ -3,7 +3,8 @@
 // the compiler's lane-by-lane conversion on SSE4. On every target this CPU runs it must give what
 // C++'s conversion gives (truncation toward zero) for every float below 2^63 in magnitude: zeros,
 // subnormals, fractions, the halves the fixed point's rounding adds, every exponent up to 62 with
-// mantissas across their range, both signs. Compiled once per target, as the solver's kernels are.
+// mantissas across their range, both signs; and beyond (NaN, infinities), INT64_MIN on x86, as
+// x86's own conversions give it. Compiled once per target, as the solver's kernels are.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "tests/sim/LaneConversionTest.cpp"
@@ -51,6 +52,7 @@ HWY_AFTER_NAMESPACE();
 
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -78,6 +80,14 @@ std::vector<float> valuesToConvert()
             const float value = std::ldexp(mantissa, exponent);
             v.push_back(k % 2 ? -value : value);
         }
+#if defined(__x86_64__) || defined(__i386__)
+    // Beyond C++'s range: x86's "integer indefinite" (INT64_MIN) on every x86 target (ARM's own
+    // conversion saturates instead, and NaN gives 0 there).
+    for (const float beyond : { std::ldexp(1.0f, 63), -std::ldexp(1.0f, 63), 1e30f, -1e38f,
+             std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+             std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::quiet_NaN() })
+        v.push_back(beyond);
+#endif
     while (v.size() % 8 != 0)
         v.push_back(3.0f);
     return v;
@@ -98,11 +108,14 @@ TEST(LaneConversion, EveryTargetTruncatesFloatsToInt64AsCppDoes)
         std::vector<std::int64_t> out(in.size(), -7);
         HWY_DYNAMIC_DISPATCH(truncateOnTarget)(in.data(), out.data(), in.size());
         int wrong = 0;
-        for (std::size_t i = 0; i < in.size(); ++i)
-            if (out[i] != static_cast<std::int64_t>(in[i]) && ++wrong <= 5)
+        for (std::size_t i = 0; i < in.size(); ++i) {
+            const std::int64_t expected = std::abs(in[i]) < 0x1p63f ? static_cast<std::int64_t>(in[i])
+                                                                    : std::numeric_limits<std::int64_t>::min();
+            if (out[i] != expected && ++wrong <= 5)
                 ADD_FAILURE() << target << ": " << in[i] << " (bits 0x" << std::hex
-                              << std::bit_cast<std::uint32_t>(in[i]) << std::dec << ") gave " << out[i]
-                              << ", C++ gives " << static_cast<std::int64_t>(in[i]);
+                              << std::bit_cast<std::uint32_t>(in[i]) << std::dec << ") gave " << out[i] << ", expected "
+                              << expected;
+        }
         EXPECT_EQ(wrong, 0) << target;
     }
 }

@@ -211,14 +211,13 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::finish(G& g, ThreadPool* 
             s[3] = 0.25f * (before.moveZ + after.moveZ) + 0.5f * here.moveZ;
         }
     };
-    using Index4 = std::int32_t __attribute__((vector_size(4 * sizeof(std::int32_t))));
     auto storeRow = [&](std::size_t n0, int nodes, const float* sums) { // what sample() reads of the hair
         if (nodes == kBrick) { // a shuffle and a 16-byte store a node (GCC stored the row float by float)
             Float16 all;
             std::memcpy(&all, sums, sizeof all);
             for (int i = 0; i < kBrick; ++i) {
                 const Float4 sum = { all[4 * i], all[4 * i + 1], all[4 * i + 2], all[4 * i + 3] };
-                const Float4 hair = __builtin_shuffle(sum, Index4{ 1, 2, 3, 0 }); // Node's moveX, moveY, moveZ, weight
+                const Float4 hair = __builtin_shufflevector(sum, sum, 1, 2, 3, 0); // Node's moveX, moveY, moveZ, weight
                 std::memcpy(&g.m_nodes[n0 + static_cast<std::size_t>(i)].moveX, &hair, sizeof hair);
             }
             const Float4 weight = { all[0], all[4], all[8], all[12] };
@@ -302,13 +301,13 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::finish(G& g, ThreadPool* 
                              gz = (density(n0 + sz) - density(n0 - sz)) * inv2h;
                 // Node i's (density, gradient) is column i of these four: a 4 x 4 transpose, then a
                 // 16-byte store a node.
-                const Float4 t0 = __builtin_shuffle(here, gx, Index4{ 0, 4, 1, 5 }),
-                             t1 = __builtin_shuffle(here, gx, Index4{ 2, 6, 3, 7 }),
-                             t2 = __builtin_shuffle(gy, gz, Index4{ 0, 4, 1, 5 }),
-                             t3 = __builtin_shuffle(gy, gz, Index4{ 2, 6, 3, 7 });
-                const Float4 columns[kBrick] = { __builtin_shuffle(t0, t2, Index4{ 0, 1, 4, 5 }),
-                    __builtin_shuffle(t0, t2, Index4{ 2, 3, 6, 7 }), __builtin_shuffle(t1, t3, Index4{ 0, 1, 4, 5 }),
-                    __builtin_shuffle(t1, t3, Index4{ 2, 3, 6, 7 }) };
+                const Float4 t0 = __builtin_shufflevector(here, gx, 0, 4, 1, 5),
+                             t1 = __builtin_shufflevector(here, gx, 2, 6, 3, 7),
+                             t2 = __builtin_shufflevector(gy, gz, 0, 4, 1, 5),
+                             t3 = __builtin_shufflevector(gy, gz, 2, 6, 3, 7);
+                const Float4 columns[kBrick]
+                    = { __builtin_shufflevector(t0, t2, 0, 1, 4, 5), __builtin_shufflevector(t0, t2, 2, 3, 6, 7),
+                          __builtin_shufflevector(t1, t3, 0, 1, 4, 5), __builtin_shufflevector(t1, t3, 2, 3, 6, 7) };
                 for (int i = 0; i < kBrick; ++i)
                     std::memcpy(&g.m_nodes[n0 + static_cast<std::size_t>(i)].density, &columns[i], sizeof columns[i]);
                 return;
@@ -493,7 +492,6 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::sampleRow(
         // Eight lanes at a time, their values turned into the row's arrays by an 8 x 8 transpose
         // (unpacks, shuffles and half swaps): taken out lane by lane instead, each lane's eight
         // values were seven extracts and eight scalar stores, where perf put a fifth of the read.
-        using Index8 = std::int32_t __attribute__((vector_size(8 * sizeof(std::int32_t))));
         float* const fields[8] = { out.density, out.gradX, out.gradY, out.gradZ, out.momentumX, out.momentumY,
             out.momentumZ, out.hair }; // Node's order
         for (int first = 0; first < kRowLanes; first += 8) {
@@ -502,17 +500,17 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::sampleRow(
                 r[i] = sampleLane(first + i);
             Float8 t[8], u[8];
             for (int i = 0; i < 8; i += 2) {
-                t[i] = __builtin_shuffle(r[i], r[i + 1], Index8{ 0, 8, 1, 9, 4, 12, 5, 13 });
-                t[i + 1] = __builtin_shuffle(r[i], r[i + 1], Index8{ 2, 10, 3, 11, 6, 14, 7, 15 });
+                t[i] = __builtin_shufflevector(r[i], r[i + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+                t[i + 1] = __builtin_shufflevector(r[i], r[i + 1], 2, 10, 3, 11, 6, 14, 7, 15);
             }
             for (int i = 0; i < 8; i += 4)
                 for (int h = 0; h < 2; ++h) {
-                    u[i + 2 * h] = __builtin_shuffle(t[i + h], t[i + h + 2], Index8{ 0, 1, 8, 9, 4, 5, 12, 13 });
-                    u[i + 2 * h + 1] = __builtin_shuffle(t[i + h], t[i + h + 2], Index8{ 2, 3, 10, 11, 6, 7, 14, 15 });
+                    u[i + 2 * h] = __builtin_shufflevector(t[i + h], t[i + h + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+                    u[i + 2 * h + 1] = __builtin_shufflevector(t[i + h], t[i + h + 2], 2, 3, 10, 11, 6, 7, 14, 15);
                 }
             for (int f = 0; f < 4; ++f) {
-                const Float8 low = __builtin_shuffle(u[f], u[f + 4], Index8{ 0, 1, 2, 3, 8, 9, 10, 11 });
-                const Float8 high = __builtin_shuffle(u[f], u[f + 4], Index8{ 4, 5, 6, 7, 12, 13, 14, 15 });
+                const Float8 low = __builtin_shufflevector(u[f], u[f + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+                const Float8 high = __builtin_shufflevector(u[f], u[f + 4], 4, 5, 6, 7, 12, 13, 14, 15);
                 std::memcpy(fields[f] + first, &low, sizeof low);
                 std::memcpy(fields[f + 4] + first, &high, sizeof high);
             }

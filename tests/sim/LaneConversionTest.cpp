@@ -34,10 +34,11 @@ void truncateOnTarget(const float* in, std::int64_t* out, std::size_t count)
         std::memcpy(&eight, in + i, sizeof eight);
         const lanes::Int64x8 eightOut = lanes::truncateToInt64(eight);
         // Lanes 4..7 from the eight-lane conversion; lanes 0..3 of it must agree with the four's.
-        std::memcpy(out + i + 4, &eightOut[4], 4 * sizeof(std::int64_t));
-        for (int l = 0; l < 4; ++l)
+        for (int l = 0; l < 4; ++l) {
+            out[i + 4 + static_cast<std::size_t>(l)] = eightOut[l + 4];
             if (eightOut[l] != fourOut[l])
                 out[i + static_cast<std::size_t>(l)] = 0x5a5a5a5a5a5a5a5a; // (no conversion gives this)
+        }
     }
 }
 

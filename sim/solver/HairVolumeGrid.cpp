@@ -65,11 +65,6 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridTarget> {
         std::memcpy(&v, p, sizeof v);
         return v;
     }
-    // A pair's floats in fixed point, rounded half away from zero (the conversion truncates).
-    static Fixed8 roundToFixed(Float8 value)
-    {
-        return HWY_NAMESPACE::lanes::truncateToInt64(value + (value < 0.0f ? Float8{} - 0.5f : Float8{} + 0.5f));
-    }
 
     // The row's grid coordinates (CellRow), in one vector pass.
     static void cellsOf(const G& g, const float* x, const float* y, const float* z, int count, CellRow& out);
@@ -418,7 +413,7 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::splatRow(G& g, int slot, 
                 const Float8 value = run[2 * dz + dy] * units;
                 Fixed8 sum;
                 std::memcpy(&sum, pair, sizeof sum);
-                sum += roundToFixed(value);
+                sum += HWY_NAMESPACE::lanes::roundToInt64(value);
                 std::memcpy(pair, &sum, sizeof sum);
             }
     };
@@ -490,30 +485,17 @@ void HairVolumeGridKernels<HWY_NAMESPACE::GridTarget>::sampleRow(
     };
     if (stride == 1 && count == kRowLanes) {
         // Eight lanes at a time, their values turned into the row's arrays by an 8 x 8 transpose
-        // (unpacks, shuffles and half swaps): taken out lane by lane instead, each lane's eight
+        // (Nearest::transpose8): taken out lane by lane instead, each lane's eight
         // values were seven extracts and eight scalar stores, where perf put a fifth of the read.
         float* const fields[8] = { out.density, out.gradX, out.gradY, out.gradZ, out.momentumX, out.momentumY,
             out.momentumZ, out.hair }; // Node's order
         for (int first = 0; first < kRowLanes; first += 8) {
-            Float8 r[8];
+            Float8 r[8], values[8];
             for (int i = 0; i < 8; ++i)
                 r[i] = sampleLane(first + i);
-            Float8 t[8], u[8];
-            for (int i = 0; i < 8; i += 2) {
-                t[i] = __builtin_shufflevector(r[i], r[i + 1], 0, 8, 1, 9, 4, 12, 5, 13);
-                t[i + 1] = __builtin_shufflevector(r[i], r[i + 1], 2, 10, 3, 11, 6, 14, 7, 15);
-            }
-            for (int i = 0; i < 8; i += 4)
-                for (int h = 0; h < 2; ++h) {
-                    u[i + 2 * h] = __builtin_shufflevector(t[i + h], t[i + h + 2], 0, 1, 8, 9, 4, 5, 12, 13);
-                    u[i + 2 * h + 1] = __builtin_shufflevector(t[i + h], t[i + h + 2], 2, 3, 10, 11, 6, 7, 14, 15);
-                }
-            for (int f = 0; f < 4; ++f) {
-                const Float8 low = __builtin_shufflevector(u[f], u[f + 4], 0, 1, 2, 3, 8, 9, 10, 11);
-                const Float8 high = __builtin_shufflevector(u[f], u[f + 4], 4, 5, 6, 7, 12, 13, 14, 15);
-                std::memcpy(fields[f] + first, &low, sizeof low);
-                std::memcpy(fields[f + 4] + first, &high, sizeof high);
-            }
+            Nearest::transpose8(r, values);
+            for (int f = 0; f < 8; ++f)
+                std::memcpy(fields[f] + first, &values[f], sizeof values[f]);
         }
         return;
     }

@@ -174,7 +174,7 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
             Fixed4 sum;
             std::int64_t* const at = grid + 4 * static_cast<std::ptrdiff_t>(runNode);
             std::memcpy(&sum, at, sizeof sum);
-            sum += HWY_NAMESPACE::lanes::truncateToInt64(value + (value < 0.0f ? Float4{} - 0.5f : Float4{} + 0.5f));
+            sum += HWY_NAMESPACE::lanes::roundToInt64(value);
             std::memcpy(at, &sum, sizeof sum);
         };
         constexpr float kMax = G::kMaxMoveMetres;
@@ -270,9 +270,9 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
         }
     }
 
-#if !WISP_LANES_AVX512
     // Eight nodes' eight floats (one AVX register each) transposed: out[f] holds value f of the
     // eight (the classic unpack, shuffle and 128-bit permute rounds, all within two registers).
+    // Also the trilinear grid's full-row read (HairVolumeGrid.cpp, sampleRow).
     static void transpose8(const Float8 in[8], Float8 out[8])
     {
         Float8 t[8], u[8];
@@ -291,6 +291,7 @@ template <> struct HairVolumeGridKernels<HWY_NAMESPACE::GridNearestTarget> {
         }
     }
 
+#if !WISP_LANES_AVX512
     // Each lane's eight floats blended between the samples around it (LaneBlend<Stride>): the same
     // arithmetic as blending the transposed fields, a node's eight floats in one register.
     template <int Stride> static void blendRows(const float* const rows[kLanes], Float8 out[kLanes])

@@ -328,6 +328,13 @@ inline Int64x8 truncateToInt64(Float8 v)
 #endif
 }
 
+// Rounded half away from zero, then truncated: the volume grid's fixed point (both splats), so that
+// its sums do not drift toward zero.
+template <class F> inline auto roundToInt64(F v)
+{
+    return truncateToInt64(v + (v < 0.0f ? F{} - 0.5f : F{} + 0.5f));
+}
+
 } // namespace
 
 } // namespace lanes

@@ -251,6 +251,9 @@ TEST_F(ViewportTest, WhileTheHairMovesItsShadowsAreRenderedEveryThirdPaint)
 // stop, the refinement paint draws the shadows of the last frame.
 TEST_F(ViewportTest, StreamedFramesArePaintedOnceEachAndTheStillPaintCatchesUpTheShadows)
 {
+    // The frames come as fast as this test makes them, which a loaded machine may slow past the
+    // refinement's delay: it waits, here, until the frames have stopped.
+    viewport->setRefineDelayMs(3'600'000);
     viewport->setFrame(scalpFrame(head, 600, 16, 0.0f));
     grab();
     const std::uint64_t passes = viewport->shadowPassCount();
@@ -258,7 +261,8 @@ TEST_F(ViewportTest, StreamedFramesArePaintedOnceEachAndTheStillPaintCatchesUpTh
     constexpr int kFrames = 7; // shadows at the third and sixth; the seventh's skipped
     for (int k = 1; k <= kFrames; ++k) {
         viewport->setFrame(scalpFrame(head, 600, 16, static_cast<float>(k)));
-        ASSERT_TRUE(test::waitUntil([&] { return viewport->paintCount() == paints + static_cast<std::uint64_t>(k); }));
+        ASSERT_TRUE(test::waitUntil([&] { return viewport->paintCount() >= paints + static_cast<std::uint64_t>(k); }));
+        ASSERT_EQ(viewport->paintCount(), paints + static_cast<std::uint64_t>(k)) << "frame " << k;
         for (int turn = 0; turn < 5; ++turn) // a paint asked for at once would happen here
             QCoreApplication::processEvents();
         EXPECT_EQ(viewport->paintCount(), paints + static_cast<std::uint64_t>(k)) << "after frame " << k;
@@ -268,6 +272,7 @@ TEST_F(ViewportTest, StreamedFramesArePaintedOnceEachAndTheStillPaintCatchesUpTh
     }
     EXPECT_EQ(viewport->shadowPassCount(), passes + 2);
     // Still: the refinement paint renders the last frame's shadows.
+    viewport->setRefineDelayMs(0);
     ASSERT_TRUE(test::waitUntil([&] { return viewport->shadowPassCount() == passes + 3; }));
     EXPECT_EQ(viewport->paintCount(), paints + kFrames + 1);
     if (viewport->halfResolutionWhileMoving()) {

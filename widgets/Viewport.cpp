@@ -99,7 +99,7 @@ Viewport::Viewport(QWidget* parent)
     // WISP_GL_HAIR: the half-resolution hair drawn by GL's lines, to compare with.
     m_glHairWanted = qEnvironmentVariableIsSet("WISP_GL_HAIR");
     m_refineTimer.setSingleShot(true);
-    m_refineTimer.setInterval(300);
+    m_refineTimer.setInterval(kRefineDelayMs);
     connect(&m_refineTimer, &QTimer::timeout, this, [this] {
         m_refining = true;
         scheduleFrame();

@@ -177,11 +177,11 @@ public:
     bool halfResolutionWhileMoving() const { return m_halfResolutionWhileMoving.value_or(m_softwareGl); }
     bool lastPaintHairAtHalfResolution() const { return m_lastHairAtHalfResolution; }
     // How long after a reduced paint (half resolution, a preview, shadows left for later) with no
-    // paint after it the refinement paint comes: 300 ms by default, about the pause between two
-    // drags that still reads as one motion. Tests that pace frames themselves set it beyond their
-    // run, so that a slow paint on a loaded machine does not let one in between.
+    // paint after it the refinement paint comes: kRefineDelayMs by default, about the pause between
+    // two drags that still reads as one motion. Tests that pace frames themselves set it beyond
+    // their run, so that a slow paint on a loaded machine does not let one in between.
+    static constexpr int kRefineDelayMs = 300;
     void setRefineDelayMs(int ms) { m_refineTimer.setInterval(std::max(0, ms)); }
-    int refineDelayMs() const { return m_refineTimer.interval(); }
     // The half-resolution hair drawn by our own rasteriser on the CPU (HairSoftwareRaster), the
     // strands' shaded samples captured from GL: on llvmpipe a thin line costs a triangle's setup and
     // a 4x4 block's shading per few pixels, and our code pays only for the pixels. On by default

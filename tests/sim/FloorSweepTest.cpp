@@ -1,12 +1,15 @@
 // The memory floor's sweep (FloorSweep.h) does the work it claims, so `wisp-cli bench`'s floor
 // row times a real hair step: strands hang at their length from fixed roots, a push swings and
-// dies out, and the result is the same on 1 and 2 threads.
+// dies out, and the result is the same on 1 and 2 threads and on every SIMD target.
 #include "sim/solver/FloorSweep.h"
+#include "sim/util/SimdTarget.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cmath>
+#include <string>
+#include <vector>
 
 using namespace wisp;
 
@@ -68,6 +71,43 @@ TEST(FloorSweep, OneAndTwoThreadsGiveTheSameBits)
             ASSERT_EQ(one.y(s, j), two.y(s, j));
             ASSERT_EQ(one.z(s, j), two.z(s, j));
         }
+}
+
+// The floor runs on the solver's SIMD target, a register's width of lanes at a time: every target
+// this CPU runs sweeps the same lanes to the same bits (exact square roots and divisions, as the
+// solver's, SolverLanes-inl.h), so no target's floor skips or repeats a slice of a block.
+TEST(FloorSweep, EveryTargetGivesTheSameBits)
+{
+    auto sweep = [] {
+        FloorSweep floor(16 * 15 * 3 + 7, 15, 2); // three blocks and a padded fourth
+        floor.displace(0.03f, -0.02f);
+        for (int i = 0; i < 30; ++i)
+            floor.step();
+        std::vector<float> bits;
+        for (std::size_t s = 0; s < floor.strandCount(); ++s)
+            for (std::uint32_t j = 0; j < floor.pointsPerStrand(); ++j)
+                bits.insert(bits.end(), { floor.x(s, j), floor.y(s, j), floor.z(s, j) });
+        return bits;
+    };
+    const std::vector<std::string> targets = availableSimdTargets();
+    ASSERT_FALSE(targets.empty());
+    const std::vector<float> best = sweep();
+    for (const std::string& t : targets) {
+        ASSERT_EQ(forceSimdTarget(t), "");
+        const std::vector<float> here = sweep();
+        forceSimdTarget("");
+        ASSERT_EQ(here.size(), best.size());
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < best.size(); ++i)
+            differing += here[i] != best[i] ? 1 : 0;
+        EXPECT_EQ(differing, 0u) << t;
+    }
+    // And the sweep moved them (a sweep that skipped a slice would leave its lanes where they hung).
+    const FloorSweep still(16 * 15 * 3 + 7, 15, 1);
+    std::size_t moved = 0;
+    for (std::size_t s = 0; s < still.strandCount(); ++s)
+        moved += std::abs(best[3 * (s * 15 + 14)] - still.x(s, 14)) > 1e-3f ? 1 : 0;
+    EXPECT_EQ(moved, still.strandCount());
 }
 
 // The bench times the floor between a solver's steps on the solver's own pool: the sweep on a pool

@@ -7,8 +7,10 @@
 #   scripts/setup.sh --fuzz       the libFuzzer targets (clang, ASan + UBSan) in build-fuzz/
 #                                 (scripts/fuzz.sh runs them)
 #   WISP_MARCH=x86-64-v3 scripts/setup.sh [--sanitize]
-#                                 builds for that CPU instead of -march=native (here: AVX2 without
-#                                 AVX-512, as on an AVX2-only machine); WISP_MARCH= goes back to native
+#                                 builds everything for that CPU instead of the portable default
+#                                 (x86-64-v2, the solver's SSE4/AVX2/AVX-512 kernels chosen at run
+#                                 time): here AVX2 without AVX-512, as on an AVX2-only machine;
+#                                 WISP_MARCH= goes back to the portable default
 set -euo pipefail
 
 cd "$(dirname "$0")/.."

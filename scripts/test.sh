@@ -7,7 +7,7 @@
 #   scripts/test.sh              Release build
 #   scripts/test.sh --sanitize   Debug build with AddressSanitizer + UBSan
 #   WISP_MARCH=x86-64-v3 scripts/test.sh [--sanitize]
-#                                either build for that CPU instead of -march=native (scripts/setup.sh)
+#                                either build for that CPU instead of the portable default (scripts/setup.sh)
 #
 # After the tests, the Release mode also fuzzes every reader briefly (scripts/fuzz.sh --ci: its
 # own clang build, about 20 s a target); WISP_CI_FUZZ=0 skips that.

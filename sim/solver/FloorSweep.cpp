@@ -51,14 +51,10 @@ void sweepBlocks(float* rows, std::size_t begin, std::size_t end, std::uint32_t 
     auto store = [](float* p, Lane v) { std::memcpy(p, &v, sizeof v); };
     for (std::size_t b = begin; b < end; ++b) {
         float* block = rows + b * blockFloats;
-        // Each slice's parent, as three arrays of registers (an array of V3 went through the stack
-        // on AVX2, its copies as eight-byte moves that the next particle's loads waited on).
-        Lane parentX[kSlices], parentY[kSlices], parentZ[kSlices]; // the roots stay
+        V3 parent[kSlices]; // each slice's; the roots stay
         for (int s = 0; s < kSlices; ++s) {
             const float* root = block + s * kVecLanes;
-            parentX[s] = load(root);
-            parentY[s] = load(root + kLanes);
-            parentZ[s] = load(root + 2 * kLanes);
+            parent[s] = V3{ load(root), load(root + kLanes), load(root + 2 * kLanes) };
         }
         for (std::uint32_t j = 1; j < points; ++j) {
             for (int s = 0; s < kSlices; ++s) {
@@ -69,18 +65,15 @@ void sweepBlocks(float* rows, std::size_t begin, std::size_t end, std::uint32_t 
                 V3 moved = x + (x - previous) * keep;
                 moved.y = moved.y + gravityStep;
                 // Follow the leader: back onto the segment's length from the parent's new position.
-                const V3 parent{ parentX[s], parentY[s], parentZ[s] };
-                const V3 d = moved - parent;
-                const V3 placed = parent + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-20f))));
+                const V3 d = moved - parent[s];
+                const V3 placed = parent[s] + d * (length * lrsqrt(lmax(dot(d, d), splat(1e-20f))));
                 store(row, placed.x);
                 store(row + kLanes, placed.y);
                 store(row + 2 * kLanes, placed.z);
                 store(row + 3 * kLanes, x.x);
                 store(row + 4 * kLanes, x.y);
                 store(row + 5 * kLanes, x.z);
-                parentX[s] = placed.x;
-                parentY[s] = placed.y;
-                parentZ[s] = placed.z;
+                parent[s] = placed;
             }
         }
     }

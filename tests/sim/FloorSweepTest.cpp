@@ -93,9 +93,11 @@ TEST(FloorSweep, EveryTargetGivesTheSameBits)
     ASSERT_FALSE(targets.empty());
     const std::vector<float> best = sweep();
     for (const std::string& t : targets) {
+        struct Forced { // the best target back whatever fails below
+            ~Forced() { forceSimdTarget(""); }
+        } forced;
         ASSERT_EQ(forceSimdTarget(t), "");
         const std::vector<float> here = sweep();
-        forceSimdTarget("");
         ASSERT_EQ(here.size(), best.size());
         std::size_t differing = 0;
         for (std::size_t i = 0; i < best.size(); ++i)

@@ -130,9 +130,8 @@ template <bool Transformed> CapsulesInReach capsulesInReach(const Solver::Block&
         const V3 ab = splat(abv);
         Mask reaches = Mask{} != 0;
         for (int slice = 0; slice < kSlices; ++slice) {
-            const Lane u = ab2 > 0.0f
-                ? lmin(lmax(dot(rootEnd[slice] - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f))
-                : splat(0.0f);
+            const Lane u = ab2 > 0.0f ? lmin(lmax(dot(rootEnd[slice] - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f))
+                                      : splat(0.0f);
             const V3 away = rootEnd[slice] - (a + ab * u);
             const Lane reach = strandLength[slice] * 1.25f + (capsule.radiusMetres + c.offset + 0.02f);
             reaches |= dot(away, away) < reach * reach;

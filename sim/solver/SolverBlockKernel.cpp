@@ -325,11 +325,15 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     // + g dt, which only ever moves v toward w, so any drag at any step is stable, and leaves
     // gravity whole (hair at rest feels all its weight, whatever the drag and the step). k is the
     // drag scaled by eq. 1's s = |w x t| / (|w||t|): wind across the strand pushes, along it not.
+    // (Without gusts the wind is the same at every particle: its squared speed once a slice.)
+    const Lane baseWindSpeed2 = dot(baseWind, baseWind);
     auto predict = [&](const V3& x, const V3& previous, const V3& parentBefore, const V3& gustHere) {
         V3 wind = baseWind;
-        if constexpr (Gusty)
+        Lane windSpeed2 = baseWindSpeed2;
+        if constexpr (Gusty) {
             wind = wind + gustHere * gustAmplitude;
-        const Lane windSpeed2 = dot(wind, wind);
+            windSpeed2 = dot(wind, wind);
+        }
         const Mask calm = windSpeed2 < splat(1e-12f);
         const V3 tangent = x - parentBefore;
         const Lane wt = dot(wind, tangent);

@@ -14,7 +14,9 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <system_error>
 #include <unistd.h>
+#include <vector>
 
 namespace wisp::test {
 
@@ -29,7 +31,27 @@ inline std::string slurp(const std::filesystem::path& path)
     return { std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>() };
 }
 
-// An empty folder of its own for the running test (named after it and this process), made anew.
+// The folders freshTestFolder made, removed when the test program ends (a test that wrote its
+// files there and ended without a TearDown of its own left them in the temporary folder, a few
+// every run).
+struct TestFolders {
+    std::vector<std::filesystem::path> made;
+    ~TestFolders()
+    {
+        for (const std::filesystem::path& dir : made) {
+            std::error_code ignored;
+            std::filesystem::remove_all(dir, ignored);
+        }
+    }
+};
+inline TestFolders& testFolders()
+{
+    static TestFolders folders;
+    return folders;
+}
+
+// An empty folder of its own for the running test (named after it and this process), made anew,
+// and removed with what is in it when the test program ends.
 inline std::filesystem::path freshTestFolder(const std::string& prefix)
 {
     const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -37,6 +59,7 @@ inline std::filesystem::path freshTestFolder(const std::string& prefix)
         / (prefix + "-" + std::to_string(::getpid()) + "-" + std::string(test->name()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
+    testFolders().made.push_back(dir);
     return dir;
 }
 

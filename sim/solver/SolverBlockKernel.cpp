@@ -393,7 +393,9 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         // where the field's first-order extension reads a hair's breadth inside), so a lane ends
         // alike however many lanes run together (a slice of the block on each SIMD target).
         const Mask needsLook = Transformed ? Mask{} == 0 : clearance < splat(0.0f);
-        Lane inverseLength{}; // 1 / length, once contact needs it
+        // 1 / length, once contact needs it; not set before (set to zero, it was stored to the stack
+        // at every particle: 1 % of the limp kernel's instructions at AVX2).
+        Lane inverseLength;
         bool haveInverseLength = false;
         auto needInverseLength = [&] {
             if (!haveInverseLength)

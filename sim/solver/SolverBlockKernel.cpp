@@ -148,9 +148,11 @@ template <bool Transformed> CapsulesInReach capsulesInReach(const Solver::Block&
 // arithmetic gave, worked out once a slice instead of at every particle.
 struct LaneCapsule {
     V3 a, ab;
+    V3 centre; // a sphere's: a + ab 0, the point the particle loop took nearest, worked out once
     Lane inverseLength2; // 1 / |ab|², where `segment`
     Lane reach; // radius + hair offset, metres
-    bool segment = false; // false: a sphere (a == b)
+    bool segment; // false: a sphere (a == b). (Set by laneCapsule; no default, which the particle
+                  // loop stored at every look.)
 };
 inline LaneCapsule laneCapsule(const Capsule& capsule, float offsetMetres)
 {
@@ -160,6 +162,7 @@ inline LaneCapsule laneCapsule(const Capsule& capsule, float offsetMetres)
     lanes.a = splat(capsule.a);
     lanes.ab = splat(abv);
     lanes.segment = ab2 > 0.0f;
+    lanes.centre = lanes.a + lanes.ab * splat(0.0f);
     lanes.inverseLength2 = splat(lanes.segment ? 1.0f / ab2 : 0.0f);
     lanes.reach = splat(capsule.radiusMetres + offsetMetres);
     return lanes;
@@ -444,11 +447,13 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 LaneCapsule laidOut;
                 const LaneCapsule& capsule
                     = capsules.filtered ? inReach[k] : (laidOut = laneCapsule(c.capsulesWorld[k], c.offset));
-                const Lane u = capsule.segment
-                    ? lmin(
-                        lmax(dot(position - capsule.a, capsule.ab) * capsule.inverseLength2, splat(0.0f)), splat(1.0f))
-                    : splat(0.0f);
-                const V3 away = position - (capsule.a + capsule.ab * u);
+                V3 nearest = capsule.centre; // the capsule's axis point nearest the particle
+                if (capsule.segment) {
+                    const Lane u = lmin(
+                        lmax(dot(position - capsule.a, capsule.ab) * capsule.inverseLength2, splat(0.0f)), splat(1.0f));
+                    nearest = capsule.a + capsule.ab * u;
+                }
+                const V3 away = position - nearest;
                 const Lane dist = lsqrt(dot(away, away));
                 const Lane depth = capsule.reach - dist;
                 capsuleClearance = lmin(capsuleClearance, -depth);

@@ -433,11 +433,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         // A look at lanes whose bound still holds changes nothing: only those in needsLook are
         // moved or get a new bound. (Not for the head: its look reads the field's nodes, and
         // groom-1m was 4 % slower at AVX2 looking early.)
-        // At AVX-512 a limp block looks at every particle, with no branch at all: sixteen lanes need
-        // a look more often than eight, and the look is cheaper than the branch's wrong guesses (the
-        // small sphere, one thread, 8 % faster, the 1,000,000-particle one 3.5 %; not at AVX2).
-        constexpr bool kAlwaysLook = !Bends && kVecLanes == 16;
-        const bool capsuleLook = kAlwaysLook || anyOf(p.clearance < splat(kLikelyLookMetres)) || anyOf(needsLook);
+        const bool capsuleLook = anyOf(p.clearance < splat(kLikelyLookMetres)) || anyOf(needsLook);
         if (capsulesToCheck > 0 && capsuleLook) {
             // Where the head's contact moved a lane, its capsule distances are measured from there:
             // less that move, they bound the lane's clearance at `checked`, as the head's does.

@@ -54,10 +54,9 @@ constexpr float kMaxKickGain = 1.1f;
 
 namespace {
 
-// A particle whose clearance bound is above this at the start of a substep is not likely to need a
-// look this substep (a substep moves hair far less): its field nodes are not prefetched, and the
-// capsules are not looked at for it before its move says so.
-constexpr float kLikelyLookMetres = 0.005f;
+// A particle whose clearance bound is above this is not likely to look at the head this substep
+// (a substep moves hair far less): its field nodes are not prefetched.
+constexpr float kPrefetchClearanceMetres = 0.005f;
 
 // Asks for row j of the block that follows this one in memory (blocks are laid out one after
 // another and a thread runs a contiguous range of them): its first touches would otherwise stall
@@ -424,17 +423,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         // whose bound ran out: the bound covers them too, the least of the lane's clearances to
         // the head and to each capsule. (They were checked at every particle: one thread, the
         // sphere workload's step 0.349 -> 0.326 ms with the bound.)
-        // Whether to look is decided for the slice from the bounds before this move, where any
-        // lane's was near running out, and only then from the move: "did a bound run out" waits
-        // for the particle's final position (the strand's chain), and a wrong guess of that branch
-        // threw away the work the core had run ahead (the small sphere, one thread: 6 % faster at
-        // AVX2 and SSE4 and 5 % at AVX-512 with this, though with a tenth more instructions;
-        // looking at every particle was faster at AVX-512 but not at AVX2, a third more of them).
-        // A look at lanes whose bound still holds changes nothing: only those in needsLook are
-        // moved or get a new bound. (Not for the head: its look reads the field's nodes, and
-        // groom-1m was 4 % slower at AVX2 looking early.)
-        const bool capsuleLook = anyOf(p.clearance < splat(kLikelyLookMetres)) || anyOf(needsLook);
-        if (capsulesToCheck > 0 && capsuleLook) {
+        if (capsulesToCheck > 0 && anyOf(needsLook)) {
             // Where the head's contact moved a lane, its capsule distances are measured from there:
             // less that move, they bound the lane's clearance at `checked`, as the head's does.
             const Lane headShift = looked ? moveLength(position - checked) : splat(0.0f);
@@ -600,7 +589,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             // one is worked on, if its clearance bound is near running out (its lookup is likely).
             if (c.field && j + 1 < n) {
                 const ParticleSlice& q = row[j + 1];
-                const Mask likely = Transformed ? Mask{} == 0 : q.clearance < splat(kLikelyLookMetres);
+                const Mask likely = Transformed ? Mask{} == 0 : q.clearance < splat(kPrefetchClearanceMetres);
                 if (anyOf(likely)) {
                     const V3 ahead{ q.x, q.y, q.z };
                     prefetchField(*c.field,

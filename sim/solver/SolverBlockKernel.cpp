@@ -579,7 +579,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
             // Particle j at the start of the substep, read from its row (which finish() writes only
             // at its end), not carried from the particle before: GCC spilled the carried copy and
             // copied it from one stack slot to another at every particle (callgrind, the small
-            // sphere at AVX2: the limp kernel's instructions 88.9 M -> 87.0 M; the same bits).
+            // sphere at AVX2: 2 % fewer instructions in the limp kernel; the same bits).
             const V3 x{ row[j].x, row[j].y, row[j].z };
             // The next block's rows (the next in memory, which this thread most likely runs next),
             // where they come from memory (StepConstants::prefetchNextBlock).

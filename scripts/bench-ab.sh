@@ -9,6 +9,9 @@
 #   scripts/bench-ab.sh --rounds 8 /tmp/before/wisp-cli build/app/wisp-cli -- --workload groom-1m --threads 2
 #   scripts/bench-ab.sh all=build/app/wisp-cli 'no-gusts=build/app/wisp-cli --without gusts' -- --workload groom-1m
 #
+# On a host that does not always run both vCPUs at once, compare one thread pinned to a CPU as
+# well (taskset applies to every run): taskset -c 0 scripts/bench-ab.sh ... -- ... --threads 1
+#
 # A binary may be given as LABEL=PATH, and PATH may be followed by bench options of its own (one
 # argument, quoted: the same binary run several ways; words split at spaces, so neither the path nor
 # those options may hold one). Every run also gets --json (and --steps 50 unless the options name
@@ -16,7 +19,7 @@
 set -euo pipefail
 
 usage() {
-    sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//' >&2
+    sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//' >&2
     exit 2
 }
 

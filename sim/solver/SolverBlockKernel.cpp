@@ -58,10 +58,10 @@ namespace {
 // (a substep moves hair far less): its field nodes are not prefetched.
 constexpr float kPrefetchClearanceMetres = 0.005f;
 
-// Asks for the 64-byte line at `at` (a hint only), in inline assembly on x86: GCC 12 dropped
-// __builtin_prefetch calls of this file's, so that the binary had none of them (the next block's
-// shape rows; and the rows' prefetches below once they were split between slices: 29 prefetch
-// instructions in the AVX-512 bending kernel became 16, and groom-1m was 30 % slower).
+// Asks for the 64-byte line at `at` (a hint only), in inline assembly on x86: GCC 12 dropped some
+// of this file's __builtin_prefetch calls from the binary (the next block's shape rows; and the
+// rows' prefetches below once they were split between slices: the AVX-512 bending kernel's 29
+// prefetch instructions became 16, and groom-1m was 30 % slower).
 inline void prefetchLine(const char* at)
 {
 #if HWY_ARCH_X86
@@ -80,7 +80,7 @@ inline void prefetchLine(const char* at)
 // of the bytes the 1,000,000-particle sphere streamed a step (README, "The limp blocks' rest rows").
 // Where a block is more than one slice (AVX2, SSE4), each slice's pass asks for its share of the
 // lines, not the first pass for all of them at once: the 1,000,000-particle sphere at AVX2, one
-// thread, 7 % faster (its eight misses a particle had come in one burst).
+// thread, 4 to 7 % faster (its eight misses a particle had come in one burst).
 template <bool Bends> inline void prefetchRows(const Solver::Block& block, std::uint32_t j, int slice)
 {
     constexpr int kSlices = kLanes / kVecLanes;

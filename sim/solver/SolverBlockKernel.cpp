@@ -107,6 +107,41 @@ inline void prefetchNextShape(const Solver::Block& block)
         prefetchLine(at + byte);
 }
 
+// A capsule as the particle loop reads it: its end a and axis ab splatted, 1 / |ab|² (a scalar
+// division) and radius + the hair offset as lanes. The same floats as the capsule's own
+// arithmetic gave, worked out once a slice instead of at every particle.
+struct LaneCapsule {
+    V3 a, ab;
+    V3 centre; // a sphere's: a + ab 0, the point the particle loop took nearest, worked out once
+    Lane inverseLength2; // 1 / |ab|², where `segment`
+    Lane reach; // radius + hair offset, metres
+    bool segment; // false: a sphere (a == b). (Set by laneCapsule; no default, which the particle
+                  // loop stored at every look.)
+};
+inline LaneCapsule laneCapsule(const Capsule& capsule, float offsetMetres)
+{
+    LaneCapsule lanes;
+    const glm::vec3 abv = capsule.b - capsule.a;
+    const float ab2 = glm::dot(abv, abv);
+    lanes.a = splat(capsule.a);
+    lanes.ab = splat(abv);
+    lanes.segment = ab2 > 0.0f;
+    lanes.centre = lanes.a + lanes.ab * splat(0.0f);
+    lanes.inverseLength2 = splat(lanes.segment ? 1.0f / ab2 : 0.0f);
+    lanes.reach = splat(capsule.radiusMetres + offsetMetres);
+    return lanes;
+}
+
+// The point of the capsule's axis nearest p: the centre of a sphere, else p's projection onto the
+// segment, clamped to its ends.
+[[gnu::always_inline]] inline V3 nearestOnAxis(const LaneCapsule& capsule, const V3& p)
+{
+    if (!capsule.segment)
+        return capsule.centre;
+    const Lane u = lmin(lmax(dot(p - capsule.a, capsule.ab) * capsule.inverseLength2, splat(0.0f)), splat(1.0f));
+    return capsule.a + capsule.ab * u;
+}
+
 // The capsules any particle of a block can reach this step: none farther from its root than its
 // strand is long (with a margin for what contact may have stretched), so a capsule beyond that
 // from every root is left out for the whole step, as the head is by its clearance bound. Taken
@@ -136,47 +171,17 @@ template <bool Transformed> CapsulesInReach capsulesInReach(const Solver::Block&
         strandLength[slice] = sliceOf(block.strandLength, slice);
     }
     for (const Capsule& capsule : c.capsulesWorld) {
-        const V3 a = splat(capsule.a);
-        const glm::vec3 abv = capsule.b - capsule.a;
-        const float ab2 = glm::dot(abv, abv);
-        const V3 ab = splat(abv);
+        const LaneCapsule laidOut = laneCapsule(capsule, c.offset);
         Mask reaches = Mask{} != 0;
         for (int slice = 0; slice < kSlices; ++slice) {
-            const Lane u = ab2 > 0.0f ? lmin(lmax(dot(rootEnd[slice] - a, ab) * (1.0f / ab2), splat(0.0f)), splat(1.0f))
-                                      : splat(0.0f);
-            const V3 away = rootEnd[slice] - (a + ab * u);
-            const Lane reach = strandLength[slice] * 1.25f + (capsule.radiusMetres + c.offset + 0.02f);
+            const V3 away = rootEnd[slice] - nearestOnAxis(laidOut, rootEnd[slice]);
+            const Lane reach = strandLength[slice] * 1.25f + (laidOut.reach + 0.02f);
             reaches |= dot(away, away) < reach * reach;
         }
         if (anyOf(reaches))
             list.at[list.count++] = &capsule;
     }
     return list;
-}
-
-// A capsule as the particle loop reads it: its end a and axis ab splatted, 1 / |ab|² (a scalar
-// division) and radius + the hair offset as lanes. The same floats as the capsule's own
-// arithmetic gave, worked out once a slice instead of at every particle.
-struct LaneCapsule {
-    V3 a, ab;
-    V3 centre; // a sphere's: a + ab 0, the point the particle loop took nearest, worked out once
-    Lane inverseLength2; // 1 / |ab|², where `segment`
-    Lane reach; // radius + hair offset, metres
-    bool segment; // false: a sphere (a == b). (Set by laneCapsule; no default, which the particle
-                  // loop stored at every look.)
-};
-inline LaneCapsule laneCapsule(const Capsule& capsule, float offsetMetres)
-{
-    LaneCapsule lanes;
-    const glm::vec3 abv = capsule.b - capsule.a;
-    const float ab2 = glm::dot(abv, abv);
-    lanes.a = splat(capsule.a);
-    lanes.ab = splat(abv);
-    lanes.segment = ab2 > 0.0f;
-    lanes.centre = lanes.a + lanes.ab * splat(0.0f);
-    lanes.inverseLength2 = splat(lanes.segment ? 1.0f / ab2 : 0.0f);
-    lanes.reach = splat(capsule.radiusMetres + offsetMetres);
-    return lanes;
 }
 
 // How far a particle moved, at most, for its clearance bound: the move's taxicab length |dx| + |dy|
@@ -444,13 +449,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 LaneCapsule laidOut;
                 const LaneCapsule& capsule
                     = capsules.filtered ? inReach[k] : (laidOut = laneCapsule(c.capsulesWorld[k], c.offset));
-                V3 nearest = capsule.centre; // the capsule's axis point nearest the particle
-                if (capsule.segment) {
-                    const Lane u = lmin(
-                        lmax(dot(position - capsule.a, capsule.ab) * capsule.inverseLength2, splat(0.0f)), splat(1.0f));
-                    nearest = capsule.a + capsule.ab * u;
-                }
-                const V3 away = position - nearest;
+                const V3 away = position - nearestOnAxis(capsule, position);
                 const Lane dist = lsqrt(dot(away, away));
                 const Lane depth = capsule.reach - dist;
                 capsuleClearance = lmin(capsuleClearance, -depth);

@@ -1,6 +1,7 @@
 #include "sim/solver/SolverBlockKernel.h"
 
 #include "sim/geometry/ShortestArc.h"
+#include "sim/solver/Prefetch.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -58,19 +59,6 @@ namespace {
 // (a substep moves hair far less): its field nodes are not prefetched.
 constexpr float kPrefetchClearanceMetres = 0.005f;
 
-// Asks for the 64-byte line at `at` (a hint only), in inline assembly on x86: GCC 12 dropped some
-// of this file's __builtin_prefetch calls from the binary (the next block's shape rows; and the
-// rows' prefetches below once they were split between slices: the AVX-512 bending kernel's 29
-// prefetch instructions became 16, and groom-1m was 30 % slower).
-inline void prefetchLine(const char* at)
-{
-#if HWY_ARCH_X86
-    asm volatile("prefetcht0 %0" : : "m"(*at));
-#else // (x86's instruction would not assemble for ARM, where GCC was not seen to drop the hint)
-    __builtin_prefetch(at);
-#endif
-}
-
 // Asks for row j of the block that follows this one in memory (blocks are laid out one after
 // another and a thread runs a contiguous range of them): its first touches would otherwise stall
 // the next block's serial chain on memory. A prefetch past the arrays' end is harmless.
@@ -99,7 +87,8 @@ template <bool Bends> inline void prefetchRows(const Solver::Block& block, std::
 // The next block's root and follicle direction (its shape rows 0 and 1, the only ones a step
 // reads): its first instructions load them, and `perf annotate` put a tenth of the kernel's time
 // on that load (a cold row every block, which the hardware prefetcher does not follow: two rows
-// read of every sixteen). Asked for a whole block ahead (prefetchLine: GCC dropped these too).
+// read of every sixteen). Asked for a whole block ahead (prefetchLine, Prefetch.h: GCC dropped
+// these too).
 inline void prefetchNextShape(const Solver::Block& block)
 {
     const char* at = reinterpret_cast<const char*>(block.shape.data() + Solver::Block::kShapeRows);
@@ -806,7 +795,7 @@ void prefetchBlock(const Solver::Block& block)
 {
     const char* at = reinterpret_cast<const char*>(&block);
     for (std::size_t byte = 0; byte < sizeof(Solver::Block); byte += 64)
-        __builtin_prefetch(at + byte);
+        prefetchLine(at + byte);
 }
 
 } // namespace wisp

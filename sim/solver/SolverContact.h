@@ -11,6 +11,7 @@
 #define WISP_SOLVER_CONTACT_INL_H_
 #endif
 
+#include "sim/solver/Prefetch.h"
 #include "sim/solver/SolverLanes-inl.h"
 #include "sim/solver/SolverRows.h"
 
@@ -76,7 +77,7 @@ struct NodeIndices {
 {
     const NodeIndices index(select(use, nearestNode(field, p).index, Mask{}));
     for (int l = 0; l < kVecLanes; ++l)
-        __builtin_prefetch(index.node(field, l));
+        prefetchLine(index.node(field, l));
 }
 
 // The field at each lane of `use`; the other lanes read the first node (cached, and meaningless

@@ -445,9 +445,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f)) & needsLook;
                 if (anyOf(inside)) {
                     needInverseLength();
-                    const V3 normal = away * (splat(1.0f) / lmax(dist, splat(1e-9f)));
-                    resolveContact<!Bends>(inside, depth, normal, mu, parent, length, inverseLength, before,
-                        headMoveHere(), position, previous, true, splat(c.offset));
+                    resolveCapsuleContact<!Bends>(inside, depth, away, dist, mu, parent, length, inverseLength, before,
+                        headMoveHere(), position, previous, splat(c.offset));
                 }
             }
             const Lane fromCapsules = lmax(capsuleClearance - headShift, splat(0.0f));

@@ -171,7 +171,7 @@ constexpr float kFrictionSinkMetres = 1e-7f;
 // (The turn and friction stay out of line in the bending kernel: inlined there they give the same
 // bits, now that nothing is contracted into FMA, but made groom-1m and the sphere 3-10 % slower at
 // AVX2 and AVX-512 (28 Nov: the kernel's live values spilled). A limp block's kernel, with fewer
-// live values, turns a capsule's contact in line: resolveContact<true>.)
+// live values, turns a capsule's contact in line: resolveCapsuleContact<true>.)
 struct ContactFriction {
     Lane kinetic; // μk
     Lane statik; // μs
@@ -235,17 +235,52 @@ struct ContactFriction {
     keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
 }
 
+// The contact's normal n at the particle, the direction of its segment u0 (unit: the segment over
+// its length), their dot product n . u0, and u0's part across n, tangent = u0 - n (n . u0), with its
+// squared length: what the turn onto the tangent plane (below) is worked out from.
+struct ContactTurn {
+    V3 normal;
+    Lane along;
+    V3 tangent;
+    Lane tangent2;
+};
+
+// A surface's turn (the head's field): from its normal.
+[[gnu::always_inline]] inline ContactTurn surfaceTurn(const V3& normal, const V3& u0)
+{
+    ContactTurn t;
+    t.normal = normal;
+    t.along = dot(normal, u0);
+    t.tangent = u0 - normal * t.along;
+    t.tangent2 = dot(t.tangent, t.tangent);
+    return t;
+}
+
+// A capsule's turn, from `away`, the particle less its nearest point on the capsule's axis (the
+// normal is away / |away|, |away| = dist): n . u0 as (away . u0) / |away|, so that the dot product
+// runs beside |away|'s square root and its reciprocal instead of waiting for n. The contact is on
+// the strand's chain (the next particle waits for it). (The tangent from away too, u0 - away (away .
+// u0) / |away|², waited less still but took two more divisions a look: slower at AVX2 and AVX-512.)
+[[gnu::always_inline]] inline ContactTurn capsuleTurn(const V3& away, Lane dist, const V3& u0)
+{
+    ContactTurn t;
+    const Lane inverseDist = splat(1.0f) / lmax(dist, splat(1e-9f));
+    t.normal = away * inverseDist;
+    t.along = dot(away, u0) * inverseDist;
+    t.tangent = u0 - t.normal * t.along;
+    t.tangent2 = dot(t.tangent, t.tangent);
+    return t;
+}
+
 // The contact's turn (and push) alone, for the head's looks: their friction is taken once, after
 // the last look, from their summed depths (advanceBlock). Inlined where the caller has registers
-// to spare (resolveContactOnCopies below and resolveHeadContact call it out of line).
-[[gnu::always_inline]] inline void turnOutOfContactInline(Mask inside, Lane depth, const V3& normal, const V3& parent,
-    Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
+// to spare (resolveCapsuleContactOnCopies below and resolveHeadContact call it out of line). `turn` is
+// for the particle where it is now and its segment's direction u0 = (position - parent) / length.
+[[gnu::always_inline]] inline void turnOntoTangentPlane(Mask inside, Lane depth, const ContactTurn& turn,
+    const V3& parent, Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
 {
-    const V3 u0 = (position - parent) * inverseLength;
-    const Lane along = dot(normal, u0);
-    const Lane needed = depth * inverseLength + along; // n . u the particle needs to be on the plane
-    const V3 tangent = u0 - normal * along;
-    const Lane tangent2 = dot(tangent, tangent);
+    const V3& normal = turn.normal;
+    const Lane needed = depth * inverseLength + turn.along; // n . u the particle needs to be on the plane
     // Turned as far as the sphere allows (straight out along the normal when even that is not
     // enough); whatever depth is left is pushed out, and only that much length gives way.
     const Lane reach = lmin(needed, splat(1.0f));
@@ -253,8 +288,10 @@ struct ContactFriction {
     // quotient: one divider operation each, where the unit tangent and the sine took two each.
     const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
     const Lane tangentShare
-        = select(tangent2 > splat(1e-12f), lsqrt(sine2 / lmax(tangent2, splat(1e-12f))), splat(0.0f));
-    const V3 turned = parent + (normal * reach + tangent * tangentShare) * length;
+        = select(turn.tangent2 > splat(1e-12f), lsqrt(sine2 / lmax(turn.tangent2, splat(1e-12f))), splat(0.0f));
+    // parent + (n reach + tangent share) length, the terms that do not wait for the share (its
+    // division and square root end the chain) summed beside it.
+    const V3 turned = (parent + normal * (reach * length)) + (turn.tangent * length) * tangentShare;
     // A segment shorter than twice the hair offset only has to clear the surface itself, not the
     // offset kept above it: starting on the skin it cannot reach out of the offset, and stretching
     // it to would break its length for no contact.
@@ -262,13 +299,19 @@ struct ContactFriction {
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
 }
+[[gnu::always_inline]] inline void turnOutOfContactInline(Mask inside, Lane depth, const V3& normal, const V3& parent,
+    Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
+{
+    const ContactTurn turn = surfaceTurn(normal, (position - parent) * inverseLength);
+    turnOntoTangentPlane(inside, depth, turn, parent, length, inverseLength, position, pushWhatIsLeft, band);
+}
 // Out of line, the turn and friction take the kernel's values as copies and give back what they
 // change, never a kernel variable by address: a variable whose address reaches an out-of-line call
 // lives in memory for the whole particle loop (GCC does not keep it in registers around the call's
 // rare branch), and the strand's serial chain (the parent's position, the particle's) then went
 // through the stack at every particle, contact or not (callgrind, the sphere at AVX2: 13 % of the
 // limp kernel's instructions; 2 threads, ten interleaved rounds, 2.62 -> 2.22 x the floor). One call
-// a contact (resolveContact here, the head's in SolverBlockKernel.cpp), each copying its arguments.
+// a contact (resolveCapsuleContact here, the head's in SolverBlockKernel.cpp), each copying its arguments.
 
 // A particle's position and previous position, as contact and friction leave them.
 struct HeldParticle {
@@ -281,36 +324,39 @@ struct HeldParticle {
     applyFrictionInline(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
     return { position, previous };
 }
-[[gnu::noinline]] HeldParticle resolveContactOnCopies(Mask inside, Lane depth, V3 normal, const ContactFriction& mu,
-    V3 parent, Lane length, Lane inverseLength, V3 oldPosition, V3 headMove, V3 position, V3 previous,
-    bool pushWhatIsLeft, Lane band)
+[[gnu::noinline]] HeldParticle resolveCapsuleContactOnCopies(Mask inside, Lane depth, V3 away, Lane dist,
+    const ContactFriction& mu, V3 parent, Lane length, Lane inverseLength, V3 oldPosition, V3 headMove, V3 position,
+    V3 previous, Lane band)
 {
-    turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
-    applyFrictionInline(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
+    const ContactTurn turn = capsuleTurn(away, dist, (position - parent) * inverseLength);
+    turnOntoTangentPlane(inside, depth, turn, parent, length, inverseLength, position, true, band);
+    applyFrictionInline(inside, depth, turn.normal, mu, parent, oldPosition, headMove, position, previous, band);
     return { position, previous };
 }
 
-// Contact and its friction in one (a capsule: one look). `Limp`: the limp kernel's way, the turn
-// and the normal response of frictionless contact in the caller's code (its loop has the
-// registers), friction out of line; else all of it out of line (the bending kernel's values spill
-// around it inlined). The same bits either way.
+// A capsule's contact and its friction in one (one look): `away` is the particle less its nearest
+// point on the axis, |away| = dist, depth the capsule's reach less dist. `Limp`: the limp
+// kernel's way, the turn and the normal response of frictionless contact in the caller's code (its
+// loop has the registers), friction out of line; else all of it out of line (the bending kernel's
+// values spill around it inlined). The same bits either way.
 template <bool Limp>
-inline void resolveContact(Mask inside, Lane depth, const V3& normal, const ContactFriction& mu, const V3& parent,
-    Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position, V3& previous,
-    bool pushWhatIsLeft, Lane band)
+inline void resolveCapsuleContact(Mask inside, Lane depth, const V3& away, Lane dist, const ContactFriction& mu,
+    const V3& parent, Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position,
+    V3& previous, Lane band)
 {
     HeldParticle held;
     if constexpr (Limp) {
-        turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, pushWhatIsLeft, band);
+        const ContactTurn turn = capsuleTurn(away, dist, (position - parent) * inverseLength);
+        turnOntoTangentPlane(inside, depth, turn, parent, length, inverseLength, position, true, band);
         if (mu.none) {
-            keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
+            keepNoVelocityInto(inside, turn.normal, oldPosition, headMove, position, previous);
             return;
         }
-        held
-            = applyFrictionOnCopies(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
+        held = applyFrictionOnCopies(
+            inside, depth, turn.normal, mu, parent, oldPosition, headMove, position, previous, band);
     } else {
-        held = resolveContactOnCopies(inside, depth, normal, mu, parent, length, inverseLength, oldPosition, headMove,
-            position, previous, pushWhatIsLeft, band);
+        held = resolveCapsuleContactOnCopies(inside, depth, away, dist, mu, parent, length, inverseLength, oldPosition,
+            headMove, position, previous, band);
     }
     position = held.position;
     previous = held.previous;

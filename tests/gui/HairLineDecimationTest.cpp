@@ -70,19 +70,23 @@ TEST(HairLineDecimation, StraightRunsLoseEveryOtherPointAndBendsKeepTheirs)
         for (std::size_t k = 1; k < points.size(); ++k)
             EXPECT_LE(points[k] - points[k - 1], 2u); // a chord spans at most two segments
         const std::set<std::uint32_t> kept(points.begin(), points.end());
-        if (s == straight)
+        if (s == straight) {
             EXPECT_EQ(points.size(), 9u); // 0, 2, 4, ..., 14, 15
+        }
         if (s == kinked) {
             EXPECT_TRUE(kept.count(begin + 5)); // the right angle
             EXPECT_TRUE(kept.count(begin + 10)); // the gentle bend: 0.25 mm off its chord
             EXPECT_LT(points.size(), 16u);
         }
-        if (s == shortest)
+        if (s == shortest) {
             EXPECT_EQ(points.size(), 2u);
+        }
         // No point left out lies further than the tolerance from the chord drawn past it.
-        for (std::size_t k = 1; k < points.size(); ++k)
-            if (points[k] - points[k - 1] == 2)
+        for (std::size_t k = 1; k < points.size(); ++k) {
+            if (points[k] - points[k - 1] == 2) {
                 EXPECT_LE(deviations[points[k - 1] + 1], 1e-4f);
+            }
+        }
     }
     // A tolerance of zero (or none) leaves the one-sample lines as they were.
     for (const float tolerance : { -1.0f, std::numeric_limits<float>::quiet_NaN() }) {

@@ -235,7 +235,7 @@ TEST(MeshBvh, BuildsOnASubnormalThickness)
         }
     const MeshBvh bvh(mesh);
     ASSERT_EQ(bvh.triangleCount(), mesh.triangleCount());
-    for (const glm::vec3 p :
+    for (const glm::vec3& p :
         { glm::vec3(0.12f, 0.1f, 0.07f), glm::vec3(-0.1f, -0.2f, 0.31f), glm::vec3(0.3f, 0.0f, 0.3f) })
         EXPECT_NEAR(bvh.closestPoint(p).distance, bruteClosest(mesh, p).distance, 1e-6f) << p.x << " " << p.z;
     const auto hit = bvh.raycast(glm::vec3(0.17f, 1.0f, 0.22f), glm::vec3(0.0f, -1.0f, 0.0f), 2.0f);

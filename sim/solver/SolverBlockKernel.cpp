@@ -486,21 +486,23 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     };
 
     // Whether a strand went non-finite or flew away (checked after the step's last substep, below):
-    // each row is looked at in the last substep's pass as soon as it is final (a particle's
-    // previous position is final once its child has added the velocity correction), instead of in
-    // a second pass over the rows (which cost the small sphere about a tenth of its step). The
-    // same values and comparisons, so the same lanes.
-    Lane farthest = splat(0.0f); // the largest squared distance of a particle from the root
-    Mask finite = Mask{} == 0; // false where a particle's move is non-finite or absurd
+    // each particle is looked at in the last substep's pass as soon as its position is final,
+    // instead of in a second pass over the rows (which cost the small sphere about a tenth of its
+    // step). A lane stays `within` while every particle is less than 1.5 strand lengths and 5 cm
+    // from the root (false for NaN). Only positions: a previous position gone non-finite or absurd
+    // with its position still sound makes the next step's position so (Verlet moves it by their
+    // difference), and this check takes it a step later; the volume grid reads no such move in the
+    // meantime (groupSlice's `tame`). (It also took |x - previous|² < 1e12 at every particle:
+    // 6 % of the small sphere's step at AVX2, one thread.)
+    const Lane reachLimit = strandLength * 1.5f + 0.05f;
+    const Lane reachLimit2 = reachLimit * reachLimit;
+    Mask within = Mask{} == 0;
     bool accounted = false; // whether the last substep ran here and looked at every row
-    auto account = [&](const V3& x, const V3& pv) {
+    auto account = [&](const V3& x) {
         const V3 d = x - rootEnd;
-        farthest = lmax(farthest, dot(d, d));
-        const V3 m = x - pv;
-        finite &= dot(m, m) < splat(1e12f); // false for NaN
+        within &= dot(d, d) < reachLimit2;
     };
     auto rowAt = [&](std::uint32_t j) { return V3{ row[j].x, row[j].y, row[j].z }; };
-    auto previousAt = [&](std::uint32_t j) { return V3{ row[j].px, row[j].py, row[j].pz }; };
 
     for (int s = firstSubstep; s < endSubstep; ++s) {
         const bool lastSubstep = s + 1 == c.substeps;
@@ -514,7 +516,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         row[0].y = root.y;
         row[0].z = root.z;
         if (lastSubstep)
-            account(rowAt(0), previousAt(0)); // (the root's child does not move it)
+            account(rowAt(0));
 
         // One pass, root to tip, as follow-the-leader: each particle is predicted, bent toward
         // its target in its parent's frame, then gets its length and contact; the parent, already
@@ -642,17 +644,13 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 frameB = frameB - sum * (dot(r, frameB) * inverse);
                 frameD = d;
             }
-            // The parent's row is final now (its previous position took this particle's correction).
-            if (lastSubstep && j > 1)
-                account(parent, previousAt(j - 1));
+            if (lastSubstep)
+                account(position);
             parent = position;
             predicted = predictedNext;
         }
-        if (lastSubstep) {
-            if (n > 1)
-                account(parent, previousAt(n - 1)); // the tip, which no child corrects
+        if (lastSubstep)
             accounted = true;
-        }
     }
 
     if (endSubstep != c.substeps)
@@ -661,9 +659,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     // the volume grid, which reads a non-finite particle as outside it, so it does not spread.
     if (!accounted) // (a call that ran no substep)
         for (std::uint32_t j = 0; j < n; ++j)
-            account(rowAt(j), previousAt(j));
-    const Lane limit = strandLength * 1.5f + 0.05f;
-    const Mask bad = ~((farthest < limit * limit) & finite);
+            account(rowAt(j));
+    const Mask bad = ~within;
     if (anyOf(bad)) {
         for (int l = 0; l < kVecLanes; ++l) {
             if (!bad[l])

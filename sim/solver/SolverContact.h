@@ -276,8 +276,10 @@ struct ContactTurn {
 // the last look, from their summed depths (advanceBlock). Inlined where the caller has registers
 // to spare (resolveCapsuleContactOnCopies below and resolveHeadContact call it out of line). `turn` is
 // for the particle where it is now and its segment's direction u0 = (position - parent) / length.
+// `unitNormal`: the normal is a unit vector to the rounding (a capsule's, away / |away|).
 [[gnu::always_inline]] inline void turnOntoTangentPlane(Mask inside, Lane depth, const ContactTurn& turn,
-    const V3& parent, Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
+    const V3& parent, Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band,
+    bool unitNormal = false)
 {
     const V3& normal = turn.normal;
     const Lane needed = depth * inverseLength + turn.along; // n . u the particle needs to be on the plane
@@ -289,13 +291,25 @@ struct ContactTurn {
     const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
     const Lane tangentShare
         = select(turn.tangent2 > splat(1e-12f), lsqrt(sine2 / lmax(turn.tangent2, splat(1e-12f))), splat(0.0f));
-    // parent + (n reach + tangent share) length, the terms that do not wait for the share (its
-    // division and square root end the chain) summed beside it.
-    const V3 turned = (parent + normal * (reach * length)) + (turn.tangent * length) * tangentShare;
     // A segment shorter than twice the hair offset only has to clear the surface itself, not the
     // offset kept above it: starting on the skin it cannot reach out of the offset, and stretching
     // it to would break its length for no contact.
     const Lane slack = select(length < band * 2.0f, band, splat(0.0f)); // only for segments that short
+    // The turned point is parent + (n reach + tangent share) length, and what is left of the depth
+    // after the turn is pushed out along n. The terms that do not wait for the share (its division
+    // and square root end the chain) are summed beside it.
+    if (unitNormal) {
+        // What the turn moved it along the normal, (turned - position) . n, is length (reach - n .
+        // u0) where n is a unit vector (the tangent is across it): known before the share, so the
+        // push joins the terms summed beside it (worked out from the turned point, it added a dot
+        // product and three more steps to the chain).
+        const Lane left
+            = pushWhatIsLeft ? lmax(depth - slack - length * (reach - turn.along), splat(0.0f)) : splat(0.0f);
+        const V3 turned = (parent + normal * (reach * length + left)) + (turn.tangent * length) * tangentShare;
+        position = select(inside, turned, position);
+        return;
+    }
+    const V3 turned = (parent + normal * (reach * length)) + (turn.tangent * length) * tangentShare;
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
 }
@@ -329,7 +343,7 @@ struct HeldParticle {
     V3 previous, Lane band)
 {
     const ContactTurn turn = capsuleTurn(away, dist, (position - parent) * inverseLength);
-    turnOntoTangentPlane(inside, depth, turn, parent, length, inverseLength, position, true, band);
+    turnOntoTangentPlane(inside, depth, turn, parent, length, inverseLength, position, true, band, true);
     applyFrictionInline(inside, depth, turn.normal, mu, parent, oldPosition, headMove, position, previous, band);
     return { position, previous };
 }
@@ -347,7 +361,7 @@ inline void resolveCapsuleContact(Mask inside, Lane depth, const V3& away, Lane 
     HeldParticle held;
     if constexpr (Limp) {
         const ContactTurn turn = capsuleTurn(away, dist, (position - parent) * inverseLength);
-        turnOntoTangentPlane(inside, depth, turn, parent, length, inverseLength, position, true, band);
+        turnOntoTangentPlane(inside, depth, turn, parent, length, inverseLength, position, true, band, true);
         if (mu.none) {
             keepNoVelocityInto(inside, turn.normal, oldPosition, headMove, position, previous);
             return;

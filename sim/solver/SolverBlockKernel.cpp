@@ -355,7 +355,7 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         const Lane d = select(calm, splat(1.0f), lmax(dot(tangent, tangent), splat(1e-20f)) * windSpeed2);
         const Lane n = select(calm, splat(1.0f), lmax(d - wt * wt, d * 1e-20f));
         const Lane cr = drag * dt * lsqrt(n * d);
-        const V3 move = (x - previous) * keep * d + wind * (cr * dt);
+        const V3 move = (x - previous) * (keep * d) + wind * (cr * dt);
         return x + move * lrcp(d + cr) + gravityStep;
     };
 

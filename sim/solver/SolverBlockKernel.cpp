@@ -215,7 +215,7 @@ template <bool Transformed>
     // depth, nanometres on a smooth head, would have let the slide through).
     Lane contactDepth = depth;
     V3 contactNormal = normal;
-    turnOutOfContactInline(inside, depth, normal, parent, length, inverseLength, position, false, splat(c.offset));
+    turnOutOfContactInline(inside, depth, normal, parent, length, position, false, splat(c.offset));
     // What is left within half the offset (still clear of the skin) stays: turning it
     // far along the arc below for that little would shake stiff hair lying on the head.
     const Lane slack = select(length < splat(2.0f * c.offset), splat(c.offset), splat(0.5f * c.offset));
@@ -235,7 +235,7 @@ template <bool Transformed>
         contactNormal = select(turns, next.normal, contactNormal);
         if (pass < kHeadContactPasses) {
             turnOutOfContactInline(
-                stillInside, nextDepth, next.normal, parent, length, inverseLength, position, false, splat(c.offset));
+                stillInside, nextDepth, next.normal, parent, length, position, false, splat(c.offset));
             // Turning converges fast on a smooth surface: look once more only where a
             // lane was still a quarter of the offset deep before this last turn (in a
             // crevice the last turn may put it deeper on the other wall).
@@ -268,7 +268,7 @@ template <bool Transformed>
             position = select(arcClears, onArc(hi), position);
         }
         turnOutOfContactInline(
-            stuck & ~arcClears, nextDepth, next.normal, parent, length, inverseLength, position, true, splat(c.offset));
+            stuck & ~arcClears, nextDepth, next.normal, parent, length, position, true, splat(c.offset));
     }
     applyFrictionInline(
         inside, contactDepth, contactNormal, mu, parent, before, headMove, position, previous, splat(c.offset));
@@ -445,8 +445,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
                 const Mask inside = (depth > splat(0.0f)) & (dist > splat(1e-9f)) & needsLook;
                 if (anyOf(inside)) {
                     needInverseLength();
-                    resolveCapsuleContact<!Bends>(inside, depth, away, dist, mu, parent, length, inverseLength, before,
-                        headMoveHere(), position, previous, splat(c.offset));
+                    resolveCapsuleContact<!Bends>(inside, depth, away, dist, mu, parent, length, before, headMoveHere(),
+                        position, previous, splat(c.offset));
                 }
             }
             const Lane fromCapsules = lmax(capsuleClearance - headShift, splat(0.0f));

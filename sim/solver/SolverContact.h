@@ -235,9 +235,10 @@ struct ContactFriction {
     keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
 }
 
-// The contact's normal n at the particle, the direction of its segment u0 (unit: the segment over
-// its length), their dot product n . u0, and u0's part across n, tangent = u0 - n (n . u0), with its
-// squared length: what the turn onto the tangent plane (below) is worked out from.
+// The contact's normal n at the particle, its segment s = position - parent, their dot product
+// n . s and s's part across n, tangent = s - n (n . s), with its squared length: what the turn onto
+// the tangent plane (below) is worked out from. In lengths, not in units of the segment's length (as
+// u0 = s / length): no division by the length, and the turn's terms come out in metres.
 struct ContactTurn {
     V3 normal;
     Lane along;
@@ -246,28 +247,28 @@ struct ContactTurn {
 };
 
 // A surface's turn (the head's field): from its normal.
-[[gnu::always_inline]] inline ContactTurn surfaceTurn(const V3& normal, const V3& u0)
+[[gnu::always_inline]] inline ContactTurn surfaceTurn(const V3& normal, const V3& segment)
 {
     ContactTurn t;
     t.normal = normal;
-    t.along = dot(normal, u0);
-    t.tangent = u0 - normal * t.along;
+    t.along = dot(normal, segment);
+    t.tangent = segment - normal * t.along;
     t.tangent2 = dot(t.tangent, t.tangent);
     return t;
 }
 
 // A capsule's turn, from `away`, the particle less its nearest point on the capsule's axis (the
-// normal is away / |away|, |away| = dist): n . u0 as (away . u0) / |away|, so that the dot product
+// normal is away / |away|, |away| = dist): n . s as (away . s) / |away|, so that the dot product
 // runs beside |away|'s square root and its reciprocal instead of waiting for n. The contact is on
-// the strand's chain (the next particle waits for it). (The tangent from away too, u0 - away (away .
-// u0) / |away|², waited less still but took two more divisions a look: slower at AVX2 and AVX-512.)
-[[gnu::always_inline]] inline ContactTurn capsuleTurn(const V3& away, Lane dist, const V3& u0)
+// the strand's chain (the next particle waits for it). (The tangent from away too, s - away (away .
+// s) / |away|², waited less still but took two more divisions a look: slower at AVX2 and AVX-512.)
+[[gnu::always_inline]] inline ContactTurn capsuleTurn(const V3& away, Lane dist, const V3& segment)
 {
     ContactTurn t;
     const Lane inverseDist = splat(1.0f) / lmax(dist, splat(1e-9f));
     t.normal = away * inverseDist;
-    t.along = dot(away, u0) * inverseDist;
-    t.tangent = u0 - t.normal * t.along;
+    t.along = dot(away, segment) * inverseDist;
+    t.tangent = segment - t.normal * t.along;
     t.tangent2 = dot(t.tangent, t.tangent);
     return t;
 }
@@ -275,49 +276,47 @@ struct ContactTurn {
 // The contact's turn (and push) alone, for the head's looks: their friction is taken once, after
 // the last look, from their summed depths (advanceBlock). Inlined where the caller has registers
 // to spare (resolveCapsuleContactOnCopies below and resolveHeadContact call it out of line). `turn` is
-// for the particle where it is now and its segment's direction u0 = (position - parent) / length.
+// for the particle where it is now and its segment s = position - parent.
 // `unitNormal`: the normal is a unit vector to the rounding (a capsule's, away / |away|).
 [[gnu::always_inline]] inline void turnOntoTangentPlane(Mask inside, Lane depth, const ContactTurn& turn,
-    const V3& parent, Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band,
-    bool unitNormal = false)
+    const V3& parent, Lane length, V3& position, bool pushWhatIsLeft, Lane band, bool unitNormal = false)
 {
     const V3& normal = turn.normal;
-    const Lane needed = depth * inverseLength + turn.along; // n . u the particle needs to be on the plane
-    // Turned as far as the sphere allows (straight out along the normal when even that is not
-    // enough); whatever depth is left is pushed out, and only that much length gives way.
-    const Lane reach = lmin(needed, splat(1.0f));
-    // The tangent's share, sine / |tangent| (sine = sqrt(1 - reach²)), as one square root of one
-    // quotient: one divider operation each, where the unit tangent and the sine took two each.
-    const Lane sine2 = lmax(splat(1.0f) - reach * reach, splat(0.0f));
-    const Lane tangentShare
-        = select(turn.tangent2 > splat(1e-12f), lsqrt(sine2 / lmax(turn.tangent2, splat(1e-12f))), splat(0.0f));
+    // Turned about the parent, at the segment's length, until n . s is what the particle needs to
+    // be on the plane, depth + n . s now (as far as the sphere allows: straight out along the
+    // normal when even that is not enough); whatever depth is left is pushed out, and only that
+    // much length gives way.
+    const Lane reach = lmin(depth + turn.along, length);
+    // The tangent's share, sqrt(length² - reach²) / |tangent|, as one square root of one quotient:
+    // one divider operation each, where the unit tangent and the sine took two each.
+    const Lane across2 = lmax(length * length - reach * reach, splat(0.0f));
+    const Lane least = length * length * 1e-12f; // (a tangent shorter is along n: no turn)
+    const Lane tangentShare = select(turn.tangent2 > least, lsqrt(across2 / lmax(turn.tangent2, least)), splat(0.0f));
     // A segment shorter than twice the hair offset only has to clear the surface itself, not the
     // offset kept above it: starting on the skin it cannot reach out of the offset, and stretching
     // it to would break its length for no contact.
     const Lane slack = select(length < band * 2.0f, band, splat(0.0f)); // only for segments that short
-    // The turned point is parent + (n reach + tangent share) length, and what is left of the depth
-    // after the turn is pushed out along n. The terms that do not wait for the share (its division
-    // and square root end the chain) are summed beside it.
+    // The turned point is parent + n reach + tangent share, and what is left of the depth after the
+    // turn is pushed out along n. The terms that do not wait for the share (its division and square
+    // root end the chain) are summed beside it.
     if (unitNormal) {
-        // What the turn moved it along the normal, (turned - position) . n, is length (reach - n .
-        // u0) where n is a unit vector (the tangent is across it): known before the share, so the
-        // push joins the terms summed beside it (worked out from the turned point, it added a dot
-        // product and three more steps to the chain).
-        const Lane left
-            = pushWhatIsLeft ? lmax(depth - slack - length * (reach - turn.along), splat(0.0f)) : splat(0.0f);
-        const V3 turned = (parent + normal * (reach * length + left)) + (turn.tangent * length) * tangentShare;
-        position = select(inside, turned, position);
+        // What the turn moved it along the normal, (turned - position) . n, is reach - n . s where n
+        // is a unit vector (the tangent is across it): known before the share, so the push joins
+        // the terms summed beside it (worked out from the turned point, it added a dot product and
+        // three more steps to the chain).
+        const Lane left = pushWhatIsLeft ? lmax(depth - slack - (reach - turn.along), splat(0.0f)) : splat(0.0f);
+        position = select(inside, (parent + normal * (reach + left)) + turn.tangent * tangentShare, position);
         return;
     }
-    const V3 turned = (parent + normal * (reach * length)) + (turn.tangent * length) * tangentShare;
+    const V3 turned = (parent + normal * reach) + turn.tangent * tangentShare;
     const Lane left = pushWhatIsLeft ? lmax(depth - slack - dot(turned - position, normal), splat(0.0f)) : splat(0.0f);
     position = select(inside, turned + normal * left, position);
 }
 [[gnu::always_inline]] inline void turnOutOfContactInline(Mask inside, Lane depth, const V3& normal, const V3& parent,
-    Lane length, Lane inverseLength, V3& position, bool pushWhatIsLeft, Lane band)
+    Lane length, V3& position, bool pushWhatIsLeft, Lane band)
 {
-    const ContactTurn turn = surfaceTurn(normal, (position - parent) * inverseLength);
-    turnOntoTangentPlane(inside, depth, turn, parent, length, inverseLength, position, pushWhatIsLeft, band);
+    const ContactTurn turn = surfaceTurn(normal, position - parent);
+    turnOntoTangentPlane(inside, depth, turn, parent, length, position, pushWhatIsLeft, band);
 }
 // Out of line, the turn and friction take the kernel's values as copies and give back what they
 // change, never a kernel variable by address: a variable whose address reaches an out-of-line call
@@ -339,11 +338,10 @@ struct HeldParticle {
     return { position, previous };
 }
 [[gnu::noinline]] HeldParticle resolveCapsuleContactOnCopies(Mask inside, Lane depth, V3 away, Lane dist,
-    const ContactFriction& mu, V3 parent, Lane length, Lane inverseLength, V3 oldPosition, V3 headMove, V3 position,
-    V3 previous, Lane band)
+    const ContactFriction& mu, V3 parent, Lane length, V3 oldPosition, V3 headMove, V3 position, V3 previous, Lane band)
 {
-    const ContactTurn turn = capsuleTurn(away, dist, (position - parent) * inverseLength);
-    turnOntoTangentPlane(inside, depth, turn, parent, length, inverseLength, position, true, band, true);
+    const ContactTurn turn = capsuleTurn(away, dist, position - parent);
+    turnOntoTangentPlane(inside, depth, turn, parent, length, position, true, band, true);
     applyFrictionInline(inside, depth, turn.normal, mu, parent, oldPosition, headMove, position, previous, band);
     return { position, previous };
 }
@@ -355,13 +353,12 @@ struct HeldParticle {
 // values spill around it inlined). The same bits either way.
 template <bool Limp>
 inline void resolveCapsuleContact(Mask inside, Lane depth, const V3& away, Lane dist, const ContactFriction& mu,
-    const V3& parent, Lane length, Lane inverseLength, const V3& oldPosition, const V3& headMove, V3& position,
-    V3& previous, Lane band)
+    const V3& parent, Lane length, const V3& oldPosition, const V3& headMove, V3& position, V3& previous, Lane band)
 {
     HeldParticle held;
     if constexpr (Limp) {
-        const ContactTurn turn = capsuleTurn(away, dist, (position - parent) * inverseLength);
-        turnOntoTangentPlane(inside, depth, turn, parent, length, inverseLength, position, true, band, true);
+        const ContactTurn turn = capsuleTurn(away, dist, position - parent);
+        turnOntoTangentPlane(inside, depth, turn, parent, length, position, true, band, true);
         if (mu.none) {
             keepNoVelocityInto(inside, turn.normal, oldPosition, headMove, position, previous);
             return;
@@ -369,8 +366,8 @@ inline void resolveCapsuleContact(Mask inside, Lane depth, const V3& away, Lane 
         held = applyFrictionOnCopies(
             inside, depth, turn.normal, mu, parent, oldPosition, headMove, position, previous, band);
     } else {
-        held = resolveCapsuleContactOnCopies(inside, depth, away, dist, mu, parent, length, inverseLength, oldPosition,
-            headMove, position, previous, band);
+        held = resolveCapsuleContactOnCopies(
+            inside, depth, away, dist, mu, parent, length, oldPosition, headMove, position, previous, band);
     }
     position = held.position;
     previous = held.previous;

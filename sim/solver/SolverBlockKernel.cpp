@@ -489,11 +489,12 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     // each particle is looked at in the last substep's pass as soon as its position is final,
     // instead of in a second pass over the rows (which cost the small sphere about a tenth of its
     // step). A lane stays `within` while every particle is less than 1.5 strand lengths and 5 cm
-    // from the root (false for NaN). Only positions: a previous position gone non-finite or absurd
-    // with its position still sound makes the next step's position so (Verlet moves it by their
+    // from the root (false for NaN). Only positions: a previous position gone non-finite with its
+    // position still sound makes the next step's position so (Verlet moves it by their
     // difference), and this check takes it a step later; the volume grid reads no such move in the
-    // meantime (groupSlice's `tame`). (It also took |x - previous|² < 1e12 at every particle:
-    // 6 % of the small sphere's step at AVX2, one thread.)
+    // meantime (groupSlice's `tame`). (An absurd but finite one moves the particle far, and its
+    // length constraint puts it back at its length from its parent, as it did when this also took
+    // |x - previous|² < 1e12 at every particle: 6 % of the small sphere's step at AVX2.)
     const Lane reachLimit = strandLength * 1.5f + 0.05f;
     const Lane reachLimit2 = reachLimit * reachLimit;
     Mask within = Mask{} == 0;

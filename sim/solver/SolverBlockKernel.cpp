@@ -493,12 +493,12 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
     // (false for NaN). The others need no look: the length constraint put each at its rest length
     // from its parent, and a non-finite position reaches the tip (every particle below it is placed
     // from it). (Every particle was checked: 3 % of the small sphere's step at AVX2, one thread.)
-    // Only positions: a previous position gone non-finite with its
-    // position still sound makes the next step's position so (Verlet moves it by their
-    // difference), and this check takes it a step later; the volume grid reads no such move in the
-    // meantime (groupSlice's `tame`). (An absurd but finite one moves the particle far, and its
-    // length constraint puts it back at its length from its parent, as it did when this also took
-    // |x - previous|² < 1e12 at every particle: 3 % more of the small sphere's step.)
+    // Only positions: a previous position gone non-finite with its position still sound makes the
+    // next step's position so (Verlet moves it by their difference), and this check takes it a step
+    // later; the volume grid reads no such move in the meantime (groupSlice's `tame`). (An absurd
+    // but finite one moves the particle far, and its length constraint puts it back at its length
+    // from its parent, as it did when this also took |x - previous|² < 1e12 at every particle: 3 %
+    // more of the small sphere's step.)
     const Lane reachLimit = strandLength * 1.5f + 0.05f;
     const Lane reachLimit2 = reachLimit * reachLimit;
     Mask within = Mask{} == 0;

@@ -204,8 +204,8 @@ template <class L> inline L lrcp(L a)
 // and read them back eight bytes at a time into 16-byte halves (`vmovq`, `vpinsrq`), a stall on
 // every copy of a particle's position in the block kernel. Callgrind, AVX2, one thread, 50 steps:
 // the limp kernel's instructions on the small sphere 93.6 M -> 83.7 M, the bending kernel's on
-// paper-25x25x20 without volume 72.4 M -> 66.9 M; the same bits (README, "The three-lane vector copied
-// member by member").
+// paper-25x25x20 without volume 72.4 M -> 66.9 M; the same bits (docs/performance-log.md, "The
+// three-lane vector copied member by member").
 template <class L> struct V3T {
     alignas(sizeof(L)) L x;
     alignas(sizeof(L)) L y;

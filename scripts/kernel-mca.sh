@@ -5,8 +5,8 @@
 # runs LLVM's machine-code analyser over it for a CPU model. llvm-mca assumes every load hits L1 and
 # every branch is predicted, so its cycles an iteration are what the loop would cost with no stall:
 # the floor under what tuning the present instructions can reach (docs/performance-log.md, "What the
-# particle loop costs on paper"). An iteration is one particle of one register's lanes (16 at AVX-512, 8 at AVX2,
-# 4 at SSE4); the loop's body holds the rarely taken paths laid out in line too.
+# particle loop costs on paper"). An iteration is one particle of one register's lanes (16 at
+# AVX-512, 8 at AVX2, 4 at SSE4); the loop's body holds the rarely taken paths laid out in line too.
 #
 #   scripts/kernel-mca.sh [--target AVX3|AVX2|SSE4] [--mcpu CPU] [BINARY]
 #   scripts/kernel-mca.sh --target AVX2 --mcpu znver3 build/app/wisp-cli

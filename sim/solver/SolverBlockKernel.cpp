@@ -65,7 +65,8 @@ constexpr float kPrefetchClearanceMetres = 0.005f;
 // Of a rest row a limp block reads only the length (its first 64 bytes; the bend's shares and
 // rest direction are for blocks that bend), so behind a limp block only that is asked for: the
 // next block is most likely limp too, and the five other lines, which it would not read, were 38 %
-// of the bytes the 1,000,000-particle sphere streamed a step (docs/performance-log.md, "The limp blocks' rest rows").
+// of the bytes the 1,000,000-particle sphere streamed a step (docs/performance-log.md, "The limp
+// blocks' rest rows").
 // Where a block is more than one slice (AVX2, SSE4), each slice's pass asks for its share of the
 // lines, not the first pass for all of them at once: the 1,000,000-particle sphere at AVX2, one
 // thread, 4 to 7 % faster (its eight misses a particle had come in one burst).
@@ -394,7 +395,8 @@ void advanceBlockAs(Solver::Block& block, const StepConstants& c, int firstSubst
         // The field lookup (a node per lane, and a branch on its answer the strand's chain waits
         // for) is skipped while the clearance bound says no lane can touch: the bound shrinks by
         // each move's length, rounded up (moveLength). Every particle looking every substep took
-        // groom-1m from 7.95 to 10.4 times the floor (docs/performance-log.md, "What groom-1m's step is made of").
+        // groom-1m from 7.95 to 10.4 times the floor (docs/performance-log.md, "What groom-1m's step
+        // is made of").
         const V3 checked = position;
         Lane clearance = p.clearance - moveLength(position - before);
         // Only the lanes whose bound ran out meet the head and the capsules: a lane's own bound

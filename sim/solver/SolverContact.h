@@ -318,6 +318,15 @@ struct ContactTurn {
     const ContactTurn turn = surfaceTurn(normal, position - parent);
     turnOntoTangentPlane(inside, depth, turn, parent, length, position, pushWhatIsLeft, band);
 }
+// A capsule's turn (and push) from `away` and |away| = dist (capsuleTurn); returns the contact's
+// normal, for friction and the normal response.
+[[gnu::always_inline]] inline V3 turnOutOfCapsuleInline(
+    Mask inside, Lane depth, const V3& away, Lane dist, const V3& parent, Lane length, V3& position, Lane band)
+{
+    const ContactTurn turn = capsuleTurn(away, dist, position - parent);
+    turnOntoTangentPlane(inside, depth, turn, parent, length, position, true, band, true);
+    return turn.normal;
+}
 // Out of line, the turn and friction take the kernel's values as copies and give back what they
 // change, never a kernel variable by address: a variable whose address reaches an out-of-line call
 // lives in memory for the whole particle loop (GCC does not keep it in registers around the call's
@@ -340,9 +349,8 @@ struct HeldParticle {
 [[gnu::noinline]] HeldParticle resolveCapsuleContactOnCopies(Mask inside, Lane depth, V3 away, Lane dist,
     const ContactFriction& mu, V3 parent, Lane length, V3 oldPosition, V3 headMove, V3 position, V3 previous, Lane band)
 {
-    const ContactTurn turn = capsuleTurn(away, dist, position - parent);
-    turnOntoTangentPlane(inside, depth, turn, parent, length, position, true, band, true);
-    applyFrictionInline(inside, depth, turn.normal, mu, parent, oldPosition, headMove, position, previous, band);
+    const V3 normal = turnOutOfCapsuleInline(inside, depth, away, dist, parent, length, position, band);
+    applyFrictionInline(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
     return { position, previous };
 }
 
@@ -357,14 +365,13 @@ inline void resolveCapsuleContact(Mask inside, Lane depth, const V3& away, Lane 
 {
     HeldParticle held;
     if constexpr (Limp) {
-        const ContactTurn turn = capsuleTurn(away, dist, position - parent);
-        turnOntoTangentPlane(inside, depth, turn, parent, length, position, true, band, true);
+        const V3 normal = turnOutOfCapsuleInline(inside, depth, away, dist, parent, length, position, band);
         if (mu.none) {
-            keepNoVelocityInto(inside, turn.normal, oldPosition, headMove, position, previous);
+            keepNoVelocityInto(inside, normal, oldPosition, headMove, position, previous);
             return;
         }
-        held = applyFrictionOnCopies(
-            inside, depth, turn.normal, mu, parent, oldPosition, headMove, position, previous, band);
+        held
+            = applyFrictionOnCopies(inside, depth, normal, mu, parent, oldPosition, headMove, position, previous, band);
     } else {
         held = resolveCapsuleContactOnCopies(
             inside, depth, away, dist, mu, parent, length, oldPosition, headMove, position, previous, band);
